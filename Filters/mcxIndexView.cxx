@@ -1,0 +1,212 @@
+#include "mcxIndexView.h"
+
+#include "vtkMCXDensityIndex.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "mcxProjectionGeometry.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkTypeUInt32Array.h"
+#include "vtkTypeUInt64Array.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace mcx
+{
+
+template <>
+const std::uint32_t* IndexView::IdPointer<std::uint32_t>() const
+{
+  return static_cast<const std::uint32_t*>(this->Ids->GetVoidPointer(0));
+}
+
+template <>
+const std::uint64_t* IndexView::IdPointer<std::uint64_t>() const
+{
+  return static_cast<const std::uint64_t*>(this->Ids->GetVoidPointer(0));
+}
+
+std::string IndexView::Read(vtkImageData* index)
+{
+  if (!index)
+  {
+    return "no index image";
+  }
+  vtkFieldData* fd = index->GetFieldData();
+  auto* values = vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelValuesName()));
+  auto* offsets =
+    vtkTypeInt64Array::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelOffsetsName()));
+  auto* ids = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::SortedVoxelIdsName()));
+  if (!values || !offsets || !ids)
+  {
+    return "the input is not a density index (run vtkMCXDensityIndex first)";
+  }
+  if (!vtkTypeUInt32Array::SafeDownCast(ids) && !vtkTypeUInt64Array::SafeDownCast(ids))
+  {
+    return "the index's voxel ids must be 32- or 64-bit unsigned integers";
+  }
+  if (offsets->GetNumberOfValues() != values->GetNumberOfValues() + 1)
+  {
+    return "the index's level offsets do not match its levels";
+  }
+  index->GetExtent(this->Extent);
+  index->GetDimensions(this->Dimensions);
+  index->GetOrigin(this->Origin);
+  index->GetSpacing(this->Spacing);
+  const double* direction = index->GetDirectionMatrix()->GetData();
+  std::copy(direction, direction + 9, this->Direction);
+  this->LevelValues = values->GetPointer(0);
+  static_assert(sizeof(vtkTypeInt64) == sizeof(std::int64_t), "64-bit offsets");
+  this->LevelOffsets = reinterpret_cast<const std::int64_t*>(offsets->GetPointer(0));
+  this->NumberOfLevels = values->GetNumberOfValues();
+  this->Ids = ids;
+  this->WideIds = vtkTypeUInt64Array::SafeDownCast(ids) != nullptr;
+  const std::int64_t voxels = static_cast<std::int64_t>(this->Dimensions[0]) * this->Dimensions[1] *
+    this->Dimensions[2];
+  if (this->LevelOffsets[this->NumberOfLevels] != ids->GetNumberOfValues() ||
+    ids->GetNumberOfValues() > voxels)
+  {
+    return "the index's ids do not match its levels and extent";
+  }
+  if (!this->WideIds && vtkMCXDensityIndex::NeedsWideIds(voxels))
+  {
+    return "the index's 32-bit ids cannot address its extent";
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(this->Spacing[a] != 0.0) || !std::isfinite(this->Spacing[a]) || !std::isfinite(this->Origin[a]))
+    {
+      return "the volume's spacing must be non-zero and finite and its origin finite";
+    }
+  }
+  if (!(this->VoxelVolume() > 0) || !std::isfinite(this->VoxelVolume()))
+  {
+    return "the volume's direction matrix is singular or its voxel volume is not finite";
+  }
+  return std::string();
+}
+
+void IndexView::SourceToWorld(double sourceOrigin[3], double sourceMatrix[9]) const
+{
+  for (int r = 0; r < 3; ++r)
+  {
+    sourceOrigin[r] = this->Origin[r];
+    for (int c = 0; c < 3; ++c)
+    {
+      sourceMatrix[3 * r + c] = this->Direction[3 * r + c] * this->Spacing[c];
+      sourceOrigin[r] += sourceMatrix[3 * r + c] * this->Extent[2 * c];
+    }
+  }
+}
+
+double IndexView::VoxelVolume() const
+{
+  double origin[3], m[9];
+  this->SourceToWorld(origin, m);
+  return std::fabs(vtkMath::Determinant3x3(m[0], m[3], m[6], m[1], m[4], m[7], m[2], m[5], m[8]));
+}
+
+std::vector<double> IndexView::EvaluateTransferFunction(vtkPiecewiseFunction* tf) const
+{
+  std::vector<double> weights(this->LevelValues, this->LevelValues + this->NumberOfLevels);
+  if (!tf)
+  {
+    return weights; // raw density: g = f
+  }
+  for (std::int64_t l = 0; l < this->NumberOfLevels; ++l)
+  {
+    weights[static_cast<std::size_t>(l)] = tf->GetValue(this->LevelValues[l]);
+  }
+  return weights;
+}
+
+bool SupportCornersFromInformation(vtkInformation* info, double kernelRadius, double corners[24])
+{
+  if (!info || !info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return false;
+  }
+  int extent[6];
+  double origin[3] = { 0, 0, 0 };
+  double spacing[3] = { 1, 1, 1 };
+  double direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  if (info->Has(vtkDataObject::ORIGIN()))
+  {
+    info->Get(vtkDataObject::ORIGIN(), origin);
+  }
+  if (info->Has(vtkDataObject::SPACING()))
+  {
+    info->Get(vtkDataObject::SPACING(), spacing);
+  }
+  if (info->Has(vtkDataObject::DIRECTION()))
+  {
+    info->Get(vtkDataObject::DIRECTION(), direction);
+  }
+  if (extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4])
+  {
+    return false;
+  }
+  ComputeSupportCorners(extent, origin, spacing, direction, kernelRadius, corners);
+  return true;
+}
+
+std::string IndexView::MakeTransferTable(
+  vtkPiecewiseFunction* tf, TransferTable& table, double& integral, std::string& warning) const
+{
+  table = BuildTransferTable(
+    this->EvaluateTransferFunction(tf).data(), this->LevelOffsets, this->NumberOfLevels);
+  warning = DescribeTransferTableProblems(table);
+  integral = table.WeightSum() * this->VoxelVolume();
+  if (table.InfiniteLevels > 0)
+  {
+    std::string error = warning;
+    warning.clear();
+    return error;
+  }
+  if (!std::isfinite(integral))
+  {
+    return "the integral of the transfer-function-weighted volume overflows";
+  }
+  return std::string();
+}
+
+std::string DescribeTransferTableProblems(const TransferTable& table)
+{
+  std::ostringstream out;
+  if (table.NegativeLevels > 0)
+  {
+    out << "the transfer function is negative at " << table.NegativeLevels
+        << " density levels; those were clamped to 0. ";
+  }
+  if (table.NaNLevels > 0)
+  {
+    out << "the transfer function is NaN at " << table.NaNLevels
+        << " density levels; those were treated as 0. ";
+  }
+  if (table.InfiniteLevels > 0)
+  {
+    out << "the transfer function is infinite at " << table.InfiniteLevels
+        << " density levels; no finite image exists. ";
+  }
+  else if (table.IsEmpty())
+  {
+    out << "the transfer function is zero over the whole volume; the image is empty. ";
+  }
+  std::string text = out.str();
+  if (!text.empty())
+  {
+    text.pop_back();
+  }
+  return text;
+}
+
+} // namespace mcx

@@ -1,0 +1,82 @@
+// Read access to the output of vtkMCXDensityIndex for the samplers and
+// projectors, plus the transfer function evaluated per level.
+#ifndef mcxIndexView_h
+#define mcxIndexView_h
+
+#include "mcxSampleGenerator.h"
+#include "mcxTransferTable.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkInformation;
+class vtkPiecewiseFunction;
+
+namespace mcx
+{
+
+struct IndexView
+{
+  int Extent[6] = { 0, -1, 0, -1, 0, -1 };
+  int Dimensions[3] = { 0, 0, 0 };
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const double* LevelValues = nullptr;
+  const std::int64_t* LevelOffsets = nullptr;
+  std::int64_t NumberOfLevels = 0;
+  vtkDataArray* Ids = nullptr;
+  bool WideIds = false;
+
+  /// Reads the index arrays; returns an empty string or the reason it cannot.
+  std::string Read(vtkImageData* index);
+
+  /// World = SourceOrigin + SourceMatrix * p for voxel coordinates p counted
+  /// from the first voxel of the extent.
+  void SourceToWorld(double sourceOrigin[3], double sourceMatrix[9]) const;
+
+  /// |det(direction * diag(spacing))|: the integral of one voxel's kernel.
+  double VoxelVolume() const;
+
+  /// TF value at each level (vtkPiecewiseFunction, clamped at its ends);
+  /// without a TF, the level value itself.
+  std::vector<double> EvaluateTransferFunction(vtkPiecewiseFunction* tf) const;
+
+  /// Evaluates the TF into the sampling table and the integral of g (TF
+  /// units times world volume). Returns why no image can be made, or "";
+  /// warning tells about values replaced by zero or an all-zero TF.
+  std::string MakeTransferTable(
+    vtkPiecewiseFunction* tf, TransferTable& table, double& integral, std::string& warning) const;
+
+  /// Fills the voxel-independent part of a sample source.
+  template <typename IdType>
+  SampleSource<IdType> MakeSource(const TransferTable& table) const
+  {
+    SampleSource<IdType> source;
+    source.SortedIds = this->IdPointer<IdType>();
+    source.LevelOffsets = this->LevelOffsets;
+    source.Cumulative = table.Cumulative.data();
+    source.NumberOfLevels = this->NumberOfLevels;
+    source.Decoder = VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->Dimensions[0]),
+      static_cast<std::uint64_t>(this->Dimensions[1]));
+    return source;
+  }
+
+  template <typename IdType>
+  const IdType* IdPointer() const;
+};
+
+/// Support corners (see ComputeSupportCorners) from the pipeline information
+/// of an image (WHOLE_EXTENT, ORIGIN, SPACING and DIRECTION when present).
+bool SupportCornersFromInformation(vtkInformation* info, double kernelRadius, double corners[24]);
+
+/// Human-readable warnings for levels whose TF value had to be replaced by 0,
+/// and for a TF that is zero everywhere; empty when there is nothing to say.
+std::string DescribeTransferTableProblems(const TransferTable& table);
+
+} // namespace mcx
+
+#endif

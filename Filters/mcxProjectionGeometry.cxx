@@ -1,0 +1,174 @@
+#include "mcxProjectionGeometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mcx
+{
+
+namespace
+{
+double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+}
+
+std::string ProjectionGeometry::Validate() const
+{
+  const double tolerance = 1e-9;
+  const double* axes[3] = { this->U, this->V, this->W };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (std::fabs(Dot(axes[a], axes[a]) - 1.0) > tolerance)
+    {
+      return "detector axes must be unit vectors";
+    }
+    for (int b = a + 1; b < 3; ++b)
+    {
+      if (std::fabs(Dot(axes[a], axes[b])) > tolerance)
+      {
+        return "detector axes must be orthogonal";
+      }
+    }
+  }
+  if (this->Size[0] < 1 || this->Size[1] < 1)
+  {
+    return "image size must be at least 1x1";
+  }
+  if (!(this->Spacing[0] > 0 && this->Spacing[1] > 0) || !std::isfinite(this->PixelArea()) ||
+    this->PixelArea() <= 0)
+  {
+    return "pixel spacing must be positive and finite";
+  }
+  if (this->Perspective)
+  {
+    if (!(this->FocalDistance > 0) || !std::isfinite(this->FocalDistance))
+    {
+      return "perspective focal distance must be positive and finite";
+    }
+    if (!(this->NearDistance > 0) || !std::isfinite(this->NearDistance))
+    {
+      return "perspective near distance must be positive and finite";
+    }
+  }
+  return std::string();
+}
+
+void ComputeSupportCorners(const int extent[6], const double origin[3], const double spacing[3],
+  const double direction[9], double kernelRadius, double corners[24])
+{
+  for (int c = 0; c < 8; ++c)
+  {
+    double index[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      index[a] = (c >> a) & 1 ? extent[2 * a + 1] + kernelRadius : extent[2 * a] - kernelRadius;
+      index[a] *= spacing[a];
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      corners[3 * c + r] = origin[r] + direction[3 * r] * index[0] +
+        direction[3 * r + 1] * index[1] + direction[3 * r + 2] * index[2];
+    }
+  }
+}
+
+bool ProjectToPlane(const ProjectionGeometry& g, const double x[3], double& a, double& b)
+{
+  if (!g.Perspective)
+  {
+    a = Dot(x, g.U);
+    b = Dot(x, g.V);
+    return true;
+  }
+  const double d[3] = { x[0] - g.Eye[0], x[1] - g.Eye[1], x[2] - g.Eye[2] };
+  const double z = Dot(d, g.W);
+  if (!(z > 0))
+  {
+    return false;
+  }
+  a = g.FocalDistance * Dot(d, g.U) / z;
+  b = g.FocalDistance * Dot(d, g.V) / z;
+  return true;
+}
+
+bool FrameCorners(ProjectionGeometry& g, const double corners[24], const int requestedSize[2],
+  double requestedSpacing, int defaultLongSide)
+{
+  double lo[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double hi[2] = { -lo[0], -lo[1] };
+  int seen = 0;
+  for (int c = 0; c < 8; ++c)
+  {
+    double ab[2];
+    const double* x = corners + 3 * c;
+    bool visible = ProjectToPlane(g, x, ab[0], ab[1]);
+    if (visible && g.Perspective)
+    {
+      const double d[3] = { x[0] - g.Eye[0], x[1] - g.Eye[1], x[2] - g.Eye[2] };
+      visible = Dot(d, g.W) >= g.NearDistance;
+    }
+    if (visible)
+    {
+      ++seen;
+      for (int k = 0; k < 2; ++k)
+      {
+        lo[k] = std::min(lo[k], ab[k]);
+        hi[k] = std::max(hi[k], ab[k]);
+      }
+    }
+  }
+  if (seen == 0)
+  {
+    return false;
+  }
+  const double width[2] = { hi[0] - lo[0], hi[1] - lo[1] };
+  double spacing = requestedSpacing;
+  int size[2] = { requestedSize[0], requestedSize[1] };
+  if (!(spacing > 0))
+  {
+    if (size[0] > 0 && size[1] > 0)
+    {
+      spacing = std::max(width[0] / size[0], width[1] / size[1]);
+    }
+    else
+    {
+      spacing = std::max(width[0], width[1]) / std::max(defaultLongSide, 1);
+    }
+  }
+  if (!(spacing > 0) || !std::isfinite(spacing))
+  {
+    return false;
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    if (size[k] <= 0)
+    {
+      const double pixels = std::ceil(width[k] / spacing - 1e-9);
+      size[k] = static_cast<int>(std::max(1.0, std::min(pixels, 1.0e6)));
+    }
+    const double centre = 0.5 * (lo[k] + hi[k]);
+    g.Size[k] = size[k];
+    g.Spacing[k] = spacing;
+    g.Origin[k] = centre - 0.5 * (size[k] - 1) * spacing;
+  }
+  return true;
+}
+
+ProjectionGeometry AxisAlignedParallel(int axis)
+{
+  ProjectionGeometry g;
+  const int first = axis == 0 ? 1 : 0;
+  const int second = axis == 2 ? 1 : 2;
+  for (int a = 0; a < 3; ++a)
+  {
+    g.U[a] = a == first ? 1.0 : 0.0;
+    g.V[a] = a == second ? 1.0 : 0.0;
+    g.W[a] = a == axis ? 1.0 : 0.0;
+  }
+  return g;
+}
+
+} // namespace mcx

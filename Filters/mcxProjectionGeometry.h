@@ -1,0 +1,65 @@
+// Detector geometry shared by the Monte Carlo and the exact projectors.
+//
+// Image pixel (i, j) is centred at detector-plane coordinates
+// (Origin[0] + i * Spacing[0], Origin[1] + j * Spacing[1]) and covers a
+// Spacing[0] x Spacing[1] rectangle around that centre.
+//   Parallel:    a point x has plane coordinates (x . U, x . V); rays run along W.
+//   Perspective: rays leave the eye E; a point x has plane coordinates
+//                D * ((x - E) . U, (x - E) . V) / z with depth z = (x - E) . W,
+//                i.e. coordinates on the plane at distance D from the eye
+//                (the focal plane), measured from the principal point.
+//                Only depths z >= NearDistance are seen.
+// A pixel's value is (1 / pixel area) times the integral over the pixel of
+// the line integral of g along the ray, in TF units times world length.
+#ifndef mcxProjectionGeometry_h
+#define mcxProjectionGeometry_h
+
+#include <string>
+
+namespace mcx
+{
+
+struct ProjectionGeometry
+{
+  bool Perspective = false;
+  double Eye[3] = { 0, 0, 0 };
+  double U[3] = { 1, 0, 0 };
+  double V[3] = { 0, 1, 0 };
+  double W[3] = { 0, 0, 1 };
+  double FocalDistance = 1.0;
+  double NearDistance = 0.0;
+  int Size[2] = { 0, 0 };
+  double Spacing[2] = { 1, 1 };
+  double Origin[2] = { 0, 0 };
+
+  double PixelArea() const { return this->Spacing[0] * this->Spacing[1]; }
+
+  /// Empty when usable, else why not (non-orthonormal axes, empty image, ...).
+  std::string Validate() const;
+};
+
+/// The 8 corners (x, y, z each) of the box where g can be non-zero: the
+/// extent grown by the kernel radius (in voxels), mapped to world
+/// coordinates by origin, spacing and direction (row-major 3x3).
+void ComputeSupportCorners(const int extent[6], const double origin[3], const double spacing[3],
+  const double direction[9], double kernelRadius, double corners[24]);
+
+/// Plane coordinates of a world point; false when it is not in front of the
+/// eye (perspective) -- then (a, b) are left unchanged.
+bool ProjectToPlane(const ProjectionGeometry& geometry, const double x[3], double& a, double& b);
+
+/// Sets Size, Spacing and Origin so that the image covers the projection of
+/// the corners (perspective: the part in front of the near plane is framed by
+/// its 8 corners, so corners behind the eye are ignored). A requested size or
+/// spacing (> 0) is kept; with neither, the longest side gets defaultLongSide
+/// pixels. Returns false if nothing can be framed.
+bool FrameCorners(ProjectionGeometry& geometry, const double corners[24], const int requestedSize[2],
+  double requestedSpacing, int defaultLongSide);
+
+/// Parallel view along a world axis (0, 1, 2): U and V are the two remaining
+/// axes in x, y, z order, so the image is never mirrored.
+ProjectionGeometry AxisAlignedParallel(int axis);
+
+} // namespace mcx
+
+#endif

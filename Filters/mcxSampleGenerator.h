@@ -1,0 +1,180 @@
+// The sampling kernel of hybrid Monte Carlo volume rendering (sections 5 and
+// 6 of the paper), without any VTK pipeline around it.
+//
+// Every sample has an output index k in [0, M). Its voxel is the inverse of
+// the TF-weighted cumulative distribution at a number u in (0, 1]: for
+// Hybrid and QuasiMonteCarlo u = RadicalInverse2(k + 1) (the base-2 Halton
+// sequence), for MonteCarlo u is pseudo-random. Within the chosen level, whose
+// voxels share one weight, u picks the voxel by its rank. The sub-voxel offset
+// is drawn from the normalised reconstruction kernel: pseudo-randomly (Hybrid,
+// MonteCarlo) or from Halton bases 3, 5, 7 with a seeded random shift
+// (QuasiMonteCarlo). Everything about sample k depends on (seed, k) alone, so
+// the result is the same for any split of the work among threads, and the
+// first 2^j - 1 Hybrid samples of a run are exactly a 2^j - 1 sample run.
+#ifndef mcxSampleGenerator_h
+#define mcxSampleGenerator_h
+
+#include "mcxFastDivide.h"
+#include "mcxHalton.h"
+#include "mcxRandom.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace mcx
+{
+
+enum class Strategy : int
+{
+  Hybrid = 0,
+  MonteCarlo = 1,
+  QuasiMonteCarlo = 2
+};
+
+enum class Kernel : int
+{
+  Tent = 0, ///< trilinear reconstruction, support one spacing each side
+  Box = 1   ///< nearest-neighbour reconstruction, support half a spacing each side
+};
+
+/// Half-width of the kernel's support in voxels.
+inline double KernelRadius(Kernel kernel)
+{
+  return kernel == Kernel::Tent ? 1.0 : 0.5;
+}
+
+/// Offset in voxels from a uniform number in [0, 1), by inversion of the
+/// kernel's one-dimensional density.
+inline double KernelOffsetFromUniform(Kernel kernel, double u)
+{
+  if (kernel == Kernel::Box)
+  {
+    return u - 0.5;
+  }
+  return u < 0.5 ? std::sqrt(2.0 * u) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u));
+}
+
+template <typename IdType>
+struct SampleSource
+{
+  const IdType* SortedIds = nullptr;
+  const std::int64_t* LevelOffsets = nullptr; // NumberOfLevels + 1 entries
+  const double* Cumulative = nullptr;         // NumberOfLevels + 1 entries, see TransferTable
+  std::int64_t NumberOfLevels = 0;
+  VoxelDecoder<IdType> Decoder;
+  Strategy Method = Strategy::Hybrid;
+  Kernel Reconstruction = Kernel::Tent;
+  std::uint64_t Seed = 0;
+  unsigned Exponent = 0; // M = 2^Exponent - 1
+
+  std::uint64_t NumberOfSamples() const { return SampleCount(this->Exponent); }
+
+  /// Generates the samples of one work item: for Hybrid and QuasiMonteCarlo
+  /// the items are ranks in u order (i, with u = (i + 1) / 2^m), so that
+  /// levels and ids are visited in order; for MonteCarlo they are the output
+  /// indices k. The sink is called as sink(k, p) with p the sample in voxel
+  /// coordinates counted from the first voxel of the extent.
+  template <typename Sink>
+  void Generate(std::uint64_t begin, std::uint64_t end, Sink& sink) const
+  {
+    if (begin >= end)
+    {
+      return;
+    }
+    const double total = this->Cumulative[this->NumberOfLevels];
+    if (this->Method == Strategy::MonteCarlo)
+    {
+      for (std::uint64_t k = begin; k < end; ++k)
+      {
+        CounterRandom random(this->Seed, k);
+        const double target = random.NextOpenClosed() * total;
+        const std::int64_t c = this->FindLevel(target);
+        this->Emit(k, target, c, random, sink);
+      }
+      return;
+    }
+    const double step = std::ldexp(total, -static_cast<int>(this->Exponent));
+    std::int64_t c = this->FindLevel(static_cast<double>(begin + 1) * step);
+    for (std::uint64_t i = begin; i < end; ++i)
+    {
+      const double target = static_cast<double>(i + 1) * step;
+      while (target > this->Cumulative[c])
+      {
+        ++c;
+      }
+      const std::uint64_t k = HaltonPosition(i, this->Exponent);
+      CounterRandom random(this->Seed, k);
+      this->Emit(k, target, c, random, sink);
+    }
+  }
+
+private:
+  /// Smallest c in [1, NumberOfLevels] with target <= Cumulative[c]; level c - 1.
+  std::int64_t FindLevel(double target) const
+  {
+    const double* first = this->Cumulative + 1;
+    const double* last = this->Cumulative + this->NumberOfLevels + 1;
+    const std::int64_t c = (std::lower_bound(first, last, target) - this->Cumulative);
+    return std::min<std::int64_t>(c, this->NumberOfLevels);
+  }
+
+  template <typename Sink>
+  void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random, Sink& sink) const
+  {
+    const double below = this->Cumulative[c - 1];
+    const double mass = this->Cumulative[c] - below;
+    const std::int64_t first = this->LevelOffsets[c - 1];
+    const std::int64_t count = this->LevelOffsets[c] - first;
+    // Rank of the voxel whose share of the level's mass contains target.
+    const double position = (target - below) / mass * static_cast<double>(count);
+    std::int64_t rank = static_cast<std::int64_t>(std::ceil(position)) - 1;
+    rank = std::max<std::int64_t>(0, std::min<std::int64_t>(count - 1, rank));
+
+    std::uint64_t vi, vj, vk;
+    this->Decoder.Decode(this->SortedIds[first + rank], vi, vj, vk);
+    double p[3] = { static_cast<double>(vi), static_cast<double>(vj), static_cast<double>(vk) };
+    this->AddKernelOffset(k, random, p);
+    sink(k, p);
+  }
+
+  void AddKernelOffset(std::uint64_t k, CounterRandom& random, double p[3]) const
+  {
+    if (this->Method == Strategy::QuasiMonteCarlo)
+    {
+      // Halton bases 3, 5, 7 with a Cranley-Patterson rotation from the seed.
+      static const unsigned bases[3] = { 3, 5, 7 };
+      for (int a = 0; a < 3; ++a)
+      {
+        CounterRandom shiftSource(this->Seed ^ 0xA5A5A5A5A5A5A5A5ull, static_cast<std::uint64_t>(a));
+        double u = RadicalInverse(k + 1, bases[a]) + shiftSource.NextOpenClosed();
+        u -= std::floor(u);
+        p[a] += KernelOffsetFromUniform(this->Reconstruction, u);
+      }
+      return;
+    }
+    if (this->Reconstruction == Kernel::Tent)
+    {
+      // The sum of two uniforms has the tent density on (-1, 1).
+      for (int a = 0; a < 3; ++a)
+      {
+        double u1, u2;
+        random.NextPair(u1, u2);
+        p[a] += u1 + u2 - 1.0;
+      }
+    }
+    else
+    {
+      double u0, u1, u2, unused;
+      random.NextPair(u0, u1);
+      random.NextPair(u2, unused);
+      p[0] += u0 - 0.5;
+      p[1] += u1 - 0.5;
+      p[2] += u2 - 0.5;
+    }
+  }
+};
+
+} // namespace mcx
+
+#endif

@@ -1,0 +1,298 @@
+#include "vtkMCXDensityIndex.h"
+
+#include "mcxCountingSort.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkTypeUInt32Array.h"
+#include "vtkTypeUInt64Array.h"
+#include "vtkCellData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXDensityIndex);
+
+namespace
+{
+// Integer data with a value range up to this size is binned directly;
+// wider ranges are binned through the sorted list of distinct values.
+constexpr long long DenseIntegerBinLimit = 1LL << 24;
+
+struct IndexResult
+{
+  std::vector<double> LevelValues;
+  std::vector<std::int64_t> LevelOffsets;
+  vtkSmartPointer<vtkDataArray> SortedIds;
+  std::int64_t NonFinite = 0;
+  double BinWidth = 0.0;
+};
+
+template <typename T>
+struct ValueRange
+{
+  T Min;
+  T Max;
+  std::int64_t Finite = 0;
+};
+
+template <typename T>
+bool IsFiniteValue(T v)
+{
+  if (std::is_floating_point<T>::value)
+  {
+    return std::isfinite(static_cast<double>(v));
+  }
+  return true;
+}
+
+// Deterministic chunked min/max of the finite values.
+template <typename T>
+ValueRange<T> ComputeRange(const T* values, std::int64_t n)
+{
+  const std::int64_t chunk = 1 << 18;
+  const std::int64_t chunks = std::max<std::int64_t>(1, (n + chunk - 1) / chunk);
+  std::vector<ValueRange<T>> parts(static_cast<std::size_t>(chunks),
+    ValueRange<T>{ std::numeric_limits<T>::max(), std::numeric_limits<T>::lowest(), 0 });
+  vtkSMPTools::For(0, chunks, 1, [&](std::int64_t c0, std::int64_t c1) {
+    for (std::int64_t c = c0; c < c1; ++c)
+    {
+      ValueRange<T>& r = parts[static_cast<std::size_t>(c)];
+      const std::int64_t end = std::min(n, (c + 1) * chunk);
+      for (std::int64_t i = c * chunk; i < end; ++i)
+      {
+        const T v = values[i];
+        if (IsFiniteValue(v))
+        {
+          r.Min = std::min(r.Min, v);
+          r.Max = std::max(r.Max, v);
+          ++r.Finite;
+        }
+      }
+    }
+  });
+  ValueRange<T> total = parts[0];
+  for (std::size_t c = 1; c < parts.size(); ++c)
+  {
+    total.Min = std::min(total.Min, parts[c].Min);
+    total.Max = std::max(total.Max, parts[c].Max);
+    total.Finite += parts[c].Finite;
+  }
+  return total;
+}
+
+template <typename IdType, typename BinFunction>
+void SortIntoLevels(std::int64_t n, std::int64_t numberOfBins, std::int64_t numberKept,
+  const BinFunction& binOf, const std::function<double(std::int64_t)>& binValue, IndexResult& result)
+{
+  using ArrayType =
+    typename std::conditional<std::is_same<IdType, std::uint32_t>::value, vtkTypeUInt32Array,
+      vtkTypeUInt64Array>::type;
+  vtkNew<ArrayType> ids;
+  ids->SetName(vtkMCXDensityIndex::SortedVoxelIdsName());
+  ids->SetNumberOfValues(numberKept);
+  std::vector<std::int64_t> binOffsets;
+  result.NonFinite = mcx::CountingSortByBin<IdType>(
+    n, numberOfBins, binOf, binOffsets, reinterpret_cast<IdType*>(ids->GetPointer(0)));
+  result.SortedIds = ids;
+  // Keep the non-empty bins only.
+  result.LevelOffsets.push_back(0);
+  for (std::int64_t b = 0; b < numberOfBins; ++b)
+  {
+    if (binOffsets[static_cast<std::size_t>(b + 1)] > binOffsets[static_cast<std::size_t>(b)])
+    {
+      result.LevelValues.push_back(binValue(b));
+      result.LevelOffsets.push_back(binOffsets[static_cast<std::size_t>(b + 1)]);
+    }
+  }
+}
+
+template <typename IdType, typename T>
+void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& result)
+{
+  const ValueRange<T> range = ComputeRange(values, n);
+  if (range.Finite == 0)
+  {
+    SortIntoLevels<IdType>(
+      n, 0, 0, [](std::int64_t) { return std::int64_t(-1); },
+      [](std::int64_t) { return 0.0; }, result);
+    return;
+  }
+  if (std::is_floating_point<T>::value)
+  {
+    // Halved operands keep the range finite even for data near the double limits.
+    const double lo = 0.5 * static_cast<double>(range.Min);
+    const double hi = 0.5 * static_cast<double>(range.Max);
+    const double scale = hi > lo ? floatLevels / (hi - lo) : 0.0;
+    const std::int64_t last = floatLevels - 1;
+    result.BinWidth = hi > lo ? 2.0 * (hi - lo) / floatLevels : 0.0;
+    const double minimum = static_cast<double>(range.Min);
+    const double width = result.BinWidth;
+    SortIntoLevels<IdType>(
+      n, floatLevels, range.Finite,
+      [=](std::int64_t id) -> std::int64_t {
+        const double v = static_cast<double>(values[id]);
+        if (!std::isfinite(v))
+        {
+          return -1;
+        }
+        const std::int64_t b = static_cast<std::int64_t>((0.5 * v - lo) * scale);
+        return std::min(b, last);
+      },
+      [=](std::int64_t b) { return width > 0 ? minimum + (b + 0.5) * width : minimum; }, result);
+    return;
+  }
+  const __int128 span = static_cast<__int128>(range.Max) - static_cast<__int128>(range.Min);
+  if (span < DenseIntegerBinLimit)
+  {
+    const __int128 minimum = static_cast<__int128>(range.Min);
+    SortIntoLevels<IdType>(
+      n, static_cast<std::int64_t>(span) + 1, n,
+      [=](std::int64_t id) {
+        return static_cast<std::int64_t>(static_cast<__int128>(values[id]) - minimum);
+      },
+      [=](std::int64_t b) { return static_cast<double>(minimum + b); }, result);
+    return;
+  }
+  // Sparse integer values: one bin per distinct value, found by binary search.
+  std::vector<T> distinct(values, values + n);
+  vtkSMPTools::Sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  const T* first = distinct.data();
+  const T* last = distinct.data() + distinct.size();
+  SortIntoLevels<IdType>(
+    n, static_cast<std::int64_t>(distinct.size()), n,
+    [=](std::int64_t id) { return static_cast<std::int64_t>(std::lower_bound(first, last, values[id]) - first); },
+    [=](std::int64_t b) { return static_cast<double>(first[b]); }, result);
+}
+} // namespace
+
+vtkMCXDensityIndex::vtkMCXDensityIndex()
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+bool vtkMCXDensityIndex::NeedsWideIds(long long numberOfVoxels)
+{
+  return numberOfVoxels > static_cast<long long>(std::numeric_limits<std::uint32_t>::max());
+}
+
+int vtkMCXDensityIndex::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The index always covers the whole volume.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  return 1;
+}
+
+int vtkMCXDensityIndex::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!input || !output)
+  {
+    vtkErrorMacro("Missing input or output image data.");
+    return 0;
+  }
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  if (!scalars)
+  {
+    vtkErrorMacro("The input image has no point scalars to index.");
+    return 0;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    vtkErrorMacro("The input scalars '" << (scalars->GetName() ? scalars->GetName() : "")
+                                        << "' have " << scalars->GetNumberOfComponents()
+                                        << " components; the index needs one.");
+    return 0;
+  }
+  const vtkIdType n = input->GetNumberOfPoints();
+  if (scalars->GetNumberOfTuples() != n || n <= 0)
+  {
+    vtkErrorMacro("The input scalars do not cover the image's " << n << " points.");
+    return 0;
+  }
+
+  this->UpdateProgress(0.0);
+  IndexResult result;
+  const bool wide = vtkMCXDensityIndex::NeedsWideIds(n);
+  switch (scalars->GetDataType())
+  {
+    vtkTemplateMacro(
+      {
+        const VTK_TT* values = static_cast<const VTK_TT*>(scalars->GetVoidPointer(0));
+        if (wide)
+        {
+          BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, result);
+        }
+        else
+        {
+          BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, result);
+        }
+      });
+    default:
+      vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
+      return 0;
+  }
+  this->UpdateProgress(0.9);
+
+  output->CopyStructure(input);
+  output->GetPointData()->Initialize();
+  output->GetCellData()->Initialize();
+  vtkFieldData* fd = output->GetFieldData();
+  fd->Initialize();
+
+  vtkNew<vtkDoubleArray> levelValues;
+  levelValues->SetName(LevelValuesName());
+  levelValues->SetNumberOfValues(static_cast<vtkIdType>(result.LevelValues.size()));
+  std::copy(result.LevelValues.begin(), result.LevelValues.end(), levelValues->GetPointer(0));
+  vtkNew<vtkTypeInt64Array> levelOffsets;
+  levelOffsets->SetName(LevelOffsetsName());
+  levelOffsets->SetNumberOfValues(static_cast<vtkIdType>(result.LevelOffsets.size()));
+  std::copy(result.LevelOffsets.begin(), result.LevelOffsets.end(), levelOffsets->GetPointer(0));
+  vtkNew<vtkTypeInt64Array> nonFinite;
+  nonFinite->SetName(NonFiniteVoxelCountName());
+  nonFinite->InsertNextValue(result.NonFinite);
+  vtkNew<vtkDoubleArray> binWidth;
+  binWidth->SetName(LevelBinWidthName());
+  binWidth->InsertNextValue(result.BinWidth);
+
+  fd->AddArray(levelValues);
+  fd->AddArray(levelOffsets);
+  fd->AddArray(result.SortedIds);
+  fd->AddArray(nonFinite);
+  fd->AddArray(binWidth);
+
+  if (result.NonFinite > 0)
+  {
+    vtkWarningMacro(<< result.NonFinite << " NaN or infinite voxels were left out of the index.");
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkMCXDensityIndex::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfFloatLevels: " << this->NumberOfFloatLevels << "\n";
+}

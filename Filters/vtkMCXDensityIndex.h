@@ -1,0 +1,78 @@
+/**
+ * @class   vtkMCXDensityIndex
+ * @brief   Sorts the voxel ids of a volume by density level (the preprocessing
+ *          of hybrid Monte Carlo volume rendering).
+ *
+ * The input is vtkImageData with one-component point scalars of any type.
+ * Integer data gets one level per distinct value (exact); floating-point data
+ * gets NumberOfFloatLevels equal-width levels over its finite range, each
+ * represented by the centre of its bin, and NaN or infinite voxels are left
+ * out and counted.
+ *
+ * The output is vtkImageData with the input's geometry (extent, origin,
+ * spacing, direction) and no point data; the index travels in its field data:
+ * - "LevelValues" (double, one per non-empty level, ascending),
+ * - "LevelOffsets" (vtkTypeInt64Array, levels + 1 entries): the ids of level l
+ *   are SortedVoxelIds[LevelOffsets[l] .. LevelOffsets[l+1]),
+ * - "SortedVoxelIds" (vtkTypeUInt32Array below 2^32 voxels, else
+ *   vtkTypeUInt64Array): raster ids (x fastest) counted from the first voxel of
+ *   the extent, ascending within a level,
+ * - "NonFiniteVoxelCount" (vtkTypeInt64Array, 1 value),
+ * - "LevelBinWidth" (double, 1 value): 0 for exact integer levels.
+ *
+ * The sort runs in parallel with vtkSMPTools and its output is identical for
+ * any number of threads.
+ */
+#ifndef vtkMCXDensityIndex_h
+#define vtkMCXDensityIndex_h
+
+#include "MonteCarloXRayModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class MONTECARLOXRAY_EXPORT vtkMCXDensityIndex : public vtkImageAlgorithm
+{
+public:
+  static vtkMCXDensityIndex* New();
+  vtkTypeMacro(vtkMCXDensityIndex, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Number of equal-width levels for floating-point data (default 4096).
+   * Integer data always gets one level per distinct value.
+   */
+  vtkSetClampMacro(NumberOfFloatLevels, int, 1, 1 << 24);
+  vtkGetMacro(NumberOfFloatLevels, int);
+  ///@}
+
+  ///@{
+  /**
+   * Names of the field-data arrays of the output.
+   */
+  static const char* LevelValuesName() { return "LevelValues"; }
+  static const char* LevelOffsetsName() { return "LevelOffsets"; }
+  static const char* SortedVoxelIdsName() { return "SortedVoxelIds"; }
+  static const char* NonFiniteVoxelCountName() { return "NonFiniteVoxelCount"; }
+  static const char* LevelBinWidthName() { return "LevelBinWidth"; }
+  ///@}
+
+  /**
+   * True when volumes of this many voxels need 64-bit ids.
+   */
+  static bool NeedsWideIds(long long numberOfVoxels);
+
+protected:
+  vtkMCXDensityIndex();
+  ~vtkMCXDensityIndex() override = default;
+
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int NumberOfFloatLevels = 4096;
+
+private:
+  vtkMCXDensityIndex(const vtkMCXDensityIndex&) = delete;
+  void operator=(const vtkMCXDensityIndex&) = delete;
+};
+
+#endif

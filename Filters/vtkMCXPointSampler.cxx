@@ -1,0 +1,197 @@
+#include "vtkMCXPointSampler.h"
+
+#include "mcxBatchedFor.h"
+#include "mcxIndexView.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTypeInt64Array.h"
+
+#include <cmath>
+
+vtkStandardNewMacro(vtkMCXPointSampler);
+vtkCxxSetObjectMacro(vtkMCXPointSampler, TransferFunction, vtkPiecewiseFunction);
+vtkInformationKeyRestrictedMacro(vtkMCXPointSampler, SUPPORT_CORNERS, DoubleVector, 24);
+
+namespace
+{
+template <typename IdType, typename Real>
+bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::TransferTable& table,
+  mcx::Strategy strategy, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m, Real* points)
+{
+  mcx::SampleSource<IdType> source = view.MakeSource<IdType>(table);
+  source.Method = strategy;
+  source.Reconstruction = kernel;
+  source.Seed = seed;
+  source.Exponent = m;
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  auto store = [&](std::uint64_t k, const double p[3]) {
+    Real* x = points + 3 * k;
+    for (int r = 0; r < 3; ++r)
+    {
+      x[r] = static_cast<Real>(
+        origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
+    }
+  };
+  return mcx::BatchedFor(self, source.NumberOfSamples(), 0.05, 1.0,
+    [&](std::uint64_t b, std::uint64_t e) { source.Generate(b, e, store); });
+}
+}
+
+vtkMCXPointSampler::vtkMCXPointSampler() = default;
+
+vtkMCXPointSampler::~vtkMCXPointSampler()
+{
+  this->SetTransferFunction(nullptr);
+}
+
+void vtkMCXPointSampler::SetNumberOfSamples(vtkTypeInt64 n)
+{
+  this->SetSampleExponent(static_cast<int>(mcx::ExponentForSampleCount(n)));
+}
+
+vtkTypeInt64 vtkMCXPointSampler::GetNumberOfSamples()
+{
+  return static_cast<vtkTypeInt64>(mcx::SampleCount(static_cast<unsigned>(this->SampleExponent)));
+}
+
+vtkMTimeType vtkMCXPointSampler::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->TransferFunction)
+  {
+    t = std::max(t, this->TransferFunction->GetMTime());
+  }
+  return t;
+}
+
+int vtkMCXPointSampler::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkMCXPointSampler::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  double corners[24];
+  const double radius = mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel));
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (mcx::SupportCornersFromInformation(inputVector[0]->GetInformationObject(0), radius, corners))
+  {
+    outInfo->Set(SUPPORT_CORNERS(), corners, 24);
+  }
+  else
+  {
+    outInfo->Remove(SUPPORT_CORNERS());
+  }
+  return 1;
+}
+
+int vtkMCXPointSampler::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  return 1;
+}
+
+int vtkMCXPointSampler::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  mcx::IndexView view;
+  const std::string problem = view.Read(input);
+  if (!problem.empty())
+  {
+    vtkErrorMacro("Cannot sample: " << problem << ".");
+    return 0;
+  }
+  mcx::TransferTable table;
+  double integral = 0.0;
+  std::string warning;
+  const std::string error = view.MakeTransferTable(this->TransferFunction, table, integral, warning);
+  if (!error.empty())
+  {
+    vtkErrorMacro("Cannot sample: " << error << ".");
+    return 0;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
+
+  const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
+  const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
+  vtkNew<vtkPoints> points;
+  points->SetDataType(
+    this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
+  points->SetNumberOfPoints(count);
+
+  bool completed = true;
+  if (count > 0)
+  {
+    const auto strategy = static_cast<mcx::Strategy>(this->Strategy);
+    const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
+    void* raw = points->GetVoidPointer(0);
+    const bool isDouble = this->OutputPointsPrecision == DOUBLE_PRECISION;
+    if (view.WideIds)
+    {
+      completed = isDouble
+        ? GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<double*>(raw))
+        : GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<float*>(raw));
+    }
+    else
+    {
+      completed = isDouble
+        ? GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<double*>(raw))
+        : GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<float*>(raw));
+    }
+  }
+  if (!completed)
+  {
+    output->Initialize();
+    return 1;
+  }
+
+  output->SetPoints(points);
+  vtkFieldData* fd = output->GetFieldData();
+  vtkNew<vtkDoubleArray> weight;
+  weight->SetName("SampleWeight");
+  weight->InsertNextValue(count > 0 ? integral / static_cast<double>(count) : 0.0);
+  vtkNew<vtkDoubleArray> total;
+  total->SetName("Integral");
+  total->InsertNextValue(integral);
+  vtkNew<vtkTypeInt64Array> exponent;
+  exponent->SetName("SampleExponent");
+  exponent->InsertNextValue(m);
+  fd->AddArray(weight);
+  fd->AddArray(total);
+  fd->AddArray(exponent);
+  return 1;
+}
+
+void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TransferFunction: " << this->TransferFunction << "\n";
+  os << indent << "SampleExponent: " << this->SampleExponent << "\n";
+  os << indent << "Strategy: " << this->Strategy << "\n";
+  os << indent << "Kernel: " << this->Kernel << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
+}

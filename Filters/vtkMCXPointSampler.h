@@ -1,0 +1,135 @@
+/**
+ * @class   vtkMCXPointSampler
+ * @brief   Regenerates the point samples of hybrid Monte Carlo volume
+ *          rendering from a density index under a transfer function.
+ *
+ * Input: the output of vtkMCXDensityIndex. Output: vtkPolyData with
+ * M = 2^m - 1 points in world coordinates (spacing, origin and direction
+ * applied) and no cells. Sample k is stored at index k: for the Hybrid and
+ * QuasiMonteCarlo strategies this is the base-2 Halton order, so every
+ * prefix of 2^j - 1 points is exactly the point set of a 2^j - 1 sample run
+ * and gives a coarser estimate (progressive refinement).
+ *
+ * Each point stands for SampleWeight = Integral / M, where Integral is the
+ * integral of g(x) = sum_ijk TF(f_ijk) h(x - x_ijk) over space (TF units
+ * times world volume). Both travel in the output's field data
+ * ("SampleWeight", "Integral", "SampleExponent"), and the world corners of
+ * the support of g travel in the output information (SUPPORT_CORNERS) so that
+ * projectors can frame the image before any point exists.
+ *
+ * The cost is O(M) and independent of the voxel count; a TF change
+ * re-executes this filter only, never the index. The same seed gives the same
+ * points for any number of threads.
+ */
+#ifndef vtkMCXPointSampler_h
+#define vtkMCXPointSampler_h
+
+#include "MonteCarloXRayModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkInformationDoubleVectorKey;
+class vtkPiecewiseFunction;
+
+class MONTECARLOXRAY_EXPORT vtkMCXPointSampler : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMCXPointSampler* New();
+  vtkTypeMacro(vtkMCXPointSampler, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum StrategyType
+  {
+    HYBRID = 0,           ///< Halton voxel choice, pseudo-random offset (the paper)
+    MONTE_CARLO = 1,      ///< pseudo-random voxel choice and offset
+    QUASI_MONTE_CARLO = 2 ///< Halton voxel choice and Halton (bases 3, 5, 7) offset
+  };
+
+  enum KernelType
+  {
+    TENT = 0, ///< trilinear reconstruction
+    BOX = 1   ///< nearest-neighbour reconstruction
+  };
+
+  /// Largest sample exponent a stored point cloud accepts (2^30 - 1 points).
+  static constexpr int MaximumPointCloudExponent = 30;
+
+  ///@{
+  /**
+   * Transfer function from data values to g (any non-negative unit); it is
+   * clamped at its end points. Negative and NaN values count as 0.
+   * Without one (the default), g is the data value itself.
+   */
+  virtual void SetTransferFunction(vtkPiecewiseFunction*);
+  vtkGetObjectMacro(TransferFunction, vtkPiecewiseFunction);
+  ///@}
+
+  ///@{
+  /**
+   * M = 2^SampleExponent - 1 samples (default m = 20).
+   * SetNumberOfSamples(n) picks the smallest m with 2^m - 1 >= n.
+   */
+  vtkSetClampMacro(SampleExponent, int, 0, MaximumPointCloudExponent);
+  vtkGetMacro(SampleExponent, int);
+  void SetNumberOfSamples(vtkTypeInt64 n);
+  vtkTypeInt64 GetNumberOfSamples();
+  ///@}
+
+  ///@{
+  vtkSetClampMacro(Strategy, int, HYBRID, QUASI_MONTE_CARLO);
+  vtkGetMacro(Strategy, int);
+  void SetStrategyToHybrid() { this->SetStrategy(HYBRID); }
+  void SetStrategyToMonteCarlo() { this->SetStrategy(MONTE_CARLO); }
+  void SetStrategyToQuasiMonteCarlo() { this->SetStrategy(QUASI_MONTE_CARLO); }
+  ///@}
+
+  ///@{
+  vtkSetClampMacro(Kernel, int, TENT, BOX);
+  vtkGetMacro(Kernel, int);
+  void SetKernelToTent() { this->SetKernel(TENT); }
+  void SetKernelToBox() { this->SetKernel(BOX); }
+  ///@}
+
+  ///@{
+  /** Seed of the pseudo-random parts (default 0). */
+  vtkSetMacro(Seed, vtkTypeUInt64);
+  vtkGetMacro(Seed, vtkTypeUInt64);
+  ///@}
+
+  ///@{
+  /**
+   * vtkAlgorithm::SINGLE_PRECISION (default) or DOUBLE_PRECISION points.
+   */
+  vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DOUBLE_PRECISION);
+  vtkGetMacro(OutputPointsPrecision, int);
+  ///@}
+
+  /**
+   * World coordinates of the 8 corners of the support of g (24 doubles),
+   * set on the output information by RequestInformation.
+   */
+  static vtkInformationDoubleVectorKey* SUPPORT_CORNERS();
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkMCXPointSampler();
+  ~vtkMCXPointSampler() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkPiecewiseFunction* TransferFunction = nullptr;
+  int SampleExponent = 20;
+  int Strategy = HYBRID;
+  int Kernel = TENT;
+  vtkTypeUInt64 Seed = 0;
+  int OutputPointsPrecision = SINGLE_PRECISION;
+
+private:
+  vtkMCXPointSampler(const vtkMCXPointSampler&) = delete;
+  void operator=(const vtkMCXPointSampler&) = delete;
+};
+
+#endif

@@ -1,0 +1,133 @@
+/**
+ * @class   vtkMCXProjectorBase
+ * @brief   Detector geometry, transfer function and kernel shared by the
+ *          Monte Carlo and the exact X-ray projectors.
+ *
+ * The view is either a vtkCamera (parallel or perspective) or, without a
+ * camera, an explicit parallel detector with axes DetectorAxisU and
+ * DetectorAxisV (rays run along their cross product). ImageSize and
+ * PixelSpacing set the image; what is left at 0 is chosen so that the image
+ * covers the projected support of g (the volume grown by the kernel) -- with a
+ * camera, the camera sets the field of view instead and the size defaults to
+ * 512 x 512.
+ *
+ * The output is a 2D vtkImageData (extent [0, W-1] x [0, H-1] x [0, 0]) whose
+ * point data "LineIntegral" (float64) holds, per pixel, the mean over the
+ * pixel's area of the line integral of g along the ray: TF units times world
+ * length. Its origin and spacing are detector-plane coordinates of the pixel
+ * centres: (x . U, x . V) in a parallel view; for a perspective camera,
+ * coordinates on the focal plane measured from the principal point. For a
+ * perspective camera only depths beyond the camera's near clipping distance
+ * count.
+ */
+#ifndef vtkMCXProjectorBase_h
+#define vtkMCXProjectorBase_h
+
+#include "MonteCarloXRayModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class vtkCamera;
+class vtkDoubleArray;
+class vtkPiecewiseFunction;
+#ifndef __VTK_WRAP__
+namespace mcx
+{
+struct ProjectionGeometry;
+}
+#endif
+
+class MONTECARLOXRAY_EXPORT vtkMCXProjectorBase : public vtkImageAlgorithm
+{
+public:
+  vtkTypeMacro(vtkMCXProjectorBase, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Camera of the view; without one, the explicit parallel detector is used. */
+  virtual void SetCamera(vtkCamera*);
+  vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /**
+   * Unit, orthogonal image axes of the explicit parallel detector (default x
+   * and y: a view along z). Image axis 0 runs along U and axis 1 along V.
+   */
+  vtkSetVector3Macro(DetectorAxisU, double);
+  vtkGetVector3Macro(DetectorAxisU, double);
+  vtkSetVector3Macro(DetectorAxisV, double);
+  vtkGetVector3Macro(DetectorAxisV, double);
+  ///@}
+
+  ///@{
+  /** Image size in pixels; 0 picks it automatically (see the class description). */
+  vtkSetVector2Macro(ImageSize, int);
+  vtkGetVector2Macro(ImageSize, int);
+  ///@}
+
+  ///@{
+  /** Square pixel size in world units on the detector plane; 0 = automatic. */
+  vtkSetClampMacro(PixelSpacing, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(PixelSpacing, double);
+  ///@}
+
+  ///@{
+  /** Longest image side when both size and spacing are automatic (default 512). */
+  vtkSetClampMacro(DefaultImageSize, int, 1, 1 << 16);
+  vtkGetMacro(DefaultImageSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Transfer function from data values to g (used with an index input);
+   * without one, g is the data value. Negative and NaN values count as 0.
+   */
+  virtual void SetTransferFunction(vtkPiecewiseFunction*);
+  vtkGetObjectMacro(TransferFunction, vtkPiecewiseFunction);
+  ///@}
+
+  ///@{
+  /** Reconstruction kernel, vtkMCXPointSampler::TENT (default) or BOX. */
+  vtkSetClampMacro(Kernel, int, 0, 1);
+  vtkGetMacro(Kernel, int);
+  ///@}
+
+  /** Name of the output point-data array. */
+  static const char* LineIntegralName() { return "LineIntegral"; }
+
+  /** Includes the camera's and the transfer function's modification times. */
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkMCXProjectorBase();
+  ~vtkMCXProjectorBase() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+#ifndef __VTK_WRAP__
+  /** The geometry computed by the last RequestInformation. */
+  const mcx::ProjectionGeometry& GetGeometry() const;
+#endif
+
+  /** Gives the output its extent, origin and spacing and a zeroed LineIntegral array. */
+  vtkDoubleArray* AllocateLineIntegral(vtkImageData* output);
+
+  vtkCamera* Camera = nullptr;
+  double DetectorAxisU[3] = { 1, 0, 0 };
+  double DetectorAxisV[3] = { 0, 1, 0 };
+  int ImageSize[2] = { 0, 0 };
+  double PixelSpacing = 0.0;
+  int DefaultImageSize = 512;
+  vtkPiecewiseFunction* TransferFunction = nullptr;
+  int Kernel = 0;
+
+private:
+  vtkMCXProjectorBase(const vtkMCXProjectorBase&) = delete;
+  void operator=(const vtkMCXProjectorBase&) = delete;
+
+  struct vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif

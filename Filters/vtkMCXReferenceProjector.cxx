@@ -1,0 +1,239 @@
+#include "vtkMCXReferenceProjector.h"
+
+#include "mcxBatchedFor.h"
+#include "mcxIndexView.h"
+#include "mcxProjectionGeometry.h"
+#include "mcxRayIntegrator.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkSMPTools.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkTypeUInt32Array.h"
+#include "vtkTypeUInt64Array.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXReferenceProjector);
+
+namespace
+{
+// g at every voxel, from the index: the TF value of the voxel's level.
+template <typename IdType>
+void ScatterLevelWeights(const mcx::IndexView& view, const std::vector<double>& weights, std::vector<double>& g)
+{
+  const IdType* ids = view.IdPointer<IdType>();
+  vtkSMPTools::For(0, view.NumberOfLevels, [&](vtkIdType l0, vtkIdType l1) {
+    for (vtkIdType l = l0; l < l1; ++l)
+    {
+      const double w = weights[static_cast<std::size_t>(l)];
+      const double value = (w > 0 && std::isfinite(w)) ? w : 0.0;
+      for (std::int64_t i = view.LevelOffsets[l]; i < view.LevelOffsets[l + 1]; ++i)
+      {
+        g[static_cast<std::size_t>(ids[i])] = value;
+      }
+    }
+  });
+}
+
+// Rays in voxel coordinates for points of the detector plane.
+class RayFactory
+{
+public:
+  RayFactory(const mcx::ProjectionGeometry& g, const mcx::IndexView& view)
+    : Geometry(g)
+  {
+    double matrix[9];
+    view.SourceToWorld(this->SourceOrigin, matrix);
+    vtkMath::Invert3x3(reinterpret_cast<const double(*)[3]>(matrix),
+      reinterpret_cast<double(*)[3]>(this->Inverse));
+  }
+
+  // Ray through plane point (a, b): start p0, direction d (per unit world length), t range.
+  void Make(double a, double b, double p0[3], double d[3], double& tmin, double& tmax) const
+  {
+    const mcx::ProjectionGeometry& g = this->Geometry;
+    double start[3], direction[3];
+    if (g.Perspective)
+    {
+      for (int r = 0; r < 3; ++r)
+      {
+        start[r] = g.Eye[r];
+        direction[r] = a * g.U[r] + b * g.V[r] + g.FocalDistance * g.W[r];
+      }
+      vtkMath::Normalize(direction);
+      tmin = g.NearDistance / vtkMath::Dot(direction, g.W);
+      tmax = std::numeric_limits<double>::infinity();
+    }
+    else
+    {
+      for (int r = 0; r < 3; ++r)
+      {
+        start[r] = a * g.U[r] + b * g.V[r];
+        direction[r] = g.W[r];
+      }
+      tmin = -std::numeric_limits<double>::infinity();
+      tmax = std::numeric_limits<double>::infinity();
+    }
+    const double relative[3] = { start[0] - this->SourceOrigin[0], start[1] - this->SourceOrigin[1],
+      start[2] - this->SourceOrigin[2] };
+    for (int r = 0; r < 3; ++r)
+    {
+      p0[r] = this->Inverse[3 * r] * relative[0] + this->Inverse[3 * r + 1] * relative[1] +
+        this->Inverse[3 * r + 2] * relative[2];
+      d[r] = this->Inverse[3 * r] * direction[0] + this->Inverse[3 * r + 1] * direction[1] +
+        this->Inverse[3 * r + 2] * direction[2];
+    }
+  }
+
+private:
+  const mcx::ProjectionGeometry& Geometry;
+  double SourceOrigin[3];
+  double Inverse[9];
+};
+}
+
+vtkMCXReferenceProjector::vtkMCXReferenceProjector() = default;
+
+int vtkMCXReferenceProjector::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+int vtkMCXReferenceProjector::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  mcx::IndexView view;
+  const std::string problem = view.Read(vtkImageData::GetData(inputVector[0]));
+  if (!problem.empty())
+  {
+    vtkErrorMacro("Cannot project: " << problem << ".");
+    return 0;
+  }
+  mcx::TransferTable table;
+  double integral = 0.0;
+  std::string warning;
+  const std::string error = view.MakeTransferTable(this->TransferFunction, table, integral, warning);
+  if (!error.empty())
+  {
+    vtkErrorMacro("Cannot project: " << error << ".");
+    return 0;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< warning);
+  }
+
+  std::vector<double> g(static_cast<std::size_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2], 0.0);
+  const std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
+  if (view.WideIds)
+  {
+    ScatterLevelWeights<std::uint64_t>(view, weights, g);
+  }
+  else
+  {
+    ScatterLevelWeights<std::uint32_t>(view, weights, g);
+  }
+  const mcx::Kernel kernel = static_cast<mcx::Kernel>(this->Kernel);
+  const mcx::RayIntegrator integrator(g.data(), view.Dimensions, kernel);
+  const mcx::ProjectionGeometry& geometry = this->GetGeometry();
+  const RayFactory rays(geometry, view);
+  const int width = geometry.Size[0];
+  const int height = geometry.Size[1];
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+
+  // Steps S = 1, 3, 9, ...: the sub-ray centres of one step contain the last's.
+  int steps = 1;
+  for (int s = 3; s <= this->MaximumSubdivision; s *= 3)
+  {
+    ++steps;
+  }
+  std::vector<double> previous, current(pixels, 0.0);
+  double change = std::numeric_limits<double>::infinity();
+  int subdivision = 1;
+  for (int step = 0, s = 1; step < steps; ++step, s *= 3)
+  {
+    previous.swap(current);
+    current.assign(pixels, 0.0);
+    subdivision = s;
+    const double progressBegin = static_cast<double>(step) / steps;
+    const bool completed = mcx::BatchedFor(this, static_cast<std::uint64_t>(height), progressBegin,
+      progressBegin + 1.0 / steps, [&](std::uint64_t j0, std::uint64_t j1) {
+        for (std::uint64_t j = j0; j < j1; ++j)
+        {
+          for (int i = 0; i < width; ++i)
+          {
+            double sum = 0.0;
+            for (int sj = 0; sj < s; ++sj)
+            {
+              const double b = geometry.Origin[1] +
+                (static_cast<double>(j) + (sj + 0.5) / s - 0.5) * geometry.Spacing[1];
+              for (int si = 0; si < s; ++si)
+              {
+                const double a =
+                  geometry.Origin[0] + (i + (si + 0.5) / s - 0.5) * geometry.Spacing[0];
+                double p0[3], d[3], tmin, tmax;
+                rays.Make(a, b, p0, d, tmin, tmax);
+                sum += integrator.Integrate(p0, d, tmin, tmax);
+              }
+            }
+            current[j * width + i] = sum / (static_cast<double>(s) * s);
+          }
+        }
+      });
+    if (!completed)
+    {
+      output->Initialize();
+      return 1;
+    }
+    if (step > 0)
+    {
+      double difference = 0.0, norm = 0.0;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        difference += (current[p] - previous[p]) * (current[p] - previous[p]);
+        norm += current[p] * current[p];
+      }
+      change = norm > 0 ? std::sqrt(difference / norm) : 0.0;
+      if (change <= this->RelativeTolerance)
+      {
+        break;
+      }
+    }
+  }
+
+  vtkDoubleArray* values = this->AllocateLineIntegral(output);
+  std::copy(current.begin(), current.end(), values->GetPointer(0));
+  vtkFieldData* fd = output->GetFieldData();
+  fd->Initialize();
+  vtkNew<vtkDoubleArray> estimate;
+  estimate->SetName("EstimatedRelativeError");
+  estimate->InsertNextValue(change);
+  vtkNew<vtkTypeInt64Array> rayCount;
+  rayCount->SetName("RaysPerPixelAxis");
+  rayCount->InsertNextValue(subdivision);
+  vtkNew<vtkDoubleArray> total;
+  total->SetName("Integral");
+  total->InsertNextValue(integral);
+  fd->AddArray(estimate);
+  fd->AddArray(rayCount);
+  fd->AddArray(total);
+  return 1;
+}
+
+void vtkMCXReferenceProjector::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RelativeTolerance: " << this->RelativeTolerance << "\n";
+  os << indent << "MaximumSubdivision: " << this->MaximumSubdivision << "\n";
+}
