@@ -49,6 +49,7 @@ struct ValueRange
   T Min;
   T Max;
   std::int64_t Finite = 0;
+  bool AllIntegers = true; // every finite value is a whole number
 };
 
 template <typename T>
@@ -68,7 +69,7 @@ ValueRange<T> ComputeRange(const T* values, std::int64_t n)
   const std::int64_t chunk = 1 << 18;
   const std::int64_t chunks = std::max<std::int64_t>(1, (n + chunk - 1) / chunk);
   std::vector<ValueRange<T>> parts(static_cast<std::size_t>(chunks),
-    ValueRange<T>{ std::numeric_limits<T>::max(), std::numeric_limits<T>::lowest(), 0 });
+    ValueRange<T>{ std::numeric_limits<T>::max(), std::numeric_limits<T>::lowest(), 0, true });
   vtkSMPTools::For(0, chunks, 1, [&](std::int64_t c0, std::int64_t c1) {
     for (std::int64_t c = c0; c < c1; ++c)
     {
@@ -82,6 +83,10 @@ ValueRange<T> ComputeRange(const T* values, std::int64_t n)
           r.Min = std::min(r.Min, v);
           r.Max = std::max(r.Max, v);
           ++r.Finite;
+          if (std::is_floating_point<T>::value)
+          {
+            r.AllIntegers = r.AllIntegers && std::floor(static_cast<double>(v)) == static_cast<double>(v);
+          }
         }
       }
     }
@@ -92,6 +97,7 @@ ValueRange<T> ComputeRange(const T* values, std::int64_t n)
     total.Min = std::min(total.Min, parts[c].Min);
     total.Max = std::max(total.Max, parts[c].Max);
     total.Finite += parts[c].Finite;
+    total.AllIntegers = total.AllIntegers && parts[c].AllIntegers;
   }
   return total;
 }
@@ -133,6 +139,21 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
       [](std::int64_t) { return 0.0; }, result);
     return;
   }
+  const bool wholeNumbers = range.AllIntegers &&
+    static_cast<double>(range.Max) - static_cast<double>(range.Min) < DenseIntegerBinLimit;
+  if (std::is_floating_point<T>::value && wholeNumbers)
+  {
+    // Floating-point data holding whole numbers (CT stored as float) is exact.
+    const double minimum = static_cast<double>(range.Min);
+    SortIntoLevels<IdType>(
+      n, static_cast<std::int64_t>(static_cast<double>(range.Max) - minimum) + 1, range.Finite,
+      [=](std::int64_t id) -> std::int64_t {
+        const double v = static_cast<double>(values[id]);
+        return std::isfinite(v) ? static_cast<std::int64_t>(v - minimum) : -1;
+      },
+      [=](std::int64_t b) { return minimum + static_cast<double>(b); }, result);
+    return;
+  }
   if (std::is_floating_point<T>::value)
   {
     // Halved operands keep the range finite even for data near the double limits.
@@ -141,8 +162,6 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     const double scale = hi > lo ? floatLevels / (hi - lo) : 0.0;
     const std::int64_t last = floatLevels - 1;
     result.BinWidth = hi > lo ? 2.0 * (hi - lo) / floatLevels : 0.0;
-    const double minimum = static_cast<double>(range.Min);
-    const double width = result.BinWidth;
     SortIntoLevels<IdType>(
       n, floatLevels, range.Finite,
       [=](std::int64_t id) -> std::int64_t {
@@ -154,7 +173,25 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
         const std::int64_t b = static_cast<std::int64_t>((0.5 * v - lo) * scale);
         return std::min(b, last);
       },
-      [=](std::int64_t b) { return width > 0 ? minimum + (b + 0.5) * width : minimum; }, result);
+      [](std::int64_t) { return 0.0; }, result);
+    // A level stands for the mean of its voxels' values: exact when they are all equal.
+    const IdType* ids = static_cast<const IdType*>(result.SortedIds->GetVoidPointer(0));
+    const std::int64_t levels = static_cast<std::int64_t>(result.LevelValues.size());
+    vtkSMPTools::For(0, levels, [&](std::int64_t l0, std::int64_t l1) {
+      for (std::int64_t l = l0; l < l1; ++l)
+      {
+        const std::int64_t begin = result.LevelOffsets[static_cast<std::size_t>(l)];
+        const std::int64_t end = result.LevelOffsets[static_cast<std::size_t>(l + 1)];
+        double sum = 0.0;
+        for (std::int64_t i = begin; i < end; ++i)
+        {
+          sum += 0.5 * static_cast<double>(values[ids[i]]);
+        }
+        const double mean = 2.0 * (sum / static_cast<double>(end - begin));
+        result.LevelValues[static_cast<std::size_t>(l)] =
+          std::min(static_cast<double>(range.Max), std::max(static_cast<double>(range.Min), mean));
+      }
+    });
     return;
   }
   const __int128 span = static_cast<__int128>(range.Max) - static_cast<__int128>(range.Min);

@@ -4,10 +4,12 @@
  *          of hybrid Monte Carlo volume rendering).
  *
  * The input is vtkImageData with one-component point scalars of any type.
- * Integer data gets one level per distinct value (exact); floating-point data
- * gets NumberOfFloatLevels equal-width levels over its finite range, each
- * represented by the centre of its bin, and NaN or infinite voxels are left
- * out and counted.
+ * Integer data gets one level per distinct value (exact), and so does
+ * floating-point data whose finite values are all whole numbers. Other
+ * floating-point data gets NumberOfFloatLevels equal-width bins over its
+ * finite range; each non-empty bin is a level whose value is the mean of its
+ * voxels' values (exact when they are all equal). NaN and infinite voxels are
+ * left out and counted.
  *
  * The output is vtkImageData with the input's geometry (extent, origin,
  * spacing, direction) and no point data; the index travels in its field data:
@@ -18,7 +20,7 @@
  *   vtkTypeUInt64Array): raster ids (x fastest) counted from the first voxel of
  *   the extent, ascending within a level,
  * - "NonFiniteVoxelCount" (vtkTypeInt64Array, 1 value),
- * - "LevelBinWidth" (double, 1 value): 0 for exact integer levels.
+ * - "LevelBinWidth" (double, 1 value): 0 for exact levels, else the bin width.
  *
  * The sort runs in parallel with vtkSMPTools and its output is identical for
  * any number of threads.

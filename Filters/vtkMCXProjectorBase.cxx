@@ -169,7 +169,13 @@ int vtkMCXProjectorBase::RequestInformation(
       {
         g.Size[k] = this->ImageSize[k];
         g.Spacing[k] = this->PixelSpacing;
-        g.Origin[k] = -0.5 * (g.Size[k] - 1) * this->PixelSpacing;
+      }
+    }
+    if (problem.empty() && (!framed || !this->CenterOnVolume))
+    {
+      for (int k = 0; k < 2; ++k)
+      {
+        g.Origin[k] = this->DetectorCenter[k] - 0.5 * (g.Size[k] - 1) * g.Spacing[k];
       }
     }
   }
@@ -228,6 +234,8 @@ void vtkMCXProjectorBase::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->DetectorAxisU[2] << "\n";
   os << indent << "DetectorAxisV: " << this->DetectorAxisV[0] << " " << this->DetectorAxisV[1]
      << " " << this->DetectorAxisV[2] << "\n";
+  os << indent << "DetectorCenter: " << this->DetectorCenter[0] << " " << this->DetectorCenter[1] << "\n";
+  os << indent << "CenterOnVolume: " << this->CenterOnVolume << "\n";
   os << indent << "ImageSize: " << this->ImageSize[0] << " " << this->ImageSize[1] << "\n";
   os << indent << "PixelSpacing: " << this->PixelSpacing << "\n";
   os << indent << "DefaultImageSize: " << this->DefaultImageSize << "\n";

@@ -60,6 +60,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Explicit parallel detector only: when CenterOnVolume is on (default) the
+   * image is centred on the projected support of g; when off, on
+   * DetectorCenter (detector-plane coordinates, default 0, 0).
+   */
+  vtkSetVector2Macro(DetectorCenter, double);
+  vtkGetVector2Macro(DetectorCenter, double);
+  vtkSetMacro(CenterOnVolume, bool);
+  vtkGetMacro(CenterOnVolume, bool);
+  vtkBooleanMacro(CenterOnVolume, bool);
+  ///@}
+
+  ///@{
   /** Image size in pixels; 0 picks it automatically (see the class description). */
   vtkSetVector2Macro(ImageSize, int);
   vtkGetVector2Macro(ImageSize, int);
@@ -116,6 +129,8 @@ protected:
   vtkCamera* Camera = nullptr;
   double DetectorAxisU[3] = { 1, 0, 0 };
   double DetectorAxisV[3] = { 0, 1, 0 };
+  double DetectorCenter[2] = { 0, 0 };
+  bool CenterOnVolume = true;
   int ImageSize[2] = { 0, 0 };
   double PixelSpacing = 0.0;
   int DefaultImageSize = 512;

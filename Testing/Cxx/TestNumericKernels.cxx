@@ -1,0 +1,240 @@
+// The plain C++ kernels, without any pipeline.
+#include "mcxCountingSort.h"
+#include "mcxFastDivide.h"
+#include "mcxHalton.h"
+#include "mcxRayIntegrator.h"
+#include "mcxSampleGenerator.h"
+#include "mcxTransferTable.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+TEST(Halton, PositionIsAPermutationForSmallExponents)
+{
+  for (unsigned m = 1; m <= 20; ++m)
+  {
+    const std::uint64_t count = mcx::SampleCount(m);
+    std::vector<char> seen(count, 0);
+    for (std::uint64_t i = 0; i < count; ++i)
+    {
+      const std::uint64_t k = mcx::HaltonPosition(i, m);
+      ASSERT_LT(k, count);
+      ASSERT_FALSE(seen[k]);
+      seen[k] = 1;
+      // u_i = (i + 1) / 2^m is the Halton point of position k.
+      ASSERT_EQ(std::ldexp(static_cast<double>(i + 1), -static_cast<int>(m)),
+        mcx::RadicalInverse(k + 1, 2));
+    }
+  }
+}
+
+TEST(Halton, PositionIsAnInvolutionInRangeUpTo63)
+{
+  std::mt19937_64 random(7);
+  for (unsigned m = 1; m <= 63; ++m)
+  {
+    const std::uint64_t count = mcx::SampleCount(m);
+    for (int t = 0; t < 2000; ++t)
+    {
+      const std::uint64_t i = t == 0 ? 0 : (t == 1 ? count - 1 : random() % count);
+      const std::uint64_t k = mcx::HaltonPosition(i, m);
+      ASSERT_LT(k, count);
+      ASSERT_EQ(i, mcx::HaltonPosition(k, m));
+    }
+  }
+}
+
+TEST(Halton, FirstPositionsAreCoarseStrata)
+{
+  // The first 2^j - 1 positions hold exactly the multiples of 2^(m-j) - 1.
+  const unsigned m = 12, j = 5;
+  std::vector<std::uint64_t> ranks;
+  for (std::uint64_t k = 0; k < mcx::SampleCount(j); ++k)
+  {
+    ranks.push_back(mcx::HaltonPosition(k, m));
+  }
+  std::sort(ranks.begin(), ranks.end());
+  for (std::size_t q = 0; q < ranks.size(); ++q)
+  {
+    EXPECT_EQ((q + 1) << (m - j), ranks[q] + 1);
+  }
+}
+
+TEST(Halton, ExponentForSampleCount)
+{
+  EXPECT_EQ(0u, mcx::ExponentForSampleCount(0));
+  EXPECT_EQ(1u, mcx::ExponentForSampleCount(1));
+  EXPECT_EQ(2u, mcx::ExponentForSampleCount(2));
+  EXPECT_EQ(2u, mcx::ExponentForSampleCount(3));
+  EXPECT_EQ(24u, mcx::ExponentForSampleCount(16000000));
+  EXPECT_EQ(63u, mcx::ExponentForSampleCount(std::numeric_limits<long long>::max()));
+}
+
+TEST(FastDivide, ExactForAll32BitOperands)
+{
+  std::mt19937_64 random(3);
+  const std::uint64_t divisors[] = { 1, 2, 3, 7, 64, 93, 255, 4096, 65535, 65536, 1u << 20,
+    4294967295ull };
+  for (std::uint64_t d : divisors)
+  {
+    const mcx::Divider32 divider(d);
+    for (int t = 0; t < 20000; ++t)
+    {
+      const std::uint64_t n = t < 4 ? (t == 0 ? 0 : 4294967296ull - t) : (random() >> 32);
+      ASSERT_EQ(n / d, divider.Quotient(n)) << n << " / " << d;
+    }
+  }
+}
+
+TEST(FastDivide, VoxelDecoderBothWidths)
+{
+  const std::uint64_t nx = 100003, ny = 40009; // nx * ny * nz > 2^32 for the wide decoder
+  const mcx::VoxelDecoder<std::uint64_t> wide(nx, ny);
+  const std::uint64_t id = (5ull * ny + 40000) * nx + 99999;
+  std::uint64_t i, j, k;
+  wide.Decode(id, i, j, k);
+  EXPECT_EQ(99999u, i);
+  EXPECT_EQ(40000u, j);
+  EXPECT_EQ(5u, k);
+  const mcx::VoxelDecoder<std::uint32_t> narrow(64, 64);
+  narrow.Decode(static_cast<std::uint32_t>((92 * 64 + 63) * 64 + 17), i, j, k);
+  EXPECT_EQ(17u, i);
+  EXPECT_EQ(63u, j);
+  EXPECT_EQ(92u, k);
+}
+
+TEST(CountingSort, MatchesStableSortForAnyLayout)
+{
+  std::mt19937 random(11);
+  for (std::int64_t n : { 1, 5, 70000, 300001 })
+  {
+    for (std::int64_t bins : { 1, 3, 4096 })
+    {
+      std::vector<std::int64_t> bin(static_cast<std::size_t>(n));
+      for (auto& b : bin)
+      {
+        b = static_cast<std::int64_t>(random() % (bins + 1)) - 1; // -1: left out
+      }
+      std::vector<std::uint32_t> expected;
+      for (std::int64_t id = 0; id < n; ++id)
+      {
+        if (bin[id] >= 0)
+        {
+          expected.push_back(static_cast<std::uint32_t>(id));
+        }
+      }
+      std::stable_sort(expected.begin(), expected.end(),
+        [&](std::uint32_t a, std::uint32_t b) { return bin[a] < bin[b]; });
+      std::vector<std::uint32_t> sorted(expected.size());
+      std::vector<std::int64_t> offsets;
+      const std::int64_t left = mcx::CountingSortByBin<std::uint32_t>(
+        n, bins, [&](std::int64_t id) { return bin[id]; }, offsets, sorted.data());
+      EXPECT_EQ(n - static_cast<std::int64_t>(expected.size()), left);
+      EXPECT_EQ(expected, sorted);
+      ASSERT_EQ(static_cast<std::size_t>(bins + 1), offsets.size());
+      for (std::int64_t b = 0; b < bins; ++b)
+      {
+        for (std::int64_t i = offsets[b]; i < offsets[b + 1]; ++i)
+        {
+          ASSERT_EQ(b, bin[sorted[i]]);
+        }
+      }
+    }
+  }
+}
+
+TEST(TransferTable, ScalesExactlyAndClampsBadWeights)
+{
+  const std::int64_t offsets[] = { 0, 2, 5, 6, 10 };
+  const double weights[] = { 3.0, -1.0, std::nan(""), 1e300 };
+  const mcx::TransferTable table = mcx::BuildTransferTable(weights, offsets, 4);
+  EXPECT_EQ(1, table.NegativeLevels);
+  EXPECT_EQ(1, table.NaNLevels);
+  EXPECT_EQ(0, table.InfiniteLevels);
+  EXPECT_DOUBLE_EQ(4e300 + 6.0, table.WeightSum());
+  EXPECT_EQ(table.Cumulative[1], table.Cumulative[2]);
+  EXPECT_EQ(table.Cumulative[2], table.Cumulative[3]);
+
+  const double none[] = { 0.0, 0.0, 0.0, 0.0 };
+  EXPECT_TRUE(mcx::BuildTransferTable(none, offsets, 4).IsEmpty());
+  const double infinite[] = { 1.0, INFINITY, 0.0, 0.0 };
+  EXPECT_EQ(1, mcx::BuildTransferTable(infinite, offsets, 4).InfiniteLevels);
+}
+
+TEST(SampleGenerator, HybridVisitsEveryLevelInProportion)
+{
+  // Two levels with masses 1:3: exactly a quarter of the u-grid falls in the first.
+  const std::uint32_t ids[] = { 0, 1, 2, 3 };
+  const std::int64_t offsets[] = { 0, 2, 4 };
+  const double weights[] = { 1.0, 3.0 };
+  const mcx::TransferTable table = mcx::BuildTransferTable(weights, offsets, 2);
+  mcx::SampleSource<std::uint32_t> source;
+  source.SortedIds = ids;
+  source.LevelOffsets = offsets;
+  source.Cumulative = table.Cumulative.data();
+  source.NumberOfLevels = 2;
+  source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 1);
+  source.Exponent = 12;
+  std::vector<char> seen(source.NumberOfSamples(), 0);
+  auto sink = [&](std::uint64_t k, const double p[3]) {
+    seen[k] = 1; // every output index is written exactly once
+    EXPECT_LT(std::fabs(p[1]), 1.0);
+    EXPECT_LT(std::fabs(p[2]), 1.0);
+  };
+  source.Generate(0, source.NumberOfSamples(), sink);
+  EXPECT_EQ(source.NumberOfSamples(), static_cast<std::uint64_t>(std::count(seen.begin(), seen.end(), 1)));
+  // With the box kernel the voxel of a sample is floor(p + 0.5).
+  source.Reconstruction = mcx::Kernel::Box;
+  std::vector<std::int64_t> counts(4, 0);
+  auto counter = [&](std::uint64_t, const double p[3]) { ++counts[static_cast<int>(std::floor(p[0] + 0.5))]; };
+  source.Generate(0, source.NumberOfSamples(), counter);
+  // 4095 samples over voxel weights 1, 1, 3, 3 (total 8): 511.875 each for the
+  // first two and 1535.625 for the others; stratification keeps each within 1.
+  EXPECT_NEAR(511.875, counts[0], 1.0);
+  EXPECT_NEAR(511.875, counts[1], 1.0);
+  EXPECT_NEAR(1535.625, counts[2], 1.0);
+  EXPECT_NEAR(1535.625, counts[3], 1.0);
+}
+
+TEST(RayIntegrator, TentAndBoxOfOneVoxel)
+{
+  // One voxel of value 2 in the middle of a 3^3 grid, unit spacing.
+  std::vector<double> values(27, 0.0);
+  values[13] = 2.0;
+  const int dims[3] = { 3, 3, 3 };
+  const mcx::RayIntegrator tent(values.data(), dims, mcx::Kernel::Tent);
+  const mcx::RayIntegrator box(values.data(), dims, mcx::Kernel::Box);
+  const double d[3] = { 0, 0, 1 };
+  const double inf = INFINITY;
+  // Through the centre: integral of 2 (1 - |t|) = 2; off by (0.5, 0.25): 2 * 0.5 * 0.75.
+  const double centre[3] = { 1, 1, -5 };
+  const double off[3] = { 1.5, 1.25, 7 };
+  EXPECT_NEAR(2.0, tent.Integrate(centre, d, -inf, inf), 1e-14);
+  EXPECT_NEAR(0.75, tent.Integrate(off, d, -inf, inf), 1e-14);
+  EXPECT_NEAR(2.0, box.Integrate(centre, d, -inf, inf), 1e-14);
+  EXPECT_NEAR(0.0, box.Integrate(off, d, -inf, inf), 1e-14);
+  // A diagonal ray through the centre: the tent's integral along direction
+  // (1,1,1)/sqrt(3) is 2 * sqrt(3) * integral of (1-|s|)^3 ds = sqrt(3).
+  const double diagonal[3] = { 1 / std::sqrt(3.0), 1 / std::sqrt(3.0), 1 / std::sqrt(3.0) };
+  const double start[3] = { 1 - 3 * diagonal[0], 1 - 3 * diagonal[1], 1 - 3 * diagonal[2] };
+  EXPECT_NEAR(std::sqrt(3.0), tent.Integrate(start, diagonal, -inf, inf), 1e-13);
+  // Half a ray: from the centre onwards, half the axial integral.
+  EXPECT_NEAR(1.0, tent.Integrate(centre, d, 6.0, inf), 1e-14);
+}
+
+TEST(RayIntegrator, ConstantVolumeGivesLengthTimesValue)
+{
+  // A constant c over n voxels: the tent field is c inside and ramps to 0
+  // within one spacing outside, so any axial ray through the interior sees c * n.
+  const int dims[3] = { 4, 5, 6 };
+  std::vector<double> values(4 * 5 * 6, 1.5);
+  const mcx::RayIntegrator tent(values.data(), dims, mcx::Kernel::Tent);
+  const double p[3] = { 1.3, 2.7, 0 };
+  const double d[3] = { 0, 0, -1 };
+  EXPECT_NEAR(1.5 * 6, tent.Integrate(p, d, -INFINITY, INFINITY), 1e-12);
+}

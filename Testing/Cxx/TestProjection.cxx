@@ -1,0 +1,285 @@
+// vtkMCXProjector against vtkMCXReferenceProjector: convergence within the
+// Monte Carlo bound, conservation of the integral, Halton prefixes,
+// perspective views, and bit-identical images for any thread count.
+#include "mcxTestHelpers.h"
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjector.h"
+#include "vtkMCXReferenceProjector.h"
+
+#include "vtkCamera.h"
+#include "vtkFieldData.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+struct Scene
+{
+  vtkSmartPointer<vtkImageData> Volume;
+  vtkNew<vtkMCXDensityIndex> Index;
+  vtkNew<vtkPiecewiseFunction> TF;
+
+  Scene()
+  {
+    const int dims[3] = { 24, 20, 16 };
+    const double spacing[3] = { 1.0, 1.25, 1.5 };
+    const double origin[3] = { -12, -12, -12 };
+    this->Volume = mcxtest::MakeVolume(VTK_SHORT, dims,
+      [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims) - 50; }, spacing, origin);
+    this->Index->SetInputData(this->Volume);
+    this->TF->AddPoint(-50, 0);
+    this->TF->AddPoint(50, 1);
+    this->TF->AddPoint(400, 3);
+  }
+
+  template <typename Projector>
+  void Configure(Projector* p, vtkCamera* camera, int size)
+  {
+    p->SetInputConnection(this->Index->GetOutputPort());
+    p->SetTransferFunction(this->TF);
+    p->SetCamera(camera);
+    if (!camera)
+    {
+      p->SetDetectorAxisU(1, 0, 0);
+      p->SetDetectorAxisV(0, 0, 1); // a view along -y
+    }
+    p->SetImageSize(size, size);
+  }
+
+  vtkSmartPointer<vtkImageData> Reference(vtkCamera* camera, int size)
+  {
+    vtkNew<vtkMCXReferenceProjector> reference;
+    this->Configure(reference.Get(), camera, size);
+    reference->SetRelativeTolerance(1e-4);
+    reference->Update();
+    EXPECT_LE(mcxtest::FieldValue(reference->GetOutput(), "EstimatedRelativeError"), 1e-3);
+    return reference->GetOutput();
+  }
+
+  vtkSmartPointer<vtkImageData> MonteCarlo(vtkCamera* camera, int size, int m, int strategy, vtkTypeUInt64 seed)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    this->Configure(projector.Get(), camera, size);
+    projector->SetSampleExponent(m);
+    projector->SetStrategy(strategy);
+    projector->SetSeed(seed);
+    projector->Update();
+    return projector->GetOutput();
+  }
+};
+
+vtkSmartPointer<vtkCamera> ObliqueParallelCamera()
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(80, 50, 60);
+  camera->SetViewUp(0, 0, 1);
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(20);
+  return camera;
+}
+
+vtkSmartPointer<vtkCamera> PerspectiveCamera()
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(30, -40, 20);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(50);
+  camera->SetClippingRange(1, 200);
+  return camera;
+}
+
+double PixelArea(vtkImageData* image)
+{
+  return image->GetSpacing()[0] * image->GetSpacing()[1];
+}
+}
+
+TEST(Projection, ParallelViewsConvergeWithinTheMonteCarloBound)
+{
+  Scene scene;
+  auto camera = ObliqueParallelCamera();
+  for (vtkCamera* view : { static_cast<vtkCamera*>(nullptr), camera.Get() })
+  {
+    auto reference = scene.Reference(view, 48);
+    const double integral = mcxtest::FieldValue(reference, "Integral");
+    for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO })
+    {
+      for (int m : { 14, 18, 22 })
+      {
+        auto image = scene.MonteCarlo(view, 48, m, strategy, 1);
+        const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), std::ldexp(1.0, m) - 1);
+        const double error = mcxtest::RelativeRMS(image, reference);
+        // The squared error is a sum over ~2000 pixels, so it stays close to its
+        // expectation; 1.5x covers its spread plus the reference's own 1e-3.
+        EXPECT_LT(error, 1.5 * bound + 1e-3) << "strategy " << strategy << " m " << m << (view ? " camera" : " axes");
+      }
+    }
+  }
+}
+
+TEST(Projection, HybridIsAtLeastAsAccurateAsMonteCarlo)
+{
+  Scene scene;
+  auto reference = scene.Reference(nullptr, 48);
+  for (int m : { 16, 20 })
+  {
+    double hybrid = 0, plain = 0;
+    for (vtkTypeUInt64 seed = 0; seed < 4; ++seed)
+    {
+      hybrid += mcxtest::RelativeRMS(scene.MonteCarlo(nullptr, 48, m, vtkMCXPointSampler::HYBRID, seed), reference);
+      plain += mcxtest::RelativeRMS(scene.MonteCarlo(nullptr, 48, m, vtkMCXPointSampler::MONTE_CARLO, seed), reference);
+    }
+    EXPECT_LE(hybrid, plain) << "m " << m;
+  }
+}
+
+TEST(Projection, PixelSumTimesAreaIsTheIntegral)
+{
+  // The default framing covers the whole support, so no sample is lost.
+  Scene scene;
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(scene.Index->GetOutputPort());
+  projector->SetTransferFunction(scene.TF);
+  projector->SetDetectorAxisU(0, 0.6, 0.8);
+  projector->SetDetectorAxisV(1, 0, 0);
+  projector->SetDefaultImageSize(37);
+  projector->SetSampleExponent(18);
+  projector->Update();
+  vtkImageData* image = projector->GetOutput();
+  vtkDataArray* values = mcxtest::LineIntegral(image);
+  double sum = 0;
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    sum += values->GetTuple1(i);
+  }
+  const double integral = mcxtest::FieldValue(image, "Integral");
+  EXPECT_NEAR(integral, sum * PixelArea(image), 1e-12 * integral);
+  EXPECT_EQ(37, std::max(image->GetDimensions()[0], image->GetDimensions()[1]));
+}
+
+TEST(Projection, HaltonPrefixHasTheErrorOfItsOwnSize)
+{
+  Scene scene;
+  auto reference = scene.Reference(nullptr, 48);
+  const double integral = mcxtest::FieldValue(reference, "Integral");
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(scene.Index->GetOutputPort());
+  sampler->SetTransferFunction(scene.TF);
+  sampler->SetSampleExponent(20);
+  sampler->Update();
+  vtkPolyData* cloud = sampler->GetOutput();
+  for (int k : { 12, 16, 20 })
+  {
+    const vtkIdType count = (vtkIdType(1) << k) - 1;
+    vtkNew<vtkPoints> prefix;
+    prefix->SetDataType(VTK_FLOAT);
+    prefix->SetNumberOfPoints(count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      prefix->SetPoint(i, cloud->GetPoint(i));
+    }
+    vtkNew<vtkPolyData> part;
+    part->SetPoints(prefix);
+    vtkNew<vtkDoubleArray> weight;
+    weight->SetName("SampleWeight");
+    weight->InsertNextValue(integral / count);
+    part->GetFieldData()->AddArray(weight);
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputData(part);
+    projector->SetDetectorAxisU(1, 0, 0);
+    projector->SetDetectorAxisV(0, 0, 1);
+    projector->SetImageSize(48, 48);
+    projector->SetPixelSpacing(reference->GetSpacing()[0]);
+    projector->SetDetectorCenter(reference->GetOrigin()[0] + 23.5 * reference->GetSpacing()[0],
+      reference->GetOrigin()[1] + 23.5 * reference->GetSpacing()[1]);
+    projector->Update();
+    vtkImageData* image = projector->GetOutput();
+    // Same framing as the reference, and the error of a count-sample run.
+    EXPECT_NEAR(reference->GetOrigin()[0], image->GetOrigin()[0], 1e-9);
+    const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), static_cast<double>(count));
+    const double error = mcxtest::RelativeRMS(image, reference);
+    EXPECT_LT(error, 1.5 * bound + 1e-3) << "prefix 2^" << k << " - 1";
+    EXPECT_GT(error, 0.3 * bound) << "prefix 2^" << k << " - 1"; // and not a larger sample
+  }
+}
+
+TEST(Projection, PerspectiveViewConvergesWithinItsBound)
+{
+  Scene scene;
+  auto camera = PerspectiveCamera();
+  auto reference = scene.Reference(camera, 40);
+  const double integral = mcxtest::FieldValue(reference, "Integral");
+  // f = D^2 s / z^3 <= D^2 / z^2 / cos^2; with D ~ 53.9, the volume at z >= 30
+  // (its support lies within 26 of the focal point) and the half angle of the
+  // image corners below 33 degrees.
+  const double d = std::sqrt(30.0 * 30 + 40 * 40 + 20 * 20);
+  const double zMin = d - 26.0;
+  const double cosine = std::cos(std::atan(std::sqrt(2.0) * std::tan(vtkMath::RadiansFromDegrees(25.0))));
+  const double fMax = d * d / (zMin * zMin) / (cosine * cosine);
+  for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID })
+  {
+    auto image = scene.MonteCarlo(camera, 40, 20, strategy, 3);
+    const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), std::ldexp(1.0, 20) - 1, fMax);
+    EXPECT_LT(mcxtest::RelativeRMS(image, reference), 1.5 * bound + 1e-3) << "strategy " << strategy;
+  }
+}
+
+TEST(Projection, ImagesAreBitIdenticalForOneAndTwoThreads)
+{
+  Scene scene;
+  auto perspective = PerspectiveCamera();
+  for (vtkCamera* camera : { static_cast<vtkCamera*>(nullptr), perspective.Get() })
+  {
+    vtkSmartPointer<vtkImageData> one, two;
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&]() { one = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { two = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
+    vtkDataArray* a = mcxtest::LineIntegral(one);
+    vtkDataArray* b = mcxtest::LineIntegral(two);
+    ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i)) << i;
+    }
+  }
+}
+
+TEST(Projection, ConstantSlabHasAnalyticLineIntegrals)
+{
+  // A constant c on 8 x 6 x 10 voxels of spacing (2, 3, 0.5): a ray along z
+  // through the interior sees c * nz * sz for both kernels (the tent's ramps
+  // at both ends add up to one spacing).
+  const int dims[3] = { 8, 6, 10 };
+  const double spacing[3] = { 2, 3, 0.5 };
+  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_SHORT, dims, [](int, int, int) { return 4.0; }, spacing);
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  for (int kernel : { vtkMCXPointSampler::TENT, vtkMCXPointSampler::BOX })
+  {
+    vtkNew<vtkMCXReferenceProjector> reference;
+    reference->SetInputConnection(index->GetOutputPort());
+    reference->SetKernel(kernel);
+    reference->SetImageSize(4, 3);
+    reference->SetPixelSpacing(1.0);
+    reference->Update();
+    vtkImageData* image = reference->GetOutput();
+    // Pixels centred on x in 5.5..8.5, y in 6.5..8.5: all inside the interior.
+    vtkDataArray* values = mcxtest::LineIntegral(image);
+    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+    {
+      EXPECT_NEAR(4.0 * 10 * 0.5, values->GetTuple1(i), 1e-12);
+    }
+    EXPECT_NEAR(7.0, image->GetOrigin()[0] + 1.5, 1e-12);
+    EXPECT_NEAR(7.5, image->GetOrigin()[1] + 1.0, 1e-12);
+  }
+}
