@@ -1,0 +1,120 @@
+#include "mcxImageOutput.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkImageShiftScale.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <vector>
+
+#include <unistd.h>
+
+namespace mcxapp
+{
+
+namespace
+{
+std::string Extension(const std::string& path)
+{
+  std::string ext = vtksys::SystemTools::GetFilenameLastExtension(path);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// Portable float map: header, then float32 rows from the bottom row up,
+// which is the order of VTK's image rows.
+bool WritePFM(vtkImageData* image, const std::string& path)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* values = image->GetPointData()->GetScalars();
+  std::ofstream out(path, std::ios::binary);
+  out << "Pf\n" << dims[0] << " " << dims[1] << "\n-1.0\n"; // negative scale: little endian
+  std::vector<float> row(static_cast<std::size_t>(dims[0]));
+  for (int j = 0; j < dims[1]; ++j)
+  {
+    for (int i = 0; i < dims[0]; ++i)
+    {
+      row[static_cast<std::size_t>(i)] = static_cast<float>(values->GetTuple1(static_cast<vtkIdType>(j) * dims[0] + i));
+    }
+    out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size() * sizeof(float)));
+  }
+  return static_cast<bool>(out);
+}
+
+bool WritePNG(vtkImageData* image, const std::string& path, const PngWindow& window)
+{
+  double low = window.Low, high = window.High;
+  if (window.Automatic)
+  {
+    double range[2];
+    image->GetPointData()->GetScalars()->GetRange(range);
+    low = 0.0;
+    high = range[1] > 0 ? range[1] : 1.0;
+  }
+  const double top = window.Bits == 16 ? 65535.0 : 255.0;
+  vtkNew<vtkImageShiftScale> scale;
+  scale->SetInputData(image);
+  scale->SetShift(-low);
+  scale->SetScale(top / (high - low));
+  scale->SetOutputScalarType(window.Bits == 16 ? VTK_UNSIGNED_SHORT : VTK_UNSIGNED_CHAR);
+  scale->ClampOverflowOn();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputConnection(scale->GetOutputPort());
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  return writer->GetErrorCode() == 0;
+}
+}
+
+bool IsSupportedOutput(const std::string& path)
+{
+  const std::string ext = Extension(path);
+  return ext == ".vti" || ext == ".png" || ext == ".pfm";
+}
+
+bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error)
+{
+  const std::string ext = Extension(path);
+  const std::string temporary = path + ".part-" + std::to_string(getpid()) + ext;
+  bool ok = false;
+  if (ext == ".vti")
+  {
+    vtkNew<vtkXMLImageDataWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(temporary.c_str());
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    ok = writer->Write() == 1 && writer->GetErrorCode() == 0;
+  }
+  else if (ext == ".png")
+  {
+    ok = WritePNG(image, temporary, window);
+  }
+  else if (ext == ".pfm")
+  {
+    ok = WritePFM(image, temporary);
+  }
+  else
+  {
+    error = "unknown output format '" + ext + "' (expected .vti, .png or .pfm)";
+    return false;
+  }
+  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    std::remove(temporary.c_str());
+    error = "cannot write '" + path + "'";
+    return false;
+  }
+  return true;
+}
+
+} // namespace mcxapp

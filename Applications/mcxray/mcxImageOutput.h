@@ -1,0 +1,29 @@
+// Writes a LineIntegral image as .vti (float64 with geometry), .png
+// (windowed, 8 or 16 bit) or .pfm (float32), all or nothing: the file is
+// written under a temporary name and renamed only when complete.
+#ifndef mcxImageOutput_h
+#define mcxImageOutput_h
+
+#include <string>
+
+class vtkImageData;
+
+namespace mcxapp
+{
+
+struct PngWindow
+{
+  bool Automatic = true; // 0 .. image maximum
+  double Low = 0.0;
+  double High = 1.0;
+  int Bits = 8;
+};
+
+/// True when the extension is one the writer knows.
+bool IsSupportedOutput(const std::string& path);
+
+bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error);
+
+} // namespace mcxapp
+
+#endif

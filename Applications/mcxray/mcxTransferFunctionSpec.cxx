@@ -1,0 +1,74 @@
+#include "mcxTransferFunctionSpec.h"
+
+#include "vtkPiecewiseFunction.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+namespace mcxapp
+{
+
+const char* TransferFunctionPresetHelp()
+{
+  return "raw (g = value - minimum: density above the darkest voxel), "
+         "bone (CT in HU: 0 below 150 HU, rising to 1 at 700 HU and above), "
+         "soft-tissue (CT in HU: 1 from -50 to 150 HU, 0 below -200 and above 300)";
+}
+
+vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
+  const std::string& spec, const double dataRange[2], std::string& error)
+{
+  auto tf = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  tf->ClampingOn();
+  if (spec == "raw")
+  {
+    tf->AddPoint(dataRange[0], 0.0);
+    tf->AddPoint(dataRange[1] > dataRange[0] ? dataRange[1] : dataRange[0] + 1, dataRange[1] - dataRange[0]);
+    return tf;
+  }
+  if (spec == "bone")
+  {
+    tf->AddPoint(150, 0);
+    tf->AddPoint(700, 1);
+    return tf;
+  }
+  if (spec == "soft-tissue")
+  {
+    tf->AddPoint(-200, 0);
+    tf->AddPoint(-50, 1);
+    tf->AddPoint(150, 1);
+    tf->AddPoint(300, 0);
+    return tf;
+  }
+  std::stringstream items(spec);
+  std::string item;
+  int count = 0;
+  while (std::getline(items, item, ','))
+  {
+    const std::size_t colon = item.find(':');
+    char* end1 = nullptr;
+    char* end2 = nullptr;
+    const std::string valueText = item.substr(0, colon);
+    const std::string weightText = colon == std::string::npos ? "" : item.substr(colon + 1);
+    const double value = std::strtod(valueText.c_str(), &end1);
+    const double weight = std::strtod(weightText.c_str(), &end2);
+    if (colon == std::string::npos || valueText.empty() || weightText.empty() || *end1 != '\0' ||
+      *end2 != '\0' || !std::isfinite(value) || std::isnan(weight))
+    {
+      error = "bad --tf point '" + item + "' (expected value:weight, or a preset: raw, bone, soft-tissue)";
+      return nullptr;
+    }
+    tf->AddPoint(value, weight);
+    ++count;
+  }
+  if (count == 0)
+  {
+    error = "empty --tf";
+    return nullptr;
+  }
+  return tf;
+}
+
+} // namespace mcxapp

@@ -1,0 +1,193 @@
+#include "mcxVolumeReader.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDICOMImageReader.h"
+#include "vtkImageData.h"
+#include "vtkImageReader2.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMetaImageReader.h"
+#include "vtkNIFTIImageReader.h"
+#include "vtkNew.h"
+#include "vtkNrrdReader.h"
+#include "vtkPointData.h"
+#include "vtkDataArray.h"
+#include "vtkSLCReader.h"
+#include "vtkStructuredPointsReader.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <cctype>
+
+namespace mcxapp
+{
+
+namespace
+{
+bool EndsWith(std::string text, const std::string& suffix)
+{
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Captures a reader's error messages instead of letting VTK print them.
+struct ErrorCapture
+{
+  std::string Message;
+  vtkNew<vtkCallbackCommand> Command;
+
+  explicit ErrorCapture(vtkAlgorithm* algorithm)
+  {
+    this->Command->SetClientData(&this->Message);
+    this->Command->SetCallback([](vtkObject*, unsigned long, void* data, void* text) {
+      auto* message = static_cast<std::string*>(data);
+      if (message->empty() && text)
+      {
+        *message = static_cast<const char*>(text);
+      }
+    });
+    algorithm->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+};
+
+std::string FirstLine(const std::string& text)
+{
+  std::string line = text.substr(0, text.find('\n'));
+  // VTK prefixes "ERROR: In file, line N\nclass (address): " -- keep the message.
+  const std::size_t colon = text.find("): ");
+  if (colon != std::string::npos)
+  {
+    line = text.substr(colon + 3);
+    line = line.substr(0, line.find('\n'));
+  }
+  return line;
+}
+
+// NIfTI: world = (s|q)form * (spacing * index); apply it as origin and
+// direction, and the scl_slope/scl_inter rescaling, so values and geometry are physical.
+void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
+{
+  vtkMatrix4x4* form = reader->GetSFormMatrix() ? reader->GetSFormMatrix() : reader->GetQFormMatrix();
+  if (form)
+  {
+    double direction[9];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        direction[3 * r + c] = form->GetElement(r, c);
+      }
+    }
+    const double origin[3] = { form->GetElement(0, 3), form->GetElement(1, 3), form->GetElement(2, 3) };
+    image->SetDirectionMatrix(direction);
+    image->SetOrigin(origin);
+  }
+  const double slope = reader->GetRescaleSlope();
+  const double intercept = reader->GetRescaleIntercept();
+  if ((slope != 0.0 && slope != 1.0) || intercept != 0.0)
+  {
+    vtkDataArray* scalars = image->GetPointData()->GetScalars();
+    vtkSmartPointer<vtkDataArray> rescaled = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
+    rescaled->SetName(scalars->GetName());
+    rescaled->SetNumberOfTuples(scalars->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    {
+      rescaled->SetTuple1(i, scalars->GetTuple1(i) * (slope == 0.0 ? 1.0 : slope) + intercept);
+    }
+    image->GetPointData()->SetScalars(rescaled);
+  }
+}
+}
+
+std::string BundledVolumePath()
+{
+  const std::string installed = vtksys::SystemTools::CollapseFullPath(
+    std::string(MCXRAY_INSTALLED_DATA_DIR) + "/ct_head_headsq.vti");
+  if (vtksys::SystemTools::FileExists(installed, true))
+  {
+    return installed;
+  }
+  return std::string(MCXRAY_SOURCE_DATA_DIR) + "/ct_head_headsq.vti";
+}
+
+vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)
+{
+  if (!vtksys::SystemTools::FileExists(path))
+  {
+    error = "cannot read '" + path + "': no such file or directory";
+    return nullptr;
+  }
+  vtkSmartPointer<vtkAlgorithm> reader;
+  vtkNIFTIImageReader* nifti = nullptr;
+  if (vtksys::SystemTools::FileIsDirectory(path))
+  {
+    auto dicom = vtkSmartPointer<vtkDICOMImageReader>::New();
+    dicom->SetDirectoryName(path.c_str());
+    reader = dicom;
+  }
+  else if (EndsWith(path, ".vti"))
+  {
+    auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    xml->SetFileName(path.c_str());
+    reader = xml;
+  }
+  else if (EndsWith(path, ".mha") || EndsWith(path, ".mhd"))
+  {
+    auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
+    meta->SetFileName(path.c_str());
+    reader = meta;
+  }
+  else if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
+  {
+    auto n = vtkSmartPointer<vtkNIFTIImageReader>::New();
+    n->SetFileName(path.c_str());
+    nifti = n;
+    reader = n;
+  }
+  else if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
+  {
+    auto nrrd = vtkSmartPointer<vtkNrrdReader>::New();
+    nrrd->SetFileName(path.c_str());
+    reader = nrrd;
+  }
+  else if (EndsWith(path, ".vtk"))
+  {
+    auto legacy = vtkSmartPointer<vtkStructuredPointsReader>::New();
+    legacy->SetFileName(path.c_str());
+    reader = legacy;
+  }
+  else if (EndsWith(path, ".slc"))
+  {
+    auto slc = vtkSmartPointer<vtkSLCReader>::New();
+    slc->SetFileName(path.c_str());
+    reader = slc;
+  }
+  else
+  {
+    error = "cannot read '" + path +
+      "': unknown format (expected .vti, .mha, .mhd, .nii, .nii.gz, .nrrd, .nhdr, .vtk, .slc or a DICOM directory)";
+    return nullptr;
+  }
+  ErrorCapture capture(reader);
+  reader->Update();
+  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!capture.Message.empty() || !image || image->GetNumberOfPoints() == 0 ||
+    !image->GetPointData()->GetScalars())
+  {
+    error = "cannot read '" + path + "'" +
+      (capture.Message.empty() ? std::string(": no volume data") : ": " + FirstLine(capture.Message));
+    return nullptr;
+  }
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->ShallowCopy(image);
+  if (nifti)
+  {
+    ApplyNiftiHeader(nifti, volume);
+  }
+  return volume;
+}
+
+} // namespace mcxapp

@@ -1,0 +1,610 @@
+// mcxray: simulated X-ray images of CT and MRI volumes by hybrid Monte Carlo
+// volume rendering, from the command line.
+#include "mcxImageOutput.h"
+#include "mcxTransferFunctionSpec.h"
+#include "mcxVolumeReader.h"
+
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjector.h"
+#include "vtkMCXReferenceProjector.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkSMPTools.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace
+{
+const char* const Usage = R"(usage: mcxray render [INPUT] [options]
+
+Renders a simulated X-ray image (a DRR): per pixel, the mean over the pixel's
+area of the line integral of g = TF(density), reconstructed with the chosen
+kernel, in TF units times world length (mm for medical data).
+
+INPUT   a volume: .vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a
+        DICOM series directory. Default: the bundled CT head (VTK's headsq).
+
+options:
+  --tf SPEC             transfer function: value:weight,value:weight,... in data
+                        units (held constant beyond its end points), or a preset:
+                        %s. Default: raw
+  --samples N           number of samples, rounded up to 2^m - 1 (default 16777215)
+  --method M            hybrid (default), mc, qmc, or reference (exact, slow)
+  --kernel K            tent (trilinear, default) or box (nearest neighbour)
+  --seed N              seed of the pseudo-random parts (default 0)
+  --threads N           worker threads (default: all cores); results do not depend on it
+  --view AXIS           parallel view along +x, -x, +y, -y, +z or -z (default +z).
+                        Image axis 0 runs along the first remaining world axis in
+                        x, y, z order, axis 1 along the second; never mirrored.
+  --camera P:F:U:KIND   any view: position P, focal point F and view-up U as
+                        x,y,z triples, and KIND parallel=SCALE (half the image
+                        height in world units) or angle=DEGREES (perspective,
+                        vertical view angle), optionally followed by :near=D
+                        (perspective: depth where integration starts; default
+                        0.001 times the camera distance)
+  --size WxH            image size in pixels (default: 512 along the longer side)
+  --pixel-spacing S     pixel size in world units on the detector plane
+  --output FILE         .vti (float64 LineIntegral with geometry), .png or .pfm
+                        (default: mcxray.png)
+  --window LO:HI        PNG grey window in image units (default 0:maximum)
+  --bits 8|16           PNG bit depth (default 8)
+  --tolerance T         reference method: relative RMS tolerance (default 1e-3)
+  --quiet               print nothing but errors
+  --help                this text
+)";
+
+struct Options
+{
+  std::string Input;
+  std::string TF = "raw";
+  long long Samples = 16777215;
+  std::string Method = "hybrid";
+  std::string Kernel = "tent";
+  unsigned long long Seed = 0;
+  int Threads = 0;
+  std::string View = "+z";
+  std::string Camera;
+  int Size[2] = { 0, 0 };
+  double PixelSpacing = 0.0;
+  std::string Output = "mcxray.png";
+  mcxapp::PngWindow Window;
+  double Tolerance = 1e-3;
+  bool Quiet = false;
+};
+
+[[noreturn]] void Fail(const std::string& message)
+{
+  std::cerr << "mcxray: error: " << message << std::endl;
+  std::exit(2);
+}
+
+double ParseNumber(const std::string& text, const std::string& option)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+  {
+    Fail("bad value '" + text + "' for " + option);
+  }
+  return value;
+}
+
+long long ParseInteger(const std::string& text, const std::string& option, long long minimum)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || value < minimum)
+  {
+    Fail("bad value '" + text + "' for " + option + " (expected an integer >= " + std::to_string(minimum) + ")");
+  }
+  return value;
+}
+
+std::vector<std::string> Split(const std::string& text, char separator)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+  {
+    parts.push_back(part);
+  }
+  return parts;
+}
+
+void ParseTriple(const std::string& text, double out[3], const std::string& what)
+{
+  const std::vector<std::string> parts = Split(text, ',');
+  if (parts.size() != 3)
+  {
+    Fail("bad --camera " + what + " '" + text + "' (expected x,y,z)");
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    out[a] = ParseNumber(parts[a], "--camera " + what);
+  }
+}
+
+Options Parse(int argc, char* argv[])
+{
+  Options options;
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)
+  {
+    std::printf(Usage, mcxapp::TransferFunctionPresetHelp());
+    std::exit(argc < 2 ? 2 : 0);
+  }
+  if (std::strcmp(argv[1], "render") != 0)
+  {
+    Fail(std::string("unknown command '") + argv[1] + "' (try: mcxray render --help)");
+  }
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h")
+    {
+      std::printf(Usage, mcxapp::TransferFunctionPresetHelp());
+      std::exit(0);
+    }
+    if (arg == "--quiet")
+    {
+      options.Quiet = true;
+      continue;
+    }
+    if (arg.rfind("--", 0) != 0)
+    {
+      if (!options.Input.empty())
+      {
+        Fail("more than one input: '" + options.Input + "' and '" + arg + "'");
+      }
+      options.Input = arg;
+      continue;
+    }
+    if (i + 1 >= argc)
+    {
+      Fail("option " + arg + " needs a value");
+    }
+    const std::string value = argv[++i];
+    if (arg == "--tf")
+      options.TF = value;
+    else if (arg == "--samples")
+      options.Samples = ParseInteger(value, arg, 1);
+    else if (arg == "--method")
+      options.Method = value;
+    else if (arg == "--kernel")
+      options.Kernel = value;
+    else if (arg == "--seed")
+      options.Seed = static_cast<unsigned long long>(ParseInteger(value, arg, 0));
+    else if (arg == "--threads")
+      options.Threads = static_cast<int>(ParseInteger(value, arg, 1));
+    else if (arg == "--view")
+      options.View = value;
+    else if (arg == "--camera")
+      options.Camera = value;
+    else if (arg == "--size")
+    {
+      const std::vector<std::string> parts = Split(value, 'x');
+      if (parts.size() != 2)
+      {
+        Fail("bad --size '" + value + "' (expected WxH, e.g. 512x512)");
+      }
+      options.Size[0] = static_cast<int>(ParseInteger(parts[0], arg, 1));
+      options.Size[1] = static_cast<int>(ParseInteger(parts[1], arg, 1));
+      if (options.Size[0] > 65536 || options.Size[1] > 65536)
+      {
+        Fail("--size is limited to 65536 pixels per side");
+      }
+    }
+    else if (arg == "--pixel-spacing")
+    {
+      options.PixelSpacing = ParseNumber(value, arg);
+      if (!(options.PixelSpacing > 0))
+      {
+        Fail("--pixel-spacing must be positive");
+      }
+    }
+    else if (arg == "--output")
+      options.Output = value;
+    else if (arg == "--window")
+    {
+      const std::vector<std::string> parts = Split(value, ':');
+      if (parts.size() != 2)
+      {
+        Fail("bad --window '" + value + "' (expected LO:HI)");
+      }
+      options.Window.Automatic = false;
+      options.Window.Low = ParseNumber(parts[0], arg);
+      options.Window.High = ParseNumber(parts[1], arg);
+      if (!(options.Window.High > options.Window.Low))
+      {
+        Fail("--window needs LO < HI");
+      }
+    }
+    else if (arg == "--bits")
+    {
+      options.Window.Bits = static_cast<int>(ParseInteger(value, arg, 8));
+      if (options.Window.Bits != 8 && options.Window.Bits != 16)
+      {
+        Fail("--bits must be 8 or 16");
+      }
+    }
+    else if (arg == "--tolerance")
+    {
+      options.Tolerance = ParseNumber(value, arg);
+      if (!(options.Tolerance > 0 && options.Tolerance < 1))
+      {
+        Fail("--tolerance must lie in (0, 1)");
+      }
+    }
+    else
+    {
+      Fail("unknown option " + arg + " (try: mcxray render --help)");
+    }
+  }
+  if (options.Method != "hybrid" && options.Method != "mc" && options.Method != "qmc" && options.Method != "reference")
+  {
+    Fail("unknown --method '" + options.Method + "' (expected hybrid, mc, qmc or reference)");
+  }
+  if (options.Kernel != "tent" && options.Kernel != "box")
+  {
+    Fail("unknown --kernel '" + options.Kernel + "' (expected tent or box)");
+  }
+  if (!mcxapp::IsSupportedOutput(options.Output))
+  {
+    Fail("unknown output format of '" + options.Output + "' (expected .vti, .png or .pfm)");
+  }
+  return options;
+}
+
+// Camera from "P:F:U:parallel=S" or "P:F:U:angle=A[:near=D]".
+vtkSmartPointer<vtkCamera> ParseCamera(const std::string& text)
+{
+  const std::vector<std::string> parts = Split(text, ':');
+  if (parts.size() != 4 && parts.size() != 5)
+  {
+    Fail("bad --camera '" + text + "' (expected P:F:U:parallel=S or P:F:U:angle=A[:near=D])");
+  }
+  double position[3], focal[3], up[3];
+  ParseTriple(parts[0], position, "position");
+  ParseTriple(parts[1], focal, "focal point");
+  ParseTriple(parts[2], up, "view-up");
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focal);
+  camera->SetViewUp(up);
+  const double distance = std::sqrt(vtkMath::Distance2BetweenPoints(position, focal));
+  if (!(distance > 0))
+  {
+    Fail("--camera position and focal point coincide");
+  }
+  const std::string& kind = parts[3];
+  if (kind.rfind("parallel=", 0) == 0)
+  {
+    const double scale = ParseNumber(kind.substr(9), "--camera parallel");
+    if (!(scale > 0))
+    {
+      Fail("--camera parallel scale must be positive");
+    }
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(scale);
+    if (parts.size() == 5)
+    {
+      Fail("--camera near= applies to perspective views only");
+    }
+  }
+  else if (kind.rfind("angle=", 0) == 0)
+  {
+    const double angle = ParseNumber(kind.substr(6), "--camera angle");
+    if (!(angle > 0 && angle < 180))
+    {
+      Fail("--camera angle must lie in (0, 180) degrees");
+    }
+    camera->ParallelProjectionOff();
+    camera->SetViewAngle(angle);
+    double nearDistance = 1e-3 * distance;
+    if (parts.size() == 5)
+    {
+      if (parts[4].rfind("near=", 0) != 0)
+      {
+        Fail("bad --camera '" + parts[4] + "' (expected near=D)");
+      }
+      nearDistance = ParseNumber(parts[4].substr(5), "--camera near");
+      if (!(nearDistance > 0))
+      {
+        Fail("--camera near must be positive");
+      }
+    }
+    camera->SetClippingRange(nearDistance, std::max(nearDistance * 2, 1e6 * distance));
+  }
+  else
+  {
+    Fail("bad --camera kind '" + kind + "' (expected parallel=S or angle=A)");
+  }
+  return camera;
+}
+
+// Progress bar on stderr, only on a terminal and only once a stage runs long.
+struct ProgressBar
+{
+  bool Enabled = false;
+  const char* Stage = "";
+  std::chrono::steady_clock::time_point Start;
+  bool Shown = false;
+  vtkNew<vtkCallbackCommand> Command;
+
+  ProgressBar()
+  {
+    this->Enabled = isatty(STDERR_FILENO) != 0;
+    this->Command->SetClientData(this);
+    this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+      static_cast<ProgressBar*>(self)->Update(*static_cast<double*>(data));
+    });
+  }
+
+  void Begin(const char* stage)
+  {
+    this->Stage = stage;
+    this->Start = std::chrono::steady_clock::now();
+    this->Shown = false;
+  }
+
+  void Update(double fraction)
+  {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+    if (!this->Enabled || elapsed < 0.5)
+    {
+      return;
+    }
+    const int width = 40;
+    const int filled = static_cast<int>(fraction * width);
+    std::fprintf(stderr, "\r%-12s [%s%s] %3d%%", this->Stage, std::string(filled, '#').c_str(),
+      std::string(width - filled, ' ').c_str(), static_cast<int>(fraction * 100));
+    std::fflush(stderr);
+    this->Shown = true;
+  }
+
+  void End()
+  {
+    if (this->Shown)
+    {
+      std::fprintf(stderr, "\r%s\r", std::string(70, ' ').c_str());
+      std::fflush(stderr);
+    }
+  }
+};
+
+// Turns VTK error and warning events of an algorithm into one-line messages.
+struct MessageCapture
+{
+  std::string Error;
+  std::vector<std::string> Warnings;
+  vtkNew<vtkCallbackCommand> ErrorCommand;
+  vtkNew<vtkCallbackCommand> WarningCommand;
+
+  static std::string Clean(const char* text)
+  {
+    std::string message = text ? text : "";
+    const std::size_t colon = message.find("): ");
+    if (colon != std::string::npos)
+    {
+      message = message.substr(colon + 3);
+    }
+    while (!message.empty() && (message.back() == '\n' || message.back() == '\r'))
+    {
+      message.pop_back();
+    }
+    return message.substr(0, message.find('\n'));
+  }
+
+  void Watch(vtkAlgorithm* algorithm)
+  {
+    this->ErrorCommand->SetClientData(this);
+    this->ErrorCommand->SetCallback([](vtkObject*, unsigned long, void* self, void* text) {
+      auto* capture = static_cast<MessageCapture*>(self);
+      if (capture->Error.empty())
+      {
+        capture->Error = Clean(static_cast<const char*>(text));
+      }
+    });
+    this->WarningCommand->SetClientData(this);
+    this->WarningCommand->SetCallback([](vtkObject*, unsigned long, void* self, void* text) {
+      static_cast<MessageCapture*>(self)->Warnings.push_back(Clean(static_cast<const char*>(text)));
+    });
+    algorithm->AddObserver(vtkCommand::ErrorEvent, this->ErrorCommand);
+    algorithm->AddObserver(vtkCommand::WarningEvent, this->WarningCommand);
+  }
+};
+
+double Seconds(std::chrono::steady_clock::time_point since)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const Options options = Parse(argc, argv);
+  if (options.Threads > 0)
+  {
+    vtkSMPTools::Initialize(options.Threads);
+  }
+  const std::string outputDirectory = vtksys::SystemTools::GetFilenamePath(
+    vtksys::SystemTools::CollapseFullPath(options.Output));
+  if (!vtksys::SystemTools::FileIsDirectory(outputDirectory) || access(outputDirectory.c_str(), W_OK) != 0)
+  {
+    Fail("cannot write '" + options.Output + "': directory '" + outputDirectory + "' is missing or not writable");
+  }
+  const std::string input = options.Input.empty() ? mcxapp::BundledVolumePath() : options.Input;
+  auto log = [&](const std::string& line) {
+    if (!options.Quiet)
+    {
+      std::cout << line << std::endl;
+    }
+  };
+
+  auto start = std::chrono::steady_clock::now();
+  std::string error;
+  vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(input, error);
+  if (!volume)
+  {
+    Fail(error);
+  }
+  int dims[3];
+  volume->GetDimensions(dims);
+  {
+    std::ostringstream line;
+    line << "input:       " << input << " (" << dims[0] << "x" << dims[1] << "x" << dims[2] << ", "
+         << volume->GetPointData()->GetScalars()->GetDataTypeAsString() << ")  read " << Seconds(start) << " s";
+    log(line.str());
+  }
+
+  MessageCapture messages;
+  ProgressBar progress;
+
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  messages.Watch(index);
+  index->AddObserver(vtkCommand::ProgressEvent, progress.Command);
+  progress.Begin("index");
+  start = std::chrono::steady_clock::now();
+  index->Update();
+  progress.End();
+  if (!messages.Error.empty())
+  {
+    Fail(messages.Error);
+  }
+  const double indexSeconds = Seconds(start);
+  vtkImageData* indexed = index->GetOutput();
+  vtkDataArray* levels = indexed->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName());
+  double dataRange[2] = { 0, 0 };
+  if (levels->GetNumberOfTuples() > 0)
+  {
+    dataRange[0] = levels->GetTuple1(0);
+    dataRange[1] = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
+  }
+  {
+    std::ostringstream line;
+    line << "index:       " << indexSeconds << " s (" << levels->GetNumberOfTuples() << " density levels, "
+         << static_cast<double>(dims[0]) * dims[1] * dims[2] / indexSeconds / 1e6 << " M voxels/s)";
+    log(line.str());
+  }
+
+  vtkSmartPointer<vtkPiecewiseFunction> tf = mcxapp::MakeTransferFunction(options.TF, dataRange, error);
+  if (!tf)
+  {
+    Fail(error);
+  }
+
+  vtkSmartPointer<vtkMCXProjectorBase> projector;
+  if (options.Method == "reference")
+  {
+    auto reference = vtkSmartPointer<vtkMCXReferenceProjector>::New();
+    reference->SetRelativeTolerance(options.Tolerance);
+    projector = reference;
+  }
+  else
+  {
+    auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
+    monteCarlo->SetNumberOfSamples(options.Samples);
+    monteCarlo->SetStrategy(options.Method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
+        : options.Method == "qmc"                  ? vtkMCXPointSampler::QUASI_MONTE_CARLO
+                                                   : vtkMCXPointSampler::HYBRID);
+    monteCarlo->SetSeed(options.Seed);
+    projector = monteCarlo;
+  }
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetTransferFunction(tf);
+  projector->SetKernel(options.Kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT);
+  projector->SetImageSize(options.Size[0], options.Size[1]);
+  projector->SetPixelSpacing(options.PixelSpacing);
+  if (!options.Camera.empty())
+  {
+    projector->SetCamera(ParseCamera(options.Camera));
+  }
+  else
+  {
+    static const std::map<std::string, int> axes = { { "+x", 0 }, { "-x", 0 }, { "x", 0 }, { "+y", 1 },
+      { "-y", 1 }, { "y", 1 }, { "+z", 2 }, { "-z", 2 }, { "z", 2 } };
+    const auto axis = axes.find(options.View);
+    if (axis == axes.end())
+    {
+      Fail("unknown --view '" + options.View + "' (expected +x, -x, +y, -y, +z or -z)");
+    }
+    const int first = axis->second == 0 ? 1 : 0;
+    const int second = axis->second == 2 ? 1 : 2;
+    double u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 0 };
+    u[first] = 1;
+    v[second] = 1;
+    projector->SetDetectorAxisU(u);
+    projector->SetDetectorAxisV(v);
+  }
+  messages.Watch(projector);
+  projector->AddObserver(vtkCommand::ProgressEvent, progress.Command);
+  progress.Begin(options.Method == "reference" ? "reference" : "projection");
+  start = std::chrono::steady_clock::now();
+  projector->Update();
+  progress.End();
+  for (const std::string& warning : messages.Warnings)
+  {
+    std::cerr << "mcxray: warning: " << warning << std::endl;
+  }
+  if (!messages.Error.empty())
+  {
+    Fail(messages.Error);
+  }
+  const double projectSeconds = Seconds(start);
+  vtkImageData* image = projector->GetOutput();
+  {
+    std::ostringstream line;
+    int size[3];
+    image->GetDimensions(size);
+    if (options.Method == "reference")
+    {
+      line << "reference:   " << projectSeconds << " s (exact line integrals, "
+           << image->GetFieldData()->GetArray("RaysPerPixelAxis")->GetTuple1(0) << "^2 rays per pixel, estimated relative error "
+           << image->GetFieldData()->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
+    }
+    else
+    {
+      const double samples = image->GetFieldData()->GetArray("SampleCount")->GetTuple1(0);
+      line << "sampling + projection (off-line, fused): " << projectSeconds << " s (" << static_cast<long long>(samples)
+           << " samples, " << samples / projectSeconds / 1e6 << " M samples/s)";
+    }
+    log(line.str());
+    std::ostringstream geometry;
+    geometry << "image:       " << size[0] << "x" << size[1] << " pixels of " << image->GetSpacing()[0] << " x "
+             << image->GetSpacing()[1] << ", LineIntegral range " << image->GetPointData()->GetScalars()->GetRange()[0]
+             << " .. " << image->GetPointData()->GetScalars()->GetRange()[1] << " (TF units x length)";
+    log(geometry.str());
+  }
+
+  start = std::chrono::steady_clock::now();
+  if (!mcxapp::WriteImage(image, options.Output, options.Window, error))
+  {
+    Fail(error);
+  }
+  log("output:      " + options.Output + "  written " + std::to_string(Seconds(start)) + " s");
+  return 0;
+}
