@@ -170,6 +170,10 @@ std::string IndexView::MakeTransferTable(
   {
     std::string error = warning;
     warning.clear();
+    if (!error.empty() && error.back() == '.')
+    {
+      error.pop_back();
+    }
     return error;
   }
   if (!std::isfinite(integral))

@@ -55,9 +55,9 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     const double value = std::strtod(valueText.c_str(), &end1);
     const double weight = std::strtod(weightText.c_str(), &end2);
     if (colon == std::string::npos || valueText.empty() || weightText.empty() || *end1 != '\0' ||
-      *end2 != '\0' || !std::isfinite(value) || std::isnan(weight))
+      *end2 != '\0' || !std::isfinite(value) || !std::isfinite(weight))
     {
-      error = "bad --tf point '" + item + "' (expected value:weight, or a preset: raw, bone, soft-tissue)";
+      error = "bad --tf point '" + item + "' (expected value:weight with finite numbers, or a preset: raw, bone, soft-tissue)";
       return nullptr;
     }
     tf->AddPoint(value, weight);

@@ -17,6 +17,8 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
@@ -437,6 +439,24 @@ struct MessageCapture
   }
 };
 
+// VTK messages that reach no observer (an executive's "returned failure",
+// say) are kept here rather than printed, so that errors stay one line.
+class QuietOutputWindow : public vtkOutputWindow
+{
+public:
+  static QuietOutputWindow* New();
+  vtkTypeMacro(QuietOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override
+  {
+    if (this->First.empty() && text)
+    {
+      this->First = text;
+    }
+  }
+  std::string First;
+};
+vtkStandardNewMacro(QuietOutputWindow);
+
 double Seconds(std::chrono::steady_clock::time_point since)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -446,6 +466,8 @@ double Seconds(std::chrono::steady_clock::time_point since)
 int main(int argc, char* argv[])
 {
   const Options options = Parse(argc, argv);
+  vtkNew<QuietOutputWindow> quiet;
+  vtkOutputWindow::SetInstance(quiet);
   if (options.Threads > 0)
   {
     vtkSMPTools::Initialize(options.Threads);
@@ -455,6 +477,30 @@ int main(int argc, char* argv[])
   if (!vtksys::SystemTools::FileIsDirectory(outputDirectory) || access(outputDirectory.c_str(), W_OK) != 0)
   {
     Fail("cannot write '" + options.Output + "': directory '" + outputDirectory + "' is missing or not writable");
+  }
+  // Everything that can be checked without the data is checked before any work.
+  {
+    const double probeRange[2] = { 0.0, 1.0 };
+    std::string tfError;
+    if (!mcxapp::MakeTransferFunction(options.TF, probeRange, tfError))
+    {
+      Fail(tfError);
+    }
+  }
+  vtkSmartPointer<vtkCamera> camera = options.Camera.empty() ? nullptr : ParseCamera(options.Camera);
+  double detectorU[3] = { 0, 0, 0 }, detectorV[3] = { 0, 0, 0 };
+  if (!camera)
+  {
+    static const std::map<std::string, int> axes = { { "+x", 0 }, { "-x", 0 }, { "x", 0 }, { "+y", 1 },
+      { "-y", 1 }, { "y", 1 }, { "+z", 2 }, { "-z", 2 }, { "z", 2 } };
+    const auto axis = axes.find(options.View);
+    if (axis == axes.end())
+    {
+      Fail("unknown --view '" + options.View + "' (expected +x, -x, +y, -y, +z or -z)");
+    }
+    // Image axes: the two remaining world axes in x, y, z order (never mirrored).
+    detectorU[axis->second == 0 ? 1 : 0] = 1;
+    detectorV[axis->second == 2 ? 1 : 2] = 1;
   }
   const std::string input = options.Input.empty() ? mcxapp::BundledVolumePath() : options.Input;
   auto log = [&](const std::string& line) {
@@ -491,9 +537,9 @@ int main(int argc, char* argv[])
   start = std::chrono::steady_clock::now();
   index->Update();
   progress.End();
-  if (!messages.Error.empty())
+  if (!messages.Error.empty() || !quiet->First.empty())
   {
-    Fail(messages.Error);
+    Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
   }
   const double indexSeconds = Seconds(start);
   vtkImageData* indexed = index->GetOutput();
@@ -539,27 +585,9 @@ int main(int argc, char* argv[])
   projector->SetKernel(options.Kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT);
   projector->SetImageSize(options.Size[0], options.Size[1]);
   projector->SetPixelSpacing(options.PixelSpacing);
-  if (!options.Camera.empty())
-  {
-    projector->SetCamera(ParseCamera(options.Camera));
-  }
-  else
-  {
-    static const std::map<std::string, int> axes = { { "+x", 0 }, { "-x", 0 }, { "x", 0 }, { "+y", 1 },
-      { "-y", 1 }, { "y", 1 }, { "+z", 2 }, { "-z", 2 }, { "z", 2 } };
-    const auto axis = axes.find(options.View);
-    if (axis == axes.end())
-    {
-      Fail("unknown --view '" + options.View + "' (expected +x, -x, +y, -y, +z or -z)");
-    }
-    const int first = axis->second == 0 ? 1 : 0;
-    const int second = axis->second == 2 ? 1 : 2;
-    double u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 0 };
-    u[first] = 1;
-    v[second] = 1;
-    projector->SetDetectorAxisU(u);
-    projector->SetDetectorAxisV(v);
-  }
+  projector->SetCamera(camera);
+  projector->SetDetectorAxisU(detectorU);
+  projector->SetDetectorAxisV(detectorV);
   messages.Watch(projector);
   projector->AddObserver(vtkCommand::ProgressEvent, progress.Command);
   progress.Begin(options.Method == "reference" ? "reference" : "projection");
@@ -570,9 +598,9 @@ int main(int argc, char* argv[])
   {
     std::cerr << "mcxray: warning: " << warning << std::endl;
   }
-  if (!messages.Error.empty())
+  if (!messages.Error.empty() || !quiet->First.empty())
   {
-    Fail(messages.Error);
+    Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
   }
   const double projectSeconds = Seconds(start);
   vtkImageData* image = projector->GetOutput();

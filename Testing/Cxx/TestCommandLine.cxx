@@ -1,0 +1,205 @@
+// The mcxray command: real CT files from disk, the axis-view contract,
+// output formats, and clear errors without partial output.
+#include "mcxTestHelpers.h"
+
+#include "vtkNew.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <sys/wait.h>
+
+namespace
+{
+struct Result
+{
+  int Status;
+  std::string Output; // stdout
+  std::string Errors; // stderr
+};
+
+std::string Slurp(const std::string& path)
+{
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Result RunCLI(const std::string& arguments)
+{
+  const std::string log = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/mcxray-test";
+  const std::string command =
+    std::string(MCXRAY_CLI) + " " + arguments + " > " + log + ".out 2> " + log + ".err";
+  const int raw = std::system(command.c_str());
+  return { WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, Slurp(log + ".out"), Slurp(log + ".err") };
+}
+
+vtkSmartPointer<vtkImageData> Read(const std::string& path)
+{
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+std::string Temporary(const std::string& name)
+{
+  const std::string path = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/" + name;
+  vtksys::SystemTools::RemoveFile(path);
+  return path;
+}
+
+std::string SharedData(const std::string& name)
+{
+  return std::string(MCXRAY_SHARED_DATA_DIR) + "/" + name;
+}
+}
+
+TEST(CommandLine, RealCTFromDiskMatchesTheExactReference)
+{
+  const std::string input = SharedData("ct_body_totalseg.nii.gz");
+  if (!vtksys::SystemTools::FileExists(input))
+  {
+    GTEST_SKIP() << "shared data not found: " << input;
+  }
+  const std::string hybrid = Temporary("cli_body_hybrid.vti");
+  const std::string exact = Temporary("cli_body_reference.vti");
+  const std::string common = " --view +y --tf bone --size 64x64 --quiet --output ";
+  Result a = RunCLI("render " + input + " --samples 4194303" + common + hybrid);
+  ASSERT_EQ(0, a.Status) << a.Errors;
+  Result b = RunCLI("render " + input + " --method reference --tolerance 1e-3" + common + exact);
+  ASSERT_EQ(0, b.Status) << b.Errors;
+  auto estimate = Read(hybrid);
+  auto reference = Read(exact);
+  ASSERT_EQ(64 * 64, mcxtest::LineIntegral(reference)->GetNumberOfTuples());
+  const double integral = mcxtest::FieldValue(reference, "Integral");
+  const double area = reference->GetSpacing()[0] * reference->GetSpacing()[1];
+  const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, area, 4194303.0);
+  EXPECT_LT(mcxtest::RelativeRMS(estimate, reference), 1.5 * bound + 2e-3);
+  // Bone is tens of mm of unit TF along a ray through the pelvis.
+  EXPECT_GT(mcxtest::LineIntegral(reference)->GetRange()[1], 10.0);
+}
+
+TEST(CommandLine, AxisViewsFollowTheContract)
+{
+  // One bright voxel at world (x, y, z) = (1 + 2*3, -4 + 0.5*5, 10 + 1.5*2):
+  // every axis view must peak at the pixel whose centre has those world
+  // coordinates along the two remaining axes, and + and - views must agree.
+  const int dims[3] = { 10, 12, 6 };
+  const double spacing[3] = { 2.0, 0.5, 1.5 };
+  const double origin[3] = { 1.0, -4.0, 10.0 };
+  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return i == 3 && j == 5 && k == 2 ? 200.0 : 0.0; }, spacing, origin);
+  const std::string input = Temporary("cli_point.vti");
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(volume);
+  writer->SetFileName(input.c_str());
+  writer->Write();
+  const double world[3] = { 7.0, -1.5, 13.0 };
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int first = axis == 0 ? 1 : 0, second = axis == 2 ? 1 : 2;
+    vtkSmartPointer<vtkImageData> images[2];
+    for (int sign = 0; sign < 2; ++sign)
+    {
+      const std::string view = std::string(sign ? "-" : "+") + "xyz"[axis];
+      const std::string output = Temporary("cli_point_" + std::to_string(axis) + std::to_string(sign) + ".vti");
+      Result r = RunCLI("render " + input + " --view " + view + " --method reference --kernel box --pixel-spacing 0.25 --quiet --output " + output);
+      ASSERT_EQ(0, r.Status) << r.Errors;
+      images[sign] = Read(output);
+      vtkDataArray* values = mcxtest::LineIntegral(images[sign]);
+      vtkIdType best = 0;
+      for (vtkIdType p = 0; p < values->GetNumberOfTuples(); ++p)
+      {
+        best = values->GetTuple1(p) > values->GetTuple1(best) ? p : best;
+      }
+      const int width = images[sign]->GetDimensions()[0];
+      const double centre[2] = { images[sign]->GetOrigin()[0] + (best % width) * images[sign]->GetSpacing()[0],
+        images[sign]->GetOrigin()[1] + (best / width) * images[sign]->GetSpacing()[1] };
+      // The box voxel covers +-spacing/2 around its centre; the peak plateau lies inside it.
+      EXPECT_NEAR(world[first], centre[0], spacing[first] / 2) << view;
+      EXPECT_NEAR(world[second], centre[1], spacing[second] / 2) << view;
+      // The plateau value is the voxel's value times its depth along the view axis.
+      EXPECT_NEAR(200.0 * spacing[axis], values->GetTuple1(best), 1e-9) << view;
+    }
+    vtkDataArray* plus = mcxtest::LineIntegral(images[0]);
+    vtkDataArray* minus = mcxtest::LineIntegral(images[1]);
+    ASSERT_EQ(plus->GetNumberOfTuples(), minus->GetNumberOfTuples());
+    for (vtkIdType p = 0; p < plus->GetNumberOfTuples(); ++p)
+    {
+      ASSERT_EQ(plus->GetTuple1(p), minus->GetTuple1(p));
+    }
+  }
+}
+
+TEST(CommandLine, BundledCTAndEveryOutputFormat)
+{
+  for (const char* name : { "cli_default.png", "cli_default.pfm", "cli_default.vti" })
+  {
+    const std::string output = Temporary(name);
+    Result r = RunCLI("render --samples 65535 --size 96x80 --bits 16 --output " + output);
+    ASSERT_EQ(0, r.Status) << r.Errors;
+    EXPECT_NE(std::string::npos, r.Output.find("65535 samples")) << r.Output;
+    EXPECT_NE(std::string::npos, r.Output.find("index:")) << r.Output;
+    EXPECT_TRUE(vtksys::SystemTools::FileExists(output));
+  }
+  // PFM: header plus 96 * 80 float32 values.
+  EXPECT_EQ(std::string("Pf\n96 80\n-1.0\n").size() + 96 * 80 * 4,
+    vtksys::SystemTools::FileLength(vtksys::SystemTools::GetCurrentWorkingDirectory() + "/cli_default.pfm"));
+}
+
+TEST(CommandLine, OtherFormatsFromSharedData)
+{
+  for (const char* name : { "ct_head_headsq_dicom", "mri_head_vtk_small.mhd", "ct_tooth.nrrd", "sci_ironprot.vtk" })
+  {
+    const std::string input = SharedData(name);
+    if (!vtksys::SystemTools::FileExists(input))
+    {
+      GTEST_SKIP() << "shared data not found: " << input;
+    }
+    const std::string output = Temporary("cli_format.vti");
+    Result r = RunCLI("render " + input + " --samples 65535 --size 32x32 --quiet --output " + output);
+    ASSERT_EQ(0, r.Status) << name << ": " << r.Errors;
+    auto image = Read(output);
+    EXPECT_GT(mcxtest::LineIntegral(image)->GetRange()[1], 0.0) << name;
+  }
+}
+
+TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
+{
+  const std::string output = Temporary("cli_never.png");
+  const char* cases[] = {
+    "render /nonexistent/volume.nii.gz --output ",
+    "render --tf 100:x --output ",
+    "render --samples -5 --output ",
+    "render --view +w --output ",
+    "render --method fast --output ",
+    "render --camera 0,0,0:0,0,0:0,0,1:angle=30 --output ",
+    "render --camera 0,0,100:0,0,0:0,0,1:parallel=0 --output ",
+    "render --size 0x10 --output ",
+    "render --tf 0:inf --output ",
+    "frobnicate --output ",
+  };
+  for (const char* arguments : cases)
+  {
+    Result r = RunCLI(std::string(arguments) + output);
+    EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
+    // One line on stderr, before any work is reported on stdout.
+    EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
+    EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
+    EXPECT_EQ("", r.Output) << arguments;
+    EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
+  }
+  Result r = RunCLI("render --output /nonexistent-dir/x.png");
+  EXPECT_EQ(2, r.Status);
+  Result help = RunCLI("render --help");
+  EXPECT_EQ(0, help.Status);
+  EXPECT_NE(std::string::npos, help.Output.find("--pixel-spacing"));
+}
