@@ -21,6 +21,7 @@ namespace mcx
 
 using FixedSum = unsigned __int128;
 constexpr double FixedOne = 4294967296.0; // 2^32
+constexpr FixedSum FixedOneInteger = FixedSum(1) << 32;
 
 /// Maps points given in a source frame (world = Origin + Matrix * p) to
 /// pixels and fixed-point increments for one ProjectionGeometry.
@@ -36,54 +37,41 @@ public:
     , FocalSquared(g.FocalDistance * g.FocalDistance)
   {
     const double* axes[3] = { g.U, g.V, g.W };
-    double base[3];
-    for (int r = 0; r < 3; ++r)
+    // Rows k = 0, 1, 2 give (x - E) . U, . V, . W (perspective) or x . U, x . V
+    // (parallel) as an affine function of the source coordinates p.
+    for (int k = 0; k < 3; ++k)
     {
-      base[r] = sourceOrigin[r] - (this->Perspective ? g.Eye[r] : 0.0);
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      this->Offset[r] = base[r]; // source -> x - E (perspective)
-    }
-    for (int e = 0; e < 9; ++e)
-    {
-      this->Matrix[e] = sourceMatrix[e];
-    }
-    if (!this->Perspective)
-    {
-      // Fold the plane projection and the pixel scaling into one affine map.
-      for (int k = 0; k < 2; ++k)
+      this->Offset[k] = 0.0;
+      for (int r = 0; r < 3; ++r)
       {
-        double row[3] = { 0, 0, 0 };
-        double offset = 0;
+        const double base = sourceOrigin[r] - (this->Perspective ? g.Eye[r] : 0.0);
+        this->Offset[k] += axes[k][r] * base;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        double sum = 0.0;
         for (int r = 0; r < 3; ++r)
         {
-          offset += axes[k][r] * base[r];
-          for (int c = 0; c < 3; ++c)
-          {
-            row[c] += axes[k][r] * sourceMatrix[3 * r + c];
-          }
+          sum += axes[k][r] * sourceMatrix[3 * r + c];
         }
-        for (int c = 0; c < 3; ++c)
-        {
-          this->PixelRows[3 * k + c] = row[c] / g.Spacing[k];
-        }
-        this->PixelOffset[k] = offset / g.Spacing[k] - g.Origin[k] / g.Spacing[k] + 0.5;
+        this->Rows[3 * k + c] = sum;
       }
     }
-    else
+    for (int k = 0; k < 2; ++k)
     {
-      for (int k = 0; k < 3; ++k)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          this->Axes[3 * k + c] = axes[k][c];
-        }
-      }
-      for (int k = 0; k < 2; ++k)
+      if (this->Perspective)
       {
         this->PixelScale[k] = g.FocalDistance / g.Spacing[k];
         this->PixelOffset[k] = -g.Origin[k] / g.Spacing[k] + 0.5;
+      }
+      else
+      {
+        // Fold the pixel scaling into the rows: one affine map to pixel units.
+        for (int c = 0; c < 3; ++c)
+        {
+          this->Rows[3 * k + c] /= g.Spacing[k];
+        }
+        this->PixelOffset[k] = this->Offset[k] / g.Spacing[k] - g.Origin[k] / g.Spacing[k] + 0.5;
       }
     }
   }
@@ -92,38 +80,32 @@ public:
   /// misses the image or lies nearer than the near plane (perspective).
   bool Bin(const double p[3], std::int64_t& pixel, FixedSum& increment) const
   {
+    const double* m = this->Rows;
     double fx, fy;
     if (!this->Perspective)
     {
-      fx = this->PixelRows[0] * p[0] + this->PixelRows[1] * p[1] + this->PixelRows[2] * p[2] +
-        this->PixelOffset[0];
-      fy = this->PixelRows[3] * p[0] + this->PixelRows[4] * p[1] + this->PixelRows[5] * p[2] +
-        this->PixelOffset[1];
-      increment = static_cast<FixedSum>(std::uint64_t(1) << 32);
+      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->PixelOffset[0];
+      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->PixelOffset[1];
+      increment = FixedOneInteger;
     }
     else
     {
-      double d[3];
-      for (int r = 0; r < 3; ++r)
-      {
-        d[r] = this->Offset[r] + this->Matrix[3 * r] * p[0] + this->Matrix[3 * r + 1] * p[1] +
-          this->Matrix[3 * r + 2] * p[2];
-      }
-      const double z = this->Axes[6] * d[0] + this->Axes[7] * d[1] + this->Axes[8] * d[2];
+      const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[0];
+      const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Offset[1];
+      const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Offset[2];
       if (!(z >= this->Near))
       {
         return false;
       }
       const double inverseZ = 1.0 / z;
-      fx = (this->Axes[0] * d[0] + this->Axes[1] * d[1] + this->Axes[2] * d[2]) * inverseZ *
-          this->PixelScale[0] + this->PixelOffset[0];
-      fy = (this->Axes[3] * d[0] + this->Axes[4] * d[1] + this->Axes[5] * d[2]) * inverseZ *
-          this->PixelScale[1] + this->PixelOffset[1];
+      fx = u * inverseZ * this->PixelScale[0] + this->PixelOffset[0];
+      fy = v * inverseZ * this->PixelScale[1] + this->PixelOffset[1];
       if (!(fx >= 0 && fx < this->Width && fy >= 0 && fy < this->Height))
       {
         return false;
       }
-      const double s = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      // U, V, W are orthonormal, so the distance from the eye is |(u, v, z)|.
+      const double s = std::sqrt(u * u + v * v + z * z);
       const double f = this->FocalSquared * s * inverseZ * inverseZ * inverseZ;
       const double scaled = f * FixedOne + 0.5;
       increment = scaled < 1.8e19 ? static_cast<FixedSum>(static_cast<std::uint64_t>(scaled))
@@ -144,9 +126,7 @@ private:
   double Near;
   double FocalSquared;
   double Offset[3] = { 0, 0, 0 };
-  double Matrix[9] = { 0 };
-  double Axes[9] = { 0 };
-  double PixelRows[6] = { 0 };
+  double Rows[9] = { 0 };
   double PixelScale[2] = { 0, 0 };
   double PixelOffset[2] = { 0, 0 };
 };

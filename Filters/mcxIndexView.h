@@ -59,6 +59,7 @@ struct IndexView
     source.SortedIds = this->IdPointer<IdType>();
     source.LevelOffsets = this->LevelOffsets;
     source.Cumulative = table.Cumulative.data();
+    source.RankScale = table.RankScale.data();
     source.NumberOfLevels = this->NumberOfLevels;
     source.Decoder = VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->Dimensions[0]),
       static_cast<std::uint64_t>(this->Dimensions[1]));

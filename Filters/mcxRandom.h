@@ -17,29 +17,43 @@ inline std::uint64_t Mix64(std::uint64_t z)
   return z ^ (z >> 31);
 }
 
+/// The per-run part of a stream's start, computed once per run.
+inline std::uint64_t SeedKey(std::uint64_t seed)
+{
+  return Mix64(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull);
+}
+
+/// Stream k of a run is the wyrand sequence (Wang Yi, public domain; passes
+/// BigCrush and PractRand) started at seedKey + (k + 1) * G, G odd: one
+/// 64x64->128 multiply per draw. Draw j of stream k hashes
+/// seedKey + (k + 1) G + j A; two draws coincide only if (k - k') G = +-A
+/// mod 2^64, i.e. for one stream distance far beyond 2^63.
 class CounterRandom
 {
 public:
-  CounterRandom(std::uint64_t seed, std::uint64_t counter)
-    : State(Mix64(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull) ^ Mix64(counter + 1))
+  CounterRandom(std::uint64_t seedKey, std::uint64_t counter)
+    : State(seedKey + (counter + 1) * 0x9E3779B97F4A7C15ull)
   {
   }
 
   std::uint64_t Next()
   {
-    this->State += 0x9E3779B97F4A7C15ull;
-    return Mix64(this->State);
+    this->State += 0xA0761D6478BD642Full;
+    const unsigned __int128 t =
+      static_cast<unsigned __int128>(this->State) * (this->State ^ 0xE7037ED1A0B428DBull);
+    return static_cast<std::uint64_t>(t >> 64) ^ static_cast<std::uint64_t>(t);
   }
 
   /// Uniform in (0, 1], 53 random bits.
   double NextOpenClosed() { return static_cast<double>((this->Next() >> 11) + 1) * 0x1.0p-53; }
 
-  /// Two uniforms in [0, 1), 32 random bits each, from one draw.
-  void NextPair(double& a, double& b)
+  /// Three uniforms in [0, 1), 21 random bits each, from one draw.
+  void NextTriple(double u[3])
   {
     const std::uint64_t r = this->Next();
-    a = static_cast<double>(r >> 32) * 0x1.0p-32;
-    b = static_cast<double>(r & 0xFFFFFFFFull) * 0x1.0p-32;
+    u[0] = static_cast<double>(r >> 43) * 0x1.0p-21;
+    u[1] = static_cast<double>((r >> 22) & 0x1FFFFFull) * 0x1.0p-21;
+    u[2] = static_cast<double>((r >> 1) & 0x1FFFFFull) * 0x1.0p-21;
   }
 
 private:

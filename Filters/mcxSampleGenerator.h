@@ -61,6 +61,7 @@ struct SampleSource
   const IdType* SortedIds = nullptr;
   const std::int64_t* LevelOffsets = nullptr; // NumberOfLevels + 1 entries
   const double* Cumulative = nullptr;         // NumberOfLevels + 1 entries, see TransferTable
+  const double* RankScale = nullptr;          // per level: voxel count / level mass
   std::int64_t NumberOfLevels = 0;
   VoxelDecoder<IdType> Decoder;
   Strategy Method = Strategy::Hybrid;
@@ -83,11 +84,12 @@ struct SampleSource
       return;
     }
     const double total = this->Cumulative[this->NumberOfLevels];
+    const std::uint64_t key = SeedKey(this->Seed);
     if (this->Method == Strategy::MonteCarlo)
     {
       for (std::uint64_t k = begin; k < end; ++k)
       {
-        CounterRandom random(this->Seed, k);
+        CounterRandom random(key, k);
         const double target = random.NextOpenClosed() * total;
         const std::int64_t c = this->FindLevel(target);
         this->Emit(k, target, c, random, sink);
@@ -104,7 +106,7 @@ struct SampleSource
         ++c;
       }
       const std::uint64_t k = HaltonPosition(i, this->Exponent);
-      CounterRandom random(this->Seed, k);
+      CounterRandom random(key, k);
       this->Emit(k, target, c, random, sink);
     }
   }
@@ -122,13 +124,13 @@ private:
   template <typename Sink>
   void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random, Sink& sink) const
   {
-    const double below = this->Cumulative[c - 1];
-    const double mass = this->Cumulative[c] - below;
     const std::int64_t first = this->LevelOffsets[c - 1];
     const std::int64_t count = this->LevelOffsets[c] - first;
-    // Rank of the voxel whose share of the level's mass contains target.
-    const double position = (target - below) / mass * static_cast<double>(count);
-    std::int64_t rank = static_cast<std::int64_t>(std::ceil(position)) - 1;
+    // Rank of the voxel whose share (rank, rank + 1] of the level's mass,
+    // in units of one voxel, contains position: ceil(position) - 1.
+    const double position = (target - this->Cumulative[c - 1]) * this->RankScale[c - 1];
+    std::int64_t rank = static_cast<std::int64_t>(position);
+    rank -= static_cast<double>(rank) == position ? 1 : 0;
     rank = std::max<std::int64_t>(0, std::min<std::int64_t>(count - 1, rank));
 
     std::uint64_t vi, vj, vk;
@@ -146,31 +148,30 @@ private:
       static const unsigned bases[3] = { 3, 5, 7 };
       for (int a = 0; a < 3; ++a)
       {
-        CounterRandom shiftSource(this->Seed ^ 0xA5A5A5A5A5A5A5A5ull, static_cast<std::uint64_t>(a));
+        CounterRandom shiftSource(SeedKey(this->Seed ^ 0xA5A5A5A5A5A5A5A5ull), static_cast<std::uint64_t>(a));
         double u = RadicalInverse(k + 1, bases[a]) + shiftSource.NextOpenClosed();
         u -= std::floor(u);
         p[a] += KernelOffsetFromUniform(this->Reconstruction, u);
       }
       return;
     }
+    // Offsets at 2^-21 voxel resolution, far below any pixel.
+    double u[3];
+    random.NextTriple(u);
     if (this->Reconstruction == Kernel::Tent)
     {
       // The sum of two uniforms has the tent density on (-1, 1).
-      for (int a = 0; a < 3; ++a)
-      {
-        double u1, u2;
-        random.NextPair(u1, u2);
-        p[a] += u1 + u2 - 1.0;
-      }
+      double v[3];
+      random.NextTriple(v);
+      p[0] += u[0] + v[0] - 1.0;
+      p[1] += u[1] + v[1] - 1.0;
+      p[2] += u[2] + v[2] - 1.0;
     }
     else
     {
-      double u0, u1, u2, unused;
-      random.NextPair(u0, u1);
-      random.NextPair(u2, unused);
-      p[0] += u0 - 0.5;
-      p[1] += u1 - 0.5;
-      p[2] += u2 - 0.5;
+      p[0] += u[0] - 0.5;
+      p[1] += u[1] - 0.5;
+      p[2] += u[2] - 0.5;
     }
   }
 };

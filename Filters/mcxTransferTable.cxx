@@ -36,6 +36,7 @@ TransferTable BuildTransferTable(
     }
   }
   table.Cumulative.assign(static_cast<std::size_t>(numberOfLevels + 1), 0.0);
+  table.RankScale.assign(static_cast<std::size_t>(numberOfLevels), 0.0);
   if (table.InfiniteLevels > 0 || largest == 0.0)
   {
     return table;
@@ -53,6 +54,15 @@ TransferTable BuildTransferTable(
       sum += std::ldexp(w, -table.Exponent) * count;
     }
     table.Cumulative[static_cast<std::size_t>(l + 1)] = sum;
+  }
+  for (std::int64_t l = 0; l < numberOfLevels; ++l)
+  {
+    const double mass = table.Cumulative[static_cast<std::size_t>(l + 1)] - table.Cumulative[static_cast<std::size_t>(l)];
+    if (mass > 0)
+    {
+      table.RankScale[static_cast<std::size_t>(l)] =
+        static_cast<double>(levelOffsets[l + 1] - levelOffsets[l]) / mass;
+    }
   }
   return table;
 }

@@ -15,6 +15,8 @@ struct TransferTable
   /// w_l is the level's weight divided by 2^Exponent (an exact power-of-two
   /// scaling that keeps the sums finite for weights up to the double range).
   std::vector<double> Cumulative;
+  /// Per level: voxel count / (Cumulative[l + 1] - Cumulative[l]), 0 for empty levels.
+  std::vector<double> RankScale;
   /// True sum of weight times count = ldexp(Cumulative.back(), Exponent).
   int Exponent = 0;
   /// Levels whose weight was negative or NaN and was replaced by zero.

@@ -177,6 +177,7 @@ TEST(SampleGenerator, HybridVisitsEveryLevelInProportion)
   source.SortedIds = ids;
   source.LevelOffsets = offsets;
   source.Cumulative = table.Cumulative.data();
+  source.RankScale = table.RankScale.data();
   source.NumberOfLevels = 2;
   source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 1);
   source.Exponent = 12;
