@@ -47,14 +47,6 @@ public:
   /// Uniform in (0, 1], 53 random bits.
   double NextOpenClosed() { return static_cast<double>((this->Next() >> 11) + 1) * 0x1.0p-53; }
 
-  /// Three uniforms in [0, 1), 21 random bits each, from one draw.
-  void NextTriple(double u[3])
-  {
-    const std::uint64_t r = this->Next();
-    u[0] = static_cast<double>(r >> 43) * 0x1.0p-21;
-    u[1] = static_cast<double>((r >> 22) & 0x1FFFFFull) * 0x1.0p-21;
-    u[2] = static_cast<double>((r >> 1) & 0x1FFFFFull) * 0x1.0p-21;
-  }
 
 private:
   std::uint64_t State;

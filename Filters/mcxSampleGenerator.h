@@ -62,6 +62,9 @@ struct SampleSource
   const std::int64_t* LevelOffsets = nullptr; // NumberOfLevels + 1 entries
   const double* Cumulative = nullptr;         // NumberOfLevels + 1 entries, see TransferTable
   const double* RankScale = nullptr;          // per level: voxel count / level mass
+  const std::int64_t* Guide = nullptr;        // GuideSize entries, see TransferTable
+  std::int64_t GuideSize = 0;
+  double GuideScale = 0.0;                    // GuideSize / Cumulative[NumberOfLevels]
   std::int64_t NumberOfLevels = 0;
   VoxelDecoder<IdType> Decoder;
   Strategy Method = Strategy::Hybrid;
@@ -83,19 +86,13 @@ struct SampleSource
     {
       return;
     }
-    const double total = this->Cumulative[this->NumberOfLevels];
     const std::uint64_t key = SeedKey(this->Seed);
     if (this->Method == Strategy::MonteCarlo)
     {
-      for (std::uint64_t k = begin; k < end; ++k)
-      {
-        CounterRandom random(key, k);
-        const double target = random.NextOpenClosed() * total;
-        const std::int64_t c = this->FindLevel(target);
-        this->Emit(k, target, c, random, sink);
-      }
+      this->GenerateInOutputOrder(begin, end, sink);
       return;
     }
+    const double total = this->Cumulative[this->NumberOfLevels];
     const double step = std::ldexp(total, -static_cast<int>(this->Exponent));
     std::int64_t c = this->FindLevel(static_cast<double>(begin + 1) * step);
     for (std::uint64_t i = begin; i < end; ++i)
@@ -111,14 +108,42 @@ struct SampleSource
     }
   }
 
+  /// The same samples as Generate, visited by output index k in [begin, end):
+  /// sequential output, for stored point clouds.
+  template <typename Sink>
+  void GenerateInOutputOrder(std::uint64_t begin, std::uint64_t end, Sink& sink) const
+  {
+    const double total = this->Cumulative[this->NumberOfLevels];
+    const double step = std::ldexp(total, -static_cast<int>(this->Exponent));
+    const std::uint64_t key = SeedKey(this->Seed);
+    const bool randomChoice = this->Method == Strategy::MonteCarlo;
+    for (std::uint64_t k = begin; k < end; ++k)
+    {
+      CounterRandom random(key, k);
+      const double target = randomChoice
+        ? random.NextOpenClosed() * total
+        : static_cast<double>(HaltonPosition(k, this->Exponent) + 1) * step;
+      this->Emit(k, target, this->FindLevel(target), random, sink);
+    }
+  }
+
 private:
-  /// Smallest c in [1, NumberOfLevels] with target <= Cumulative[c]; level c - 1.
+  /// Smallest c in [1, NumberOfLevels] with target <= Cumulative[c]
+  /// (level c - 1): a guide-table start, then a short walk.
   std::int64_t FindLevel(double target) const
   {
-    const double* first = this->Cumulative + 1;
-    const double* last = this->Cumulative + this->NumberOfLevels + 1;
-    const std::int64_t c = (std::lower_bound(first, last, target) - this->Cumulative);
-    return std::min<std::int64_t>(c, this->NumberOfLevels);
+    const double bucket = target * this->GuideScale;
+    const std::int64_t b = std::min<std::int64_t>(this->GuideSize - 1, static_cast<std::int64_t>(bucket));
+    std::int64_t c = this->Guide[std::max<std::int64_t>(0, b)];
+    while (c > 1 && target <= this->Cumulative[c - 1])
+    {
+      --c;
+    }
+    while (c < this->NumberOfLevels && target > this->Cumulative[c])
+    {
+      ++c;
+    }
+    return c;
   }
 
   template <typename Sink>
@@ -133,15 +158,9 @@ private:
     rank -= static_cast<double>(rank) == position ? 1 : 0;
     rank = std::max<std::int64_t>(0, std::min<std::int64_t>(count - 1, rank));
 
-    std::uint64_t vi, vj, vk;
-    this->Decoder.Decode(this->SortedIds[first + rank], vi, vj, vk);
-    double p[3] = { static_cast<double>(vi), static_cast<double>(vj), static_cast<double>(vk) };
-    this->AddKernelOffset(k, random, p);
-    sink(k, p);
-  }
-
-  void AddKernelOffset(std::uint64_t k, CounterRandom& random, double p[3]) const
-  {
+    std::uint64_t voxel[3];
+    this->Decoder.Decode(this->SortedIds[first + rank], voxel[0], voxel[1], voxel[2]);
+    double p[3];
     if (this->Method == Strategy::QuasiMonteCarlo)
     {
       // Halton bases 3, 5, 7 with a Cranley-Patterson rotation from the seed.
@@ -151,28 +170,29 @@ private:
         CounterRandom shiftSource(SeedKey(this->Seed ^ 0xA5A5A5A5A5A5A5A5ull), static_cast<std::uint64_t>(a));
         double u = RadicalInverse(k + 1, bases[a]) + shiftSource.NextOpenClosed();
         u -= std::floor(u);
-        p[a] += KernelOffsetFromUniform(this->Reconstruction, u);
+        p[a] = static_cast<double>(voxel[a]) + KernelOffsetFromUniform(this->Reconstruction, u);
       }
-      return;
-    }
-    // Offsets at 2^-21 voxel resolution, far below any pixel.
-    double u[3];
-    random.NextTriple(u);
-    if (this->Reconstruction == Kernel::Tent)
-    {
-      // The sum of two uniforms has the tent density on (-1, 1).
-      double v[3];
-      random.NextTriple(v);
-      p[0] += u[0] + v[0] - 1.0;
-      p[1] += u[1] + v[1] - 1.0;
-      p[2] += u[2] + v[2] - 1.0;
     }
     else
     {
-      p[0] += u[0] - 0.5;
-      p[1] += u[1] - 0.5;
-      p[2] += u[2] - 0.5;
+      // Pseudo-random offsets in fixed point, 21 bits per axis and draw
+      // (2^-21 voxel, far below any pixel): the tent as the sum of two
+      // uniforms on (-1, 1), the box as one on [-1/2, 1/2). Each coordinate
+      // is an integer multiple of 2^-21 below 2^53, so it converts exactly.
+      const std::uint64_t r1 = random.Next();
+      const bool tent = this->Reconstruction == Kernel::Tent;
+      const std::uint64_t r2 = tent ? random.Next() : 0;
+      const std::int64_t centre = tent ? (std::int64_t(1) << 21) : (std::int64_t(1) << 20);
+      for (int a = 0; a < 3; ++a)
+      {
+        const int shift = 43 - 21 * a;
+        const std::int64_t fixed = static_cast<std::int64_t>(voxel[a] << 21) +
+          static_cast<std::int64_t>((r1 >> shift) & 0x1FFFFF) +
+          static_cast<std::int64_t>((r2 >> shift) & 0x1FFFFF) - centre;
+        p[a] = static_cast<double>(fixed) * 0x1.0p-21;
+      }
     }
+    sink(k, p);
   }
 };
 

@@ -37,6 +37,7 @@ TransferTable BuildTransferTable(
   }
   table.Cumulative.assign(static_cast<std::size_t>(numberOfLevels + 1), 0.0);
   table.RankScale.assign(static_cast<std::size_t>(numberOfLevels), 0.0);
+  table.Guide.assign(1, 1);
   if (table.InfiniteLevels > 0 || largest == 0.0)
   {
     return table;
@@ -63,6 +64,18 @@ TransferTable BuildTransferTable(
       table.RankScale[static_cast<std::size_t>(l)] =
         static_cast<double>(levelOffsets[l + 1] - levelOffsets[l]) / mass;
     }
+  }
+  const std::int64_t buckets = std::min<std::int64_t>(2 * numberOfLevels + 16, std::int64_t(1) << 22);
+  table.Guide.assign(static_cast<std::size_t>(buckets), 1);
+  std::int64_t c = 1;
+  for (std::int64_t b = 0; b < buckets; ++b)
+  {
+    const double start = static_cast<double>(b) / static_cast<double>(buckets) * sum;
+    while (c < numberOfLevels && table.Cumulative[static_cast<std::size_t>(c)] < start)
+    {
+      ++c;
+    }
+    table.Guide[static_cast<std::size_t>(b)] = c;
   }
   return table;
 }

@@ -17,6 +17,10 @@ struct TransferTable
   std::vector<double> Cumulative;
   /// Per level: voxel count / (Cumulative[l + 1] - Cumulative[l]), 0 for empty levels.
   std::vector<double> RankScale;
+  /// Guide table (Chen and Asau): Guide[b] is the smallest c >= 1 with
+  /// Cumulative[c] >= b / Guide.size() * Cumulative.back(), so that finding
+  /// the level of a target takes O(1) expected steps.
+  std::vector<std::int64_t> Guide;
   /// True sum of weight times count = ldexp(Cumulative.back(), Exponent).
   int Exponent = 0;
   /// Levels whose weight was negative or NaN and was replaced by zero.

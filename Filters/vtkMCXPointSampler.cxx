@@ -46,7 +46,7 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
     }
   };
   return mcx::BatchedFor(self, source.NumberOfSamples(), 0.05, 1.0,
-    [&](std::uint64_t b, std::uint64_t e) { source.Generate(b, e, store); });
+    [&](std::uint64_t b, std::uint64_t e) { source.GenerateInOutputOrder(b, e, store); });
 }
 }
 
@@ -137,10 +137,25 @@ int vtkMCXPointSampler::RequestData(
 
   const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
   const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
-  vtkNew<vtkPoints> points;
-  points->SetDataType(
-    this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT);
-  points->SetNumberOfPoints(count);
+  const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
+  // Reuse only when this filter holds the sole reference (the previous output
+  // has released it): nobody downstream can see the points change.
+  const bool reusable = this->ReusablePoints && this->ReusablePoints->GetReferenceCount() == 1 &&
+    this->ReusablePoints->GetData()->GetReferenceCount() == 1 &&
+    this->ReusablePoints->GetDataType() == pointType &&
+    this->ReusablePoints->GetNumberOfPoints() == count;
+  vtkSmartPointer<vtkPoints> points = this->ReusablePoints;
+  if (!reusable)
+  {
+    points = vtkSmartPointer<vtkPoints>::New();
+    points->SetDataType(pointType);
+    points->SetNumberOfPoints(count);
+  }
+  else
+  {
+    points->Modified();
+  }
+  this->ReusablePoints = points;
 
   bool completed = true;
   if (count > 0)

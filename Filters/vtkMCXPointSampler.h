@@ -26,9 +26,11 @@
 
 #include "MonteCarloXRayModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // for ReusablePoints
 
 class vtkInformationDoubleVectorKey;
 class vtkPiecewiseFunction;
+class vtkPoints;
 
 class MONTECARLOXRAY_EXPORT vtkMCXPointSampler : public vtkPolyDataAlgorithm
 {
@@ -128,6 +130,10 @@ protected:
   int OutputPointsPrecision = SINGLE_PRECISION;
 
 private:
+  // The last output's points, refilled in place when nothing else holds them:
+  // a TF edit then rewrites memory that is already mapped.
+  vtkSmartPointer<vtkPoints> ReusablePoints;
+
   vtkMCXPointSampler(const vtkMCXPointSampler&) = delete;
   void operator=(const vtkMCXPointSampler&) = delete;
 };

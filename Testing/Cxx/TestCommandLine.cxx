@@ -35,7 +35,9 @@ std::string Slurp(const std::string& path)
 
 Result RunCLI(const std::string& arguments)
 {
-  const std::string log = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/mcxray-test";
+  // One log per test: ctest may run the tests of this file in parallel.
+  const std::string log = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/mcxray-" +
+    ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const std::string command =
     std::string(MCXRAY_CLI) + " " + arguments + " > " + log + ".out 2> " + log + ".err";
   const int raw = std::system(command.c_str());

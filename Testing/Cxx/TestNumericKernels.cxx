@@ -178,6 +178,9 @@ TEST(SampleGenerator, HybridVisitsEveryLevelInProportion)
   source.LevelOffsets = offsets;
   source.Cumulative = table.Cumulative.data();
   source.RankScale = table.RankScale.data();
+  source.Guide = table.Guide.data();
+  source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
+  source.GuideScale = source.GuideSize / table.Cumulative.back();
   source.NumberOfLevels = 2;
   source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 1);
   source.Exponent = 12;

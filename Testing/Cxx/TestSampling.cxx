@@ -152,3 +152,52 @@ TEST(PointSampler, ZeroTransferFunctionGivesNoPoints)
   EXPECT_EQ(0, cloud->GetNumberOfPoints());
   EXPECT_EQ(0.0, mcxtest::FieldValue(cloud, "Integral"));
 }
+
+TEST(PointSampler, ATFEditNeverChangesPointsSomeoneStillHolds)
+{
+  const int dims[3] = { 8, 8, 8 };
+  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkPiecewiseFunction> tf;
+  tf->AddPoint(0, 0);
+  tf->AddPoint(400, 1);
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(index->GetOutputPort());
+  sampler->SetTransferFunction(tf);
+  sampler->SetSampleExponent(12);
+  sampler->Update();
+  vtkSmartPointer<vtkPoints> held = sampler->GetOutput()->GetPoints();
+  double before[3];
+  held->GetPoint(100, before);
+  tf->AddPoint(50, 1); // re-sample: the held points must stay as they were
+  sampler->Update();
+  double after[3];
+  held->GetPoint(100, after);
+  EXPECT_NE(held.Get(), sampler->GetOutput()->GetPoints());
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_EQ(before[a], after[a]);
+  }
+  // Unheld points are refilled in place, and hold the new samples.
+  vtkPoints* current = sampler->GetOutput()->GetPoints();
+  held = nullptr;
+  double expected[3];
+  current->GetPoint(100, expected);
+  tf->AddPoint(60, 0.5);
+  sampler->Update();
+  vtkNew<vtkMCXPointSampler> fresh;
+  fresh->SetInputConnection(index->GetOutputPort());
+  fresh->SetTransferFunction(tf);
+  fresh->SetSampleExponent(12);
+  fresh->Update();
+  for (vtkIdType i = 0; i < fresh->GetOutput()->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    fresh->GetOutput()->GetPoint(i, a);
+    sampler->GetOutput()->GetPoint(i, b);
+    ASSERT_EQ(a[0], b[0]);
+    ASSERT_EQ(a[1], b[1]);
+    ASSERT_EQ(a[2], b[2]);
+  }
+}

@@ -1,0 +1,26 @@
+# Installs the build tree into a scratch prefix, then configures, builds and
+# runs a separate project that finds the package with find_package().
+# Arguments: BUILD_DIR, SOURCE_DIR, WORK_DIR.
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+function (run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if (NOT result EQUAL 0)
+    message(FATAL_ERROR "failed: ${ARGN}\n${out}\n${err}")
+  endif ()
+  message("${out}")
+endfunction ()
+run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
+foreach (file IN ITEMS
+    "lib/cmake/MonteCarloXRay/MonteCarloXRayConfig.cmake"
+    "include/MonteCarloXRay/vtkMCXProjector.h"
+    "bin/mcxray"
+    "share/MonteCarloXRay/ct_head_headsq.vti")
+  if (NOT EXISTS "${prefix}/${file}")
+    message(FATAL_ERROR "not installed: ${file}")
+  endif ()
+endforeach ()
+run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/Testing/Install/consumer" -B "${WORK_DIR}/consumer"
+  "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release)
+run("${CMAKE_COMMAND}" --build "${WORK_DIR}/consumer")
+run("${WORK_DIR}/consumer/consumer")
