@@ -272,7 +272,7 @@ int vtkMCXDensityIndex::RequestData(
 
   this->UpdateProgress(0.0);
   IndexResult result;
-  const bool wide = vtkMCXDensityIndex::NeedsWideIds(n);
+  const bool wide = this->AlwaysUseWideIds || vtkMCXDensityIndex::NeedsWideIds(n);
   switch (scalars->GetDataType())
   {
     vtkTemplateMacro(
@@ -332,4 +332,5 @@ void vtkMCXDensityIndex::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfFloatLevels: " << this->NumberOfFloatLevels << "\n";
+  os << indent << "AlwaysUseWideIds: " << this->AlwaysUseWideIds << "\n";
 }

@@ -49,6 +49,17 @@ public:
 
   ///@{
   /**
+   * Use 64-bit voxel ids even below 2^32 voxels (default off). The output is
+   * then the one a volume of more than 2^32 voxels gets, which lets that path
+   * be exercised on small data.
+   */
+  vtkSetMacro(AlwaysUseWideIds, bool);
+  vtkGetMacro(AlwaysUseWideIds, bool);
+  vtkBooleanMacro(AlwaysUseWideIds, bool);
+  ///@}
+
+  ///@{
+  /**
    * Names of the field-data arrays of the output.
    */
   static const char* LevelValuesName() { return "LevelValues"; }
@@ -71,6 +82,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int NumberOfFloatLevels = 4096;
+  bool AlwaysUseWideIds = false;
 
 private:
   vtkMCXDensityIndex(const vtkMCXDensityIndex&) = delete;

@@ -21,6 +21,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -73,6 +74,9 @@ options:
   --window LO:HI        PNG grey window in image units (default 0:maximum)
   --bits 8|16           PNG bit depth (default 8)
   --tolerance T         reference method: relative RMS tolerance (default 1e-3)
+  --stored-points       store the point cloud (as an interactive view would),
+                        then project it, and time the two stages apart; by
+                        default samples are projected as they are generated
   --quiet               print nothing but errors
   --help                this text
 )";
@@ -94,6 +98,7 @@ struct Options
   mcxapp::PngWindow Window;
   double Tolerance = 1e-3;
   bool Quiet = false;
+  bool StoredPoints = false;
 };
 
 [[noreturn]] void Fail(const std::string& message)
@@ -173,6 +178,11 @@ Options Parse(int argc, char* argv[])
     if (arg == "--quiet")
     {
       options.Quiet = true;
+      continue;
+    }
+    if (arg == "--stored-points")
+    {
+      options.StoredPoints = true;
       continue;
     }
     if (arg.rfind("--", 0) != 0)
@@ -272,6 +282,14 @@ Options Parse(int argc, char* argv[])
   if (options.Kernel != "tent" && options.Kernel != "box")
   {
     Fail("unknown --kernel '" + options.Kernel + "' (expected tent or box)");
+  }
+  if (options.StoredPoints && options.Method == "reference")
+  {
+    Fail("--stored-points applies to the Monte Carlo methods, not to reference");
+  }
+  if (options.StoredPoints && options.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+  {
+    Fail("--stored-points holds at most 2^30 - 1 points; use fewer --samples or the default off-line projection");
   }
   if (!mcxapp::IsSupportedOutput(options.Output))
   {
@@ -563,6 +581,10 @@ int main(int argc, char* argv[])
     Fail(error);
   }
 
+  const int strategy = options.Method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
+    : options.Method == "qmc"                  ? vtkMCXPointSampler::QUASI_MONTE_CARLO
+                                               : vtkMCXPointSampler::HYBRID;
+  const int kernel = options.Kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
   vtkSmartPointer<vtkMCXProjectorBase> projector;
   if (options.Method == "reference")
   {
@@ -574,15 +596,40 @@ int main(int argc, char* argv[])
   {
     auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
     monteCarlo->SetNumberOfSamples(options.Samples);
-    monteCarlo->SetStrategy(options.Method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
-        : options.Method == "qmc"                  ? vtkMCXPointSampler::QUASI_MONTE_CARLO
-                                                   : vtkMCXPointSampler::HYBRID);
+    monteCarlo->SetStrategy(strategy);
     monteCarlo->SetSeed(options.Seed);
     projector = monteCarlo;
   }
   projector->SetInputConnection(index->GetOutputPort());
+  if (options.StoredPoints)
+  {
+    vtkNew<vtkMCXPointSampler> sampler;
+    sampler->SetInputConnection(index->GetOutputPort());
+    sampler->SetTransferFunction(tf);
+    sampler->SetNumberOfSamples(options.Samples);
+    sampler->SetStrategy(strategy);
+    sampler->SetKernel(kernel);
+    sampler->SetSeed(options.Seed);
+    messages.Watch(sampler);
+    sampler->AddObserver(vtkCommand::ProgressEvent, progress.Command);
+    progress.Begin("sampling");
+    start = std::chrono::steady_clock::now();
+    sampler->Update();
+    progress.End();
+    if (!messages.Error.empty() || !quiet->First.empty())
+    {
+      Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
+    }
+    const double samplingSeconds = Seconds(start);
+    std::ostringstream line;
+    line << "sampling:    " << samplingSeconds << " s (" << sampler->GetOutput()->GetNumberOfPoints()
+         << " stored points, " << sampler->GetOutput()->GetNumberOfPoints() / samplingSeconds / 1e6
+         << " M points/s)";
+    log(line.str());
+    projector->SetInputConnection(sampler->GetOutputPort());
+  }
   projector->SetTransferFunction(tf);
-  projector->SetKernel(options.Kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT);
+  projector->SetKernel(kernel);
   projector->SetImageSize(options.Size[0], options.Size[1]);
   projector->SetPixelSpacing(options.PixelSpacing);
   projector->SetCamera(camera);
@@ -617,8 +664,9 @@ int main(int argc, char* argv[])
     else
     {
       const double samples = image->GetFieldData()->GetArray("SampleCount")->GetTuple1(0);
-      line << "sampling + projection (off-line, fused): " << projectSeconds << " s (" << static_cast<long long>(samples)
-           << " samples, " << samples / projectSeconds / 1e6 << " M samples/s)";
+      line << (options.StoredPoints ? "projection:  " : "sampling + projection (off-line, fused): ")
+           << projectSeconds << " s (" << static_cast<long long>(samples) << " samples, "
+           << samples / projectSeconds / 1e6 << " M samples/s)";
     }
     log(line.str());
     std::ostringstream geometry;

@@ -152,6 +152,11 @@ TEST(CommandLine, BundledCTAndEveryOutputFormat)
     EXPECT_NE(std::string::npos, r.Output.find("index:")) << r.Output;
     EXPECT_TRUE(vtksys::SystemTools::FileExists(output));
   }
+  // The stored-point pipeline times sampling and projection apart.
+  Result stored = RunCLI("render --samples 65535 --stored-points --output " + Temporary("cli_stored.vti"));
+  ASSERT_EQ(0, stored.Status) << stored.Errors;
+  EXPECT_NE(std::string::npos, stored.Output.find("sampling:")) << stored.Output;
+  EXPECT_NE(std::string::npos, stored.Output.find("projection:")) << stored.Output;
   // PFM: header plus 96 * 80 float32 values.
   EXPECT_EQ(std::string("Pf\n96 80\n-1.0\n").size() + 96 * 80 * 4,
     vtksys::SystemTools::FileLength(vtksys::SystemTools::GetCurrentWorkingDirectory() + "/cli_default.pfm"));

@@ -15,6 +15,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkTypeUInt64Array.h"
 
 #include <gtest/gtest.h>
 
@@ -281,5 +282,22 @@ TEST(Projection, ConstantSlabHasAnalyticLineIntegrals)
     }
     EXPECT_NEAR(7.0, image->GetOrigin()[0] + 1.5, 1e-12);
     EXPECT_NEAR(7.5, image->GetOrigin()[1] + 1.0, 1e-12);
+  }
+}
+
+TEST(Projection, WideVoxelIdsGiveTheSameImage)
+{
+  // 64-bit ids (the path of volumes above 2^32 voxels) must change nothing.
+  Scene scene;
+  auto narrow = scene.MonteCarlo(nullptr, 32, 16, vtkMCXPointSampler::HYBRID, 2);
+  scene.Index->AlwaysUseWideIdsOn();
+  auto wide = scene.MonteCarlo(nullptr, 32, 16, vtkMCXPointSampler::HYBRID, 2);
+  ASSERT_NE(nullptr, vtkTypeUInt64Array::SafeDownCast(
+    scene.Index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::SortedVoxelIdsName())));
+  vtkDataArray* a = mcxtest::LineIntegral(narrow);
+  vtkDataArray* b = mcxtest::LineIntegral(wide);
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i));
   }
 }
