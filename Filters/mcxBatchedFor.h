@@ -18,10 +18,9 @@ namespace mcx
 /// to abort (the work is then incomplete).
 template <typename Work>
 bool BatchedFor(vtkAlgorithm* algorithm, std::uint64_t total, double progressBegin,
-  double progressEnd, const Work& work)
+  double progressEnd, const Work& work, std::uint64_t grain = std::uint64_t(1) << 15)
 {
-  const std::uint64_t grain = std::uint64_t(1) << 15;
-  const std::uint64_t batch = std::max<std::uint64_t>(grain * 64, total / 50 + 1);
+  const std::uint64_t batch = std::max<std::uint64_t>(grain * 16, total / 50 + 1);
   for (std::uint64_t begin = 0; begin < total; begin += batch)
   {
     const std::uint64_t end = std::min(total, begin + batch);

@@ -22,6 +22,12 @@ inline std::uint64_t ReverseBits64(std::uint64_t x)
   return ((x >> 1) & 0x5555555555555555ull) | ((x & 0x5555555555555555ull) << 1);
 }
 
+/// The lowest `bits` bits of x in reverse order (0 for bits == 0).
+inline std::uint64_t ReverseLowBits(std::uint64_t x, unsigned bits)
+{
+  return bits == 0 ? 0 : ReverseBits64(x) >> (64 - bits);
+}
+
 /// Largest supported exponent: M = 2^63 - 1 samples still fits a signed 64-bit count.
 constexpr unsigned MaximumSampleExponent = 63;
 

@@ -58,6 +58,9 @@ inline double KernelOffsetFromUniform(Kernel kernel, double u)
 template <typename IdType>
 struct SampleSource
 {
+  /// Output points written as one contiguous run in GenerateForStorage.
+  static constexpr std::uint64_t StorageTile = 64;
+
   const IdType* SortedIds = nullptr;
   const std::int64_t* LevelOffsets = nullptr; // NumberOfLevels + 1 entries
   const double* Cumulative = nullptr;         // NumberOfLevels + 1 entries, see TransferTable
@@ -108,8 +111,64 @@ struct SampleSource
     }
   }
 
-  /// The same samples as Generate, visited by output index k in [begin, end):
-  /// sequential output, for stored point clouds.
+  /// Work items of GenerateForStorage.
+  std::uint64_t NumberOfStorageItems() const
+  {
+    const unsigned high = this->Exponent - this->Exponent / 2;
+    const std::uint64_t tile = std::min<std::uint64_t>(StorageTile, std::uint64_t(1) << high);
+    return this->Exponent == 0 ? 0 : (std::uint64_t(1) << high) / tile;
+  }
+
+  /// The same samples as Generate, in an order that keeps both the reads of
+  /// sorted ids and the writes of output indices in short contiguous runs
+  /// (for stored point clouds). With m = h + l (l = m / 2), the rank
+  /// j = i + 1 = (a << l) | b has output position k + 1 = (rev_l(b) << h) | rev_h(a);
+  /// item t covers rev_h(a) in [t T, t T + T) for every b: for each b the
+  /// writes are T consecutive points, and for each a the reads are 2^l
+  /// consecutive ids, visited as T interleaved streams. MonteCarlo items are
+  /// plain ranges of output indices.
+  template <typename Sink>
+  void GenerateForStorage(std::uint64_t itemBegin, std::uint64_t itemEnd, Sink& sink) const
+  {
+    const unsigned low = this->Exponent / 2;
+    const unsigned high = this->Exponent - low;
+    const std::uint64_t tile = std::min<std::uint64_t>(StorageTile, std::uint64_t(1) << high);
+    if (this->Method == Strategy::MonteCarlo)
+    {
+      const std::uint64_t perItem = tile << low;
+      this->GenerateInOutputOrder(itemBegin * perItem,
+        std::min(this->NumberOfSamples(), itemEnd * perItem), sink);
+      return;
+    }
+    const double step = std::ldexp(this->Cumulative[this->NumberOfLevels], -static_cast<int>(this->Exponent));
+    const std::uint64_t key = SeedKey(this->Seed);
+    for (std::uint64_t t = itemBegin; t < itemEnd; ++t)
+    {
+      std::uint64_t firstRank[StorageTile];
+      for (std::uint64_t n = 0; n < tile; ++n)
+      {
+        firstRank[n] = ReverseLowBits(t * tile + n, high) << low;
+      }
+      for (std::uint64_t b = 0; b < (std::uint64_t(1) << low); ++b)
+      {
+        const std::uint64_t reversedB = ReverseLowBits(b, low) << high;
+        for (std::uint64_t n = 0; n < tile; ++n)
+        {
+          const std::uint64_t j = firstRank[n] | b; // j = i + 1
+          if (j == 0)
+          {
+            continue;
+          }
+          const std::uint64_t k = (reversedB | (t * tile + n)) - 1;
+          const double target = static_cast<double>(j) * step;
+          CounterRandom random(key, k);
+          this->Emit(k, target, this->FindLevel(target), random, sink);
+        }
+      }
+    }
+  }
+
+  /// The same samples as Generate, visited by output index k in [begin, end).
   template <typename Sink>
   void GenerateInOutputOrder(std::uint64_t begin, std::uint64_t end, Sink& sink) const
   {

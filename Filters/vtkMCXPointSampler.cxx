@@ -45,8 +45,8 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
         origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
     }
   };
-  return mcx::BatchedFor(self, source.NumberOfSamples(), 0.05, 1.0,
-    [&](std::uint64_t b, std::uint64_t e) { source.GenerateInOutputOrder(b, e, store); });
+  return mcx::BatchedFor(self, source.NumberOfStorageItems(), 0.05, 1.0,
+    [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -241,4 +242,59 @@ TEST(RayIntegrator, ConstantVolumeGivesLengthTimesValue)
   const double p[3] = { 1.3, 2.7, 0 };
   const double d[3] = { 0, 0, -1 };
   EXPECT_NEAR(1.5 * 6, tent.Integrate(p, d, -INFINITY, INFINITY), 1e-12);
+}
+
+TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
+{
+  // Generate (rank order), GenerateInOutputOrder and GenerateForStorage must
+  // produce bit-identical samples, each output index exactly once.
+  std::vector<std::uint32_t> ids(60);
+  std::iota(ids.begin(), ids.end(), 0u);
+  const std::int64_t offsets[] = { 0, 7, 30, 31, 60 };
+  const double weights[] = { 0.5, 2.0, 40.0, 1.0 };
+  const mcx::TransferTable table = mcx::BuildTransferTable(weights, offsets, 4);
+  for (auto method : { mcx::Strategy::Hybrid, mcx::Strategy::MonteCarlo, mcx::Strategy::QuasiMonteCarlo })
+  {
+    for (unsigned m : { 1u, 2u, 3u, 5u, 12u, 13u })
+    {
+      mcx::SampleSource<std::uint32_t> source;
+      source.SortedIds = ids.data();
+      source.LevelOffsets = offsets;
+      source.Cumulative = table.Cumulative.data();
+      source.RankScale = table.RankScale.data();
+      source.Guide = table.Guide.data();
+      source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
+      source.GuideScale = source.GuideSize / table.Cumulative.back();
+      source.Decoder = mcx::VoxelDecoder<std::uint32_t>(5, 4);
+      source.Method = method;
+      source.Seed = 77;
+      source.Exponent = m;
+      const std::uint64_t count = source.NumberOfSamples();
+      std::vector<std::array<double, 3>> orders[3];
+      std::vector<int> hits[3];
+      for (int o = 0; o < 3; ++o)
+      {
+        orders[o].assign(count, { NAN, NAN, NAN });
+        hits[o].assign(count, 0);
+        auto sink = [&](std::uint64_t k, const double p[3]) {
+          orders[o][k] = { p[0], p[1], p[2] };
+          ++hits[o][k];
+        };
+        if (o == 0)
+          source.Generate(0, count, sink);
+        else if (o == 1)
+          source.GenerateInOutputOrder(0, count, sink);
+        else
+          source.GenerateForStorage(0, source.NumberOfStorageItems(), sink);
+      }
+      for (int o = 0; o < 3; ++o)
+      {
+        EXPECT_EQ(std::vector<int>(count, 1), hits[o]) << "order " << o << " m " << m;
+        for (std::uint64_t k = 0; k < count; ++k)
+        {
+          ASSERT_EQ(orders[0][k], orders[o][k]) << "order " << o << " m " << m << " k " << k;
+        }
+      }
+    }
+  }
 }
