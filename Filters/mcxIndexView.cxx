@@ -2,6 +2,7 @@
 
 #include "vtkMCXDensityIndex.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -11,6 +12,7 @@
 #include "mcxProjectionGeometry.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkTypeUInt32Array.h"
@@ -126,6 +128,43 @@ std::vector<double> IndexView::EvaluateTransferFunction(vtkPiecewiseFunction* tf
     weights[static_cast<std::size_t>(l)] = tf->GetValue(this->LevelValues[l]);
   }
   return weights;
+}
+
+bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
+  vtkPiecewiseFunction* tf, IndexView& view, TransferTable& table, double& integral)
+{
+  std::string error = view.Read(index);
+  std::string warning;
+  if (error.empty())
+  {
+    error = view.MakeTransferTable(tf, table, integral, warning);
+  }
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, "Cannot " << action << ": " << error << ".");
+    return false;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningWithObjectMacro(algorithm, << warning);
+  }
+  return true;
+}
+
+void AddFieldValue(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  fd->AddArray(array);
+}
+
+void AddFieldValue(vtkFieldData* fd, const char* name, long long value)
+{
+  vtkNew<vtkTypeInt64Array> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  fd->AddArray(array);
 }
 
 bool SupportCornersFromInformation(vtkInformation* info, double kernelRadius, double corners[24])

@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+class vtkAlgorithm;
 class vtkDataArray;
+class vtkFieldData;
 class vtkImageData;
 class vtkInformation;
 class vtkPiecewiseFunction;
@@ -72,6 +74,16 @@ struct IndexView
   template <typename IdType>
   const IdType* IdPointer() const;
 };
+
+/// Reads the index and evaluates the TF for an algorithm: errors and
+/// warnings are reported on the algorithm ("Cannot <action>: ..."). Returns
+/// false when no output can be made.
+bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
+  vtkPiecewiseFunction* tf, IndexView& view, TransferTable& table, double& integral);
+
+/// Adds a one-value array to field data (the metadata that travels with outputs).
+void AddFieldValue(vtkFieldData* fd, const char* name, double value);
+void AddFieldValue(vtkFieldData* fd, const char* name, long long value);
 
 /// Support corners (see ComputeSupportCorners) from the pipeline information
 /// of an image (WHOLE_EXTENT, ORIGIN, SPACING and DIRECTION when present).

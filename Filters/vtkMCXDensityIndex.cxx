@@ -1,6 +1,7 @@
 #include "vtkMCXDensityIndex.h"
 
 #include "mcxCountingSort.h"
+#include "mcxIndexView.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -307,18 +308,11 @@ int vtkMCXDensityIndex::RequestData(
   levelOffsets->SetName(LevelOffsetsName());
   levelOffsets->SetNumberOfValues(static_cast<vtkIdType>(result.LevelOffsets.size()));
   std::copy(result.LevelOffsets.begin(), result.LevelOffsets.end(), levelOffsets->GetPointer(0));
-  vtkNew<vtkTypeInt64Array> nonFinite;
-  nonFinite->SetName(NonFiniteVoxelCountName());
-  nonFinite->InsertNextValue(result.NonFinite);
-  vtkNew<vtkDoubleArray> binWidth;
-  binWidth->SetName(LevelBinWidthName());
-  binWidth->InsertNextValue(result.BinWidth);
-
   fd->AddArray(levelValues);
   fd->AddArray(levelOffsets);
   fd->AddArray(result.SortedIds);
-  fd->AddArray(nonFinite);
-  fd->AddArray(binWidth);
+  mcx::AddFieldValue(fd, NonFiniteVoxelCountName(), static_cast<long long>(result.NonFinite));
+  mcx::AddFieldValue(fd, LevelBinWidthName(), result.BinWidth);
 
   if (result.NonFinite > 0)
   {

@@ -16,7 +16,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkTypeInt64Array.h"
 
 #include <cmath>
 
@@ -115,24 +114,11 @@ int vtkMCXPointSampler::RequestData(
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   mcx::IndexView view;
-  const std::string problem = view.Read(input);
-  if (!problem.empty())
-  {
-    vtkErrorMacro("Cannot sample: " << problem << ".");
-    return 0;
-  }
   mcx::TransferTable table;
   double integral = 0.0;
-  std::string warning;
-  const std::string error = view.MakeTransferTable(this->TransferFunction, table, integral, warning);
-  if (!error.empty())
+  if (!mcx::PrepareSampling(this, "sample", input, this->TransferFunction, view, table, integral))
   {
-    vtkErrorMacro("Cannot sample: " << error << ".");
     return 0;
-  }
-  if (!warning.empty())
-  {
-    vtkWarningMacro(<< warning);
   }
 
   const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
@@ -185,18 +171,9 @@ int vtkMCXPointSampler::RequestData(
 
   output->SetPoints(points);
   vtkFieldData* fd = output->GetFieldData();
-  vtkNew<vtkDoubleArray> weight;
-  weight->SetName("SampleWeight");
-  weight->InsertNextValue(count > 0 ? integral / static_cast<double>(count) : 0.0);
-  vtkNew<vtkDoubleArray> total;
-  total->SetName("Integral");
-  total->InsertNextValue(integral);
-  vtkNew<vtkTypeInt64Array> exponent;
-  exponent->SetName("SampleExponent");
-  exponent->InsertNextValue(m);
-  fd->AddArray(weight);
-  fd->AddArray(total);
-  fd->AddArray(exponent);
+  mcx::AddFieldValue(fd, "SampleWeight", count > 0 ? integral / static_cast<double>(count) : 0.0);
+  mcx::AddFieldValue(fd, "Integral", integral);
+  mcx::AddFieldValue(fd, "SampleExponent", static_cast<long long>(m));
   return 1;
 }
 

@@ -15,7 +15,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPThreadLocal.h"
-#include "vtkTypeInt64Array.h"
 
 #include <cmath>
 #include <vector>
@@ -187,23 +186,11 @@ int vtkMCXProjector::RequestData(
   else
   {
     mcx::IndexView view;
-    const std::string problem = view.Read(vtkImageData::SafeDownCast(input));
-    if (!problem.empty())
-    {
-      vtkErrorMacro("Cannot project: " << problem << ".");
-      return 0;
-    }
     mcx::TransferTable table;
-    std::string warning;
-    const std::string error = view.MakeTransferTable(this->TransferFunction, table, integral, warning);
-    if (!error.empty())
+    if (!mcx::PrepareSampling(
+          this, "project", vtkImageData::SafeDownCast(input), this->TransferFunction, view, table, integral))
     {
-      vtkErrorMacro("Cannot project: " << error << ".");
       return 0;
-    }
-    if (!warning.empty())
-    {
-      vtkWarningMacro(<< warning);
     }
     const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
     count = mcx::SampleCount(m);
@@ -228,18 +215,9 @@ int vtkMCXProjector::RequestData(
 
   vtkFieldData* fd = output->GetFieldData();
   fd->Initialize();
-  vtkNew<vtkTypeInt64Array> samples;
-  samples->SetName("SampleCount");
-  samples->InsertNextValue(static_cast<vtkTypeInt64>(count));
-  vtkNew<vtkDoubleArray> sampleWeight;
-  sampleWeight->SetName("SampleWeight");
-  sampleWeight->InsertNextValue(weight);
-  vtkNew<vtkDoubleArray> total;
-  total->SetName("Integral");
-  total->InsertNextValue(integral);
-  fd->AddArray(samples);
-  fd->AddArray(sampleWeight);
-  fd->AddArray(total);
+  mcx::AddFieldValue(fd, "SampleCount", static_cast<long long>(count));
+  mcx::AddFieldValue(fd, "SampleWeight", weight);
+  mcx::AddFieldValue(fd, "Integral", integral);
   return 1;
 }
 

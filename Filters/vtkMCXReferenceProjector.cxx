@@ -14,7 +14,6 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
-#include "vtkTypeInt64Array.h"
 #include "vtkTypeUInt32Array.h"
 #include "vtkTypeUInt64Array.h"
 
@@ -114,24 +113,12 @@ int vtkMCXReferenceProjector::RequestData(
 {
   vtkImageData* output = vtkImageData::GetData(outputVector);
   mcx::IndexView view;
-  const std::string problem = view.Read(vtkImageData::GetData(inputVector[0]));
-  if (!problem.empty())
-  {
-    vtkErrorMacro("Cannot project: " << problem << ".");
-    return 0;
-  }
   mcx::TransferTable table;
   double integral = 0.0;
-  std::string warning;
-  const std::string error = view.MakeTransferTable(this->TransferFunction, table, integral, warning);
-  if (!error.empty())
+  if (!mcx::PrepareSampling(
+        this, "project", vtkImageData::GetData(inputVector[0]), this->TransferFunction, view, table, integral))
   {
-    vtkErrorMacro("Cannot project: " << error << ".");
     return 0;
-  }
-  if (!warning.empty())
-  {
-    vtkWarningMacro(<< warning);
   }
 
   std::vector<double> g(static_cast<std::size_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2], 0.0);
@@ -216,18 +203,9 @@ int vtkMCXReferenceProjector::RequestData(
   std::copy(current.begin(), current.end(), values->GetPointer(0));
   vtkFieldData* fd = output->GetFieldData();
   fd->Initialize();
-  vtkNew<vtkDoubleArray> estimate;
-  estimate->SetName("EstimatedRelativeError");
-  estimate->InsertNextValue(change);
-  vtkNew<vtkTypeInt64Array> rayCount;
-  rayCount->SetName("RaysPerPixelAxis");
-  rayCount->InsertNextValue(subdivision);
-  vtkNew<vtkDoubleArray> total;
-  total->SetName("Integral");
-  total->InsertNextValue(integral);
-  fd->AddArray(estimate);
-  fd->AddArray(rayCount);
-  fd->AddArray(total);
+  mcx::AddFieldValue(fd, "EstimatedRelativeError", change);
+  mcx::AddFieldValue(fd, "RaysPerPixelAxis", static_cast<long long>(subdivision));
+  mcx::AddFieldValue(fd, "Integral", integral);
   return 1;
 }
 
