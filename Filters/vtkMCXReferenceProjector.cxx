@@ -11,7 +11,6 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 #include "vtkTypeUInt32Array.h"
