@@ -48,9 +48,10 @@ std::string ProjectionGeometry::Validate() const
     {
       return "perspective focal distance must be positive and finite";
     }
-    if (!(this->NearDistance > 0) || !std::isfinite(this->NearDistance))
+    // Bounds the weight D^2 s / z^3 of a sample by about 1e12 / cos^3.
+    if (!(this->NearDistance >= 1e-6 * this->FocalDistance) || !std::isfinite(this->NearDistance))
     {
-      return "perspective near distance must be positive and finite";
+      return "perspective near distance must be finite and at least 1e-6 times the focal distance";
     }
   }
   return std::string();

@@ -8,7 +8,8 @@
 //                D * ((x - E) . U, (x - E) . V) / z with depth z = (x - E) . W,
 //                i.e. coordinates on the plane at distance D from the eye
 //                (the focal plane), measured from the principal point.
-//                Only depths z >= NearDistance are seen.
+//                Only depths z >= NearDistance are seen; NearDistance must be
+//                at least 1e-6 FocalDistance, which bounds a sample's weight.
 // A pixel's value is (1 / pixel area) times the integral over the pixel of
 // the line integral of g along the ray, in TF units times world length.
 #ifndef mcxProjectionGeometry_h

@@ -186,6 +186,23 @@ struct SampleSource
     }
   }
 
+  /// Rank within level c - 1 of the voxel whose share (rank, rank + 1] of
+  /// the level's mass, in units of one voxel, contains target: ceil(x) - 1 of
+  /// x = (target - Cumulative[c - 1]) * RankScale[c - 1], kept in [0, count).
+  /// Done in floating point, so no product of counts can overflow.
+  std::int64_t VoxelRank(double target, std::int64_t c) const
+  {
+    const std::int64_t count = this->LevelOffsets[c] - this->LevelOffsets[c - 1];
+    double position = (target - this->Cumulative[c - 1]) * this->RankScale[c - 1];
+    if (!(position < static_cast<double>(count))) // also an infinite scale of a denormal mass
+    {
+      position = static_cast<double>(count);
+    }
+    std::int64_t rank = static_cast<std::int64_t>(position);
+    rank -= static_cast<double>(rank) == position ? 1 : 0;
+    return std::max<std::int64_t>(0, std::min<std::int64_t>(count - 1, rank));
+  }
+
 private:
   /// Smallest c in [1, NumberOfLevels] with target <= Cumulative[c]
   /// (level c - 1): a guide-table start, then a short walk.
@@ -209,14 +226,7 @@ private:
   void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random, Sink& sink) const
   {
     const std::int64_t first = this->LevelOffsets[c - 1];
-    const std::int64_t count = this->LevelOffsets[c] - first;
-    // Rank of the voxel whose share (rank, rank + 1] of the level's mass,
-    // in units of one voxel, contains position: ceil(position) - 1.
-    const double position = (target - this->Cumulative[c - 1]) * this->RankScale[c - 1];
-    std::int64_t rank = static_cast<std::int64_t>(position);
-    rank -= static_cast<double>(rank) == position ? 1 : 0;
-    rank = std::max<std::int64_t>(0, std::min<std::int64_t>(count - 1, rank));
-
+    const std::int64_t rank = this->VoxelRank(target, c);
     std::uint64_t voxel[3];
     this->Decoder.Decode(this->SortedIds[first + rank], voxel[0], voxel[1], voxel[2]);
     double p[3];

@@ -231,6 +231,24 @@ bool vtkMCXDensityIndex::NeedsWideIds(long long numberOfVoxels)
   return numberOfVoxels > static_cast<long long>(std::numeric_limits<std::uint32_t>::max());
 }
 
+int vtkMCXDensityIndex::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // VTK 9.1 passes extent, origin and spacing downstream but not the
+  // direction; projectors frame their image with all four.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (inInfo->Has(vtkDataObject::DIRECTION()))
+  {
+    outInfo->CopyEntry(inInfo, vtkDataObject::DIRECTION());
+  }
+  return 1;
+}
+
 int vtkMCXDensityIndex::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {

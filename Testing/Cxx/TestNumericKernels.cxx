@@ -1,4 +1,5 @@
 // The plain C++ kernels, without any pipeline.
+#include "mcxAccumulator.h"
 #include "mcxCountingSort.h"
 #include "mcxFastDivide.h"
 #include "mcxHalton.h"
@@ -297,4 +298,130 @@ TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
       }
     }
   }
+}
+
+TEST(SampleGenerator, RankArithmeticCannotOverflowForHugeLevels)
+{
+  // A level of 2^40 (and 2^62) voxels: the rank comes from a floating-point
+  // product, never from a count times a count.
+  for (int bits : { 40, 62 })
+  {
+    const std::int64_t count = std::int64_t(1) << bits;
+    const std::int64_t offsets[] = { 0, count };
+    const double cumulative[] = { 0.0, 1.0 };
+    const double scale[] = { static_cast<double>(count) };
+    mcx::SampleSource<std::uint64_t> source;
+    source.LevelOffsets = offsets;
+    source.Cumulative = cumulative;
+    source.RankScale = scale;
+    source.NumberOfLevels = 1;
+    EXPECT_EQ(count / 2 - 1, source.VoxelRank(0.5, 1));
+    EXPECT_EQ(count - 1, source.VoxelRank(1.0, 1));
+    EXPECT_EQ(0, source.VoxelRank(1e-300, 1));
+    // A denormal level mass makes the scale infinite: the rank still stays in range.
+    const double infinite[] = { INFINITY };
+    source.RankScale = infinite;
+    EXPECT_EQ(count - 1, source.VoxelRank(0.25, 1));
+  }
+}
+
+TEST(SampleGenerator, LargeExponentsOnASmallVolume)
+{
+  // m = 31, 32, 40 and 63: the first and last work items of the run are
+  // valid samples (ranks, output indices and positions), without running
+  // all 2^m - 1 of them.
+  std::vector<std::uint32_t> ids(24);
+  std::iota(ids.begin(), ids.end(), 0u);
+  const std::int64_t offsets[] = { 0, 4, 24 };
+  const double weights[] = { 3.0, 1.0 };
+  const mcx::TransferTable table = mcx::BuildTransferTable(weights, offsets, 2);
+  for (unsigned m : { 31u, 32u, 40u, 63u })
+  {
+    mcx::SampleSource<std::uint32_t> source;
+    source.SortedIds = ids.data();
+    source.LevelOffsets = offsets;
+    source.Cumulative = table.Cumulative.data();
+    source.RankScale = table.RankScale.data();
+    source.Guide = table.Guide.data();
+    source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
+    source.GuideScale = source.GuideSize / table.Cumulative.back();
+    source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 3); // 4 x 3 x 2 voxels
+    source.Exponent = m;
+    const std::uint64_t count = source.NumberOfSamples();
+    int seen = 0;
+    auto check = [&](std::uint64_t k, const double p[3]) {
+      ++seen;
+      EXPECT_LT(k, count);
+      EXPECT_TRUE(p[0] > -1 && p[0] < 4 && p[1] > -1 && p[1] < 3 && p[2] > -1 && p[2] < 2)
+        << p[0] << " " << p[1] << " " << p[2];
+    };
+    source.Generate(0, 1000, check);
+    source.Generate(count - 1000, count, check);
+    source.GenerateInOutputOrder(count - 1000, count, check);
+    EXPECT_EQ(3000, seen) << m;
+    // The level masses 12 : 20 put the first 12/32 of the u-grid in level 0
+    // (voxels 0..3, i.e. y = 0 and z = 0 rows of x = 0..3).
+    int inFirstLevel = 0;
+    auto level = [&](std::uint64_t, const double p[3]) { inFirstLevel += (std::lround(p[1]) <= 0 && std::lround(p[2]) <= 0) ? 1 : 0; };
+    source.Reconstruction = mcx::Kernel::Box;
+    source.Generate(0, 1000, level);
+    EXPECT_EQ(1000, inFirstLevel) << m; // the smallest u all fall in level 0
+  }
+}
+
+TEST(CountingSort, LayoutForMoreThan2To32Voxels)
+{
+  const std::int64_t n = std::int64_t(1) << 34;
+  for (std::int64_t bins : { std::int64_t(1), std::int64_t(4096), std::int64_t(65536), std::int64_t(1) << 24 })
+  {
+    const mcx::CountingSortLayout layout = mcx::MakeCountingSortLayout(n, bins);
+    EXPECT_GE(layout.NumberOfChunks * layout.ChunkSize, n);
+    EXPECT_LT((layout.NumberOfChunks - 1) * layout.ChunkSize, n);
+    EXPECT_LE(layout.NumberOfChunks * bins, std::max<std::int64_t>(bins, std::int64_t(1) << 24));
+  }
+}
+
+TEST(Accumulation, CountsAbove2To32StayExact)
+{
+  // 2^33 + 5 samples in one pixel (as 128-bit fixed point) convert exactly.
+  std::vector<mcx::FixedSum> sums(2, 0);
+  const std::uint64_t samples = (std::uint64_t(1) << 33) + 5;
+  sums[0] = static_cast<mcx::FixedSum>(samples) * mcx::FixedOneInteger;
+  for (int i = 0; i < 3; ++i)
+  {
+    sums[1] += mcx::FixedOneInteger; // the accumulator's own additions
+  }
+  double values[2];
+  mcx::FixedSumsToValues(sums, 0.5, 0.25, values);
+  EXPECT_EQ(static_cast<double>(samples) * 2.0, values[0]);
+  EXPECT_EQ(6.0, values[1]);
+}
+
+TEST(Accumulation, PerspectivePointsBehindOnAndBeforeTheEye)
+{
+  mcx::ProjectionGeometry g;
+  g.Perspective = true;
+  g.FocalDistance = 10;
+  g.NearDistance = 1;
+  g.Size[0] = g.Size[1] = 8;
+  g.Spacing[0] = g.Spacing[1] = 1;
+  g.Origin[0] = g.Origin[1] = -3.5;
+  ASSERT_EQ("", g.Validate());
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const mcx::PixelBinner binner(g, origin, identity);
+  std::int64_t pixel = -1;
+  mcx::FixedSum increment = 0;
+  const double behind[3] = { 0, 0, -5 }, eye[3] = { 0, 0, 0 }, beforeNear[3] = { 0.1, 0.1, 0.5 };
+  EXPECT_FALSE(binner.Bin(behind, pixel, increment));
+  EXPECT_FALSE(binner.Bin(eye, pixel, increment));
+  EXPECT_FALSE(binner.Bin(beforeNear, pixel, increment));
+  // On the near plane, on the axis: seen, with weight D^2 / near^2 = 100.
+  const double onNear[3] = { 0.0, 0.0, 1.0 };
+  ASSERT_TRUE(binner.Bin(onNear, pixel, increment));
+  EXPECT_EQ(static_cast<mcx::FixedSum>(100) * mcx::FixedOneInteger, increment);
+  EXPECT_EQ(4 + 8 * 4, pixel);
+  // Nearer than 1e-6 of the focal distance is refused as a geometry.
+  g.NearDistance = 1e-6;
+  EXPECT_NE("", g.Validate());
 }

@@ -7,6 +7,7 @@
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -64,17 +65,29 @@ inline vtkDataArray* LineIntegral(vtkImageData* image)
   return image->GetPointData()->GetArray("LineIntegral");
 }
 
+/// Largest |value| of an image (a scale that keeps sums of squares finite).
+inline double MaximumAbsolute(vtkDataArray* values)
+{
+  double largest = 0;
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    largest = std::max(largest, std::fabs(values->GetTuple1(i)));
+  }
+  return largest > 0 ? largest : 1.0;
+}
+
 /// sqrt(sum (a - b)^2 / sum b^2) over two images' LineIntegral arrays.
 inline double RelativeRMS(vtkImageData* estimate, vtkImageData* reference)
 {
   vtkDataArray* a = LineIntegral(estimate);
   vtkDataArray* b = LineIntegral(reference);
+  const double scale = MaximumAbsolute(b);
   double difference = 0, norm = 0;
   for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
   {
-    const double d = a->GetTuple1(i) - b->GetTuple1(i);
+    const double d = a->GetTuple1(i) / scale - b->GetTuple1(i) / scale;
     difference += d * d;
-    norm += b->GetTuple1(i) * b->GetTuple1(i);
+    norm += (b->GetTuple1(i) / scale) * (b->GetTuple1(i) / scale);
   }
   return std::sqrt(difference / norm);
 }
@@ -87,13 +100,14 @@ inline double ExpectedRelativeRMS(vtkImageData* reference, double integral, doub
   double samples, double fMax = 1.0)
 {
   vtkDataArray* b = LineIntegral(reference);
+  const double scale = MaximumAbsolute(b);
   double sum = 0, squares = 0;
   for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
   {
-    sum += b->GetTuple1(i);
-    squares += b->GetTuple1(i) * b->GetTuple1(i);
+    sum += b->GetTuple1(i) / scale;
+    squares += (b->GetTuple1(i) / scale) * (b->GetTuple1(i) / scale);
   }
-  return std::sqrt(fMax * integral * sum / (pixelArea * samples * squares));
+  return std::sqrt(fMax * (integral / scale) * sum / (pixelArea * samples * squares));
 }
 
 inline double FieldValue(vtkDataObject* data, const char* name)
