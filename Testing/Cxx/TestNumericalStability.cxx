@@ -544,3 +544,25 @@ TEST(Perspective, CameraInsideTheVolume)
   const Outcome run = Project(volume, nullptr, false, 16, 24, camera);
   EXPECT_TRUE(AllFinite(run.Image));
 }
+
+// ---- Long: every sample of M = 2^33 - 1 in one pixel ------------------------
+
+TEST(LongAccumulation, MoreThan2To32SamplesInOnePixelStayExact)
+{
+  // A 1 x 1 image wider than the volume's support receives all 2^33 - 1
+  // samples; a 32-bit count would have wrapped and lost 2^32 of them.
+  const int dims[3] = { 4, 4, 4 };
+  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return 1 + (i + j + k) % 3; });
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetSampleExponent(33);
+  projector->SetImageSize(1, 1);
+  projector->SetPixelSpacing(100.0);
+  projector->Update();
+  vtkImageData* image = projector->GetOutput();
+  EXPECT_EQ((std::int64_t(1) << 33) - 1, static_cast<std::int64_t>(mcxtest::FieldValue(image, "SampleCount")));
+  const double integral = mcxtest::FieldValue(image, "Integral");
+  EXPECT_NEAR(integral, mcxtest::LineIntegral(image)->GetTuple1(0) * PixelArea(image), 1e-12 * integral);
+}
