@@ -16,36 +16,53 @@
 #include "vtkPolyData.h"
 #include "vtkSMPThreadLocal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXProjector);
 
+// Smallest pilot run of the target-accuracy controls: 2^16 - 1 samples.
+static constexpr int PilotSampleExponent = 16;
+
 namespace
 {
 // Thread-local fixed-point images summed at the end: integer addition makes
-// the result independent of the order and the number of threads.
+// the result independent of the order and the number of threads. Each holds
+// two images: all samples, and the samples of the first half (output index
+// below Half), for the error estimate.
 class ImageAccumulator
 {
 public:
-  explicit ImageAccumulator(std::size_t pixels)
+  ImageAccumulator(std::size_t pixels, std::uint64_t half)
     : Pixels(pixels)
+    , Half(half)
   {
   }
 
-  std::vector<mcx::FixedSum>& Local()
+  mcx::FixedSum* Local()
   {
     std::vector<mcx::FixedSum>& buffer = this->Buffers.Local();
     if (buffer.empty())
     {
-      buffer.assign(this->Pixels, 0);
+      buffer.assign(2 * this->Pixels, 0);
     }
-    return buffer;
+    return buffer.data();
   }
 
+  void Add(mcx::FixedSum* image, std::uint64_t k, std::int64_t pixel, mcx::FixedSum increment) const
+  {
+    image[pixel] += increment;
+    if (k < this->Half)
+    {
+      image[this->Pixels + static_cast<std::size_t>(pixel)] += increment;
+    }
+  }
+
+  /// Sums of all threads: all samples in [0, pixels), first half after.
   std::vector<mcx::FixedSum> Sum()
   {
-    std::vector<mcx::FixedSum> total(this->Pixels, 0);
+    std::vector<mcx::FixedSum> total(2 * this->Pixels, 0);
     for (auto& buffer : this->Buffers)
     {
       for (std::size_t i = 0; i < buffer.size(); ++i)
@@ -58,13 +75,15 @@ public:
 
 private:
   std::size_t Pixels;
+  std::uint64_t Half;
   vtkSMPThreadLocal<std::vector<mcx::FixedSum>> Buffers;
 };
 
 template <typename IdType>
 bool ProjectFromIndex(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::TransferTable& table,
   mcx::Strategy strategy, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m,
-  const mcx::ProjectionGeometry& geometry, ImageAccumulator& accumulator)
+  const mcx::ProjectionGeometry& geometry, ImageAccumulator& accumulator, double progressBegin,
+  double progressEnd)
 {
   mcx::SampleSource<IdType> source = view.MakeSource<IdType>(table);
   source.Method = strategy;
@@ -74,15 +93,15 @@ bool ProjectFromIndex(vtkAlgorithm* self, const mcx::IndexView& view, const mcx:
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
   const mcx::PixelBinner binner(geometry, origin, matrix);
-  return mcx::BatchedFor(self, source.NumberOfSamples(), 0.0, 1.0,
+  return mcx::BatchedFor(self, source.NumberOfSamples(), progressBegin, progressEnd,
     [&](std::uint64_t b, std::uint64_t e) {
-      std::vector<mcx::FixedSum>& image = accumulator.Local();
-      auto sink = [&](std::uint64_t, const double p[3]) {
+      mcx::FixedSum* image = accumulator.Local();
+      auto sink = [&](std::uint64_t k, const double p[3]) {
         std::int64_t pixel;
         mcx::FixedSum increment;
         if (binner.Bin(p, pixel, increment))
         {
-          image[static_cast<std::size_t>(pixel)] += increment;
+          accumulator.Add(image, k, pixel, increment);
         }
       };
       source.Generate(b, e, sink);
@@ -97,7 +116,7 @@ bool ProjectPoints(vtkAlgorithm* self, const Real* points, std::uint64_t count,
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   const mcx::PixelBinner binner(geometry, origin, identity);
   return mcx::BatchedFor(self, count, 0.0, 1.0, [&](std::uint64_t b, std::uint64_t e) {
-    std::vector<mcx::FixedSum>& image = accumulator.Local();
+    mcx::FixedSum* image = accumulator.Local();
     for (std::uint64_t i = b; i < e; ++i)
     {
       const double p[3] = { static_cast<double>(points[3 * i]), static_cast<double>(points[3 * i + 1]),
@@ -106,7 +125,7 @@ bool ProjectPoints(vtkAlgorithm* self, const Real* points, std::uint64_t count,
       mcx::FixedSum increment;
       if (binner.Bin(p, pixel, increment))
       {
-        image[static_cast<std::size_t>(pixel)] += increment;
+        accumulator.Add(image, i, pixel, increment);
       }
     }
   });
@@ -146,12 +165,12 @@ int vtkMCXProjector::RequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
   const mcx::ProjectionGeometry& geometry = this->GetGeometry();
   const std::size_t pixels = static_cast<std::size_t>(geometry.Size[0]) * geometry.Size[1];
-  ImageAccumulator accumulator(pixels);
 
   std::uint64_t count = 0;
   double weight = 0.0;
   double integral = 0.0;
   bool completed = true;
+  std::vector<mcx::FixedSum> sums(2 * pixels, 0);
   if (auto* cloud = vtkPolyData::SafeDownCast(input))
   {
     vtkFieldData* fd = cloud->GetFieldData();
@@ -164,24 +183,19 @@ int vtkMCXProjector::RequestData(
     integral = FieldValue(fd, "Integral", 0.0);
     vtkPoints* points = cloud->GetPoints();
     count = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
+    if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+    {
+      vtkErrorMacro("Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+      return 0;
+    }
+    ImageAccumulator accumulator(pixels, mcx::FirstHalfSize(count));
     if (count > 0)
     {
-      if (points->GetDataType() == VTK_FLOAT)
-      {
-        completed = ProjectPoints(this, static_cast<const float*>(points->GetVoidPointer(0)), count,
-          geometry, accumulator);
-      }
-      else if (points->GetDataType() == VTK_DOUBLE)
-      {
-        completed = ProjectPoints(this, static_cast<const double*>(points->GetVoidPointer(0)), count,
-          geometry, accumulator);
-      }
-      else
-      {
-        vtkErrorMacro("Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
-        return 0;
-      }
+      completed = points->GetDataType() == VTK_FLOAT
+        ? ProjectPoints(this, static_cast<const float*>(points->GetVoidPointer(0)), count, geometry, accumulator)
+        : ProjectPoints(this, static_cast<const double*>(points->GetVoidPointer(0)), count, geometry, accumulator);
     }
+    sums = accumulator.Sum();
   }
   else
   {
@@ -192,17 +206,61 @@ int vtkMCXProjector::RequestData(
     {
       return 0;
     }
-    const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
+    const auto strategy = static_cast<mcx::Strategy>(this->Strategy);
+    const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
+    auto project = [&](unsigned m, double progressBegin, double progressEnd) {
+      ImageAccumulator accumulator(pixels, mcx::FirstHalfSize(mcx::SampleCount(m)));
+      if (m > 0)
+      {
+        completed = view.WideIds
+          ? ProjectFromIndex<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, geometry,
+              accumulator, progressBegin, progressEnd)
+          : ProjectFromIndex<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, geometry,
+              accumulator, progressBegin, progressEnd);
+      }
+      sums = accumulator.Sum();
+    };
+    unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
+    const bool targeted = this->TargetRelativeError > 0 || this->TargetQuantizationLevels > 0;
+    if (m > 0 && targeted)
+    {
+      // A pilot run (about 4 samples per pixel) measures the image; the
+      // sample count is then scaled to meet the target and re-checked on the
+      // larger run, within [pilot, MaximumSampleExponent].
+      const unsigned cap = static_cast<unsigned>(this->MaximumSampleExponent);
+      m = std::min(cap, std::max(static_cast<unsigned>(PilotSampleExponent),
+                          mcx::ExponentForSampleCount(static_cast<long long>(4 * pixels))));
+      project(m, 0.0, 0.05);
+      const double passEnd[] = { 0.8, 0.95, 1.0 };
+      for (int pass = 0; pass < 3 && completed; ++pass)
+      {
+        const std::uint64_t current = mcx::SampleCount(m);
+        double needed = 0.0;
+        if (this->TargetRelativeError > 0)
+        {
+          const double error = mcx::EstimateRelativeError(sums, current);
+          const double ratio = error / this->TargetRelativeError;
+          needed = std::max(needed, static_cast<double>(current) * ratio * ratio);
+        }
+        if (this->TargetQuantizationLevels > 0)
+        {
+          needed = std::max(needed, mcx::QuantizationSampleCount(sums, this->TargetQuantizationLevels));
+        }
+        const unsigned next = std::min(cap, mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
+        if (next <= m)
+        {
+          break;
+        }
+        m = next;
+        project(m, pass == 0 ? 0.05 : passEnd[pass - 1], passEnd[pass]);
+      }
+    }
+    else
+    {
+      project(m, 0.0, 1.0);
+    }
     count = mcx::SampleCount(m);
     weight = count > 0 ? integral / static_cast<double>(count) : 0.0;
-    if (count > 0)
-    {
-      const auto strategy = static_cast<mcx::Strategy>(this->Strategy);
-      const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
-      completed = view.WideIds
-        ? ProjectFromIndex<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, geometry, accumulator)
-        : ProjectFromIndex<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, geometry, accumulator);
-    }
   }
   if (!completed)
   {
@@ -211,13 +269,14 @@ int vtkMCXProjector::RequestData(
   }
 
   vtkDoubleArray* values = this->AllocateLineIntegral(output);
-  mcx::FixedSumsToValues(accumulator.Sum(), weight, geometry.PixelArea(), values->GetPointer(0));
+  mcx::FixedSumsToValues(sums.data(), pixels, weight, geometry.PixelArea(), values->GetPointer(0));
 
   vtkFieldData* fd = output->GetFieldData();
   fd->Initialize();
   mcx::AddFieldValue(fd, "SampleCount", static_cast<long long>(count));
   mcx::AddFieldValue(fd, "SampleWeight", weight);
   mcx::AddFieldValue(fd, "Integral", integral);
+  mcx::AddFieldValue(fd, "EstimatedRelativeError", mcx::EstimateRelativeError(sums, count));
   return 1;
 }
 
@@ -227,4 +286,7 @@ void vtkMCXProjector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleExponent: " << this->SampleExponent << "\n";
   os << indent << "Strategy: " << this->Strategy << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "TargetRelativeError: " << this->TargetRelativeError << "\n";
+  os << indent << "TargetQuantizationLevels: " << this->TargetQuantizationLevels << "\n";
+  os << indent << "MaximumSampleExponent: " << this->MaximumSampleExponent << "\n";
 }

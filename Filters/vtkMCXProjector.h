@@ -10,7 +10,21 @@
  * number of threads. See vtkMCXProjectorBase for the view and the output.
  *
  * The output's field data carries "SampleCount", "SampleWeight" and
- * "Integral" of the samples that made the image.
+ * "Integral" of the samples that made the image, and
+ * "EstimatedRelativeError": the relative RMS error of the image estimated
+ * from the samples themselves, by comparing the images of the first half of
+ * the samples (for Hybrid, the coarser Halton run) and of the second half
+ * (NaN below 3 samples).
+ *
+ * Target-accuracy controls (index input): with TargetRelativeError or
+ * TargetQuantizationLevels set, a pilot run (at least 2^16 - 1 samples, about
+ * 4 per pixel) measures the image and the sample count is chosen to meet the
+ * target -- the relative RMS error (scaled as M^-1/2), or the paper's
+ * criterion (its equation 1) that the average pixel deviation stays below
+ * one of L grey levels, M > (W H - 1) B^2 L^2 with B the mean over the
+ * maximum of the image -- and checked again on the larger run (up to three
+ * times), within 2^MaximumSampleExponent - 1 samples. SampleExponent is then
+ * ignored, and "SampleCount" tells the count used.
  */
 #ifndef vtkMCXProjector_h
 #define vtkMCXProjector_h
@@ -41,6 +55,24 @@ public:
   vtkGetMacro(Seed, vtkTypeUInt64);
   ///@}
 
+  ///@{
+  /** Relative RMS error to reach (0, the default: use SampleExponent). */
+  vtkSetClampMacro(TargetRelativeError, double, 0.0, 1.0);
+  vtkGetMacro(TargetRelativeError, double);
+  ///@}
+
+  ///@{
+  /** Grey levels L of the paper's quantization criterion (0, the default: off). */
+  vtkSetClampMacro(TargetQuantizationLevels, int, 0, 65536);
+  vtkGetMacro(TargetQuantizationLevels, int);
+  ///@}
+
+  ///@{
+  /** Upper bound of the exponent the target controls may choose (default 30). */
+  vtkSetClampMacro(MaximumSampleExponent, int, 16, 63);
+  vtkGetMacro(MaximumSampleExponent, int);
+  ///@}
+
 protected:
   vtkMCXProjector();
   ~vtkMCXProjector() override = default;
@@ -51,6 +83,9 @@ protected:
   int SampleExponent = 24;
   int Strategy = 0;
   vtkTypeUInt64 Seed = 0;
+  double TargetRelativeError = 0.0;
+  int TargetQuantizationLevels = 0;
+  int MaximumSampleExponent = 30;
 
 private:
   vtkMCXProjector(const vtkMCXProjector&) = delete;

@@ -54,6 +54,12 @@ options:
                         units (held constant beyond its end points), or a preset:
                         %s. Default: raw
   --samples N           number of samples, rounded up to 2^m - 1 (default 16777215)
+  --target-error E      choose the sample count for a relative RMS error E (a
+                        pilot run of 65535 samples measures the image; up to
+                        2^30 - 1 samples); replaces --samples
+  --quantization-levels L
+                        choose the sample count by the paper's criterion: the
+                        mean pixel deviation below one of L grey levels
   --method M            hybrid (default), mc, qmc, or reference (exact, slow)
   --kernel K            tent (trilinear, default) or box (nearest neighbour)
   --seed N              seed of the pseudo-random parts (default 0)
@@ -99,6 +105,8 @@ struct Options
   double Tolerance = 1e-3;
   bool Quiet = false;
   bool StoredPoints = false;
+  double TargetError = 0.0;
+  int QuantizationLevels = 0;
 };
 
 [[noreturn]] void Fail(const std::string& message)
@@ -203,6 +211,16 @@ Options Parse(int argc, char* argv[])
       options.TF = value;
     else if (arg == "--samples")
       options.Samples = ParseInteger(value, arg, 1);
+    else if (arg == "--target-error")
+    {
+      options.TargetError = ParseNumber(value, arg);
+      if (!(options.TargetError > 0 && options.TargetError < 1))
+      {
+        Fail("--target-error must lie in (0, 1)");
+      }
+    }
+    else if (arg == "--quantization-levels")
+      options.QuantizationLevels = static_cast<int>(ParseInteger(value, arg, 2));
     else if (arg == "--method")
       options.Method = value;
     else if (arg == "--kernel")
@@ -282,6 +300,15 @@ Options Parse(int argc, char* argv[])
   if (options.Kernel != "tent" && options.Kernel != "box")
   {
     Fail("unknown --kernel '" + options.Kernel + "' (expected tent or box)");
+  }
+  if ((options.TargetError > 0 || options.QuantizationLevels > 0) &&
+    (options.StoredPoints || options.Method == "reference"))
+  {
+    Fail("--target-error and --quantization-levels apply to off-line Monte Carlo rendering only");
+  }
+  if (options.QuantizationLevels > 65536)
+  {
+    Fail("--quantization-levels is limited to 65536");
   }
   if (options.StoredPoints && options.Method == "reference")
   {
@@ -598,6 +625,8 @@ int main(int argc, char* argv[])
     monteCarlo->SetNumberOfSamples(options.Samples);
     monteCarlo->SetStrategy(strategy);
     monteCarlo->SetSeed(options.Seed);
+    monteCarlo->SetTargetRelativeError(options.TargetError);
+    monteCarlo->SetTargetQuantizationLevels(options.QuantizationLevels);
     projector = monteCarlo;
   }
   projector->SetInputConnection(index->GetOutputPort());
@@ -666,7 +695,8 @@ int main(int argc, char* argv[])
       const double samples = image->GetFieldData()->GetArray("SampleCount")->GetTuple1(0);
       line << (options.StoredPoints ? "projection:  " : "sampling + projection (off-line, fused): ")
            << projectSeconds << " s (" << static_cast<long long>(samples) << " samples, "
-           << samples / projectSeconds / 1e6 << " M samples/s)";
+           << samples / projectSeconds / 1e6 << " M samples/s, estimated relative RMS error "
+           << image->GetFieldData()->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
     }
     log(line.str());
     std::ostringstream geometry;

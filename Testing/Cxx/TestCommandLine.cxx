@@ -157,6 +157,13 @@ TEST(CommandLine, BundledCTAndEveryOutputFormat)
   ASSERT_EQ(0, stored.Status) << stored.Errors;
   EXPECT_NE(std::string::npos, stored.Output.find("sampling:")) << stored.Output;
   EXPECT_NE(std::string::npos, stored.Output.find("projection:")) << stored.Output;
+  // A target error chooses the sample count and reports the estimate.
+  const std::string targetOutput = Temporary("cli_target.vti");
+  Result targeted = RunCLI("render --target-error 0.05 --size 64x64 --output " + targetOutput);
+  ASSERT_EQ(0, targeted.Status) << targeted.Errors;
+  auto image = Read(targetOutput);
+  EXPECT_LT(mcxtest::FieldValue(image, "EstimatedRelativeError"), 0.05);
+  EXPECT_NE(std::string::npos, targeted.Output.find("estimated relative RMS error")) << targeted.Output;
   // PFM: header plus 96 * 80 float32 values.
   EXPECT_EQ(std::string("Pf\n96 80\n-1.0\n").size() + 96 * 80 * 4,
     vtksys::SystemTools::FileLength(vtksys::SystemTools::GetCurrentWorkingDirectory() + "/cli_default.pfm"));
@@ -191,6 +198,8 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
     "render --camera 0,0,0:0,0,0:0,0,1:angle=30 --output ",
     "render --camera 0,0,100:0,0,0:0,0,1:parallel=0 --output ",
     "render --size 0x10 --output ",
+    "render --target-error 2 --output ",
+    "render --target-error 0.1 --method reference --output ",
     "render --tf 0:inf --output ",
     "frobnicate --output ",
   };

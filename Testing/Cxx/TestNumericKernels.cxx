@@ -392,7 +392,7 @@ TEST(Accumulation, CountsAbove2To32StayExact)
     sums[1] += mcx::FixedOneInteger; // the accumulator's own additions
   }
   double values[2];
-  mcx::FixedSumsToValues(sums, 0.5, 0.25, values);
+  mcx::FixedSumsToValues(sums.data(), 2, 0.5, 0.25, values);
   EXPECT_EQ(static_cast<double>(samples) * 2.0, values[0]);
   EXPECT_EQ(6.0, values[1]);
 }

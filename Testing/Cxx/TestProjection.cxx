@@ -301,3 +301,67 @@ TEST(Projection, WideVoxelIdsGiveTheSameImage)
     ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i));
   }
 }
+
+TEST(Projection, ErrorEstimateTracksTheTrueError)
+{
+  // The estimate from the two half images against the error measured with
+  // the exact reference. Both are sums over ~2300 pixels, so their ratio is
+  // concentrated near 1 for independent halves (Monte Carlo); Hybrid and QMC
+  // halves are stratified alike, and the estimate stays on the safe side of
+  // their faster convergence.
+  Scene scene;
+  auto camera = ObliqueParallelCamera();
+  auto reference = scene.Reference(camera, 48);
+  for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO })
+  {
+    for (int m : { 14, 18, 22 })
+    {
+      auto image = scene.MonteCarlo(camera, 48, m, strategy, 4);
+      const double truth = mcxtest::RelativeRMS(image, reference);
+      const double estimate = mcxtest::FieldValue(image, "EstimatedRelativeError");
+      EXPECT_GT(estimate, 0.75 * truth) << "strategy " << strategy << " m " << m;
+      EXPECT_LT(estimate, (strategy == vtkMCXPointSampler::QUASI_MONTE_CARLO ? 1.5 : 1.35) * truth)
+        << "strategy " << strategy << " m " << m;
+    }
+  }
+}
+
+TEST(Projection, TargetAccuracyControlsChooseEnoughSamples)
+{
+  Scene scene;
+  auto reference = scene.Reference(nullptr, 48);
+  for (double target : { 0.05, 0.01 })
+  {
+    vtkNew<vtkMCXProjector> projector;
+    scene.Configure(projector.Get(), nullptr, 48);
+    projector->SetTargetRelativeError(target);
+    projector->SetSampleExponent(2); // ignored under a target
+    projector->Update();
+    vtkImageData* image = projector->GetOutput();
+    const double samples = mcxtest::FieldValue(image, "SampleCount");
+    EXPECT_GE(samples, 65535.0);
+    // The promise: the true error meets the target (2% slack for the
+    // pilot's own estimate) with at most 4 times the samples it needs (one
+    // power of two of rounding, one of M^-1/2 extrapolation).
+    EXPECT_LT(mcxtest::RelativeRMS(image, reference), 1.02 * target) << target;
+    const double integral = mcxtest::FieldValue(reference, "Integral");
+    const double needed = std::pow(mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), 1.0) / target, 2);
+    EXPECT_LT(samples, 4.0 * needed) << target;
+  }
+  // The paper's criterion for 256 grey levels: M > (W H - 1) B^2 L^2.
+  vtkNew<vtkMCXProjector> projector;
+  scene.Configure(projector.Get(), nullptr, 48);
+  projector->SetTargetQuantizationLevels(16);
+  projector->Update();
+  vtkImageData* image = projector->GetOutput();
+  vtkDataArray* values = mcxtest::LineIntegral(image);
+  double mean = 0;
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    mean += values->GetTuple1(i) / values->GetNumberOfTuples();
+  }
+  const double brightness = mean / values->GetRange()[1];
+  const double criterion = (48.0 * 48.0 - 1) * brightness * brightness * 16 * 16;
+  EXPECT_GT(mcxtest::FieldValue(image, "SampleCount"), 0.9 * criterion);
+  EXPECT_LT(mcxtest::FieldValue(image, "SampleCount"), 2.2 * criterion);
+}
