@@ -34,6 +34,8 @@ public:
     : Perspective(g.Perspective)
     , Width(g.Size[0])
     , Height(g.Size[1])
+    , WidthAsDouble(g.Size[0])
+    , HeightAsDouble(g.Size[1])
     , Near(g.NearDistance)
     , FocalSquared(g.FocalDistance * g.FocalDistance)
   {
@@ -101,7 +103,7 @@ public:
       const double inverseZ = 1.0 / z;
       fx = u * inverseZ * this->PixelScale[0] + this->PixelOffset[0];
       fy = v * inverseZ * this->PixelScale[1] + this->PixelOffset[1];
-      if (!(fx >= 0 && fx < this->Width && fy >= 0 && fy < this->Height))
+      if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
       {
         return false;
       }
@@ -112,7 +114,7 @@ public:
       increment = scaled < 1.8e19 ? static_cast<FixedSum>(static_cast<std::uint64_t>(scaled))
                                   : static_cast<FixedSum>(scaled);
     }
-    if (!(fx >= 0 && fx < this->Width && fy >= 0 && fy < this->Height))
+    if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
     {
       return false;
     }
@@ -124,6 +126,8 @@ private:
   bool Perspective;
   int Width;
   int Height;
+  double WidthAsDouble;
+  double HeightAsDouble;
   double Near;
   double FocalSquared;
   double Offset[3] = { 0, 0, 0 };
