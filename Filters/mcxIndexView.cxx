@@ -15,8 +15,6 @@
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkTypeInt64Array.h"
-#include "vtkTypeUInt32Array.h"
-#include "vtkTypeUInt64Array.h"
 
 #include <cmath>
 #include <sstream>
@@ -44,18 +42,28 @@ std::string IndexView::Read(vtkImageData* index)
   }
   vtkFieldData* fd = index->GetFieldData();
   auto* values = vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelValuesName()));
-  auto* offsets =
-    vtkTypeInt64Array::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelOffsetsName()));
+  auto* offsets = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelOffsetsName()));
   auto* ids = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::SortedVoxelIdsName()));
   if (!values || !offsets || !ids)
   {
     return "the input is not a density index (run vtkMCXDensityIndex first)";
   }
-  if (!vtkTypeUInt32Array::SafeDownCast(ids) && !vtkTypeUInt64Array::SafeDownCast(ids))
+  // Readers and ParaView's transport rebuild arrays by type (a vtkTypeInt64Array
+  // may come back as a vtkLongArray), so accept them by type and size.
+  const bool signedOffsets = offsets->GetDataTypeSize() == 8 &&
+    (offsets->GetDataType() == VTK_LONG || offsets->GetDataType() == VTK_LONG_LONG ||
+      offsets->GetDataType() == VTK_ID_TYPE);
+  const bool unsignedIds = ids->GetDataType() == VTK_UNSIGNED_INT ||
+    ids->GetDataType() == VTK_UNSIGNED_LONG || ids->GetDataType() == VTK_UNSIGNED_LONG_LONG;
+  if (!signedOffsets || ids->GetNumberOfComponents() != 1 || offsets->GetNumberOfComponents() != 1)
+  {
+    return "the index's level offsets must be one-component 64-bit integers";
+  }
+  if (!unsignedIds || (ids->GetDataTypeSize() != 4 && ids->GetDataTypeSize() != 8))
   {
     return "the index's voxel ids must be 32- or 64-bit unsigned integers";
   }
-  if (offsets->GetNumberOfValues() != values->GetNumberOfValues() + 1)
+  if (offsets->GetNumberOfTuples() != values->GetNumberOfTuples() + 1)
   {
     return "the index's level offsets do not match its levels";
   }
@@ -66,17 +74,23 @@ std::string IndexView::Read(vtkImageData* index)
   const double* direction = index->GetDirectionMatrix()->GetData();
   std::copy(direction, direction + 9, this->Direction);
   this->LevelValues = values->GetPointer(0);
-  static_assert(sizeof(vtkTypeInt64) == sizeof(std::int64_t), "64-bit offsets");
-  this->LevelOffsets = reinterpret_cast<const std::int64_t*>(offsets->GetPointer(0));
+  this->LevelOffsets = static_cast<const std::int64_t*>(offsets->GetVoidPointer(0));
   this->NumberOfLevels = values->GetNumberOfValues();
   this->Ids = ids;
-  this->WideIds = vtkTypeUInt64Array::SafeDownCast(ids) != nullptr;
+  this->WideIds = ids->GetDataTypeSize() == 8;
   const std::int64_t voxels = static_cast<std::int64_t>(this->Dimensions[0]) * this->Dimensions[1] *
     this->Dimensions[2];
-  if (this->LevelOffsets[this->NumberOfLevels] != ids->GetNumberOfValues() ||
+  if (this->LevelOffsets[0] != 0 || this->LevelOffsets[this->NumberOfLevels] != ids->GetNumberOfValues() ||
     ids->GetNumberOfValues() > voxels)
   {
     return "the index's ids do not match its levels and extent";
+  }
+  for (std::int64_t l = 0; l < this->NumberOfLevels; ++l)
+  {
+    if (this->LevelOffsets[l + 1] < this->LevelOffsets[l])
+    {
+      return "the index's level offsets decrease";
+    }
   }
   if (!this->WideIds && vtkMCXDensityIndex::NeedsWideIds(voxels))
   {

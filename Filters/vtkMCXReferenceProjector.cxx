@@ -16,6 +16,7 @@
 #include "vtkTypeUInt32Array.h"
 #include "vtkTypeUInt64Array.h"
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -25,10 +26,13 @@ vtkStandardNewMacro(vtkMCXReferenceProjector);
 namespace
 {
 // g at every voxel, from the index: the TF value of the voxel's level.
+// Returns false if an id lies outside the volume (a corrupt index).
 template <typename IdType>
-void ScatterLevelWeights(const mcx::IndexView& view, const std::vector<double>& weights, std::vector<double>& g)
+bool ScatterLevelWeights(const mcx::IndexView& view, const std::vector<double>& weights, std::vector<double>& g)
 {
   const IdType* ids = view.IdPointer<IdType>();
+  const std::uint64_t voxels = g.size();
+  std::atomic<bool> valid(true);
   vtkSMPTools::For(0, view.NumberOfLevels, [&](vtkIdType l0, vtkIdType l1) {
     for (vtkIdType l = l0; l < l1; ++l)
     {
@@ -36,10 +40,17 @@ void ScatterLevelWeights(const mcx::IndexView& view, const std::vector<double>& 
       const double value = (w > 0 && std::isfinite(w)) ? w : 0.0;
       for (std::int64_t i = view.LevelOffsets[l]; i < view.LevelOffsets[l + 1]; ++i)
       {
-        g[static_cast<std::size_t>(ids[i])] = value;
+        const std::uint64_t id = static_cast<std::uint64_t>(ids[i]);
+        if (id >= voxels)
+        {
+          valid = false;
+          return;
+        }
+        g[id] = value;
       }
     }
   });
+  return valid;
 }
 
 // Rays in voxel coordinates for points of the detector plane.
@@ -122,13 +133,12 @@ int vtkMCXReferenceProjector::RequestData(
 
   std::vector<double> g(static_cast<std::size_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2], 0.0);
   const std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
-  if (view.WideIds)
+  const bool validIds = view.WideIds ? ScatterLevelWeights<std::uint64_t>(view, weights, g)
+                                     : ScatterLevelWeights<std::uint32_t>(view, weights, g);
+  if (!validIds)
   {
-    ScatterLevelWeights<std::uint64_t>(view, weights, g);
-  }
-  else
-  {
-    ScatterLevelWeights<std::uint32_t>(view, weights, g);
+    vtkErrorMacro("Cannot project: the index holds voxel ids outside the volume.");
+    return 0;
   }
   const mcx::Kernel kernel = static_cast<mcx::Kernel>(this->Kernel);
   const mcx::RayIntegrator integrator(g.data(), view.Dimensions, kernel);

@@ -566,3 +566,45 @@ TEST(LongAccumulation, MoreThan2To32SamplesInOnePixelStayExact)
   const double integral = mcxtest::FieldValue(image, "Integral");
   EXPECT_NEAR(integral, mcxtest::LineIntegral(image)->GetTuple1(0) * PixelArea(image), 1e-12 * integral);
 }
+
+// ---- A corrupt index -------------------------------------------------------
+
+TEST(Data, ACorruptIndexIsAnErrorNotACrash)
+{
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(Phantom());
+  index->Update();
+  for (int damage = 0; damage < 3; ++damage)
+  {
+    vtkNew<vtkImageData> broken;
+    broken->DeepCopy(index->GetOutput());
+    vtkFieldData* fd = broken->GetFieldData();
+    vtkDataArray* offsets = fd->GetArray(vtkMCXDensityIndex::LevelOffsetsName());
+    vtkDataArray* ids = fd->GetArray(vtkMCXDensityIndex::SortedVoxelIdsName());
+    if (damage == 0)
+      offsets->SetTuple1(1, offsets->GetTuple1(2) + 1); // decreasing offsets
+    else if (damage == 1)
+      ids->SetTuple1(0, 4000000000.0); // an id far outside the volume
+    else
+      fd->RemoveArray(vtkMCXDensityIndex::LevelValuesName());
+    for (bool reference : { false, true })
+    {
+      vtkSmartPointer<vtkMCXProjectorBase> projector;
+      if (reference)
+        projector = vtkSmartPointer<vtkMCXReferenceProjector>::New();
+      else
+        projector = vtkSmartPointer<vtkMCXProjector>::New();
+      projector->SetInputData(broken);
+      projector->SetImageSize(8, 8);
+      Messages messages(projector);
+      projector->Update();
+      if (damage == 1 && !reference)
+      {
+        // Sampling never dereferences an id: a bad one only moves a point.
+        EXPECT_TRUE(messages.Errors.empty()) << messages.Errors;
+        continue;
+      }
+      EXPECT_NE(std::string::npos, messages.Errors.find("Cannot project")) << damage << " " << reference;
+    }
+  }
+}

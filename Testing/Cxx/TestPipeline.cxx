@@ -10,6 +10,9 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
 
@@ -82,4 +85,42 @@ TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
   offline->Update();
   EXPECT_EQ(2, offlineRuns.Count);
   EXPECT_EQ(1, indexRuns.Count);
+}
+
+TEST(Pipeline, TheIndexTravelsThroughAVTKFile)
+{
+  // The index is plain VTK data: written as .vti and read back, it gives the
+  // same image bit for bit.
+  const int dims[3] = { 12, 10, 8 };
+  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  volume->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  const std::string path = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/pipeline_index.vti";
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputConnection(index->GetOutputPort());
+  writer->SetFileName(path.c_str());
+  ASSERT_EQ(1, writer->Write());
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  vtkSmartPointer<vtkImageData> images[2];
+  vtkAlgorithm* sources[2] = { index, reader };
+  for (int n = 0; n < 2; ++n)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputConnection(sources[n]->GetOutputPort());
+    projector->SetSampleExponent(14);
+    projector->SetDetectorAxisU(0, 1, 0);
+    projector->SetDetectorAxisV(0, 0, 1);
+    projector->Update();
+    images[n] = projector->GetOutput();
+  }
+  vtkDataArray* a = mcxtest::LineIntegral(images[0]);
+  vtkDataArray* b = mcxtest::LineIntegral(images[1]);
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+  EXPECT_GT(a->GetRange()[1], 0.0);
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i));
+  }
 }
