@@ -60,11 +60,7 @@ struct IndexView
     SampleSource<IdType> source;
     source.SortedIds = this->IdPointer<IdType>();
     source.LevelOffsets = this->LevelOffsets;
-    source.Cumulative = table.Cumulative.data();
-    source.RankScale = table.RankScale.data();
-    source.Guide = table.Guide.data();
-    source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
-    source.GuideScale = table.IsEmpty() ? 0.0 : source.GuideSize / table.Cumulative.back();
+    source.SetTable(table);
     source.NumberOfLevels = this->NumberOfLevels;
     source.Decoder = VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->Dimensions[0]),
       static_cast<std::uint64_t>(this->Dimensions[1]));

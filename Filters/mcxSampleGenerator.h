@@ -17,6 +17,7 @@
 #include "mcxFastDivide.h"
 #include "mcxHalton.h"
 #include "mcxRandom.h"
+#include "mcxTransferTable.h"
 
 #include <algorithm>
 #include <cmath>
@@ -76,6 +77,16 @@ struct SampleSource
   unsigned Exponent = 0; // M = 2^Exponent - 1
 
   std::uint64_t NumberOfSamples() const { return SampleCount(this->Exponent); }
+
+  /// Points the source at a table's distribution (the table must outlive it).
+  void SetTable(const TransferTable& table)
+  {
+    this->Cumulative = table.Cumulative.data();
+    this->RankScale = table.RankScale.data();
+    this->Guide = table.Guide.data();
+    this->GuideSize = static_cast<std::int64_t>(table.Guide.size());
+    this->GuideScale = table.IsEmpty() ? 0.0 : this->GuideSize / table.Cumulative.back();
+  }
 
   /// Generates the samples of one work item: for Hybrid and QuasiMonteCarlo
   /// the items are ranks in u order (i, with u = (i + 1) / 2^m), so that

@@ -178,11 +178,7 @@ TEST(SampleGenerator, HybridVisitsEveryLevelInProportion)
   mcx::SampleSource<std::uint32_t> source;
   source.SortedIds = ids;
   source.LevelOffsets = offsets;
-  source.Cumulative = table.Cumulative.data();
-  source.RankScale = table.RankScale.data();
-  source.Guide = table.Guide.data();
-  source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
-  source.GuideScale = source.GuideSize / table.Cumulative.back();
+  source.SetTable(table);
   source.NumberOfLevels = 2;
   source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 1);
   source.Exponent = 12;
@@ -261,11 +257,7 @@ TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
       mcx::SampleSource<std::uint32_t> source;
       source.SortedIds = ids.data();
       source.LevelOffsets = offsets;
-      source.Cumulative = table.Cumulative.data();
-      source.RankScale = table.RankScale.data();
-      source.Guide = table.Guide.data();
-      source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
-      source.GuideScale = source.GuideSize / table.Cumulative.back();
+      source.SetTable(table);
       source.Decoder = mcx::VoxelDecoder<std::uint32_t>(5, 4);
       source.Method = method;
       source.Seed = 77;
@@ -340,11 +332,7 @@ TEST(SampleGenerator, LargeExponentsOnASmallVolume)
     mcx::SampleSource<std::uint32_t> source;
     source.SortedIds = ids.data();
     source.LevelOffsets = offsets;
-    source.Cumulative = table.Cumulative.data();
-    source.RankScale = table.RankScale.data();
-    source.Guide = table.Guide.data();
-    source.GuideSize = static_cast<std::int64_t>(table.Guide.size());
-    source.GuideScale = source.GuideSize / table.Cumulative.back();
+    source.SetTable(table);
     source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 3); // 4 x 3 x 2 voxels
     source.Exponent = m;
     const std::uint64_t count = source.NumberOfSamples();
