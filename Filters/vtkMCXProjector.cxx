@@ -29,8 +29,8 @@ namespace
 {
 // Thread-local fixed-point images summed at the end: integer addition makes
 // the result independent of the order and the number of threads. Each holds
-// two images: all samples, and the samples of the first half (output index
-// below Half), for the error estimate.
+// two images, interleaved: all samples, and the samples of the first half
+// (output index below Half), for the error estimate.
 class ImageAccumulator
 {
 public:
@@ -50,13 +50,12 @@ public:
     return buffer.data();
   }
 
+  // The two sums of a pixel are neighbours, so both live in one cache line.
   void Add(mcx::FixedSum* image, std::uint64_t k, std::int64_t pixel, mcx::FixedSum increment) const
   {
-    image[pixel] += increment;
-    if (k < this->Half)
-    {
-      image[this->Pixels + static_cast<std::size_t>(pixel)] += increment;
-    }
+    mcx::FixedSum* sums = image + 2 * pixel;
+    sums[0] += increment;
+    sums[1] += k < this->Half ? increment : 0;
   }
 
   /// Sums of all threads: all samples in [0, pixels), first half after.
@@ -65,9 +64,10 @@ public:
     std::vector<mcx::FixedSum> total(2 * this->Pixels, 0);
     for (auto& buffer : this->Buffers)
     {
-      for (std::size_t i = 0; i < buffer.size(); ++i)
+      for (std::size_t p = 0; p < this->Pixels; ++p)
       {
-        total[i] += buffer[i];
+        total[p] += buffer[2 * p];
+        total[this->Pixels + p] += buffer[2 * p + 1];
       }
     }
     return total;
