@@ -1,0 +1,469 @@
+// What accuracy costs in time: convergence of each method against the exact
+// reference (the paper's Figure 4), accuracy against wall time next to
+// plastimatch's DRRs, the paper's Table 1, TF-edit latency, scaling with
+// voxels and samples, memory, and how well the error estimate and the
+// target-accuracy control keep their promise. Writes CSV files into the
+// output folder; Testing/Benchmarks/accuracy-report turns them into plots and
+// a Markdown report.
+//
+// Usage: BenchmarkAccuracy [--quick] [--output DIR] [--data DIR]
+#include "mcxTransferFunctionSpec.h"
+#include "mcxVolumeReader.h"
+
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjector.h"
+#include "vtkMCXReferenceProjector.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkImageResize.h"
+#include "vtkMath.h"
+#include "vtkMetaImageWriter.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/resource.h>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double Median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+double FieldValue(vtkDataObject* data, const char* name)
+{
+  return data->GetFieldData()->GetArray(name)->GetTuple1(0);
+}
+
+double RelativeRMS(const std::vector<double>& estimate, vtkImageData* reference)
+{
+  vtkDataArray* b = reference->GetPointData()->GetArray("LineIntegral");
+  double difference = 0, norm = 0;
+  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
+  {
+    const double d = estimate[static_cast<std::size_t>(i)] - b->GetTuple1(i);
+    difference += d * d;
+    norm += b->GetTuple1(i) * b->GetTuple1(i);
+  }
+  return std::sqrt(difference / norm);
+}
+
+std::vector<double> Values(vtkImageData* image)
+{
+  vtkDataArray* a = image->GetPointData()->GetArray("LineIntegral");
+  std::vector<double> values(static_cast<std::size_t>(a->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    values[static_cast<std::size_t>(i)] = a->GetTuple1(i);
+  }
+  return values;
+}
+
+struct Case
+{
+  std::string Name;  // short label
+  std::string File;  // in the data folder
+  std::string TF;    // mcxray --tf spec
+  bool Hounsfield;   // calibrated CT: compared with plastimatch
+  double PaperVoxels;
+  double PaperIndexSeconds;
+  double PaperOfflineSeconds;
+};
+
+// The paper's volumes were a CT head, a CT body and an MRI angiography.
+// Hounsfield units map to plastimatch's attenuation, mu = 0.0022 (1 + HU/1000)
+// per mm (measured from its output), clamped at air.
+const char* const AttenuationTF = "-1000:0,4000:0.011";
+
+struct View
+{
+  std::string Name;
+  vtkSmartPointer<vtkCamera> Camera;
+};
+
+std::vector<View> Views(vtkImageData* volume)
+{
+  double bounds[6];
+  volume->GetBounds(bounds);
+  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+  const double size = std::max(bounds[1] - bounds[0], std::max(bounds[3] - bounds[2], bounds[5] - bounds[4]));
+  std::vector<View> views(2);
+  views[0].Name = "parallel-y";
+  views[0].Camera = vtkSmartPointer<vtkCamera>::New();
+  views[0].Camera->SetFocalPoint(centre);
+  views[0].Camera->SetPosition(centre[0], centre[1] - 2 * size, centre[2]);
+  views[0].Camera->SetViewUp(0, 0, 1);
+  views[0].Camera->ParallelProjectionOn();
+  views[0].Camera->SetParallelScale(0.6 * size);
+  views[1].Name = "oblique-perspective";
+  views[1].Camera = vtkSmartPointer<vtkCamera>::New();
+  views[1].Camera->SetFocalPoint(centre);
+  views[1].Camera->SetPosition(centre[0] + 1.2 * size, centre[1] - 1.5 * size, centre[2] + 0.8 * size);
+  views[1].Camera->SetViewUp(0, 0, 1);
+  views[1].Camera->SetViewAngle(30);
+  views[1].Camera->SetClippingRange(0.1 * size, 10 * size);
+  return views;
+}
+
+vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera,
+  int size, double tolerance, int maximumSubdivision, double& seconds)
+{
+  vtkNew<vtkMCXReferenceProjector> reference;
+  reference->SetInputConnection(index->GetOutputPort());
+  reference->SetTransferFunction(tf);
+  reference->SetCamera(camera);
+  reference->SetImageSize(size, size);
+  reference->SetRelativeTolerance(tolerance);
+  reference->SetMaximumSubdivision(maximumSubdivision);
+  const Clock::time_point start = Clock::now();
+  reference->Update();
+  seconds = Since(start);
+  return reference->GetOutput();
+}
+
+// Reads a plastimatch PFM (top row first) into VTK's row order (bottom row first).
+bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& values)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  int width = 0, height = 0;
+  double scale = 0;
+  in >> magic >> width >> height >> scale;
+  in.get();
+  if (!in || magic != "Pf" || width != size || height != size)
+  {
+    return false;
+  }
+  std::vector<float> raw(static_cast<std::size_t>(width) * height);
+  in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size() * sizeof(float)));
+  if (!in)
+  {
+    return false;
+  }
+  values.resize(raw.size());
+  for (int r = 0; r < height; ++r)
+  {
+    for (int c = 0; c < width; ++c)
+    {
+      values[static_cast<std::size_t>(height - 1 - r) * width + c] = raw[static_cast<std::size_t>(r) * width + c];
+    }
+  }
+  return true;
+}
+
+long PeakResidentMegabytes()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  bool quick = false;
+  std::string output = "benchmark-results";
+  std::string data = MCXRAY_SHARED_DATA_DIR;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--quick") == 0)
+      quick = true;
+    else if (std::strcmp(argv[i], "--output") == 0 && i + 1 < argc)
+      output = argv[++i];
+    else if (std::strcmp(argv[i], "--data") == 0 && i + 1 < argc)
+      data = argv[++i];
+    else
+    {
+      std::cerr << "usage: BenchmarkAccuracy [--quick] [--output DIR] [--data DIR]" << std::endl;
+      return 2;
+    }
+  }
+  vtksys::SystemTools::MakeDirectory(output);
+  const int size = quick ? 64 : 256;
+  const double tolerance = quick ? 1e-2 : 1e-3;
+  std::vector<int> exponents = quick ? std::vector<int>{ 14, 16 } : std::vector<int>{ 16, 18, 20, 22, 24, 26 };
+  const bool havePlastimatch = std::system("plastimatch --version > /dev/null 2>&1") == 0;
+
+  std::vector<Case> cases = {
+    { "CT head (headsq)", std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", "1000:0,1500:1", false,
+      10420224, 3.29, 4.71 },
+    { "CT body (TotalSegmentator)", data + "/ct_body_totalseg.nii.gz", AttenuationTF, true, 7829520, 3.87, 5.04 },
+    { "angiography (aneurism)", data + "/angio_aneurism.vti", "60:0,255:1", false, 8126464, 3.36, 4.61 },
+  };
+
+  std::ofstream convergence(output + "/convergence.csv");
+  convergence << "volume,view,method,samples,seconds,true_error,estimated_error\n";
+  std::ofstream references(output + "/reference.csv");
+  references << "volume,view,size,seconds,estimated_error,rays_per_axis\n";
+  std::ofstream peers(output + "/peers.csv");
+  peers << "volume,view,tool,algorithm,size,seconds,error\n";
+  std::ofstream table1(output + "/table1.csv");
+  table1 << "volume,voxels,index_seconds,offline_seconds_16M,tf_edit_seconds_4M,paper_voxels,paper_index_seconds,paper_offline_seconds_16M\n";
+  std::ofstream targets(output + "/targets.csv");
+  targets << "volume,target,samples,true_error,estimated_error\n";
+
+  const char* methodNames[3] = { "hybrid", "mc", "qmc" };
+  for (const Case& c : cases)
+  {
+    std::string error;
+    vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(c.File, error);
+    if (!volume)
+    {
+      std::cerr << "skipping " << c.Name << ": " << error << std::endl;
+      continue;
+    }
+    // Plastimatch reads the array in its stored frame: compare in that frame.
+    volume->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+    double range[2] = { 0, 1 };
+    vtkSmartPointer<vtkPiecewiseFunction> tf = mcxapp::MakeTransferFunction(c.TF, range, error);
+    std::cout << c.Name << std::endl;
+
+    vtkNew<vtkMCXDensityIndex> index;
+    index->SetInputData(volume);
+    std::vector<double> indexTimes;
+    for (int r = 0; r < 5; ++r)
+    {
+      index->Modified();
+      const Clock::time_point start = Clock::now();
+      index->Update();
+      indexTimes.push_back(Since(start));
+    }
+
+    // Table 1: off-line rendering of 16 M samples, oblique perspective 256^2.
+    const std::vector<View> views = Views(volume);
+    std::vector<double> offline;
+    for (int r = 0; r < (quick ? 1 : 5); ++r)
+    {
+      vtkNew<vtkMCXProjector> projector;
+      projector->SetInputConnection(index->GetOutputPort());
+      projector->SetTransferFunction(tf);
+      projector->SetCamera(views[1].Camera);
+      projector->SetImageSize(256, 256);
+      projector->SetSampleExponent(quick ? 16 : 24);
+      const Clock::time_point start = Clock::now();
+      projector->Update();
+      offline.push_back(Since(start));
+    }
+    // TF-edit latency: resampling a stored 4 M-point cloud after a TF change.
+    vtkNew<vtkMCXPointSampler> sampler;
+    sampler->SetInputConnection(index->GetOutputPort());
+    sampler->SetTransferFunction(tf);
+    sampler->SetSampleExponent(quick ? 16 : 22);
+    sampler->Update();
+    std::vector<double> edits;
+    for (int r = 0; r < (quick ? 1 : 5); ++r)
+    {
+      tf->AddPoint(tf->GetRange()[1] + 1.0, tf->GetValue(tf->GetRange()[1])); // a TF edit
+      const Clock::time_point start = Clock::now();
+      sampler->Update();
+      edits.push_back(Since(start));
+    }
+    table1 << '"' << c.Name << "\"," << volume->GetNumberOfPoints() << ',' << Median(indexTimes) << ','
+           << Median(offline) << ',' << Median(edits) << ',' << c.PaperVoxels << ',' << c.PaperIndexSeconds << ','
+           << c.PaperOfflineSeconds << '\n';
+
+    for (const View& view : views)
+    {
+      double referenceSeconds = 0;
+      auto reference = Reference(index, tf, view.Camera, size, tolerance, 9, referenceSeconds);
+      references << '"' << c.Name << "\"," << view.Name << ',' << size << ',' << referenceSeconds << ','
+                 << FieldValue(reference, "EstimatedRelativeError") << ','
+                 << FieldValue(reference, "RaysPerPixelAxis") << '\n';
+      for (int method = 0; method < 3; ++method)
+      {
+        for (int m : exponents)
+        {
+          vtkNew<vtkMCXProjector> projector;
+          projector->SetInputConnection(index->GetOutputPort());
+          projector->SetTransferFunction(tf);
+          projector->SetCamera(view.Camera);
+          projector->SetImageSize(size, size);
+          projector->SetStrategy(method == 0 ? vtkMCXPointSampler::HYBRID
+              : method == 1                  ? vtkMCXPointSampler::MONTE_CARLO
+                                             : vtkMCXPointSampler::QUASI_MONTE_CARLO);
+          projector->SetSampleExponent(m);
+          const Clock::time_point start = Clock::now();
+          projector->Update();
+          const double seconds = Since(start);
+          convergence << '"' << c.Name << "\"," << view.Name << ',' << methodNames[method] << ','
+                      << projector->GetNumberOfSamples() << ',' << seconds << ','
+                      << RelativeRMS(Values(projector->GetOutput()), reference) << ','
+                      << FieldValue(projector->GetOutput(), "EstimatedRelativeError") << '\n';
+        }
+      }
+      std::cout << "  " << view.Name << " done" << std::endl;
+    }
+
+    // The target-accuracy control, checked against the reference.
+    {
+      double seconds = 0;
+      auto reference = Reference(index, tf, views[0].Camera, size, tolerance, 9, seconds);
+      for (double target : { 0.05, 0.02, 0.01 })
+      {
+        vtkNew<vtkMCXProjector> projector;
+        projector->SetInputConnection(index->GetOutputPort());
+        projector->SetTransferFunction(tf);
+        projector->SetCamera(views[0].Camera);
+        projector->SetImageSize(size, size);
+        projector->SetTargetRelativeError(target);
+        projector->SetMaximumSampleExponent(quick ? 20 : 28);
+        projector->Update();
+        targets << '"' << c.Name << "\"," << target << ',' << FieldValue(projector->GetOutput(), "SampleCount") << ','
+                << RelativeRMS(Values(projector->GetOutput()), reference) << ','
+                << FieldValue(projector->GetOutput(), "EstimatedRelativeError") << '\n';
+      }
+    }
+
+    // plastimatch drr with the same cone-beam geometry and HU map: gantry 0
+    // puts the source at +x of the isocentre, the detector beyond it, columns
+    // along +y and the top row towards +z.
+    if (c.Hounsfield && havePlastimatch)
+    {
+      double bounds[6];
+      volume->GetBounds(bounds);
+      const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+      const double sad = 1000, sid = 1500, detector = 600;
+      const std::string mha = output + "/plastimatch_input.mha";
+      vtkNew<vtkMetaImageWriter> writer;
+      writer->SetInputData(volume);
+      writer->SetFileName(mha.c_str());
+      writer->SetCompression(false);
+      writer->Write();
+      vtkNew<vtkCamera> camera;
+      camera->SetFocalPoint(iso);
+      camera->SetPosition(iso[0] + sad, iso[1], iso[2]);
+      camera->SetViewUp(0, 0, 1);
+      camera->SetViewAngle(2 * vtkMath::DegreesFromRadians(std::atan(detector / 2 / sid)));
+      camera->SetClippingRange(1.0, 10 * sad);
+      for (int pixels : quick ? std::vector<int>{ 64 } : std::vector<int>{ 256, 512 })
+      {
+        double referenceSeconds = 0;
+        auto reference = Reference(index, tf, camera, pixels, tolerance, 9, referenceSeconds);
+        peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,reference," << pixels << ',' << referenceSeconds << ','
+              << FieldValue(reference, "EstimatedRelativeError") << '\n';
+        for (const char* algorithm : { "exact", "uniform" })
+        {
+          std::ostringstream command;
+          const std::string prefix = output + "/plastimatch_" + algorithm + "_" + std::to_string(pixels) + "_";
+          command << "plastimatch drr -I " << mha << " -O " << prefix << " -t pfm -i " << algorithm << " -r \""
+                  << pixels << " " << pixels << "\" -z \"" << detector << " " << detector << "\" --sad " << sad
+                  << " --sid " << sid << " -o \"" << iso[0] << " " << iso[1] << " " << iso[2] << "\" > /dev/null 2>&1";
+          const Clock::time_point start = Clock::now();
+          const int status = std::system(command.str().c_str());
+          const double seconds = Since(start);
+          std::vector<double> values;
+          if (status != 0 || !ReadPlastimatchPFM(prefix + "0000.pfm", pixels, values))
+          {
+            std::cerr << "plastimatch " << algorithm << " failed" << std::endl;
+            continue;
+          }
+          peers << '"' << c.Name << "\",cone-beam,plastimatch," << algorithm << ',' << pixels << ',' << seconds << ','
+                << RelativeRMS(values, reference) << '\n';
+        }
+        for (int m : quick ? std::vector<int>{ 16 } : std::vector<int>{ 20, 22, 24, 26 })
+        {
+          vtkNew<vtkMCXProjector> projector;
+          projector->SetInputConnection(index->GetOutputPort());
+          projector->SetTransferFunction(tf);
+          projector->SetCamera(camera);
+          projector->SetImageSize(pixels, pixels);
+          projector->SetSampleExponent(m);
+          const Clock::time_point start = Clock::now();
+          projector->Update();
+          peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,hybrid 2^" << m << "-1," << pixels << ','
+                << Since(start) << ',' << RelativeRMS(Values(projector->GetOutput()), reference) << '\n';
+        }
+      }
+      std::remove(mha.c_str());
+    }
+  }
+
+  // Scaling: time against voxel count at fixed M (resampled head), and against M.
+  std::ofstream scaling(output + "/scaling.csv");
+  scaling << "kind,voxels,samples,index_seconds,offline_seconds,index_bytes_per_voxel\n";
+  {
+    std::string error;
+    vtkSmartPointer<vtkImageData> head = mcxapp::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
+    double range[2] = { 0, 1 };
+    vtkSmartPointer<vtkPiecewiseFunction> tf = mcxapp::MakeTransferFunction("1000:0,1500:1", range, error);
+    const std::vector<double> factors = quick ? std::vector<double>{ 1, 2 } : std::vector<double>{ 1, 2, 3, 4 };
+    for (double factor : factors)
+    {
+      vtkNew<vtkImageResize> resize;
+      resize->SetInputData(head);
+      resize->SetOutputDimensions(static_cast<int>(64 * factor), static_cast<int>(64 * factor), static_cast<int>(93 * factor));
+      resize->InterpolateOff();
+      resize->Update();
+      vtkNew<vtkMCXDensityIndex> index;
+      index->SetInputConnection(resize->GetOutputPort());
+      Clock::time_point start = Clock::now();
+      index->Update();
+      const double indexSeconds = Since(start);
+      vtkFieldData* fd = index->GetOutput()->GetFieldData();
+      double bytes = 0;
+      for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+      {
+        bytes += static_cast<double>(fd->GetArray(a)->GetActualMemorySize()) * 1024.0;
+      }
+      vtkNew<vtkMCXProjector> projector;
+      projector->SetInputConnection(index->GetOutputPort());
+      projector->SetTransferFunction(tf);
+      projector->SetCamera(Views(resize->GetOutput())[1].Camera);
+      projector->SetImageSize(256, 256);
+      projector->SetSampleExponent(quick ? 16 : 22);
+      start = Clock::now();
+      projector->Update();
+      const double voxels = static_cast<double>(resize->GetOutput()->GetNumberOfPoints());
+      scaling << "voxels," << voxels << ',' << projector->GetNumberOfSamples() << ',' << indexSeconds << ','
+              << Since(start) << ',' << bytes / voxels << '\n';
+    }
+    vtkNew<vtkMCXDensityIndex> index;
+    index->SetInputData(head);
+    index->Update();
+    for (int m : quick ? std::vector<int>{ 14, 16 } : std::vector<int>{ 18, 20, 22, 24, 26 })
+    {
+      vtkNew<vtkMCXProjector> projector;
+      projector->SetInputConnection(index->GetOutputPort());
+      projector->SetTransferFunction(tf);
+      projector->SetCamera(Views(head)[1].Camera);
+      projector->SetImageSize(256, 256);
+      projector->SetSampleExponent(m);
+      const Clock::time_point start = Clock::now();
+      projector->Update();
+      scaling << "samples," << head->GetNumberOfPoints() << ',' << projector->GetNumberOfSamples() << ",0,"
+              << Since(start) << ",0\n";
+    }
+  }
+  std::ofstream memory(output + "/memory.csv");
+  memory << "peak_resident_megabytes\n" << PeakResidentMegabytes() << '\n';
+  std::cout << "wrote " << output << std::endl;
+  return 0;
+}
