@@ -56,6 +56,21 @@ inline double KernelOffsetFromUniform(Kernel kernel, double u)
   return u < 0.5 ? std::sqrt(2.0 * u) - 1.0 : 1.0 - std::sqrt(2.0 * (1.0 - u));
 }
 
+/// The Cranley-Patterson rotation of the QuasiMonteCarlo offsets: one
+/// seeded shift per axis for the whole run.
+struct RotationShift
+{
+  explicit RotationShift(std::uint64_t seed)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      CounterRandom source(SeedKey(seed ^ 0xA5A5A5A5A5A5A5A5ull), static_cast<std::uint64_t>(a));
+      this->Value[a] = source.NextOpenClosed();
+    }
+  }
+  double Value[3];
+};
+
 template <typename IdType>
 struct SampleSource
 {
@@ -101,6 +116,7 @@ struct SampleSource
       return;
     }
     const std::uint64_t key = SeedKey(this->Seed);
+    const RotationShift shift(this->Seed);
     if (this->Method == Strategy::MonteCarlo)
     {
       this->GenerateInOutputOrder(begin, end, sink);
@@ -118,7 +134,7 @@ struct SampleSource
       }
       const std::uint64_t k = HaltonPosition(i, this->Exponent);
       CounterRandom random(key, k);
-      this->Emit(k, target, c, random, sink);
+      this->Emit(k, target, c, random, shift, sink);
     }
   }
 
@@ -153,6 +169,7 @@ struct SampleSource
     }
     const double step = std::ldexp(this->Cumulative[this->NumberOfLevels], -static_cast<int>(this->Exponent));
     const std::uint64_t key = SeedKey(this->Seed);
+    const RotationShift shift(this->Seed);
     for (std::uint64_t t = itemBegin; t < itemEnd; ++t)
     {
       std::uint64_t firstRank[StorageTile];
@@ -173,7 +190,7 @@ struct SampleSource
           const std::uint64_t k = (reversedB | (t * tile + n)) - 1;
           const double target = static_cast<double>(j) * step;
           CounterRandom random(key, k);
-          this->Emit(k, target, this->FindLevel(target), random, sink);
+          this->Emit(k, target, this->FindLevel(target), random, shift, sink);
         }
       }
     }
@@ -186,6 +203,7 @@ struct SampleSource
     const double total = this->Cumulative[this->NumberOfLevels];
     const double step = std::ldexp(total, -static_cast<int>(this->Exponent));
     const std::uint64_t key = SeedKey(this->Seed);
+    const RotationShift shift(this->Seed);
     const bool randomChoice = this->Method == Strategy::MonteCarlo;
     for (std::uint64_t k = begin; k < end; ++k)
     {
@@ -193,7 +211,7 @@ struct SampleSource
       const double target = randomChoice
         ? random.NextOpenClosed() * total
         : static_cast<double>(HaltonPosition(k, this->Exponent) + 1) * step;
-      this->Emit(k, target, this->FindLevel(target), random, sink);
+      this->Emit(k, target, this->FindLevel(target), random, shift, sink);
     }
   }
 
@@ -234,7 +252,8 @@ private:
   }
 
   template <typename Sink>
-  void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random, Sink& sink) const
+  void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random, const RotationShift& shift,
+    Sink& sink) const
   {
     const std::int64_t first = this->LevelOffsets[c - 1];
     const std::int64_t rank = this->VoxelRank(target, c);
@@ -247,8 +266,7 @@ private:
       static const unsigned bases[3] = { 3, 5, 7 };
       for (int a = 0; a < 3; ++a)
       {
-        CounterRandom shiftSource(SeedKey(this->Seed ^ 0xA5A5A5A5A5A5A5A5ull), static_cast<std::uint64_t>(a));
-        double u = RadicalInverse(k + 1, bases[a]) + shiftSource.NextOpenClosed();
+        double u = RadicalInverse(k + 1, bases[a]) + shift.Value[a];
         u -= std::floor(u);
         p[a] = static_cast<double>(voxel[a]) + KernelOffsetFromUniform(this->Reconstruction, u);
       }

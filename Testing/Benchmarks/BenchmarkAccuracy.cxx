@@ -380,7 +380,10 @@ int main(int argc, char* argv[])
           const int status = std::system(command.str().c_str());
           const double seconds = Since(start);
           std::vector<double> values;
-          if (status != 0 || !ReadPlastimatchPFM(prefix + "0000.pfm", pixels, values))
+          const bool read = status == 0 && ReadPlastimatchPFM(prefix + "0000.pfm", pixels, values);
+          std::remove((prefix + "0000.pfm").c_str());
+          std::remove((prefix + "0000.txt").c_str());
+          if (!read)
           {
             std::cerr << "plastimatch " << algorithm << " failed" << std::endl;
             continue;
