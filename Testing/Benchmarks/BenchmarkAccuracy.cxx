@@ -287,7 +287,8 @@ int main(int argc, char* argv[])
       edits.push_back(Since(start));
     }
     table1 << '"' << c.Name << "\"," << volume->GetNumberOfPoints() << ',' << Median(indexTimes) << ','
-           << Median(offline) << ',' << Median(edits) << ',' << c.PaperVoxels << ',' << c.PaperIndexSeconds << ','
+           << Median(offline) << ',' << Median(edits) << ',' << static_cast<long long>(c.PaperVoxels) << ','
+           << c.PaperIndexSeconds << ','
            << c.PaperOfflineSeconds << '\n';
 
     for (const View& view : views)
@@ -336,7 +337,8 @@ int main(int argc, char* argv[])
         projector->SetTargetRelativeError(target);
         projector->SetMaximumSampleExponent(quick ? 20 : 28);
         projector->Update();
-        targets << '"' << c.Name << "\"," << target << ',' << FieldValue(projector->GetOutput(), "SampleCount") << ','
+        targets << '"' << c.Name << "\"," << target << ','
+                << static_cast<long long>(FieldValue(projector->GetOutput(), "SampleCount")) << ','
                 << RelativeRMS(Values(projector->GetOutput()), reference) << ','
                 << FieldValue(projector->GetOutput(), "EstimatedRelativeError") << '\n';
       }
@@ -445,7 +447,8 @@ int main(int argc, char* argv[])
       start = Clock::now();
       projector->Update();
       const double voxels = static_cast<double>(resize->GetOutput()->GetNumberOfPoints());
-      scaling << "voxels," << voxels << ',' << projector->GetNumberOfSamples() << ',' << indexSeconds << ','
+      scaling << "voxels," << static_cast<long long>(voxels) << ',' << projector->GetNumberOfSamples() << ','
+              << indexSeconds << ','
               << Since(start) << ',' << bytes / voxels << '\n';
     }
     vtkNew<vtkMCXDensityIndex> index;
