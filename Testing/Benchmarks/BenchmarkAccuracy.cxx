@@ -157,6 +157,20 @@ vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunctio
   return reference->GetOutput();
 }
 
+// A Monte Carlo projector on an index, configured for one view.
+vtkSmartPointer<vtkMCXProjector> MakeProjector(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera,
+  int size, int exponent, int strategy = vtkMCXPointSampler::HYBRID)
+{
+  auto projector = vtkSmartPointer<vtkMCXProjector>::New();
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetTransferFunction(tf);
+  projector->SetCamera(camera);
+  projector->SetImageSize(size, size);
+  projector->SetSampleExponent(exponent);
+  projector->SetStrategy(strategy);
+  return projector;
+}
+
 // Reads a plastimatch PFM (top row first) into VTK's row order (bottom row first).
 bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& values)
 {
@@ -345,12 +359,7 @@ int main(int argc, char* argv[])
     std::vector<double> offline;
     for (int r = 0; r < (quick ? 1 : 5); ++r)
     {
-      vtkNew<vtkMCXProjector> projector;
-      projector->SetInputConnection(index->GetOutputPort());
-      projector->SetTransferFunction(tf);
-      projector->SetCamera(views[1].Camera);
-      projector->SetImageSize(256, 256);
-      projector->SetSampleExponent(quick ? 16 : 24);
+      auto projector = MakeProjector(index, tf, views[1].Camera, 256, quick ? 16 : 24);
       const Clock::time_point start = Clock::now();
       projector->Update();
       offline.push_back(Since(start));
@@ -385,15 +394,10 @@ int main(int argc, char* argv[])
       {
         for (int m : exponents)
         {
-          vtkNew<vtkMCXProjector> projector;
-          projector->SetInputConnection(index->GetOutputPort());
-          projector->SetTransferFunction(tf);
-          projector->SetCamera(view.Camera);
-          projector->SetImageSize(size, size);
-          projector->SetStrategy(method == 0 ? vtkMCXPointSampler::HYBRID
-              : method == 1                  ? vtkMCXPointSampler::MONTE_CARLO
-                                             : vtkMCXPointSampler::QUASI_MONTE_CARLO);
-          projector->SetSampleExponent(m);
+          auto projector = MakeProjector(index, tf, view.Camera, size, m,
+            method == 0       ? vtkMCXPointSampler::HYBRID
+              : method == 1 ? vtkMCXPointSampler::MONTE_CARLO
+                            : vtkMCXPointSampler::QUASI_MONTE_CARLO);
           const Clock::time_point start = Clock::now();
           projector->Update();
           const double seconds = Since(start);
@@ -412,11 +416,7 @@ int main(int argc, char* argv[])
       auto reference = Reference(index, tf, views[0].Camera, size, tolerance, 9, seconds);
       for (double target : { 0.05, 0.02, 0.01 })
       {
-        vtkNew<vtkMCXProjector> projector;
-        projector->SetInputConnection(index->GetOutputPort());
-        projector->SetTransferFunction(tf);
-        projector->SetCamera(views[0].Camera);
-        projector->SetImageSize(size, size);
+        auto projector = MakeProjector(index, tf, views[0].Camera, size, 0);
         projector->SetTargetRelativeError(target);
         projector->SetMaximumSampleExponent(quick ? 20 : 28);
         projector->Update();
@@ -484,12 +484,7 @@ int main(int argc, char* argv[])
         }
         for (int m : quick ? std::vector<int>{ 16 } : std::vector<int>{ 20, 22, 24, 26 })
         {
-          vtkNew<vtkMCXProjector> projector;
-          projector->SetInputConnection(index->GetOutputPort());
-          projector->SetTransferFunction(tf);
-          projector->SetCamera(camera);
-          projector->SetImageSize(pixels, pixels);
-          projector->SetSampleExponent(m);
+          auto projector = MakeProjector(index, tf, camera, pixels, m);
           const Clock::time_point start = Clock::now();
           projector->Update();
           peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,hybrid 2^" << m << "-1," << pixels << ','
@@ -527,12 +522,7 @@ int main(int argc, char* argv[])
       {
         bytes += static_cast<double>(fd->GetArray(a)->GetActualMemorySize()) * 1024.0;
       }
-      vtkNew<vtkMCXProjector> projector;
-      projector->SetInputConnection(index->GetOutputPort());
-      projector->SetTransferFunction(tf);
-      projector->SetCamera(Views(resize->GetOutput())[1].Camera);
-      projector->SetImageSize(256, 256);
-      projector->SetSampleExponent(quick ? 16 : 22);
+      auto projector = MakeProjector(index, tf, Views(resize->GetOutput())[1].Camera, 256, quick ? 16 : 22);
       start = Clock::now();
       projector->Update();
       const double voxels = static_cast<double>(resize->GetOutput()->GetNumberOfPoints());
@@ -545,12 +535,7 @@ int main(int argc, char* argv[])
     index->Update();
     for (int m : quick ? std::vector<int>{ 14, 16 } : std::vector<int>{ 18, 20, 22, 24, 26 })
     {
-      vtkNew<vtkMCXProjector> projector;
-      projector->SetInputConnection(index->GetOutputPort());
-      projector->SetTransferFunction(tf);
-      projector->SetCamera(Views(head)[1].Camera);
-      projector->SetImageSize(256, 256);
-      projector->SetSampleExponent(m);
+      auto projector = MakeProjector(index, tf, Views(head)[1].Camera, 256, m);
       const Clock::time_point start = Clock::now();
       projector->Update();
       scaling << "samples," << head->GetNumberOfPoints() << ',' << projector->GetNumberOfSamples() << ",0,"
