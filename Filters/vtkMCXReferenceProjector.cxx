@@ -13,8 +13,6 @@
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
-#include "vtkTypeUInt32Array.h"
-#include "vtkTypeUInt64Array.h"
 
 #include <atomic>
 #include <cmath>
