@@ -573,6 +573,13 @@ int main(int argc, char* argv[])
 
   MessageCapture messages;
   ProgressBar progress;
+  // An error from a watched algorithm, or else from VTK itself, ends the run.
+  auto failOnError = [&]() {
+    if (!messages.Error.empty() || !quiet->First.empty())
+    {
+      Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
+    }
+  };
 
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
@@ -582,10 +589,7 @@ int main(int argc, char* argv[])
   start = std::chrono::steady_clock::now();
   index->Update();
   progress.End();
-  if (!messages.Error.empty() || !quiet->First.empty())
-  {
-    Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
-  }
+  failOnError();
   const double indexSeconds = Seconds(start);
   vtkImageData* indexed = index->GetOutput();
   vtkDataArray* levels = indexed->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName());
@@ -645,10 +649,7 @@ int main(int argc, char* argv[])
     start = std::chrono::steady_clock::now();
     sampler->Update();
     progress.End();
-    if (!messages.Error.empty() || !quiet->First.empty())
-    {
-      Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
-    }
+    failOnError();
     const double samplingSeconds = Seconds(start);
     std::ostringstream line;
     line << "sampling:    " << samplingSeconds << " s (" << sampler->GetOutput()->GetNumberOfPoints()
@@ -674,10 +675,7 @@ int main(int argc, char* argv[])
   {
     std::cerr << "mcxray: warning: " << warning << std::endl;
   }
-  if (!messages.Error.empty() || !quiet->First.empty())
-  {
-    Fail(messages.Error.empty() ? MessageCapture::Clean(quiet->First.c_str()) : messages.Error);
-  }
+  failOnError();
   const double projectSeconds = Seconds(start);
   vtkImageData* image = projector->GetOutput();
   {

@@ -54,6 +54,18 @@ struct Outcome
   std::string Errors;
 };
 
+// An exact or a Monte Carlo projector (2^m - 1 samples).
+vtkSmartPointer<vtkMCXProjectorBase> NewProjector(bool reference, int m = 18)
+{
+  if (reference)
+  {
+    return vtkSmartPointer<vtkMCXReferenceProjector>::New();
+  }
+  auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
+  monteCarlo->SetSampleExponent(m);
+  return monteCarlo;
+}
+
 // Index -> projector (Monte Carlo or reference) with an explicit parallel
 // detector along -y (U = x, V = z), framed on the volume.
 Outcome Project(vtkImageData* volume, vtkPiecewiseFunction* tf, bool reference, int m = 18,
@@ -336,13 +348,7 @@ TEST(Data, ExtentNotAtZeroAndDirectionMatrixMoveTheImageRigidly)
   index->SetInputData(rotated);
   for (bool reference : { false, true })
   {
-    vtkSmartPointer<vtkMCXProjectorBase> projector;
-    if (reference)
-      projector = vtkSmartPointer<vtkMCXReferenceProjector>::New();
-    else
-      projector = vtkSmartPointer<vtkMCXProjector>::New();
-    if (!reference)
-      vtkMCXProjector::SafeDownCast(projector)->SetSampleExponent(18);
+    vtkSmartPointer<vtkMCXProjectorBase> projector = NewProjector(reference);
     projector->SetInputConnection(index->GetOutputPort());
     projector->SetDetectorAxisU(0, 0, -1); // world -z is grid x
     projector->SetDetectorAxisV(1, 0, 0);  // world x is grid z
@@ -589,11 +595,7 @@ TEST(Data, ACorruptIndexIsAnErrorNotACrash)
       fd->RemoveArray(vtkMCXDensityIndex::LevelValuesName());
     for (bool reference : { false, true })
     {
-      vtkSmartPointer<vtkMCXProjectorBase> projector;
-      if (reference)
-        projector = vtkSmartPointer<vtkMCXReferenceProjector>::New();
-      else
-        projector = vtkSmartPointer<vtkMCXProjector>::New();
+      vtkSmartPointer<vtkMCXProjectorBase> projector = NewProjector(reference);
       projector->SetInputData(broken);
       projector->SetImageSize(8, 8);
       Messages messages(projector);
