@@ -115,13 +115,13 @@ struct SampleSource
     {
       return;
     }
-    const std::uint64_t key = SeedKey(this->Seed);
-    const RotationShift shift(this->Seed);
     if (this->Method == Strategy::MonteCarlo)
     {
       this->GenerateInOutputOrder(begin, end, sink);
       return;
     }
+    const std::uint64_t key = SeedKey(this->Seed);
+    const RotationShift shift(this->Seed);
     const double total = this->Cumulative[this->NumberOfLevels];
     const double step = std::ldexp(total, -static_cast<int>(this->Exponent));
     std::int64_t c = this->FindLevel(static_cast<double>(begin + 1) * step);
