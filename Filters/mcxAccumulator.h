@@ -40,14 +40,15 @@ public:
     , FocalSquared(g.FocalDistance * g.FocalDistance)
   {
     const double* axes[3] = { g.U, g.V, g.W };
-    // Rows k = 0, 1, 2 give (x - E) . U, . V, . W (perspective) or x . U, x . V
-    // (parallel) as an affine function of the source coordinates p.
+    // Rows k = 0, 1 give (x - E) . U, . V (perspective) or x . U, x . V
+    // (parallel), row 2 the depth (x - E) . W, as affine functions of the
+    // source coordinates p.
     for (int k = 0; k < 3; ++k)
     {
       this->Offset[k] = 0.0;
       for (int r = 0; r < 3; ++r)
       {
-        const double base = sourceOrigin[r] - (this->Perspective ? g.Eye[r] : 0.0);
+        const double base = sourceOrigin[r] - (this->Perspective || k == 2 ? g.Eye[r] : 0.0);
         this->Offset[k] += axes[k][r] * base;
       }
       for (int c = 0; c < 3; ++c)
@@ -122,6 +123,13 @@ public:
     return true;
   }
 
+  /// Distance of a point from the eye along the viewing direction W.
+  double Depth(const double p[3]) const
+  {
+    const double* m = this->Rows + 6;
+    return m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[2];
+  }
+
 private:
   bool Perspective;
   int Width;
@@ -161,37 +169,44 @@ inline std::uint64_t FirstHalfSize(std::uint64_t count)
   return ((count + 1) & count) == 0 ? (count - 1) / 2 : count / 2;
 }
 
-/// Relative RMS error of the image of all samples, estimated from the two
-/// half images: sums holds the image of all `count` samples in its first
-/// half and that of the first FirstHalfSize(count) samples in its second.
-/// With x_A, x_B the half images per sample and x the full one,
-/// Var(x) = E[(x_A - x_B)^2] / (M (1/|A| + 1/|B|)). NaN below 3 samples;
-/// 0 for an empty image.
-inline double EstimateRelativeError(const std::vector<FixedSum>& sums, std::uint64_t count)
+/// Relative RMS error of the image of all `count` samples (sums `whole`),
+/// estimated from the image of its first FirstHalfSize(count) samples
+/// (`firstHalf`) and that of the rest. With x_A, x_B the half images per
+/// sample and x the full one, Var(x) = E[(x_A - x_B)^2] / (M (1/|A| + 1/|B|)).
+/// NaN below 3 samples; 0 for an empty image.
+inline double EstimateRelativeError(
+  const FixedSum* whole, const FixedSum* firstHalf, std::size_t pixels, std::uint64_t count)
 {
   const std::uint64_t first = FirstHalfSize(count);
   if (first == 0)
   {
     return std::nan("");
   }
-  const std::size_t pixels = sums.size() / 2;
   const double a = static_cast<double>(first);
   const double b = static_cast<double>(count - first);
   const double m = static_cast<double>(count);
   double difference = 0.0, norm = 0.0;
   for (std::size_t p = 0; p < pixels; ++p)
   {
-    const double whole = static_cast<double>(sums[p]);
-    const double partA = static_cast<double>(sums[pixels + p]);
-    const double d = partA / a - (whole - partA) / b;
+    const double all = static_cast<double>(whole[p]);
+    const double partA = static_cast<double>(firstHalf[p]);
+    const double d = partA / a - (all - partA) / b;
     difference += d * d;
-    norm += (whole / m) * (whole / m);
+    norm += (all / m) * (all / m);
   }
   if (!(norm > 0))
   {
     return 0.0;
   }
   return std::sqrt(difference / (m * (1.0 / a + 1.0 / b)) / norm);
+}
+
+/// The same, for sums holding the image of all samples in its first half and
+/// that of the first FirstHalfSize(count) samples in its second.
+inline double EstimateRelativeError(const std::vector<FixedSum>& sums, std::uint64_t count)
+{
+  const std::size_t pixels = sums.size() / 2;
+  return EstimateRelativeError(sums.data(), sums.data() + pixels, pixels, count);
 }
 
 /// The paper's equation 1: the sample count above which the average pixel

@@ -5,9 +5,7 @@
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
-#include "vtkCommand.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkXMLImageDataReader.h"
@@ -15,22 +13,6 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
-
-namespace
-{
-struct ExecutionCounter
-{
-  int Count = 0;
-  vtkNew<vtkCallbackCommand> Command;
-
-  explicit ExecutionCounter(vtkAlgorithm* algorithm)
-  {
-    this->Command->SetClientData(&this->Count);
-    this->Command->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
-    algorithm->AddObserver(vtkCommand::StartEvent, this->Command);
-  }
-};
-}
 
 TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
 {
@@ -53,7 +35,7 @@ TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
   projector->SetCamera(camera);
   projector->SetImageSize(32, 32);
 
-  ExecutionCounter indexRuns(index), samplerRuns(sampler), projectorRuns(projector);
+  mcxtest::ExecutionCounter indexRuns(index), samplerRuns(sampler), projectorRuns(projector);
   projector->Update();
   EXPECT_EQ(1, indexRuns.Count);
   EXPECT_EQ(1, samplerRuns.Count);
@@ -79,7 +61,7 @@ TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
   offline->SetInputConnection(index->GetOutputPort());
   offline->SetTransferFunction(tf);
   offline->SetSampleExponent(12);
-  ExecutionCounter offlineRuns(offline);
+  mcxtest::ExecutionCounter offlineRuns(offline);
   offline->Update();
   tf->AddPoint(300, 0.5);
   offline->Update();

@@ -2,8 +2,13 @@
 #ifndef mcxTestHelpers_h
 #define mcxTestHelpers_h
 
+#include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 
@@ -109,6 +114,21 @@ inline double ExpectedRelativeRMS(vtkImageData* reference, double integral, doub
   }
   return std::sqrt(fMax * (integral / scale) * sum / (pixelArea * samples * squares));
 }
+
+/// Counts the executions of an algorithm (its StartEvents).
+struct ExecutionCounter
+{
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Command;
+
+  explicit ExecutionCounter(vtkAlgorithm* algorithm)
+  {
+    this->Command->SetClientData(&this->Count);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    algorithm->AddObserver(vtkCommand::StartEvent, this->Command);
+  }
+};
 
 inline double FieldValue(vtkDataObject* data, const char* name)
 {

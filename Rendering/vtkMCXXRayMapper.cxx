@@ -1,0 +1,476 @@
+#include "vtkMCXXRayMapper.h"
+
+#include "mcxCameraGeometry.h"
+#include "mcxProgressiveImage.h"
+#include "mcxHalton.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderUtilities.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXXRayMapper);
+
+namespace
+{
+// Maps a line integral to a grey value g (window and level), and composites
+// it as emitted light or, inverted, as a transmission factor.
+const char* DisplayShaderDeclarations = R"(
+uniform sampler2D lineIntegrals;
+uniform float lowest;
+uniform float inverseWindow;
+uniform int invert;
+)";
+const char* DisplayShaderBody = R"(
+  float g = clamp((texture(lineIntegrals, texCoord).r - lowest) * inverseWindow, 0.0, 1.0);
+  if (invert == 1)
+  {
+    g = 1.0 - g;
+  }
+  gl_FragData[0] = vec4(g, g, g, 1.0);
+)";
+
+bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometry& b)
+{
+  auto same = [](const double* x, const double* y, int n) { return std::equal(x, x + n, y); };
+  return a.Perspective == b.Perspective && same(a.Eye, b.Eye, 3) && same(a.U, b.U, 3) &&
+    same(a.V, b.V, 3) && same(a.W, b.W, 3) && a.FocalDistance == b.FocalDistance &&
+    a.NearDistance == b.NearDistance && a.Size[0] == b.Size[0] && a.Size[1] == b.Size[1] &&
+    same(a.Spacing, b.Spacing, 2) && same(a.Origin, b.Origin, 2);
+}
+
+// Whether any other visible prop in the renderer draws opaque 3D geometry
+// that can hide part of the volume.
+bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
+{
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (prop != self && prop->GetVisibility() && prop->IsA("vtkProp3D") && !prop->IsA("vtkVolume") &&
+      prop->HasOpaqueGeometry())
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Eye distance (along the view direction) of a depth-buffer value; +inf for
+// the far plane, where nothing was drawn.
+double DepthToDistance(float depth, bool perspective, double nearPlane, double farPlane)
+{
+  if (!(depth < 1.0f))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  if (perspective)
+  {
+    const double ndc = 2.0 * depth - 1.0;
+    return 2.0 * nearPlane * farPlane / (farPlane + nearPlane - ndc * (farPlane - nearPlane));
+  }
+  return nearPlane + depth * (farPlane - nearPlane);
+}
+}
+
+struct vtkMCXXRayMapper::vtkInternals
+{
+  mcx::ProgressiveImage Image;
+  bool HasImage = false;
+
+  // What the image on screen was made from.
+  vtkPolyData* Cloud = nullptr; // compared only, never dereferenced
+  vtkMTimeType CloudTime = 0;
+  mcx::ProjectionGeometry Geometry;
+  double Matrix[16] = { 0 };
+  std::vector<float> Depth;
+  double SampleWeightTimesCount = 0.0; // the cloud's integral times |det| of the prop matrix
+  std::uint64_t NumberOfPoints = 0;
+  bool AutomaticWindowPending = true;
+  double AutomaticWindow = 1.0;
+  double AutomaticLevel = 0.5;
+
+  double SecondsPerSample = 1e-8; // measured, for the progressive budget
+
+  std::vector<float> Values;
+  std::uint64_t UploadedCount = 0;
+  vtkSmartPointer<vtkTextureObject> Texture;
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+};
+
+vtkMCXXRayMapper::vtkMCXXRayMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkMCXXRayMapper::~vtkMCXXRayMapper()
+{
+  delete this->Internals;
+}
+
+int vtkMCXXRayMapper::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+vtkTypeInt64 vtkMCXXRayMapper::GetNumberOfAccumulatedSamples()
+{
+  return this->Internals->HasImage ? static_cast<vtkTypeInt64>(this->Internals->Image.Count()) : 0;
+}
+
+bool vtkMCXXRayMapper::IsRefinementComplete()
+{
+  return this->Internals->HasImage &&
+    this->Internals->Image.Count() >= this->Internals->NumberOfPoints;
+}
+
+double vtkMCXXRayMapper::GetEstimatedRelativeError()
+{
+  return this->Internals->HasImage ? this->Internals->Image.EstimateRelativeError() : std::nan("");
+}
+
+void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
+{
+  output->Initialize();
+  vtkInternals& in = *this->Internals;
+  if (!in.HasImage)
+  {
+    return;
+  }
+  const mcx::ProjectionGeometry& g = in.Image.GetGeometry();
+  output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
+  output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
+  output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName("LineIntegral");
+  values->SetNumberOfValues(static_cast<vtkIdType>(in.Image.NumberOfPixels()));
+  const std::uint64_t count = in.Image.Count();
+  in.Image.ToValues(count > 0 ? in.SampleWeightTimesCount / static_cast<double>(count) : 0.0,
+    values->GetPointer(0));
+  output->GetPointData()->SetScalars(values);
+  vtkNew<vtkDoubleArray> samples;
+  samples->SetName("SampleCount");
+  samples->InsertNextValue(static_cast<double>(count));
+  output->GetFieldData()->AddArray(samples);
+  vtkNew<vtkDoubleArray> error;
+  error->SetName("EstimatedRelativeError");
+  error->InsertNextValue(in.Image.EstimateRelativeError());
+  output->GetFieldData()->AddArray(error);
+}
+
+void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkInternals& in = *this->Internals;
+  int outputPort = 0;
+  vtkAlgorithm* producer = this->GetNumberOfInputConnections(0) > 0
+    ? this->GetInputAlgorithm(0, 0, outputPort)
+    : nullptr;
+  if (!producer)
+  {
+    vtkErrorMacro("No input: connect a vtkMCXPointSampler.");
+    return;
+  }
+  producer->Update(outputPort);
+  vtkPolyData* cloud = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
+  vtkDataArray* integralArray = cloud ? cloud->GetFieldData()->GetArray("Integral") : nullptr;
+  if (!integralArray || integralArray->GetNumberOfTuples() < 1)
+  {
+    vtkErrorMacro("The input carries no Integral in its field data (make it with vtkMCXPointSampler).");
+    return;
+  }
+  vtkPoints* points = cloud->GetPoints();
+  const std::uint64_t numberOfPoints =
+    points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
+  if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+  {
+    vtkErrorMacro("Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+    return;
+  }
+
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (width < 1 || height < 1)
+  {
+    return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  mcx::ProjectionGeometry geometry;
+  const int size[2] = { width, height };
+  std::string problem = mcx::GeometryFromCamera(camera, size, 0.0, geometry);
+  if (problem.empty())
+  {
+    problem = geometry.Validate();
+  }
+  if (!problem.empty())
+  {
+    vtkErrorMacro("Cannot render this view: " << problem << ".");
+    return;
+  }
+
+  double matrix[16];
+  vtkMatrix4x4::DeepCopy(matrix, volume->GetMatrix());
+  const double origin[3] = { matrix[3], matrix[7], matrix[11] };
+  const double linear[9] = { matrix[0], matrix[1], matrix[2], matrix[4], matrix[5], matrix[6],
+    matrix[8], matrix[9], matrix[10] };
+
+  // Depth work only when something opaque can hide part of the volume.
+  std::vector<float> depth;
+  this->LastRenderUsedDepth = HasOccluders(renderer, volume);
+  if (this->LastRenderUsedDepth)
+  {
+    depth.resize(static_cast<std::size_t>(width) * height);
+    vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+    vtkOpenGLState* state = window->GetState();
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLES, &samples);
+    if (samples > 0)
+    {
+      // The render window knows how to resolve its multisampled buffer.
+      vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+      window->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, depth.data());
+    }
+    else
+    {
+      GLint drawFramebuffer = 0;
+      glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+      state->PushReadFramebufferBinding();
+      state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(drawFramebuffer));
+      state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(x0, y0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+      state->PopReadFramebufferBinding();
+    }
+  }
+
+  const bool newInput = cloud != in.Cloud || cloud->GetMTime() != in.CloudTime;
+  const bool restart = !in.HasImage || newInput || !SameGeometry(geometry, in.Geometry) ||
+    !std::equal(matrix, matrix + 16, in.Matrix) || depth != in.Depth;
+  if (restart)
+  {
+    std::vector<double> limits;
+    if (!depth.empty())
+    {
+      const double* range = camera->GetClippingRange();
+      limits.resize(depth.size());
+      for (std::size_t p = 0; p < depth.size(); ++p)
+      {
+        limits[p] = DepthToDistance(depth[p], geometry.Perspective, range[0], range[1]);
+      }
+    }
+    in.Image.Reset(geometry, origin, linear, std::move(limits));
+    in.HasImage = true;
+    in.Cloud = cloud;
+    in.CloudTime = cloud->GetMTime();
+    in.Geometry = geometry;
+    std::copy(matrix, matrix + 16, in.Matrix);
+    in.Depth = std::move(depth);
+    in.NumberOfPoints = numberOfPoints;
+    in.SampleWeightTimesCount =
+      integralArray->GetTuple1(0) * std::fabs(vtkMatrix4x4::Determinant(matrix));
+    in.UploadedCount = std::numeric_limits<std::uint64_t>::max();
+    in.AutomaticWindowPending = in.AutomaticWindowPending || newInput;
+    ++this->NumberOfRestarts;
+  }
+
+  // How many points this render adds: the largest Halton prefix that fits
+  // the time the renderer allocated to this prop.
+  const std::uint64_t current = in.Image.Count();
+  if (current < in.NumberOfPoints)
+  {
+    std::uint64_t target = in.NumberOfPoints;
+    if (this->ProgressiveRefinement)
+    {
+      const double budget = volume->GetAllocatedRenderTime();
+      const double affordable = budget > 0 && std::isfinite(budget)
+        ? static_cast<double>(current) + budget / in.SecondsPerSample
+        : std::numeric_limits<double>::infinity();
+      // The first image of a new input sets the automatic window: give it
+      // enough points per pixel for a stable percentile.
+      const double floor = std::max(static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
+        in.AutomaticWindowPending && this->AutomaticWindowLevel ? 16.0 * width * height : 0.0);
+      std::uint64_t prefix = 2 * current + 1; // never less than the next level
+      while (prefix < in.NumberOfPoints &&
+        (static_cast<double>(2 * prefix + 1) <= affordable || static_cast<double>(prefix) < floor))
+      {
+        prefix = 2 * prefix + 1;
+      }
+      target = std::min(prefix, in.NumberOfPoints);
+    }
+    const auto projectionStart = std::chrono::steady_clock::now();
+    if (points->GetDataType() == VTK_FLOAT)
+    {
+      in.Image.Advance(static_cast<const float*>(points->GetVoidPointer(0)), target);
+    }
+    else
+    {
+      in.Image.Advance(static_cast<const double*>(points->GetVoidPointer(0)), target);
+    }
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - projectionStart).count();
+    const std::uint64_t added = target - current;
+    if (added >= 4096 && seconds > 0)
+    {
+      in.SecondsPerSample = 0.5 * (in.SecondsPerSample + seconds / static_cast<double>(added));
+    }
+    if (!restart)
+    {
+      ++this->NumberOfRefinements;
+    }
+  }
+
+  // Upload what changed; a display change only redraws.
+  const std::uint64_t count = in.Image.Count();
+  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkMCXXRayMapper needs an OpenGL render window.");
+    return;
+  }
+  if (count != in.UploadedCount || !in.Texture || in.Texture->GetContext() != window)
+  {
+    in.Values.resize(in.Image.NumberOfPixels());
+    in.Image.ToValues(
+      count > 0 ? in.SampleWeightTimesCount / static_cast<double>(count) : 0.0, in.Values.data());
+    if (in.AutomaticWindowPending && count > 0)
+    {
+      std::vector<float> positive;
+      positive.reserve(in.Values.size());
+      std::copy_if(in.Values.begin(), in.Values.end(), std::back_inserter(positive),
+        [](float v) { return v > 0; });
+      if (!positive.empty())
+      {
+        auto rank = positive.begin() + static_cast<std::ptrdiff_t>(0.999 * (positive.size() - 1));
+        std::nth_element(positive.begin(), rank, positive.end());
+        in.AutomaticWindow = *rank;
+        in.AutomaticLevel = 0.5 * *rank;
+      }
+      in.AutomaticWindowPending = false;
+    }
+    if (!in.Texture || in.Texture->GetContext() != window)
+    {
+      in.Texture = vtkSmartPointer<vtkTextureObject>::New();
+      in.Texture->SetContext(window);
+    }
+    in.Texture->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    in.Texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.Texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    in.Texture->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
+      1, VTK_FLOAT, in.Values.data());
+    in.UploadedCount = count;
+    ++this->NumberOfUploads;
+  }
+
+  this->DisplayedWindow = this->AutomaticWindowLevel ? in.AutomaticWindow : this->ColorWindow;
+  this->DisplayedLevel = this->AutomaticWindowLevel ? in.AutomaticLevel : this->ColorLevel;
+  const double lowest = this->DisplayedLevel - 0.5 * this->DisplayedWindow;
+  const double inverseWindow =
+    this->DisplayedWindow > 0 ? 1.0 / this->DisplayedWindow : std::numeric_limits<float>::max();
+
+  if (!in.Quad)
+  {
+    std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+    vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl", DisplayShaderDeclarations);
+    vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl", DisplayShaderBody);
+    in.Quad.reset(new vtkOpenGLQuadHelper(window,
+      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fragment.c_str(), ""));
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(in.Quad->Program);
+  }
+  if (!in.Quad->Program)
+  {
+    vtkErrorMacro("The X-ray display shader failed to compile.");
+    return;
+  }
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(state);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglEnable(GL_BLEND);
+  if (this->InvertDisplay)
+  {
+    state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
+  }
+  else
+  {
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+  }
+  in.Texture->Activate();
+  in.Quad->Program->SetUniformi("lineIntegrals", in.Texture->GetTextureUnit());
+  in.Quad->Program->SetUniformf("lowest", static_cast<float>(lowest));
+  in.Quad->Program->SetUniformf("inverseWindow", static_cast<float>(inverseWindow));
+  in.Quad->Program->SetUniformi("invert", this->InvertDisplay ? 1 : 0);
+  in.Quad->Render();
+  in.Texture->Deactivate();
+  ++this->NumberOfDraws;
+
+  this->TimeToDraw = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void vtkMCXXRayMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  vtkInternals& in = *this->Internals;
+  if (in.Texture)
+  {
+    in.Texture->ReleaseGraphicsResources(window);
+    in.Texture = nullptr;
+  }
+  if (in.Quad)
+  {
+    in.Quad->ReleaseGraphicsResources(window);
+    in.Quad.reset();
+  }
+  in.UploadedCount = std::numeric_limits<std::uint64_t>::max();
+}
+
+void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ColorWindow: " << this->ColorWindow << "\n";
+  os << indent << "ColorLevel: " << this->ColorLevel << "\n";
+  os << indent << "AutomaticWindowLevel: " << this->AutomaticWindowLevel << "\n";
+  os << indent << "InvertDisplay: " << this->InvertDisplay << "\n";
+  os << indent << "ProgressiveRefinement: " << this->ProgressiveRefinement << "\n";
+  os << indent << "InitialSampleExponent: " << this->InitialSampleExponent << "\n";
+  os << indent << "NumberOfAccumulatedSamples: " << this->GetNumberOfAccumulatedSamples() << "\n";
+  os << indent << "NumberOfRestarts: " << this->NumberOfRestarts << "\n";
+  os << indent << "NumberOfRefinements: " << this->NumberOfRefinements << "\n";
+  os << indent << "NumberOfUploads: " << this->NumberOfUploads << "\n";
+  os << indent << "NumberOfDraws: " << this->NumberOfDraws << "\n";
+  os << indent << "LastRenderUsedDepth: " << this->LastRenderUsedDepth << "\n";
+}

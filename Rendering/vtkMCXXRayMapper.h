@@ -1,0 +1,175 @@
+/**
+ * @class   vtkMCXXRayMapper
+ * @brief   Draws a vtkMCXPointSampler point cloud as an X-ray image of the
+ *          renderer's active camera, refining progressively.
+ *
+ * The input is the sampler's point cloud (points in Halton order, carrying
+ * "Integral" in field data). Each render projects a prefix of 2^k - 1 points
+ * for the active camera (parallel or perspective, the same geometry and
+ * weights as vtkMCXProjector) at the viewport's resolution into an exact
+ * integer accumulation buffer; pixel values are line integrals of g in TF
+ * units times world length, so they do not change with zoom or viewport size.
+ *
+ * It is a volume mapper (for a vtkVolume) because volumes render after the
+ * opaque and translucent geometry: the depth buffer is complete when the
+ * mapper reads it, and ParaView and VTK treat the prop as the volume it
+ * stands for. The vtkVolume's matrix moves the cloud; its property is unused.
+ *
+ * Work follows what changed:
+ * - a different camera, viewport, prop matrix, occluding depth or input
+ *   restarts the projection (a TF edit reaches the mapper as a new input from
+ *   the sampler, which resamples without re-indexing);
+ * - a display change (window, level, inversion) only redraws the accumulated
+ *   buffer;
+ * - otherwise, with ProgressiveRefinement on, each render adds the largest
+ *   prefix that fits the prop's allocated render time (1 / the render
+ *   window's desired update rate) to the buffer, until all points count;
+ *   IsRefinementComplete() tells an application when to stop asking for
+ *   renders.
+ *
+ * When the renderer also holds visible opaque geometry, samples behind it in
+ * the depth buffer do not count; without any, no depth work is done.
+ *
+ * Display: the image is mapped by a window and level (in line-integral units;
+ * automatic by default: 0 to the 99.9th percentile of the first image of each
+ * input) to a grey value g in [0, 1] and composited as emitted light (added to
+ * what is behind it). With InvertDisplay on, 1 - g multiplies what is behind
+ * it instead, as film does on a light box: give the renderer a white
+ * background.
+ *
+ * The accumulation runs on the CPU with vtkSMPTools; images are the same for
+ * any number of threads.
+ */
+#ifndef vtkMCXXRayMapper_h
+#define vtkMCXXRayMapper_h
+
+#include "MonteCarloXRayModule.h" // for export macro
+#include "vtkAbstractVolumeMapper.h"
+
+class vtkImageData;
+
+class MONTECARLOXRAY_EXPORT vtkMCXXRayMapper : public vtkAbstractVolumeMapper
+{
+public:
+  static vtkMCXXRayMapper* New();
+  vtkTypeMacro(vtkMCXXRayMapper, vtkAbstractVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Window and level of the display, in line-integral units (TF units times
+   * world length); used when AutomaticWindowLevel is off.
+   */
+  vtkSetClampMacro(ColorWindow, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ColorWindow, double);
+  vtkSetMacro(ColorLevel, double);
+  vtkGetMacro(ColorLevel, double);
+  ///@}
+
+  ///@{
+  /**
+   * Choose window and level from the first image of each input (default on):
+   * 0 to the 99.9th percentile of its non-zero pixels.
+   */
+  vtkSetMacro(AutomaticWindowLevel, bool);
+  vtkGetMacro(AutomaticWindowLevel, bool);
+  vtkBooleanMacro(AutomaticWindowLevel, bool);
+  ///@}
+
+  /** The window and level the last render used. */
+  vtkGetMacro(DisplayedWindow, double);
+  vtkGetMacro(DisplayedLevel, double);
+
+  ///@{
+  /** Show 1 - g, multiplied onto the background (default off). */
+  vtkSetMacro(InvertDisplay, bool);
+  vtkGetMacro(InvertDisplay, bool);
+  vtkBooleanMacro(InvertDisplay, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Refine over several renders (default on). Off: every render that needs a
+   * new image projects all points at once.
+   */
+  vtkSetMacro(ProgressiveRefinement, bool);
+  vtkGetMacro(ProgressiveRefinement, bool);
+  vtkBooleanMacro(ProgressiveRefinement, bool);
+  ///@}
+
+  ///@{
+  /**
+   * The first image after a change has at least 2^InitialSampleExponent - 1
+   * points (default 14), however little time is allocated.
+   */
+  vtkSetClampMacro(InitialSampleExponent, int, 1, 40);
+  vtkGetMacro(InitialSampleExponent, int);
+  ///@}
+
+  /** Number of points in the image on screen. */
+  vtkTypeInt64 GetNumberOfAccumulatedSamples();
+
+  /** True when the image on screen holds every point of the input. */
+  bool IsRefinementComplete();
+
+  /**
+   * Estimated relative RMS error of the image on screen, from its two
+   * Halton halves (as vtkMCXProjector's EstimatedRelativeError); NaN before
+   * the first render.
+   */
+  double GetEstimatedRelativeError();
+
+  /**
+   * The image on screen in physical units: a 2D image laid out like
+   * vtkMCXProjector's output (point data "LineIntegral", float64; pixel (0, 0)
+   * at the viewport's lower left), with field data SampleCount and
+   * EstimatedRelativeError. Empty before the first render.
+   */
+  void GetLineIntegralImage(vtkImageData* output);
+
+  ///@{
+  /**
+   * Work counters for tests and profiling: projections started from zero,
+   * renders that added points, texture uploads, and draws.
+   */
+  vtkGetMacro(NumberOfRestarts, vtkTypeInt64);
+  vtkGetMacro(NumberOfRefinements, vtkTypeInt64);
+  vtkGetMacro(NumberOfUploads, vtkTypeInt64);
+  vtkGetMacro(NumberOfDraws, vtkTypeInt64);
+  ///@}
+
+  /** True when the last render culled samples against opaque geometry. */
+  vtkGetMacro(LastRenderUsedDepth, bool);
+
+  void Render(vtkRenderer* renderer, vtkVolume* volume) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkMCXXRayMapper();
+  ~vtkMCXXRayMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  double ColorWindow = 1.0;
+  double ColorLevel = 0.5;
+  bool AutomaticWindowLevel = true;
+  double DisplayedWindow = 1.0;
+  double DisplayedLevel = 0.5;
+  bool InvertDisplay = false;
+  bool ProgressiveRefinement = true;
+  int InitialSampleExponent = 14;
+  vtkTypeInt64 NumberOfRestarts = 0;
+  vtkTypeInt64 NumberOfRefinements = 0;
+  vtkTypeInt64 NumberOfUploads = 0;
+  vtkTypeInt64 NumberOfDraws = 0;
+  bool LastRenderUsedDepth = false;
+
+private:
+  vtkMCXXRayMapper(const vtkMCXXRayMapper&) = delete;
+  void operator=(const vtkMCXXRayMapper&) = delete;
+
+  struct vtkInternals;
+  vtkInternals* Internals;
+};
+
+#endif
