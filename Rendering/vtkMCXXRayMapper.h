@@ -31,8 +31,8 @@
  * the depth buffer do not count; without any, no depth work is done.
  *
  * Display: the image is mapped by a window and level (in line-integral units;
- * automatic by default: 0 to the 99.9th percentile of the first image of each
- * input) to a grey value g in [0, 1] and composited as emitted light (added to
+ * automatic by default: 0 to the 99.5th percentile of the 4 x 4 block means
+ * of the first image of each input) to a grey value g in [0, 1] and composited as emitted light (added to
  * what is behind it). With InvertDisplay on, 1 - g multiplies what is behind
  * it instead, as film does on a light box: give the renderer a white
  * background.
@@ -69,7 +69,8 @@ public:
   ///@{
   /**
    * Choose window and level from the first image of each input (default on):
-   * 0 to the 99.9th percentile of its non-zero pixels.
+   * 0 to the 99.5th percentile of its non-zero 4 x 4 block means. That image
+   * has at least 4 points per pixel.
    */
   vtkSetMacro(AutomaticWindowLevel, bool);
   vtkGetMacro(AutomaticWindowLevel, bool);

@@ -81,40 +81,60 @@ bool IsSupportedOutput(const std::string& path)
   return ext == ".vti" || ext == ".png" || ext == ".pfm";
 }
 
-bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error)
+namespace
+{
+// Runs write(temporary) and renames the result to path only if it succeeded.
+template <typename Write>
+bool WriteAtomically(const std::string& path, const Write& write, std::string& error)
 {
   const std::string ext = Extension(path);
   const std::string temporary = path + ".part-" + std::to_string(getpid()) + ext;
-  bool ok = false;
-  if (ext == ".vti")
-  {
-    vtkNew<vtkXMLImageDataWriter> writer;
-    writer->SetInputData(image);
-    writer->SetFileName(temporary.c_str());
-    writer->SetDataModeToAppended();
-    writer->SetCompressorTypeToZLib();
-    ok = writer->Write() == 1 && writer->GetErrorCode() == 0;
-  }
-  else if (ext == ".png")
-  {
-    ok = WritePNG(image, temporary, window);
-  }
-  else if (ext == ".pfm")
-  {
-    ok = WritePFM(image, temporary);
-  }
-  else
-  {
-    error = "unknown output format '" + ext + "' (expected .vti, .png or .pfm)";
-    return false;
-  }
-  if (!ok || std::rename(temporary.c_str(), path.c_str()) != 0)
+  if (!write(temporary) || std::rename(temporary.c_str(), path.c_str()) != 0)
   {
     std::remove(temporary.c_str());
     error = "cannot write '" + path + "'";
     return false;
   }
   return true;
+}
+}
+
+bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error)
+{
+  const std::string ext = Extension(path);
+  if (!IsSupportedOutput(path))
+  {
+    error = "unknown output format '" + ext + "' (expected .vti, .png or .pfm)";
+    return false;
+  }
+  return WriteAtomically(path, [&](const std::string& temporary) {
+    if (ext == ".vti")
+    {
+      vtkNew<vtkXMLImageDataWriter> writer;
+      writer->SetInputData(image);
+      writer->SetFileName(temporary.c_str());
+      writer->SetDataModeToAppended();
+      writer->SetCompressorTypeToZLib();
+      return writer->Write() == 1 && writer->GetErrorCode() == 0;
+    }
+    return ext == ".png" ? WritePNG(image, temporary, window) : WritePFM(image, temporary);
+  }, error);
+}
+
+bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error)
+{
+  if (Extension(path) != ".png")
+  {
+    error = "a screenshot is written as .png, not '" + path + "'";
+    return false;
+  }
+  return WriteAtomically(path, [&](const std::string& temporary) {
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(temporary.c_str());
+    writer->Write();
+    return writer->GetErrorCode() == 0;
+  }, error);
 }
 
 } // namespace mcxapp

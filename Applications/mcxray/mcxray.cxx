@@ -1,8 +1,10 @@
 // mcxray: simulated X-ray images of CT and MRI volumes by hybrid Monte Carlo
 // volume rendering, from the command line.
+#include "mcxHalton.h"
 #include "mcxImageOutput.h"
 #include "mcxTransferFunctionSpec.h"
 #include "mcxVolumeReader.h"
+#include "mcxXRayViewer.h"
 
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
@@ -22,6 +24,8 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtkSMPTools.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -41,6 +45,7 @@
 namespace
 {
 const char* const Usage = R"(usage: mcxray render [INPUT] [options]
+       mcxray view [INPUT] [options]     (interactive; see mcxray view --help)
 
 Renders a simulated X-ray image (a DRR): per pixel, the mean over the pixel's
 area of the line integral of g = TF(density), reconstructed with the chosen
@@ -85,6 +90,33 @@ options:
                         default samples are projected as they are generated
   --quiet               print nothing but errors
   --help                this text
+)";
+
+const char* const ViewUsage = R"(usage: mcxray view [INPUT] [options]
+
+Opens an interactive X-ray view of a volume: drag to rotate, right-drag or
+wheel to zoom, middle-drag to pan. While the view is still the image refines
+up to all points; the overlay shows the sample count, the time per frame and
+the image's estimated relative error.
+
+INPUT   a volume, as for mcxray render (default: the bundled CT head).
+
+options:
+  --tf SPEC          initial transfer function (as for mcxray render; default raw)
+  --samples N        points in the cloud, rounded up to 2^m - 1 (default 4194303)
+  --method M         hybrid (default), mc or qmc
+  --kernel K         tent (default) or box
+  --seed N           seed of the pseudo-random parts (default 0)
+  --threads N        worker threads (default: all cores)
+  --size WxH         window size (default 768x768)
+  --screenshot FILE  no window: render off screen until all points count,
+                     save the window as FILE (.png) and exit
+  --help             this text
+
+controls: sliders for the TF window (centre and width, in data units);
+  keys 1 raw, 2 bone, 3 soft-tissue presets; + / - double or halve the points;
+  i inverts the display; p switches parallel / perspective; r resets the
+  camera; q quits.
 )";
 
 struct Options
@@ -173,7 +205,7 @@ Options Parse(int argc, char* argv[])
   }
   if (std::strcmp(argv[1], "render") != 0)
   {
-    Fail(std::string("unknown command '") + argv[1] + "' (try: mcxray render --help)");
+    Fail(std::string("unknown command '") + argv[1] + "' (expected render or view; try: mcxray render --help)");
   }
   for (int i = 2; i < argc; ++i)
   {
@@ -508,8 +540,168 @@ double Seconds(std::chrono::steady_clock::time_point since)
 }
 }
 
+int RunView(int argc, char* argv[])
+{
+  std::string input, screenshot;
+  mcxapp::ViewerOptions viewer;
+  long long samples = (1LL << 22) - 1;
+  std::string method = "hybrid", kernel = "tent";
+  int threads = 0;
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h")
+    {
+      std::printf("%s", ViewUsage);
+      return 0;
+    }
+    if (arg.rfind("--", 0) != 0)
+    {
+      if (!input.empty())
+      {
+        Fail("more than one input: '" + input + "' and '" + arg + "'");
+      }
+      input = arg;
+      continue;
+    }
+    if (i + 1 >= argc)
+    {
+      Fail("option " + arg + " needs a value");
+    }
+    const std::string value = argv[++i];
+    if (arg == "--tf")
+      viewer.TransferFunction = value;
+    else if (arg == "--samples")
+      samples = ParseInteger(value, arg, 1);
+    else if (arg == "--method")
+      method = value;
+    else if (arg == "--kernel")
+      kernel = value;
+    else if (arg == "--seed")
+      viewer.Seed = static_cast<unsigned long long>(ParseInteger(value, arg, 0));
+    else if (arg == "--threads")
+      threads = static_cast<int>(ParseInteger(value, arg, 1));
+    else if (arg == "--size")
+    {
+      const std::vector<std::string> parts = Split(value, 'x');
+      if (parts.size() != 2)
+      {
+        Fail("bad --size '" + value + "' (expected WxH, e.g. 768x768)");
+      }
+      viewer.Size[0] = static_cast<int>(ParseInteger(parts[0], arg, 16));
+      viewer.Size[1] = static_cast<int>(ParseInteger(parts[1], arg, 16));
+      if (viewer.Size[0] > 8192 || viewer.Size[1] > 8192)
+      {
+        Fail("--size is limited to 8192 pixels per side in the viewer");
+      }
+    }
+    else if (arg == "--screenshot")
+      screenshot = value;
+    else
+      Fail("unknown option " + arg + " (try: mcxray view --help)");
+  }
+  if (method != "hybrid" && method != "mc" && method != "qmc")
+  {
+    Fail("unknown --method '" + method + "' for view (expected hybrid, mc or qmc)");
+  }
+  if (kernel != "tent" && kernel != "box")
+  {
+    Fail("unknown --kernel '" + kernel + "' (expected tent or box)");
+  }
+  if (samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+  {
+    Fail("the viewer holds at most 2^30 - 1 points");
+  }
+  viewer.SampleExponent = static_cast<int>(mcx::ExponentForSampleCount(samples));
+  viewer.Strategy = method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
+    : method == "qmc"              ? vtkMCXPointSampler::QUASI_MONTE_CARLO
+                                   : vtkMCXPointSampler::HYBRID;
+  viewer.Kernel = kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
+  viewer.OffScreen = !screenshot.empty();
+  if (!screenshot.empty())
+  {
+    const std::string directory =
+      vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(screenshot));
+    if (vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(screenshot)) != ".png")
+    {
+      Fail("--screenshot writes .png, not '" + screenshot + "'");
+    }
+    if (!vtksys::SystemTools::FileIsDirectory(directory) || access(directory.c_str(), W_OK) != 0)
+    {
+      Fail("cannot write '" + screenshot + "': directory '" + directory + "' is missing or not writable");
+    }
+  }
+  {
+    const double probeRange[2] = { 0.0, 1.0 };
+    std::string tfError;
+    if (!mcxapp::MakeTransferFunction(viewer.TransferFunction, probeRange, tfError))
+    {
+      Fail(tfError);
+    }
+  }
+  if (threads > 0)
+  {
+    vtkSMPTools::Initialize(threads);
+  }
+  if (screenshot.empty() && !vtksys::SystemTools::GetEnv("DISPLAY"))
+  {
+    Fail("no display (DISPLAY is not set): use --screenshot FILE, or run under xvfb-run");
+  }
+  vtkNew<QuietOutputWindow> quiet;
+  vtkOutputWindow::SetInstance(quiet);
+  std::string error;
+  const std::string path = input.empty() ? mcxapp::BundledVolumePath() : input;
+  vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
+  if (!volume)
+  {
+    Fail(error);
+  }
+  mcxapp::XRayViewer view(volume, viewer);
+  if (!view.Error().empty())
+  {
+    Fail(view.Error());
+  }
+  MessageCapture messages;
+  messages.Watch(view.GetIndex());
+  messages.Watch(view.GetSampler());
+  ProgressBar progress;
+  view.GetIndex()->AddObserver(vtkCommand::ProgressEvent, progress.Command);
+  progress.Begin("index");
+  view.GetIndex()->Update();
+  progress.End();
+  if (!messages.Error.empty())
+  {
+    Fail(messages.Error);
+  }
+  if (screenshot.empty())
+  {
+    view.Start();
+    return 0;
+  }
+  const int renders = view.RefineUntilComplete();
+  if (!messages.Error.empty())
+  {
+    Fail(messages.Error);
+  }
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view.GetRenderWindow());
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  if (!mcxapp::WriteScreenshot(grab->GetOutput(), screenshot, error))
+  {
+    Fail(error);
+  }
+  std::cout << "view:        " << renders << " renders, " << view.OverlayText(false).substr(0, view.OverlayText(false).find('\n'))
+            << "\nscreenshot:  " << screenshot << std::endl;
+  return 0;
+}
+
 int main(int argc, char* argv[])
 {
+  if (argc >= 2 && std::strcmp(argv[1], "view") == 0)
+  {
+    return RunView(argc, argv);
+  }
   const Options options = Parse(argc, argv);
   vtkNew<QuietOutputWindow> quiet;
   vtkOutputWindow::SetInstance(quiet);
