@@ -272,6 +272,9 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     vtkErrorMacro("Cannot render this view: " << problem << ".");
     return;
   }
+  const double* windowCenter = camera->GetWindowCenter();
+  const bool unsupportedCamera = windowCenter[0] != 0 || windowCenter[1] != 0 ||
+    camera->GetUseOffAxisProjection() || camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0;
 
   double matrix[16];
   vtkMatrix4x4::DeepCopy(matrix, volume->GetMatrix());
@@ -312,6 +315,11 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     !std::equal(matrix, matrix + 16, in.Matrix) || depth != in.Depth;
   if (restart)
   {
+    if (unsupportedCamera)
+    {
+      vtkWarningMacro("Window centre, view shear and off-axis projection are ignored: the X-ray is "
+                      "drawn for the camera without them.");
+    }
     std::vector<double> limits;
     if (!depth.empty())
     {

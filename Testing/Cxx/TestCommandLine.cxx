@@ -33,13 +33,13 @@ std::string Slurp(const std::string& path)
   return text.str();
 }
 
-Result RunCLI(const std::string& arguments)
+Result RunCLI(const std::string& arguments, const std::string& environment = "")
 {
   // One log per test: ctest may run the tests of this file in parallel.
   const std::string log = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/mcxray-" +
     ::testing::UnitTest::GetInstance()->current_test_info()->name();
   const std::string command =
-    std::string(MCXRAY_CLI) + " " + arguments + " > " + log + ".out 2> " + log + ".err";
+    environment + std::string(MCXRAY_CLI) + " " + arguments + " > " + log + ".out 2> " + log + ".err";
   const int raw = std::system(command.c_str());
   return { WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, Slurp(log + ".out"), Slurp(log + ".err") };
 }
@@ -218,4 +218,38 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
   Result help = RunCLI("render --help");
   EXPECT_EQ(0, help.Status);
   EXPECT_NE(std::string::npos, help.Output.find("--pixel-spacing"));
+}
+
+TEST(CommandLine, ViewerBadInputGivesOneLineErrorAndNoOutput)
+{
+  const std::string output = Temporary("cli_view_never.png");
+  const char* cases[] = {
+    "view /nonexistent/volume.nii.gz --screenshot ",
+    "view --samples 0 --screenshot ",
+    "view --samples 2000000000 --screenshot ",
+    "view --method reference --screenshot ",
+    "view --kernel cubic --screenshot ",
+    "view --size 4x4 --screenshot ",
+    "view --tf 1:x --screenshot ",
+    "view --frames 3 --screenshot ",
+    "view --screenshot /nonexistent-dir/x.png --tf raw --seed ",
+  };
+  for (const char* arguments : cases)
+  {
+    Result r = RunCLI(std::string(arguments) + output);
+    EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
+    EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
+    EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
+    EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
+  }
+  Result jpeg = RunCLI("view --screenshot " + Temporary("cli_view.jpg"));
+  EXPECT_EQ(2, jpeg.Status);
+  EXPECT_NE(std::string::npos, jpeg.Errors.find(".png")) << jpeg.Errors;
+  // Without a display the interactive viewer says so instead of crashing.
+  Result headless = RunCLI("view", "env -u DISPLAY ");
+  EXPECT_EQ(2, headless.Status);
+  EXPECT_NE(std::string::npos, headless.Errors.find("no display")) << headless.Errors;
+  Result help = RunCLI("view --help");
+  EXPECT_EQ(0, help.Status);
+  EXPECT_NE(std::string::npos, help.Output.find("--screenshot"));
 }
