@@ -135,6 +135,29 @@ double DepthToDistance(float depth, bool perspective, double nearPlane, double f
   }
   return nearPlane + depth * (farPlane - nearPlane);
 }
+// The depth buffer of the viewport as drawn so far (the opaque geometry).
+std::vector<float> ReadDepth(vtkOpenGLRenderWindow* window, int x0, int y0, int width, int height)
+{
+  std::vector<float> depth(static_cast<std::size_t>(width) * height);
+  vtkOpenGLState* state = window->GetState();
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  if (samples > 0)
+  {
+    // The render window knows how to resolve its multisampled buffer.
+    vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+    window->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, depth.data());
+    return depth;
+  }
+  GLint drawFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+  state->PushReadFramebufferBinding();
+  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(drawFramebuffer));
+  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x0, y0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  state->PopReadFramebufferBinding();
+  return depth;
+}
 }
 
 struct vtkMCXXRayMapper::vtkInternals
@@ -148,7 +171,7 @@ struct vtkMCXXRayMapper::vtkInternals
   mcx::ProjectionGeometry Geometry;
   double Matrix[16] = { 0 };
   std::vector<float> Depth;
-  double SampleWeightTimesCount = 0.0; // the cloud's integral times |det| of the prop matrix
+  double ScaledIntegral = 0.0; // the cloud's integral times |det| of the prop matrix
   std::uint64_t NumberOfPoints = 0;
   bool AutomaticWindowPending = true;
   double AutomaticWindow = 1.0;
@@ -160,6 +183,121 @@ struct vtkMCXXRayMapper::vtkInternals
   std::uint64_t UploadedCount = 0;
   vtkSmartPointer<vtkTextureObject> Texture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+
+  double SampleWeight() const
+  {
+    const std::uint64_t count = this->Image.Count();
+    return count > 0 ? this->ScaledIntegral / static_cast<double>(count) : 0.0;
+  }
+
+  // The number of points the image should hold after this render: the next
+  // Halton prefix at least, then as many levels as the budget (seconds)
+  // affords, and at least `floor` points.
+  std::uint64_t RefinementTarget(double budget, double floor) const
+  {
+    const std::uint64_t current = this->Image.Count();
+    const double affordable = budget > 0 && std::isfinite(budget)
+      ? static_cast<double>(current) + budget / this->SecondsPerSample
+      : std::numeric_limits<double>::infinity();
+    std::uint64_t prefix = 2 * current + 1;
+    while (prefix < this->NumberOfPoints &&
+      (static_cast<double>(2 * prefix + 1) <= affordable || static_cast<double>(prefix) < floor))
+    {
+      prefix = 2 * prefix + 1;
+    }
+    return std::min(prefix, this->NumberOfPoints);
+  }
+
+  // Projects points up to `target` and updates the measured cost per point.
+  void Advance(vtkPoints* points, std::uint64_t target)
+  {
+    const std::uint64_t current = this->Image.Count();
+    const auto start = std::chrono::steady_clock::now();
+    if (points->GetDataType() == VTK_FLOAT)
+    {
+      this->Image.Advance(static_cast<const float*>(points->GetVoidPointer(0)), target);
+    }
+    else
+    {
+      this->Image.Advance(static_cast<const double*>(points->GetVoidPointer(0)), target);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::uint64_t added = target - current;
+    if (added >= 4096 && seconds > 0)
+    {
+      this->SecondsPerSample = 0.5 * (this->SecondsPerSample + seconds / static_cast<double>(added));
+    }
+  }
+
+  // Converts the sums to line integrals and uploads them as a float texture.
+  void Upload(vtkOpenGLRenderWindow* window, int width, int height)
+  {
+    this->Values.resize(this->Image.NumberOfPixels());
+    this->Image.ToValues(this->SampleWeight(), this->Values.data());
+    if (this->AutomaticWindowPending && this->Image.Count() > 0)
+    {
+      ChooseAutomaticWindow(this->Values, width, height, this->AutomaticWindow, this->AutomaticLevel);
+      this->AutomaticWindowPending = false;
+    }
+    if (!this->Texture || this->Texture->GetContext() != window)
+    {
+      this->Texture = vtkSmartPointer<vtkTextureObject>::New();
+      this->Texture->SetContext(window);
+      this->Texture->SetMinificationFilter(vtkTextureObject::Nearest);
+      this->Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+      this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
+      this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    }
+    this->Texture->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height), 1,
+      VTK_FLOAT, this->Values.data());
+    this->UploadedCount = this->Image.Count();
+  }
+
+  // Draws the texture over the viewport through the display shader; false
+  // if the shader cannot be built.
+  bool Draw(vtkOpenGLRenderWindow* window, double lowest, double inverseWindow, bool invert)
+  {
+    if (!this->Quad)
+    {
+      std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+      vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl", DisplayShaderDeclarations);
+      vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl", DisplayShaderBody);
+      this->Quad.reset(new vtkOpenGLQuadHelper(
+        window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fragment.c_str(), ""));
+    }
+    else
+    {
+      window->GetShaderCache()->ReadyShaderProgram(this->Quad->Program);
+    }
+    if (!this->Quad->Program)
+    {
+      return false;
+    }
+    vtkOpenGLState* state = window->GetState();
+    vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+    vtkOpenGLState::ScopedglDepthMask depthMask(state);
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(state);
+    state->vtkglDisable(GL_DEPTH_TEST);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    if (invert)
+    {
+      state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE); // dst * (1 - g)
+    }
+    else
+    {
+      state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE); // dst + g
+    }
+    this->Texture->Activate();
+    this->Quad->Program->SetUniformi("lineIntegrals", this->Texture->GetTextureUnit());
+    this->Quad->Program->SetUniformf("lowest", static_cast<float>(lowest));
+    this->Quad->Program->SetUniformf("inverseWindow", static_cast<float>(inverseWindow));
+    this->Quad->Program->SetUniformi("invert", invert ? 1 : 0);
+    this->Quad->Render();
+    this->Texture->Deactivate();
+    return true;
+  }
 };
 
 vtkMCXXRayMapper::vtkMCXXRayMapper()
@@ -210,8 +348,7 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   values->SetName("LineIntegral");
   values->SetNumberOfValues(static_cast<vtkIdType>(in.Image.NumberOfPixels()));
   const std::uint64_t count = in.Image.Count();
-  in.Image.ToValues(count > 0 ? in.SampleWeightTimesCount / static_cast<double>(count) : 0.0,
-    values->GetPointer(0));
+  in.Image.ToValues(in.SampleWeight(), values->GetPointer(0));
   output->GetPointData()->SetScalars(values);
   vtkNew<vtkDoubleArray> samples;
   samples->SetName("SampleCount");
@@ -227,10 +364,15 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
 {
   const auto start = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;
+  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("vtkMCXXRayMapper needs an OpenGL render window.");
+    return;
+  }
   int outputPort = 0;
-  vtkAlgorithm* producer = this->GetNumberOfInputConnections(0) > 0
-    ? this->GetInputAlgorithm(0, 0, outputPort)
-    : nullptr;
+  vtkAlgorithm* producer =
+    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputAlgorithm(0, 0, outputPort) : nullptr;
   if (!producer)
   {
     vtkErrorMacro("No input: connect a vtkMCXPointSampler.");
@@ -245,8 +387,6 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   vtkPoints* points = cloud->GetPoints();
-  const std::uint64_t numberOfPoints =
-    points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
   if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
   {
     vtkErrorMacro("Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
@@ -272,42 +412,15 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     vtkErrorMacro("Cannot render this view: " << problem << ".");
     return;
   }
-  const double* windowCenter = camera->GetWindowCenter();
-  const bool unsupportedCamera = windowCenter[0] != 0 || windowCenter[1] != 0 ||
-    camera->GetUseOffAxisProjection() || camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0;
-
   double matrix[16];
   vtkMatrix4x4::DeepCopy(matrix, volume->GetMatrix());
-  const double origin[3] = { matrix[3], matrix[7], matrix[11] };
-  const double linear[9] = { matrix[0], matrix[1], matrix[2], matrix[4], matrix[5], matrix[6],
-    matrix[8], matrix[9], matrix[10] };
 
   // Depth work only when something opaque can hide part of the volume.
-  std::vector<float> depth;
   this->LastRenderUsedDepth = HasOccluders(renderer, volume);
+  std::vector<float> depth;
   if (this->LastRenderUsedDepth)
   {
-    depth.resize(static_cast<std::size_t>(width) * height);
-    vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-    vtkOpenGLState* state = window->GetState();
-    GLint samples = 0;
-    glGetIntegerv(GL_SAMPLES, &samples);
-    if (samples > 0)
-    {
-      // The render window knows how to resolve its multisampled buffer.
-      vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
-      window->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, depth.data());
-    }
-    else
-    {
-      GLint drawFramebuffer = 0;
-      glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
-      state->PushReadFramebufferBinding();
-      state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(drawFramebuffer));
-      state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
-      glReadPixels(x0, y0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-      state->PopReadFramebufferBinding();
-    }
+    depth = ReadDepth(window, x0, y0, width, height);
   }
 
   const bool newInput = cloud != in.Cloud || cloud->GetMTime() != in.CloudTime;
@@ -315,21 +428,22 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     !std::equal(matrix, matrix + 16, in.Matrix) || depth != in.Depth;
   if (restart)
   {
-    if (unsupportedCamera)
+    const double* windowCenter = camera->GetWindowCenter();
+    if (windowCenter[0] != 0 || windowCenter[1] != 0 || camera->GetUseOffAxisProjection() ||
+      camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0)
     {
       vtkWarningMacro("Window centre, view shear and off-axis projection are ignored: the X-ray is "
                       "drawn for the camera without them.");
     }
-    std::vector<double> limits;
-    if (!depth.empty())
+    std::vector<double> limits(depth.size());
+    const double* range = camera->GetClippingRange();
+    for (std::size_t p = 0; p < depth.size(); ++p)
     {
-      const double* range = camera->GetClippingRange();
-      limits.resize(depth.size());
-      for (std::size_t p = 0; p < depth.size(); ++p)
-      {
-        limits[p] = DepthToDistance(depth[p], geometry.Perspective, range[0], range[1]);
-      }
+      limits[p] = DepthToDistance(depth[p], geometry.Perspective, range[0], range[1]);
     }
+    const double origin[3] = { matrix[3], matrix[7], matrix[11] };
+    const double linear[9] = { matrix[0], matrix[1], matrix[2], matrix[4], matrix[5], matrix[6], matrix[8],
+      matrix[9], matrix[10] };
     in.Image.Reset(geometry, origin, linear, std::move(limits));
     in.HasImage = true;
     in.Cloud = cloud;
@@ -337,54 +451,26 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     in.Geometry = geometry;
     std::copy(matrix, matrix + 16, in.Matrix);
     in.Depth = std::move(depth);
-    in.NumberOfPoints = numberOfPoints;
-    in.SampleWeightTimesCount =
-      integralArray->GetTuple1(0) * std::fabs(vtkMatrix4x4::Determinant(matrix));
+    in.NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
+    in.ScaledIntegral = integralArray->GetTuple1(0) * std::fabs(vtkMatrix4x4::Determinant(matrix));
     in.UploadedCount = std::numeric_limits<std::uint64_t>::max();
     in.AutomaticWindowPending = in.AutomaticWindowPending || newInput;
     ++this->NumberOfRestarts;
   }
 
-  // How many points this render adds: the largest Halton prefix that fits
-  // the time the renderer allocated to this prop.
-  const std::uint64_t current = in.Image.Count();
-  if (current < in.NumberOfPoints)
+  if (in.Image.Count() < in.NumberOfPoints)
   {
     std::uint64_t target = in.NumberOfPoints;
     if (this->ProgressiveRefinement)
     {
-      const double budget = volume->GetAllocatedRenderTime();
-      const double affordable = budget > 0 && std::isfinite(budget)
-        ? static_cast<double>(current) + budget / in.SecondsPerSample
-        : std::numeric_limits<double>::infinity();
       // The first image of a new input sets the automatic window: give it
       // enough points for a stable percentile (4 per pixel, 64 per block).
-      const double floor = std::max(static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
-        in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * width * height : 0.0);
-      std::uint64_t prefix = 2 * current + 1; // never less than the next level
-      while (prefix < in.NumberOfPoints &&
-        (static_cast<double>(2 * prefix + 1) <= affordable || static_cast<double>(prefix) < floor))
-      {
-        prefix = 2 * prefix + 1;
-      }
-      target = std::min(prefix, in.NumberOfPoints);
+      const double floor =
+        std::max(static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
+          in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * width * height : 0.0);
+      target = in.RefinementTarget(volume->GetAllocatedRenderTime(), floor);
     }
-    const auto projectionStart = std::chrono::steady_clock::now();
-    if (points->GetDataType() == VTK_FLOAT)
-    {
-      in.Image.Advance(static_cast<const float*>(points->GetVoidPointer(0)), target);
-    }
-    else
-    {
-      in.Image.Advance(static_cast<const double*>(points->GetVoidPointer(0)), target);
-    }
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - projectionStart).count();
-    const std::uint64_t added = target - current;
-    if (added >= 4096 && seconds > 0)
-    {
-      in.SecondsPerSample = 0.5 * (in.SecondsPerSample + seconds / static_cast<double>(added));
-    }
+    in.Advance(points, target);
     if (!restart)
     {
       ++this->NumberOfRefinements;
@@ -392,86 +478,22 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
 
   // Upload what changed; a display change only redraws.
-  const std::uint64_t count = in.Image.Count();
-  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window)
+  if (in.Image.Count() != in.UploadedCount || !in.Texture || in.Texture->GetContext() != window)
   {
-    vtkErrorMacro("vtkMCXXRayMapper needs an OpenGL render window.");
-    return;
-  }
-  if (count != in.UploadedCount || !in.Texture || in.Texture->GetContext() != window)
-  {
-    in.Values.resize(in.Image.NumberOfPixels());
-    in.Image.ToValues(
-      count > 0 ? in.SampleWeightTimesCount / static_cast<double>(count) : 0.0, in.Values.data());
-    if (in.AutomaticWindowPending && count > 0)
-    {
-      ChooseAutomaticWindow(in.Values, width, height, in.AutomaticWindow, in.AutomaticLevel);
-      in.AutomaticWindowPending = false;
-    }
-    if (!in.Texture || in.Texture->GetContext() != window)
-    {
-      in.Texture = vtkSmartPointer<vtkTextureObject>::New();
-      in.Texture->SetContext(window);
-    }
-    in.Texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    in.Texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    in.Texture->SetWrapT(vtkTextureObject::ClampToEdge);
-    in.Texture->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
-      1, VTK_FLOAT, in.Values.data());
-    in.UploadedCount = count;
+    in.Upload(window, width, height);
     ++this->NumberOfUploads;
   }
-
   this->DisplayedWindow = this->AutomaticWindowLevel ? in.AutomaticWindow : this->ColorWindow;
   this->DisplayedLevel = this->AutomaticWindowLevel ? in.AutomaticLevel : this->ColorLevel;
   const double lowest = this->DisplayedLevel - 0.5 * this->DisplayedWindow;
   const double inverseWindow =
     this->DisplayedWindow > 0 ? 1.0 / this->DisplayedWindow : std::numeric_limits<float>::max();
-
-  if (!in.Quad)
-  {
-    std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-    vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl", DisplayShaderDeclarations);
-    vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl", DisplayShaderBody);
-    in.Quad.reset(new vtkOpenGLQuadHelper(window,
-      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fragment.c_str(), ""));
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(in.Quad->Program);
-  }
-  if (!in.Quad->Program)
+  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay))
   {
     vtkErrorMacro("The X-ray display shader failed to compile.");
     return;
   }
-  vtkOpenGLState* state = window->GetState();
-  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
-  vtkOpenGLState::ScopedglDepthMask depthMask(state);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(state);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglEnable(GL_BLEND);
-  if (this->InvertDisplay)
-  {
-    state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
-  }
-  else
-  {
-    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-  }
-  in.Texture->Activate();
-  in.Quad->Program->SetUniformi("lineIntegrals", in.Texture->GetTextureUnit());
-  in.Quad->Program->SetUniformf("lowest", static_cast<float>(lowest));
-  in.Quad->Program->SetUniformf("inverseWindow", static_cast<float>(inverseWindow));
-  in.Quad->Program->SetUniformi("invert", this->InvertDisplay ? 1 : 0);
-  in.Quad->Render();
-  in.Texture->Deactivate();
   ++this->NumberOfDraws;
-
   this->TimeToDraw = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
