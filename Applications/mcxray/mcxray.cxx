@@ -182,6 +182,24 @@ std::vector<std::string> Split(const std::string& text, char separator)
   return parts;
 }
 
+// "WxH" with each side in [smallest, largest].
+void ParseSize(const std::string& text, int smallest, int largest, int size[2])
+{
+  const std::vector<std::string> parts = Split(text, 'x');
+  if (parts.size() != 2)
+  {
+    Fail("bad --size '" + text + "' (expected WxH, e.g. 512x512)");
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    size[k] = static_cast<int>(ParseInteger(parts[k], "--size", smallest));
+    if (size[k] > largest)
+    {
+      Fail("--size is limited to " + std::to_string(largest) + " pixels per side");
+    }
+  }
+}
+
 void ParseTriple(const std::string& text, double out[3], const std::string& what)
 {
   const std::vector<std::string> parts = Split(text, ',');
@@ -266,19 +284,7 @@ Options Parse(int argc, char* argv[])
     else if (arg == "--camera")
       options.Camera = value;
     else if (arg == "--size")
-    {
-      const std::vector<std::string> parts = Split(value, 'x');
-      if (parts.size() != 2)
-      {
-        Fail("bad --size '" + value + "' (expected WxH, e.g. 512x512)");
-      }
-      options.Size[0] = static_cast<int>(ParseInteger(parts[0], arg, 1));
-      options.Size[1] = static_cast<int>(ParseInteger(parts[1], arg, 1));
-      if (options.Size[0] > 65536 || options.Size[1] > 65536)
-      {
-        Fail("--size is limited to 65536 pixels per side");
-      }
-    }
+      ParseSize(value, 1, 65536, options.Size);
     else if (arg == "--pixel-spacing")
     {
       options.PixelSpacing = ParseNumber(value, arg);
@@ -582,19 +588,7 @@ int RunView(int argc, char* argv[])
     else if (arg == "--threads")
       threads = static_cast<int>(ParseInteger(value, arg, 1));
     else if (arg == "--size")
-    {
-      const std::vector<std::string> parts = Split(value, 'x');
-      if (parts.size() != 2)
-      {
-        Fail("bad --size '" + value + "' (expected WxH, e.g. 768x768)");
-      }
-      viewer.Size[0] = static_cast<int>(ParseInteger(parts[0], arg, 16));
-      viewer.Size[1] = static_cast<int>(ParseInteger(parts[1], arg, 16));
-      if (viewer.Size[0] > 8192 || viewer.Size[1] > 8192)
-      {
-        Fail("--size is limited to 8192 pixels per side in the viewer");
-      }
-    }
+      ParseSize(value, 16, 8192, viewer.Size);
     else if (arg == "--screenshot")
       screenshot = value;
     else

@@ -3,58 +3,25 @@
 // 4 M and 16 M points at 256^2 and 512^2 (each frame projects every point),
 // and the latency from a TF edit to the complete image of 4 M points. The
 // paper (one 2 GHz core, 256^2): 21.28, 5.32 and 1.39 fps; 2.28 s per TF edit.
-#include "vtkMCXDensityIndex.h"
-#include "vtkMCXPointSampler.h"
-#include "vtkMCXXRayMapper.h"
+#include "mcxHeadScene.h"
 
 #include "vtkCamera.h"
-#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkSmartPointer.h"
-#include "vtkVolume.h"
-#include "vtkXMLImageDataReader.h"
 
 #include <benchmark/benchmark.h>
 
 namespace
 {
-// The bundled CT head as a point cloud of 2^exponent - 1 points in an
-// off-screen window of size x size pixels.
-struct Scene
+// The head scene with every frame showing all points, framed by ResetCamera.
+struct Scene : mcxtest::HeadScene
 {
-  vtkNew<vtkXMLImageDataReader> Reader;
-  vtkNew<vtkMCXDensityIndex> Index;
-  vtkNew<vtkPiecewiseFunction> TransferFunction;
-  vtkNew<vtkMCXPointSampler> Sampler;
-  vtkNew<vtkMCXXRayMapper> Mapper;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkRenderWindow> Window;
-
   Scene(int exponent, int size, bool perspective)
+    : HeadScene(exponent, size, size)
   {
-    this->Reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
-    this->Index->SetInputConnection(this->Reader->GetOutputPort());
-    this->TransferFunction->AddPoint(400, 0);
-    this->TransferFunction->AddPoint(3926, 1);
-    this->Sampler->SetInputConnection(this->Index->GetOutputPort());
-    this->Sampler->SetTransferFunction(this->TransferFunction);
-    this->Sampler->SetSampleExponent(exponent);
-    this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
-    this->Mapper->ProgressiveRefinementOff(); // every frame shows all points
-    this->Volume->SetMapper(this->Mapper);
-    this->Renderer->AddVolume(this->Volume);
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetSize(size, size);
-    this->Window->AddRenderer(this->Renderer);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetFocalPoint(102, 102, 70);
-    camera->SetPosition(102, -500, 70);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetParallelProjection(!perspective);
+    this->Mapper->ProgressiveRefinementOff();
+    this->Renderer->GetActiveCamera()->SetParallelProjection(!perspective);
     this->Renderer->ResetCamera();
     this->Window->Render();
   }

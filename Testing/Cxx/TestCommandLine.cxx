@@ -59,6 +59,17 @@ std::string Temporary(const std::string& name)
   return path;
 }
 
+// Exit status 2, one line on stderr, nothing on stdout, no output file.
+void ExpectOneLineError(const std::string& arguments, const std::string& output)
+{
+  Result r = RunCLI(arguments);
+  EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
+  EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
+  EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
+  EXPECT_EQ("", r.Output) << arguments;
+  EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
+}
+
 std::string SharedData(const std::string& name)
 {
   return std::string(MCXRAY_SHARED_DATA_DIR) + "/" + name;
@@ -205,13 +216,7 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
   };
   for (const char* arguments : cases)
   {
-    Result r = RunCLI(std::string(arguments) + output);
-    EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
-    // One line on stderr, before any work is reported on stdout.
-    EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
-    EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
-    EXPECT_EQ("", r.Output) << arguments;
-    EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
+    ExpectOneLineError(std::string(arguments) + output, output);
   }
   Result r = RunCLI("render --output /nonexistent-dir/x.png");
   EXPECT_EQ(2, r.Status);
@@ -236,11 +241,7 @@ TEST(CommandLine, ViewerBadInputGivesOneLineErrorAndNoOutput)
   };
   for (const char* arguments : cases)
   {
-    Result r = RunCLI(std::string(arguments) + output);
-    EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
-    EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
-    EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
-    EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
+    ExpectOneLineError(std::string(arguments) + output, output);
   }
   Result jpeg = RunCLI("view --screenshot " + Temporary("cli_view.jpg"));
   EXPECT_EQ(2, jpeg.Status);

@@ -3,9 +3,8 @@
 // by prefixes without restarting, it recomputes only what a change calls for,
 // it culls samples behind opaque geometry only when there is some, and its
 // pictures match the baselines.
+#include "mcxHeadScene.h"
 #include "mcxTestHelpers.h"
-#include "vtkMCXDensityIndex.h"
-#include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
 #include "vtkMCXXRayMapper.h"
 
@@ -18,7 +17,6 @@
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -28,9 +26,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
-#include "vtkVolume.h"
 #include "vtkWindowToImageFilter.h"
-#include "vtkXMLImageDataReader.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
@@ -40,41 +36,12 @@
 
 namespace
 {
-// The bundled CT head (204 x 204 x 140 mm) as a point cloud in a render window.
-struct Scene
+// The bundled CT head (204 x 204 x 140 mm), with the checks the tests share.
+struct Scene : mcxtest::HeadScene
 {
-  vtkNew<vtkXMLImageDataReader> Reader;
-  vtkNew<vtkMCXDensityIndex> Index;
-  vtkNew<vtkPiecewiseFunction> TransferFunction;
-  vtkNew<vtkMCXPointSampler> Sampler;
-  vtkNew<vtkMCXXRayMapper> Mapper;
-  vtkNew<vtkVolume> Volume;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkRenderWindow> Window;
-
   explicit Scene(int exponent = 18, int width = 160, int height = 128)
+    : HeadScene(exponent, width, height)
   {
-    this->Reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
-    this->Index->SetInputConnection(this->Reader->GetOutputPort());
-    this->TransferFunction->AddPoint(400, 0);
-    this->TransferFunction->AddPoint(3926, 1);
-    this->Sampler->SetInputConnection(this->Index->GetOutputPort());
-    this->Sampler->SetTransferFunction(this->TransferFunction);
-    this->Sampler->SetSampleExponent(exponent);
-    this->Sampler->SetSeed(7);
-    this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
-    this->Volume->SetMapper(this->Mapper);
-    this->Renderer->AddVolume(this->Volume);
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetSize(width, height);
-    this->Window->AddRenderer(this->Renderer);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetFocalPoint(102, 102, 70);
-    camera->SetPosition(102, -500, 70);
-    camera->SetViewUp(0, 0, 1);
-    camera->SetParallelScale(90);
-    this->Renderer->ResetCameraClippingRange();
   }
 
   // The off-line projector's image of the first n points for the renderer's camera.
