@@ -1,6 +1,7 @@
 # Installs the build tree into a scratch prefix, then configures, builds and
 # runs a separate project that finds the package with find_package().
-# Arguments: BUILD_DIR, SOURCE_DIR, WORK_DIR.
+# Arguments: BUILD_DIR, SOURCE_DIR, WORK_DIR; with PYTHON and
+# PYTHON_DESTINATION, also imports the installed Python package.
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 function (run)
@@ -24,3 +25,8 @@ run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/Testing/Install/consumer" -B "${WORK_DI
   "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_BUILD_TYPE=Release)
 run("${CMAKE_COMMAND}" --build "${WORK_DIR}/consumer")
 run("${WORK_DIR}/consumer/consumer")
+run("${prefix}/bin/mcxray" --help)
+if (PYTHON)
+  set(ENV{PYTHONPATH} "${prefix}/${PYTHON_DESTINATION}")
+  run("${PYTHON}" "${SOURCE_DIR}/Testing/Install/check_python_package.py")
+endif ()

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""A digitally reconstructed radiograph (DRR) of a real CT, to PNG and NumPy.
+
+    python3 drr.py [VOLUME] [--output PREFIX] [--samples N] [--size N]
+
+VOLUME is a .vti or .nii/.nii.gz CT (default: the bundled CT head). Writes
+PREFIX.png (windowed 0..maximum) and PREFIX.npy (float64 line integrals of
+the TF, in TF units times mm, row 0 at the bottom), and prints what it made.
+"""
+import argparse
+import os
+import sys
+import time
+
+import numpy
+from vtkmodules.vtkImagingCore import vtkImageShiftScale
+from vtkmodules.vtkIOImage import vtkNIFTIImageReader, vtkPNGWriter
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+
+import mcxray
+
+BUNDLED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "Data", "ct_head_headsq.vti")
+
+
+def read_volume(path):
+    if path.endswith(".vti"):
+        reader = vtkXMLImageDataReader()
+    elif path.endswith(".nii") or path.endswith(".nii.gz"):
+        reader = vtkNIFTIImageReader()
+    else:
+        sys.exit("drr.py: error: expected a .vti or .nii/.nii.gz volume, not %r" % path)
+    if not os.path.isfile(path):
+        sys.exit("drr.py: error: no such file %r" % path)
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("volume", nargs="?", default=BUNDLED)
+    parser.add_argument("--output", default="drr")
+    parser.add_argument("--samples", type=int, default=(1 << 24) - 1)
+    parser.add_argument("--size", type=int, default=256)
+    args = parser.parse_args()
+
+    volume = read_volume(args.volume)
+    low, high = volume.GetScalarRange()
+    # Denser tissue weighs more: 0 at the darkest third of the range, rising to 1 at the top.
+    tf = vtkPiecewiseFunction()
+    tf.AddPoint(low + (high - low) / 3.0, 0.0)
+    tf.AddPoint(high, 1.0)
+
+    start = time.perf_counter()
+    index = mcxray.vtkMCXDensityIndex()
+    index.SetInputData(volume)
+    projector = mcxray.vtkMCXProjector()
+    projector.SetInputConnection(index.GetOutputPort())
+    projector.SetTransferFunction(tf)
+    projector.SetNumberOfSamples(args.samples)
+    projector.SetDetectorAxisU(1, 0, 0)  # a frontal view along +y, z up
+    projector.SetDetectorAxisV(0, 0, 1)
+    projector.SetImageSize(args.size, args.size)
+    projector.Update()
+    seconds = time.perf_counter() - start
+    image = projector.GetOutput()
+
+    values = mcxray.image_to_numpy(image)
+    numpy.save(args.output + ".npy", values)
+    window = vtkImageShiftScale()
+    window.SetInputData(image)
+    window.SetScale(255.0 / values.max() if values.max() > 0 else 1.0)
+    window.SetOutputScalarTypeToUnsignedChar()
+    window.ClampOverflowOn()
+    writer = vtkPNGWriter()
+    writer.SetInputConnection(window.GetOutputPort())
+    writer.SetFileName(args.output + ".png")
+    writer.Write()
+
+    fd = image.GetFieldData()
+    spacing = image.GetSpacing()
+    print("volume:    %s %s" % (args.volume, volume.GetDimensions()))
+    print("image:     %s, %.3f mm pixels, line integrals %.4g .. %.4g" % (values.shape, spacing[0], values.min(), values.max()))
+    print("samples:   %d in %.3f s, estimated relative error %.4f" % (
+        fd.GetArray("SampleCount").GetTuple1(0), seconds, fd.GetArray("EstimatedRelativeError").GetTuple1(0)))
+    integral = fd.GetArray("Integral").GetTuple1(0)
+    # The image covers the volume, so its values times the pixel area add up to the TF-weighted integral.
+    print("integral:  %.6g; image sum x pixel area / integral = %.6f" % (
+        integral, values.sum() * spacing[0] * spacing[1] / integral if integral > 0 else float("nan")))
+    print("wrote:     %s.png %s.npy" % (args.output, args.output))
+
+
+if __name__ == "__main__":
+    main()

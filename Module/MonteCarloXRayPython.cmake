@@ -1,0 +1,33 @@
+# The Python package `mcxray`: the module's classes wrapped by VTK's wrapper,
+# plus NumPy helpers in __init__.py. Importable by Debian's /usr/bin/python3
+# (with python3-vtk9) from the build tree (PYTHONPATH=<build>/${MCXRAY_PYTHON_DESTINATION})
+# and after `cmake --install` to a prefix whose dist-packages Python searches.
+vtk_module_python_default_destination(mcxray_python_default)
+if (EXISTS "/usr/lib/python3/dist-packages" AND DEFINED Python3_VERSION_MINOR)
+  # Debian's Python (the one VTK wraps for) searches
+  # <prefix>/lib/python3.X/dist-packages for /usr/local and other prefixes.
+  set(mcxray_python_default "lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages")
+endif ()
+set(MCXRAY_PYTHON_DESTINATION "${mcxray_python_default}"
+  CACHE STRING "Where the mcxray Python package goes, relative to the prefix")
+
+vtk_module_wrap_python(
+  MODULES             ${mcxray_modules}
+  TARGET              MonteCarloXRay::Python
+  INSTALL_EXPORT      MonteCarloXRayPython
+  PYTHON_PACKAGE      "mcxray"
+  MODULE_DESTINATION  "${MCXRAY_PYTHON_DESTINATION}"
+  CMAKE_DESTINATION   "${CMAKE_INSTALL_LIBDIR}/cmake/MonteCarloXRay"
+  LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
+  BUILD_STATIC        OFF
+  INSTALL_HEADERS     OFF)
+
+configure_file("${CMAKE_CURRENT_LIST_DIR}/Python/__init__.py.in"
+  "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py" @ONLY)
+install(FILES "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py"
+  DESTINATION "${MCXRAY_PYTHON_DESTINATION}/mcxray")
+
+# The extension module finds libMonteCarloXRay relative to itself once installed.
+file(RELATIVE_PATH mcxray_python_to_lib "/prefix/${MCXRAY_PYTHON_DESTINATION}/mcxray"
+  "/prefix/${CMAKE_INSTALL_LIBDIR}")
+set_target_properties(MonteCarloXRayPython PROPERTIES INSTALL_RPATH "$ORIGIN/${mcxray_python_to_lib}")
