@@ -92,9 +92,9 @@ public:
   ///@}
 
   ///@{
-  /** Seed of the pseudo-random parts (default 0). */
-  vtkSetMacro(Seed, vtkTypeUInt64);
-  vtkGetMacro(Seed, vtkTypeUInt64);
+  /** Seed of the pseudo-random parts, 0 to 2^63 - 1 (default 0). */
+  vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(Seed, vtkTypeInt64);
   ///@}
 
   ///@{
@@ -126,7 +126,7 @@ protected:
   int SampleExponent = 20;
   int Strategy = HYBRID;
   int Kernel = TENT;
-  vtkTypeUInt64 Seed = 0;
+  vtkTypeInt64 Seed = 0;
   int OutputPointsPrecision = SINGLE_PRECISION;
 
 private:

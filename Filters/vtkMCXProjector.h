@@ -51,8 +51,8 @@ public:
   vtkTypeInt64 GetNumberOfSamples();
   vtkSetClampMacro(Strategy, int, 0, 2);
   vtkGetMacro(Strategy, int);
-  vtkSetMacro(Seed, vtkTypeUInt64);
-  vtkGetMacro(Seed, vtkTypeUInt64);
+  vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(Seed, vtkTypeInt64);
   ///@}
 
   ///@{
@@ -82,7 +82,7 @@ protected:
 
   int SampleExponent = 24;
   int Strategy = 0;
-  vtkTypeUInt64 Seed = 0;
+  vtkTypeInt64 Seed = 0;
   double TargetRelativeError = 0.0;
   int TargetQuantizationLevels = 0;
   int MaximumSampleExponent = 30;

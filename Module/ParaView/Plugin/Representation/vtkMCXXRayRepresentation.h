@@ -1,0 +1,85 @@
+/**
+ * @class   vtkMCXXRayRepresentation
+ * @brief   ParaView's "Monte Carlo X-Ray" representation of image data.
+ *
+ * The data server builds the density index of the selected point array
+ * (vtkMCXDensityIndex) and delivers it, without the voxel values, to the
+ * rendering processes; there a vtkMCXPointSampler draws points under the
+ * scalar opacity function of the colour-map editor and a vtkMCXXRayMapper
+ * renders them in the view, refining progressively. An opacity edit
+ * re-samples only; it neither re-indexes nor re-delivers the data.
+ *
+ * X-ray images add up rather than depth-composite: several ranks are for a
+ * later version (each rank's image would be summed, not composited by depth).
+ */
+#ifndef vtkMCXXRayRepresentation_h
+#define vtkMCXXRayRepresentation_h
+
+#include "MonteCarloXRayParaViewModule.h" // for export macro
+#include "vtkNew.h"                        // for members
+#include "vtkPVDataRepresentation.h"
+#include "vtkSmartPointer.h" // for members
+
+class vtkImageData;
+class vtkMCXDensityIndex;
+class vtkMCXPointSampler;
+class vtkMCXXRayMapper;
+class vtkPiecewiseFunction;
+class vtkVolume;
+
+class MONTECARLOXRAYPARAVIEW_EXPORT vtkMCXXRayRepresentation : public vtkPVDataRepresentation
+{
+public:
+  static vtkMCXXRayRepresentation* New();
+  vtkTypeMacro(vtkMCXXRayRepresentation, vtkPVDataRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  int ProcessViewRequest(vtkInformationRequestKey* request, vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+  void SetVisibility(bool visible) override;
+
+  /** The TF from data values to g: the colour map's scalar opacity function. */
+  void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
+
+  ///@{
+  /** Forwarded to the sampler (see vtkMCXPointSampler). */
+  void SetSampleExponent(int exponent);
+  void SetStrategy(int strategy);
+  void SetKernel(int kernel);
+  void SetSeed(vtkTypeInt64 seed);
+  ///@}
+
+  ///@{
+  /** Forwarded to the mapper (see vtkMCXXRayMapper). */
+  void SetInvertDisplay(bool invert);
+  void SetAutomaticWindowLevel(bool automatic);
+  void SetColorWindow(double window);
+  void SetColorLevel(double level);
+  void SetProgressiveRefinement(bool progressive);
+  ///@}
+
+  /** The mapper, for tests and scripts. */
+  vtkMCXXRayMapper* GetMapper();
+
+protected:
+  vtkMCXXRayRepresentation();
+  ~vtkMCXXRayRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+  vtkNew<vtkMCXDensityIndex> Index;
+  vtkNew<vtkMCXPointSampler> Sampler;
+  vtkNew<vtkMCXXRayMapper> Mapper;
+  vtkNew<vtkVolume> Volume;
+  vtkSmartPointer<vtkImageData> DeliveredIndex;
+  double DataBounds[6];
+
+private:
+  vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
+  void operator=(const vtkMCXXRayRepresentation&) = delete;
+};
+
+#endif
