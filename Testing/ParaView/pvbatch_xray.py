@@ -34,7 +34,12 @@ projector = XRayProjector(Input=index)
 projector.TransferFunction.Points = [400.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
 projector.SampleExponent = 20
 projector.ImageSize = [128, 96]
+# Progress reaches ParaView through the algorithm's ProgressEvents.
+progress = []
+projector.GetClientSideObject().AddObserver(
+    "ProgressEvent", lambda caller, event: progress.append(caller.GetProgress()))
 image = servermanager.Fetch(projector)
+check(len(progress) >= 2 and progress[-1] == 1.0, "projector progress events %s" % progress[-3:])
 values = image.GetPointData().GetArray("LineIntegral")
 fd = image.GetFieldData()
 spacing = image.GetSpacing()
