@@ -1,7 +1,11 @@
 #include "mcxTransferFunctionSpec.h"
 
+#include "vtkMCXAttenuationFunction.h"
 #include "vtkPiecewiseFunction.h"
 
+#include "vtkNew.h"
+
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -14,7 +18,9 @@ const char* TransferFunctionPresetHelp()
 {
   return "raw (g = value - minimum: density above the darkest voxel), "
          "bone (CT in HU: 0 below 150 HU, rising to 1 at 700 HU and above), "
-         "soft-tissue (CT in HU: 1 from -50 to 150 HU, 0 below -200 and above 300)";
+         "soft-tissue (CT in HU: 1 from -50 to 150 HU, 0 below -200 and above 300), "
+         "mu or mu=MU_WATER (CT in HU to linear attenuation, mu = MU_WATER (1 + HU/1000) per world unit, "
+         "0 at air; default MU_WATER 0.02 per mm, water at about 70 keV)";
 }
 
 vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
@@ -42,6 +48,26 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     tf->AddPoint(300, 0);
     return tf;
   }
+  if (spec == "mu" || spec.rfind("mu=", 0) == 0)
+  {
+    vtkNew<vtkMCXAttenuationFunction> mu;
+    if (spec != "mu")
+    {
+      char* end = nullptr;
+      const std::string text = spec.substr(3);
+      const double water = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(water) || !(water > 0))
+      {
+        error = "bad --tf '" + spec + "' (expected mu=MU_WATER with a positive number, e.g. mu=0.02)";
+        return nullptr;
+      }
+      mu->SetWaterAttenuation(water);
+    }
+    // Exact over the whole data range (and at least the usual CT range).
+    mu->SetHounsfieldRange(std::min(-1024.0, dataRange[0]), std::max(3071.0, dataRange[1]));
+    tf->DeepCopy(mu);
+    return tf;
+  }
   std::stringstream items(spec);
   std::string item;
   int count = 0;
@@ -57,7 +83,7 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     if (colon == std::string::npos || valueText.empty() || weightText.empty() || *end1 != '\0' ||
       *end2 != '\0' || !std::isfinite(value) || !std::isfinite(weight))
     {
-      error = "bad --tf point '" + item + "' (expected value:weight with finite numbers, or a preset: raw, bone, soft-tissue)";
+      error = "bad --tf point '" + item + "' (expected value:weight with finite numbers, or a preset: raw, bone, soft-tissue, mu)";
       return nullptr;
     }
     tf->AddPoint(value, weight);

@@ -9,6 +9,8 @@
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
+#include "vtkMCXRadiograph.h"
+#include "vtkMCXRadiographGeometry.h"
 #include "vtkMCXReferenceProjector.h"
 
 #include "vtkCallbackCommand.h"
@@ -78,6 +80,21 @@ options:
                         vertical view angle), optionally followed by :near=D
                         (perspective: depth where integration starts; default
                         0.001 times the camera distance)
+  --sad MM, --sid MM, --detector WxH, --pitch MM, --gantry DEG, --isocenter X,Y,Z
+                        a cone-beam radiograph as radiographers give it (any one of
+                        these selects it): source-to-axis distance (default 1000),
+                        source-to-image distance (1500), detector pixels (512x512)
+                        and pitch (0.8), gantry angle (0: source on +x, turning
+                        about z), isocentre (default: the volume's centre). Image
+                        columns run along +y at angle 0, rows along +z, as in
+                        plastimatch drr; replaces --view, --camera, --size and
+                        --pixel-spacing
+  --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)
+  --i0 I                unattenuated intensity I0 (default 1)
+  --photons N           quantum noise: N photons reach an unattenuated pixel,
+                        counts are Poisson (implies --beer-lambert; default off)
+  --noise-seed N        seed of the noise (default 0)
+  --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
   --size WxH            image size in pixels (default: 512 along the longer side)
   --pixel-spacing S     pixel size in world units on the detector plane
   --output FILE         .vti (float64 LineIntegral with geometry), .png or .pfm
@@ -139,6 +156,21 @@ struct Options
   bool StoredPoints = false;
   double TargetError = 0.0;
   int QuantizationLevels = 0;
+  bool ViewGiven = false;
+  // Radiograph geometry and physics; each is off unless asked for.
+  bool Radiograph = false;
+  double SourceToAxis = 1000.0;
+  double SourceToImage = 1500.0;
+  int Detector[2] = { 512, 512 };
+  double Pitch = 0.8;
+  double Gantry = 0.0;
+  bool HasIsocenter = false;
+  double Isocenter[3] = { 0, 0, 0 };
+  bool BeerLambert = false;
+  double IncidentIntensity = 1.0;
+  double Photons = 0.0;
+  long long NoiseSeed = 0;
+  bool NegativeLog = false;
 };
 
 [[noreturn]] void Fail(const std::string& message)
@@ -243,6 +275,11 @@ Options Parse(int argc, char* argv[])
       options.StoredPoints = true;
       continue;
     }
+    if (arg == "--beer-lambert" || arg == "--negative-log")
+    {
+      (arg == "--beer-lambert" ? options.BeerLambert : options.NegativeLog) = true;
+      continue;
+    }
     if (arg.rfind("--", 0) != 0)
     {
       if (!options.Input.empty())
@@ -280,7 +317,54 @@ Options Parse(int argc, char* argv[])
     else if (arg == "--threads")
       options.Threads = static_cast<int>(ParseInteger(value, arg, 1));
     else if (arg == "--view")
+    {
       options.View = value;
+      options.ViewGiven = true;
+    }
+    else if (arg == "--sad" || arg == "--sid" || arg == "--pitch")
+    {
+      const double distance = ParseNumber(value, arg);
+      if (!(distance > 0))
+      {
+        Fail(arg + " must be positive");
+      }
+      (arg == "--sad" ? options.SourceToAxis : arg == "--sid" ? options.SourceToImage : options.Pitch) = distance;
+      options.Radiograph = true;
+    }
+    else if (arg == "--detector")
+    {
+      ParseSize(value, 1, 65536, options.Detector);
+      options.Radiograph = true;
+    }
+    else if (arg == "--gantry")
+    {
+      options.Gantry = ParseNumber(value, arg);
+      options.Radiograph = true;
+    }
+    else if (arg == "--isocenter")
+    {
+      ParseTriple(value, options.Isocenter, "isocenter");
+      options.HasIsocenter = true;
+      options.Radiograph = true;
+    }
+    else if (arg == "--i0")
+    {
+      options.IncidentIntensity = ParseNumber(value, arg);
+      if (!(options.IncidentIntensity > 0))
+      {
+        Fail("--i0 must be positive");
+      }
+    }
+    else if (arg == "--photons")
+    {
+      options.Photons = ParseNumber(value, arg);
+      if (!(options.Photons > 0) || options.Photons > 1e15)
+      {
+        Fail("--photons must lie in (0, 1e15]");
+      }
+    }
+    else if (arg == "--noise-seed")
+      options.NoiseSeed = ParseInteger(value, arg, 0);
     else if (arg == "--camera")
       options.Camera = value;
     else if (arg == "--size")
@@ -359,6 +443,12 @@ Options Parse(int argc, char* argv[])
   if (!mcxapp::IsSupportedOutput(options.Output))
   {
     Fail("unknown output format of '" + options.Output + "' (expected .vti, .png or .pfm)");
+  }
+  if (options.Radiograph &&
+    (!options.Camera.empty() || options.ViewGiven || options.Size[0] > 0 || options.PixelSpacing > 0))
+  {
+    Fail("the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter) replaces "
+         "--view, --camera, --size and --pixel-spacing");
   }
   return options;
 }
@@ -696,7 +786,7 @@ int main(int argc, char* argv[])
   {
     return RunView(argc, argv);
   }
-  const Options options = Parse(argc, argv);
+  Options options = Parse(argc, argv);
   vtkNew<QuietOutputWindow> quiet;
   vtkOutputWindow::SetInstance(quiet);
   if (options.Threads > 0)
@@ -755,6 +845,30 @@ int main(int argc, char* argv[])
     line << "input:       " << input << " (" << dims[0] << "x" << dims[1] << "x" << dims[2] << ", "
          << volume->GetPointData()->GetScalars()->GetDataTypeAsString() << ")  read " << Seconds(start) << " s";
     log(line.str());
+  }
+
+  if (options.Radiograph)
+  {
+    vtkNew<vtkMCXRadiographGeometry> radiograph;
+    radiograph->SetSourceToAxisDistance(options.SourceToAxis);
+    radiograph->SetSourceToImageDistance(options.SourceToImage);
+    radiograph->SetDetectorPixels(options.Detector[0], options.Detector[1]);
+    radiograph->SetPixelPitch(options.Pitch);
+    radiograph->SetGantryAngle(options.Gantry);
+    double bounds[6];
+    volume->GetBounds(bounds);
+    const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+    radiograph->SetIsocenter(options.HasIsocenter ? options.Isocenter : centre);
+    const std::string problem = radiograph->Validate();
+    if (!problem.empty())
+    {
+      Fail("bad radiograph geometry: " + problem);
+    }
+    camera = vtkSmartPointer<vtkCamera>::New();
+    radiograph->ConfigureCamera(camera);
+    options.Size[0] = options.Detector[0];
+    options.Size[1] = options.Detector[1];
+    options.PixelSpacing = radiograph->GetPixelSpacingAtIsocenter();
   }
 
   MessageCapture messages;
@@ -888,6 +1002,27 @@ int main(int argc, char* argv[])
              << image->GetSpacing()[1] << ", LineIntegral range " << image->GetPointData()->GetScalars()->GetRange()[0]
              << " .. " << image->GetPointData()->GetScalars()->GetRange()[1] << " (TF units x length)";
     log(geometry.str());
+  }
+
+  // Physics after accumulation, only what was asked for.
+  vtkNew<vtkMCXRadiograph> physics;
+  physics->SetBeerLambert(options.BeerLambert);
+  physics->SetIncidentIntensity(options.IncidentIntensity);
+  physics->SetPhotonsPerPixel(options.Photons);
+  physics->SetSeed(options.NoiseSeed);
+  physics->SetNegativeLog(options.NegativeLog);
+  if (physics->HasEffects())
+  {
+    physics->SetInputData(image);
+    start = std::chrono::steady_clock::now();
+    physics->Update();
+    image = physics->GetOutput();
+    std::ostringstream line;
+    line << "radiograph:  " << Seconds(start) << " s (" << (options.NegativeLog ? "-ln(I/I0)" : "I = I0 exp(-line integral)")
+         << (options.Photons > 0 ? ", Poisson noise of " + std::to_string(options.Photons) + " photons per pixel" : "")
+         << "), range " << image->GetPointData()->GetScalars()->GetRange()[0] << " .. "
+         << image->GetPointData()->GetScalars()->GetRange()[1];
+    log(line.str());
   }
 
   start = std::chrono::steady_clock::now();

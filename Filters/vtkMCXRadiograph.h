@@ -1,0 +1,86 @@
+/**
+ * @class   vtkMCXRadiograph
+ * @brief   X-ray physics applied after accumulation: Beer-Lambert
+ *          attenuation, quantum (Poisson) noise and the negative-log image.
+ *
+ * The input is a projector's image whose "LineIntegral" is the integral of
+ * the linear attenuation coefficient mu along each ray (use
+ * vtkMCXAttenuationFunction as the transfer function, mu per world unit).
+ * Each effect is off unless asked for, and costs only its own work:
+ * - nothing on: the input passes through unchanged (shallow copy);
+ * - BeerLambert: point data "Intensity" = I0 exp(-LineIntegral);
+ * - PhotonsPerPixel N > 0 (implies Beer-Lambert): the detector counts
+ *   k ~ Poisson(N exp(-LineIntegral)) photons and Intensity = I0 k / N;
+ *   the noise is seeded (Seed), the same for any number of threads;
+ * - NegativeLog: point data "Attenuation" = -ln(Intensity / I0), the display
+ *   radiologists read (dense is bright); without noise it equals the line
+ *   integral. A pixel that counted no photons is given half a photon.
+ * The input's arrays and field data are kept; the new array is the active
+ * scalars.
+ */
+#ifndef vtkMCXRadiograph_h
+#define vtkMCXRadiograph_h
+
+#include "MonteCarloXRayModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class MONTECARLOXRAY_EXPORT vtkMCXRadiograph : public vtkImageAlgorithm
+{
+public:
+  static vtkMCXRadiograph* New();
+  vtkTypeMacro(vtkMCXRadiograph, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Attenuate: Intensity = I0 exp(-line integral) (default off). */
+  vtkSetMacro(BeerLambert, bool);
+  vtkGetMacro(BeerLambert, bool);
+  vtkBooleanMacro(BeerLambert, bool);
+  ///@}
+
+  ///@{
+  /** I0, the unattenuated intensity (default 1). */
+  vtkSetClampMacro(IncidentIntensity, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(IncidentIntensity, double);
+  ///@}
+
+  ///@{
+  /** Photons reaching an unattenuated pixel; 0 (default) means no noise. */
+  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, 1e15);
+  vtkGetMacro(PhotonsPerPixel, double);
+  ///@}
+
+  ///@{
+  /** Seed of the noise, 0 to 2^63 - 1 (default 0). */
+  vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(Seed, vtkTypeInt64);
+  ///@}
+
+  ///@{
+  /** Output -ln(I / I0) as "Attenuation" (default off). */
+  vtkSetMacro(NegativeLog, bool);
+  vtkGetMacro(NegativeLog, bool);
+  vtkBooleanMacro(NegativeLog, bool);
+  ///@}
+
+  /** True when some effect is on (else the filter passes its input through). */
+  bool HasEffects() const;
+
+protected:
+  vtkMCXRadiograph() = default;
+  ~vtkMCXRadiograph() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  bool BeerLambert = false;
+  double IncidentIntensity = 1.0;
+  double PhotonsPerPixel = 0.0;
+  vtkTypeInt64 Seed = 0;
+  bool NegativeLog = false;
+
+private:
+  vtkMCXRadiograph(const vtkMCXRadiograph&) = delete;
+  void operator=(const vtkMCXRadiograph&) = delete;
+};
+
+#endif

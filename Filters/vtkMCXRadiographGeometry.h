@@ -1,0 +1,96 @@
+/**
+ * @class   vtkMCXRadiographGeometry
+ * @brief   A cone-beam view as radiographers give it: source-to-axis and
+ *          source-to-image distances, detector pixels and pitch, gantry
+ *          angle and isocentre (the parameters of plastimatch drr).
+ *
+ * The source turns about the z axis through the isocentre: at gantry angle
+ * a (degrees) it sits at isocentre + SAD (cos a, sin a, 0) and looks at the
+ * isocentre; the flat detector lies SID from the source, beyond it, with
+ * rows along +z (image row 0 at the bottom) and columns along
+ * direction-of-projection x z (+y at angle 0), as plastimatch lays out its
+ * images. ConfigureCamera() gives the vtkCamera of that view (for
+ * vtkMCXProjector, vtkMCXReferenceProjector, or a renderer with the mapper);
+ * the projectors then take GetDetectorPixels() as ImageSize and
+ * GetPixelSpacingAtIsocenter() as PixelSpacing, so that their pixels are the
+ * detector's. Pixel values stay line integrals along the rays.
+ */
+#ifndef vtkMCXRadiographGeometry_h
+#define vtkMCXRadiographGeometry_h
+
+#include "MonteCarloXRayModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <string> // for Validate
+
+class vtkCamera;
+
+class MONTECARLOXRAY_EXPORT vtkMCXRadiographGeometry : public vtkObject
+{
+public:
+  static vtkMCXRadiographGeometry* New();
+  vtkTypeMacro(vtkMCXRadiographGeometry, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Source-to-axis (isocentre) distance, world units (default 1000). */
+  vtkSetMacro(SourceToAxisDistance, double);
+  vtkGetMacro(SourceToAxisDistance, double);
+  ///@}
+
+  ///@{
+  /** Source-to-image (detector) distance, world units (default 1500). */
+  vtkSetMacro(SourceToImageDistance, double);
+  vtkGetMacro(SourceToImageDistance, double);
+  ///@}
+
+  ///@{
+  /** Detector size in pixels, columns x rows (default 512 x 512). */
+  vtkSetVector2Macro(DetectorPixels, int);
+  vtkGetVector2Macro(DetectorPixels, int);
+  ///@}
+
+  ///@{
+  /** Detector pixel pitch, world units (default 0.8). */
+  vtkSetMacro(PixelPitch, double);
+  vtkGetMacro(PixelPitch, double);
+  ///@}
+
+  ///@{
+  /** Gantry angle in degrees (default 0: source on +x). */
+  vtkSetMacro(GantryAngle, double);
+  vtkGetMacro(GantryAngle, double);
+  ///@}
+
+  ///@{
+  /** Isocentre, world coordinates (default 0, 0, 0). */
+  vtkSetVector3Macro(Isocenter, double);
+  vtkGetVector3Macro(Isocenter, double);
+  ///@}
+
+  /** Why the geometry is unusable, or "" when it is usable. */
+  std::string Validate() const;
+
+  /** Sets position, focal point, view-up, view angle and clipping range. */
+  void ConfigureCamera(vtkCamera* camera) const;
+
+  /** Pixel pitch scaled to the isocentre plane: PixelPitch SAD / SID. */
+  double GetPixelSpacingAtIsocenter() const;
+
+protected:
+  vtkMCXRadiographGeometry() = default;
+  ~vtkMCXRadiographGeometry() override = default;
+
+  double SourceToAxisDistance = 1000.0;
+  double SourceToImageDistance = 1500.0;
+  int DetectorPixels[2] = { 512, 512 };
+  double PixelPitch = 0.8;
+  double GantryAngle = 0.0;
+  double Isocenter[3] = { 0.0, 0.0, 0.0 };
+
+private:
+  vtkMCXRadiographGeometry(const vtkMCXRadiographGeometry&) = delete;
+  void operator=(const vtkMCXRadiographGeometry&) = delete;
+};
+
+#endif
