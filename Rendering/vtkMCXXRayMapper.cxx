@@ -2,6 +2,7 @@
 
 #include "mcxCameraGeometry.h"
 #include "mcxProgressiveImage.h"
+#include "mcxRadiographEffects.h"
 #include "mcxHalton.h"
 
 #include "vtkCamera.h"
@@ -23,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -181,6 +183,7 @@ struct vtkMCXXRayMapper::vtkInternals
 
   std::vector<float> Values;
   std::uint64_t UploadedCount = 0;
+  mcx::RadiographEffects Effects; // what the uploaded values went through
   vtkSmartPointer<vtkTextureObject> Texture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
 
@@ -229,11 +232,24 @@ struct vtkMCXXRayMapper::vtkInternals
     }
   }
 
-  // Converts the sums to line integrals and uploads them as a float texture.
+  // Converts the sums to line integrals, applies the radiograph physics
+  // asked for, and uploads the values as a float texture.
   void Upload(vtkOpenGLRenderWindow* window, int width, int height)
   {
     this->Values.resize(this->Image.NumberOfPixels());
     this->Image.ToValues(this->SampleWeight(), this->Values.data());
+    if (this->Effects.Any())
+    {
+      const mcx::RadiographEffects effects = this->Effects;
+      const std::uint64_t seedKey = mcx::SeedKey(effects.Seed);
+      float* values = this->Values.data();
+      vtkSMPTools::For(0, static_cast<vtkIdType>(this->Values.size()), 4096, [&](vtkIdType b, vtkIdType e) {
+        for (vtkIdType p = b; p < e; ++p)
+        {
+          values[p] = static_cast<float>(effects.Apply(values[p], static_cast<std::uint64_t>(p), seedKey));
+        }
+      });
+    }
     if (this->AutomaticWindowPending && this->Image.Count() > 0)
     {
       ChooseAutomaticWindow(this->Values, width, height, this->AutomaticWindow, this->AutomaticLevel);
@@ -478,7 +494,22 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
 
   // Upload what changed; a display change only redraws.
-  if (in.Image.Count() != in.UploadedCount || !in.Texture || in.Texture->GetContext() != window)
+  mcx::RadiographEffects effects;
+  effects.BeerLambert = this->BeerLambert || this->PhotonsPerPixel > 0;
+  effects.IncidentIntensity = this->IncidentIntensity;
+  effects.PhotonsPerPixel = this->PhotonsPerPixel;
+  effects.Seed = static_cast<std::uint64_t>(this->NoiseSeed);
+  effects.NegativeLog = this->NegativeLog;
+  const bool newEffects = effects.BeerLambert != in.Effects.BeerLambert ||
+    effects.IncidentIntensity != in.Effects.IncidentIntensity ||
+    effects.PhotonsPerPixel != in.Effects.PhotonsPerPixel || effects.Seed != in.Effects.Seed ||
+    effects.NegativeLog != in.Effects.NegativeLog;
+  if (newEffects)
+  {
+    in.Effects = effects;
+    in.AutomaticWindowPending = true; // other quantity, other scale
+  }
+  if (newEffects || in.Image.Count() != in.UploadedCount || !in.Texture || in.Texture->GetContext() != window)
   {
     in.Upload(window, width, height);
     ++this->NumberOfUploads;
@@ -520,6 +551,11 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorLevel: " << this->ColorLevel << "\n";
   os << indent << "AutomaticWindowLevel: " << this->AutomaticWindowLevel << "\n";
   os << indent << "InvertDisplay: " << this->InvertDisplay << "\n";
+  os << indent << "BeerLambert: " << this->BeerLambert << "\n";
+  os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";
+  os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";
+  os << indent << "NoiseSeed: " << this->NoiseSeed << "\n";
+  os << indent << "NegativeLog: " << this->NegativeLog << "\n";
   os << indent << "ProgressiveRefinement: " << this->ProgressiveRefinement << "\n";
   os << indent << "InitialSampleExponent: " << this->InitialSampleExponent << "\n";
   os << indent << "NumberOfAccumulatedSamples: " << this->GetNumberOfAccumulatedSamples() << "\n";

@@ -90,6 +90,28 @@ public:
 
   ///@{
   /**
+   * Radiograph physics on the accumulated image, as vtkMCXRadiograph applies
+   * it off line (use vtkMCXAttenuationFunction as the TF): BeerLambert shows
+   * I0 exp(-line integral); PhotonsPerPixel > 0 adds seeded Poisson noise;
+   * NegativeLog shows -ln(I / I0). All off by default; a change re-maps the
+   * buffer, it does not re-project.
+   */
+  vtkSetMacro(BeerLambert, bool);
+  vtkGetMacro(BeerLambert, bool);
+  vtkBooleanMacro(BeerLambert, bool);
+  vtkSetClampMacro(IncidentIntensity, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(IncidentIntensity, double);
+  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, 1e15);
+  vtkGetMacro(PhotonsPerPixel, double);
+  vtkSetClampMacro(NoiseSeed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(NoiseSeed, vtkTypeInt64);
+  vtkSetMacro(NegativeLog, bool);
+  vtkGetMacro(NegativeLog, bool);
+  vtkBooleanMacro(NegativeLog, bool);
+  ///@}
+
+  ///@{
+  /**
    * Refine over several renders (default on). Off: every render that needs a
    * new image projects all points at once.
    */
@@ -124,7 +146,8 @@ public:
    * The image on screen in physical units: a 2D image laid out like
    * vtkMCXProjector's output (point data "LineIntegral", float64; pixel (0, 0)
    * at the viewport's lower left), with field data SampleCount and
-   * EstimatedRelativeError. Empty before the first render.
+   * EstimatedRelativeError; radiograph physics, when on, is not applied to
+   * it (pass it through vtkMCXRadiograph). Empty before the first render.
    */
   void GetLineIntegralImage(vtkImageData* output);
 
@@ -157,6 +180,11 @@ protected:
   double DisplayedWindow = 1.0;
   double DisplayedLevel = 0.5;
   bool InvertDisplay = false;
+  bool BeerLambert = false;
+  double IncidentIntensity = 1.0;
+  double PhotonsPerPixel = 0.0;
+  vtkTypeInt64 NoiseSeed = 0;
+  bool NegativeLog = false;
   bool ProgressiveRefinement = true;
   int InitialSampleExponent = 14;
   vtkTypeInt64 NumberOfRestarts = 0;

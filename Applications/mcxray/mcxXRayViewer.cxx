@@ -36,8 +36,8 @@ namespace
 constexpr double InteractiveRate = 30.0;
 constexpr int MaximumViewerExponent = 28;
 
-const char* const KeyHelp = "keys: 1 raw, 2 bone, 3 soft tissue, +/- points, i invert, p projection, "
-                            "r reset camera, q quit";
+const char* const KeyHelp = "keys: 1 raw, 2 bone, 3 soft tissue, +/- points, i invert, b Beer-Lambert, "
+                            "p projection, r reset camera, q quit";
 
 std::string Thousands(long long n)
 {
@@ -216,7 +216,9 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
       0.5 * mapper->GetDisplayedWindow()
        << " .. " << mapper->GetDisplayedLevel() + 0.5 * mapper->GetDisplayedWindow() << " (TF x length)   "
        << (this->Renderer->GetActiveCamera()->GetParallelProjection() ? "parallel" : "perspective")
-       << (mapper->GetInvertDisplay() ? ", inverted" : "") << "\n"
+       << (mapper->GetInvertDisplay() ? ", inverted" : "")
+       << (mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 ? ", Beer-Lambert" : "")
+       << (mapper->GetPhotonsPerPixel() > 0 ? ", Poisson noise" : "") << (mapper->GetNegativeLog() ? ", -ln" : "") << "\n"
        << KeyHelp;
   return text.str();
 }
@@ -275,6 +277,9 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
       viewer->Mapper->SetInvertDisplay(!viewer->Mapper->GetInvertDisplay());
       viewer->Renderer->SetBackground(viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0,
         viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0, viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0);
+      break;
+    case 'b':
+      viewer->Mapper->SetBeerLambert(!viewer->Mapper->GetBeerLambert());
       break;
     case 'p':
     {

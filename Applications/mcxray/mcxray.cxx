@@ -12,6 +12,7 @@
 #include "vtkMCXRadiograph.h"
 #include "vtkMCXRadiographGeometry.h"
 #include "vtkMCXReferenceProjector.h"
+#include "vtkMCXXRayMapper.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -27,6 +28,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkSMPTools.h"
 #include "vtksys/SystemTools.hxx"
@@ -126,52 +128,21 @@ options:
   --seed N           seed of the pseudo-random parts (default 0)
   --threads N        worker threads (default: all cores)
   --size WxH         window size (default 768x768)
+  --sad, --sid, --detector, --pitch, --gantry, --isocenter
+                     a cone-beam radiograph view as for mcxray render (the
+                     detector's pixels become the window)
+  --beer-lambert, --i0 I, --photons N, --noise-seed N, --negative-log
+                     radiograph physics as for mcxray render (with --tf mu)
   --screenshot FILE  no window: render off screen until all points count,
                      save the window as FILE (.png) and exit
   --help             this text
 
 controls: sliders for the TF window (centre and width, in data units);
   keys 1 raw, 2 bone, 3 soft-tissue presets; + / - double or halve the points;
-  i inverts the display; p switches parallel / perspective; r resets the
-  camera; q quits.
+  i inverts the display; b switches Beer-Lambert intensity on and off;
+  p switches parallel / perspective; r resets the camera; q quits.
 )";
 
-struct Options
-{
-  std::string Input;
-  std::string TF = "raw";
-  long long Samples = 16777215;
-  std::string Method = "hybrid";
-  std::string Kernel = "tent";
-  unsigned long long Seed = 0;
-  int Threads = 0;
-  std::string View = "+z";
-  std::string Camera;
-  int Size[2] = { 0, 0 };
-  double PixelSpacing = 0.0;
-  std::string Output = "mcxray.png";
-  mcxapp::PngWindow Window;
-  double Tolerance = 1e-3;
-  bool Quiet = false;
-  bool StoredPoints = false;
-  double TargetError = 0.0;
-  int QuantizationLevels = 0;
-  bool ViewGiven = false;
-  // Radiograph geometry and physics; each is off unless asked for.
-  bool Radiograph = false;
-  double SourceToAxis = 1000.0;
-  double SourceToImage = 1500.0;
-  int Detector[2] = { 512, 512 };
-  double Pitch = 0.8;
-  double Gantry = 0.0;
-  bool HasIsocenter = false;
-  double Isocenter[3] = { 0, 0, 0 };
-  bool BeerLambert = false;
-  double IncidentIntensity = 1.0;
-  double Photons = 0.0;
-  long long NoiseSeed = 0;
-  bool NegativeLog = false;
-};
 
 [[noreturn]] void Fail(const std::string& message)
 {
@@ -245,6 +216,142 @@ void ParseTriple(const std::string& text, double out[3], const std::string& what
   }
 }
 
+// The radiograph geometry and physics options, shared by render and view;
+// each is off unless asked for.
+struct RadiographOptions
+{
+  bool Geometry = false; // any of --sad, --sid, --detector, --pitch, --gantry, --isocenter
+  double SourceToAxis = 1000.0;
+  double SourceToImage = 1500.0;
+  int Detector[2] = { 512, 512 };
+  double Pitch = 0.8;
+  double Gantry = 0.0;
+  bool HasIsocenter = false;
+  double Isocenter[3] = { 0, 0, 0 };
+  bool BeerLambert = false;
+  double IncidentIntensity = 1.0;
+  double Photons = 0.0;
+  long long NoiseSeed = 0;
+  bool NegativeLog = false;
+
+  bool ParseFlag(const std::string& arg)
+  {
+    if (arg == "--beer-lambert" || arg == "--negative-log")
+    {
+      (arg == "--beer-lambert" ? this->BeerLambert : this->NegativeLog) = true;
+      return true;
+    }
+    return false;
+  }
+
+  bool ParseOption(const std::string& arg, const std::string& value)
+  {
+    if (arg == "--sad" || arg == "--sid" || arg == "--pitch")
+    {
+      const double distance = ParseNumber(value, arg);
+      if (!(distance > 0))
+      {
+        Fail(arg + " must be positive");
+      }
+      (arg == "--sad" ? this->SourceToAxis : arg == "--sid" ? this->SourceToImage : this->Pitch) = distance;
+      this->Geometry = true;
+    }
+    else if (arg == "--detector")
+    {
+      ParseSize(value, 1, 65536, this->Detector);
+      this->Geometry = true;
+    }
+    else if (arg == "--gantry")
+    {
+      this->Gantry = ParseNumber(value, arg);
+      this->Geometry = true;
+    }
+    else if (arg == "--isocenter")
+    {
+      ParseTriple(value, this->Isocenter, "isocenter");
+      this->HasIsocenter = true;
+      this->Geometry = true;
+    }
+    else if (arg == "--i0")
+    {
+      this->IncidentIntensity = ParseNumber(value, arg);
+      if (!(this->IncidentIntensity > 0))
+      {
+        Fail("--i0 must be positive");
+      }
+    }
+    else if (arg == "--photons")
+    {
+      this->Photons = ParseNumber(value, arg);
+      if (!(this->Photons > 0) || this->Photons > 1e15)
+      {
+        Fail("--photons must lie in (0, 1e15]");
+      }
+    }
+    else if (arg == "--noise-seed")
+    {
+      this->NoiseSeed = ParseInteger(value, arg, 0);
+    }
+    else
+    {
+      return false;
+    }
+    return true;
+  }
+
+  /// The camera of the radiograph geometry (isocentre: the volume's centre
+  /// unless given); sets the image size and the pixel spacing to the detector's.
+  vtkSmartPointer<vtkCamera> MakeCamera(vtkImageData* volume, int size[2], double& spacing) const
+  {
+    vtkNew<vtkMCXRadiographGeometry> radiograph;
+    radiograph->SetSourceToAxisDistance(this->SourceToAxis);
+    radiograph->SetSourceToImageDistance(this->SourceToImage);
+    radiograph->SetDetectorPixels(this->Detector[0], this->Detector[1]);
+    radiograph->SetPixelPitch(this->Pitch);
+    radiograph->SetGantryAngle(this->Gantry);
+    double bounds[6];
+    volume->GetBounds(bounds);
+    const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+    radiograph->SetIsocenter(this->HasIsocenter ? this->Isocenter : centre);
+    const std::string problem = radiograph->Validate();
+    if (!problem.empty())
+    {
+      Fail("bad radiograph geometry: " + problem);
+    }
+    auto camera = vtkSmartPointer<vtkCamera>::New();
+    radiograph->ConfigureCamera(camera);
+    size[0] = this->Detector[0];
+    size[1] = this->Detector[1];
+    spacing = radiograph->GetPixelSpacingAtIsocenter();
+    return camera;
+  }
+};
+
+struct Options
+{
+  std::string Input;
+  std::string TF = "raw";
+  long long Samples = 16777215;
+  std::string Method = "hybrid";
+  std::string Kernel = "tent";
+  unsigned long long Seed = 0;
+  int Threads = 0;
+  std::string View = "+z";
+  std::string Camera;
+  int Size[2] = { 0, 0 };
+  double PixelSpacing = 0.0;
+  std::string Output = "mcxray.png";
+  mcxapp::PngWindow Window;
+  double Tolerance = 1e-3;
+  bool Quiet = false;
+  bool StoredPoints = false;
+  double TargetError = 0.0;
+  int QuantizationLevels = 0;
+  bool ViewGiven = false;
+  RadiographOptions Physics;
+};
+
+
 Options Parse(int argc, char* argv[])
 {
   Options options;
@@ -275,9 +382,8 @@ Options Parse(int argc, char* argv[])
       options.StoredPoints = true;
       continue;
     }
-    if (arg == "--beer-lambert" || arg == "--negative-log")
+    if (options.Physics.ParseFlag(arg))
     {
-      (arg == "--beer-lambert" ? options.BeerLambert : options.NegativeLog) = true;
       continue;
     }
     if (arg.rfind("--", 0) != 0)
@@ -321,50 +427,9 @@ Options Parse(int argc, char* argv[])
       options.View = value;
       options.ViewGiven = true;
     }
-    else if (arg == "--sad" || arg == "--sid" || arg == "--pitch")
+    else if (options.Physics.ParseOption(arg, value))
     {
-      const double distance = ParseNumber(value, arg);
-      if (!(distance > 0))
-      {
-        Fail(arg + " must be positive");
-      }
-      (arg == "--sad" ? options.SourceToAxis : arg == "--sid" ? options.SourceToImage : options.Pitch) = distance;
-      options.Radiograph = true;
     }
-    else if (arg == "--detector")
-    {
-      ParseSize(value, 1, 65536, options.Detector);
-      options.Radiograph = true;
-    }
-    else if (arg == "--gantry")
-    {
-      options.Gantry = ParseNumber(value, arg);
-      options.Radiograph = true;
-    }
-    else if (arg == "--isocenter")
-    {
-      ParseTriple(value, options.Isocenter, "isocenter");
-      options.HasIsocenter = true;
-      options.Radiograph = true;
-    }
-    else if (arg == "--i0")
-    {
-      options.IncidentIntensity = ParseNumber(value, arg);
-      if (!(options.IncidentIntensity > 0))
-      {
-        Fail("--i0 must be positive");
-      }
-    }
-    else if (arg == "--photons")
-    {
-      options.Photons = ParseNumber(value, arg);
-      if (!(options.Photons > 0) || options.Photons > 1e15)
-      {
-        Fail("--photons must lie in (0, 1e15]");
-      }
-    }
-    else if (arg == "--noise-seed")
-      options.NoiseSeed = ParseInteger(value, arg, 0);
     else if (arg == "--camera")
       options.Camera = value;
     else if (arg == "--size")
@@ -444,7 +509,7 @@ Options Parse(int argc, char* argv[])
   {
     Fail("unknown output format of '" + options.Output + "' (expected .vti, .png or .pfm)");
   }
-  if (options.Radiograph &&
+  if (options.Physics.Geometry &&
     (!options.Camera.empty() || options.ViewGiven || options.Size[0] > 0 || options.PixelSpacing > 0))
   {
     Fail("the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter) replaces "
@@ -643,6 +708,8 @@ int RunView(int argc, char* argv[])
   long long samples = (1LL << 22) - 1;
   std::string method = "hybrid", kernel = "tent";
   int threads = 0;
+  RadiographOptions physics;
+  bool sizeGiven = false;
   for (int i = 2; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -650,6 +717,10 @@ int RunView(int argc, char* argv[])
     {
       std::printf("%s", ViewUsage);
       return 0;
+    }
+    if (physics.ParseFlag(arg))
+    {
+      continue;
     }
     if (arg.rfind("--", 0) != 0)
     {
@@ -678,7 +749,13 @@ int RunView(int argc, char* argv[])
     else if (arg == "--threads")
       threads = static_cast<int>(ParseInteger(value, arg, 1));
     else if (arg == "--size")
+    {
       ParseSize(value, 16, 8192, viewer.Size);
+      sizeGiven = true;
+    }
+    else if (physics.ParseOption(arg, value))
+    {
+    }
     else if (arg == "--screenshot")
       screenshot = value;
     else
@@ -702,6 +779,15 @@ int RunView(int argc, char* argv[])
                                    : vtkMCXPointSampler::HYBRID;
   viewer.Kernel = kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
   viewer.OffScreen = !screenshot.empty();
+  if (physics.Geometry && sizeGiven)
+  {
+    Fail("the radiograph geometry's --detector sets the window size; leave out --size");
+  }
+  if (physics.Geometry && (physics.Detector[0] < 16 || physics.Detector[1] < 16 ||
+                            physics.Detector[0] > 8192 || physics.Detector[1] > 8192))
+  {
+    Fail("the viewer's --detector must lie between 16x16 and 8192x8192 pixels");
+  }
   if (!screenshot.empty())
   {
     const std::string directory =
@@ -740,11 +826,28 @@ int RunView(int argc, char* argv[])
   {
     Fail(error);
   }
+  if (physics.Geometry)
+  {
+    viewer.Size[0] = physics.Detector[0];
+    viewer.Size[1] = physics.Detector[1];
+  }
   mcxapp::XRayViewer view(volume, viewer);
   if (!view.Error().empty())
   {
     Fail(view.Error());
   }
+  if (physics.Geometry)
+  {
+    int size[2];
+    double spacing = 0;
+    view.GetRenderer()->GetActiveCamera()->DeepCopy(physics.MakeCamera(volume, size, spacing));
+  }
+  vtkMCXXRayMapper* mapper = view.GetMapper();
+  mapper->SetBeerLambert(physics.BeerLambert);
+  mapper->SetIncidentIntensity(physics.IncidentIntensity);
+  mapper->SetPhotonsPerPixel(physics.Photons);
+  mapper->SetNoiseSeed(physics.NoiseSeed);
+  mapper->SetNegativeLog(physics.NegativeLog);
   MessageCapture messages;
   messages.Watch(view.GetIndex());
   messages.Watch(view.GetSampler());
@@ -847,28 +950,9 @@ int main(int argc, char* argv[])
     log(line.str());
   }
 
-  if (options.Radiograph)
+  if (options.Physics.Geometry)
   {
-    vtkNew<vtkMCXRadiographGeometry> radiograph;
-    radiograph->SetSourceToAxisDistance(options.SourceToAxis);
-    radiograph->SetSourceToImageDistance(options.SourceToImage);
-    radiograph->SetDetectorPixels(options.Detector[0], options.Detector[1]);
-    radiograph->SetPixelPitch(options.Pitch);
-    radiograph->SetGantryAngle(options.Gantry);
-    double bounds[6];
-    volume->GetBounds(bounds);
-    const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
-    radiograph->SetIsocenter(options.HasIsocenter ? options.Isocenter : centre);
-    const std::string problem = radiograph->Validate();
-    if (!problem.empty())
-    {
-      Fail("bad radiograph geometry: " + problem);
-    }
-    camera = vtkSmartPointer<vtkCamera>::New();
-    radiograph->ConfigureCamera(camera);
-    options.Size[0] = options.Detector[0];
-    options.Size[1] = options.Detector[1];
-    options.PixelSpacing = radiograph->GetPixelSpacingAtIsocenter();
+    camera = options.Physics.MakeCamera(volume, options.Size, options.PixelSpacing);
   }
 
   MessageCapture messages;
@@ -1006,11 +1090,11 @@ int main(int argc, char* argv[])
 
   // Physics after accumulation, only what was asked for.
   vtkNew<vtkMCXRadiograph> physics;
-  physics->SetBeerLambert(options.BeerLambert);
-  physics->SetIncidentIntensity(options.IncidentIntensity);
-  physics->SetPhotonsPerPixel(options.Photons);
-  physics->SetSeed(options.NoiseSeed);
-  physics->SetNegativeLog(options.NegativeLog);
+  physics->SetBeerLambert(options.Physics.BeerLambert);
+  physics->SetIncidentIntensity(options.Physics.IncidentIntensity);
+  physics->SetPhotonsPerPixel(options.Physics.Photons);
+  physics->SetSeed(options.Physics.NoiseSeed);
+  physics->SetNegativeLog(options.Physics.NegativeLog);
   if (physics->HasEffects())
   {
     physics->SetInputData(image);
@@ -1018,8 +1102,8 @@ int main(int argc, char* argv[])
     physics->Update();
     image = physics->GetOutput();
     std::ostringstream line;
-    line << "radiograph:  " << Seconds(start) << " s (" << (options.NegativeLog ? "-ln(I/I0)" : "I = I0 exp(-line integral)")
-         << (options.Photons > 0 ? ", Poisson noise of " + std::to_string(options.Photons) + " photons per pixel" : "")
+    line << "radiograph:  " << Seconds(start) << " s (" << (options.Physics.NegativeLog ? "-ln(I/I0)" : "I = I0 exp(-line integral)")
+         << (options.Physics.Photons > 0 ? ", Poisson noise of " + std::to_string(options.Physics.Photons) + " photons per pixel" : "")
          << "), range " << image->GetPointData()->GetScalars()->GetRange()[0] << " .. "
          << image->GetPointData()->GetScalars()->GetRange()[1];
     log(line.str());

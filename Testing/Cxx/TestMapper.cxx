@@ -271,19 +271,31 @@ TEST(Mapper, EachChangeRecomputesOnlyWhatItAffects)
   EXPECT_EQ(3, scene.Mapper->GetNumberOfDraws());
   EXPECT_EQ(3000, scene.Mapper->GetDisplayedWindow());
 
+  scene.Mapper->BeerLambertOn(); // radiograph physics: re-map the buffer, never re-project
+  scene.Mapper->SetPhotonsPerPixel(1000);
+  scene.Window->Render();
+  EXPECT_EQ(0, samplerRuns.Count);
+  EXPECT_EQ(1, scene.Mapper->GetNumberOfRestarts());
+  EXPECT_EQ(2, scene.Mapper->GetNumberOfUploads());
+  scene.Mapper->BeerLambertOff();
+  scene.Mapper->SetPhotonsPerPixel(0);
+  scene.Window->Render();
+  EXPECT_EQ(1, scene.Mapper->GetNumberOfRestarts());
+  EXPECT_EQ(3, scene.Mapper->GetNumberOfUploads());
+
   scene.Renderer->GetActiveCamera()->Azimuth(20); // camera change: re-project only
   scene.Window->Render();
   EXPECT_EQ(0, indexRuns.Count);
   EXPECT_EQ(0, samplerRuns.Count);
   EXPECT_EQ(2, scene.Mapper->GetNumberOfRestarts());
-  EXPECT_EQ(2, scene.Mapper->GetNumberOfUploads());
+  EXPECT_EQ(4, scene.Mapper->GetNumberOfUploads());
 
   scene.TransferFunction->AddPoint(1000, 0.1); // TF change: resample, never re-index
   scene.Window->Render();
   EXPECT_EQ(0, indexRuns.Count);
   EXPECT_EQ(1, samplerRuns.Count);
   EXPECT_EQ(3, scene.Mapper->GetNumberOfRestarts());
-  EXPECT_EQ(3, scene.Mapper->GetNumberOfUploads());
+  EXPECT_EQ(5, scene.Mapper->GetNumberOfUploads());
   EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), scene.Offline()));
 }
 
