@@ -1,9 +1,9 @@
 #include "vtkMCXXRayMapper.h"
 
 #include "mcxCameraGeometry.h"
+#include "mcxHalton.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
-#include "mcxHalton.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -34,7 +34,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <vector>

@@ -52,6 +52,15 @@ check(integral > 0 and abs(total * spacing[0] * spacing[1] / integral - 1) < 1e-
 estimate = fd.GetArray("EstimatedRelativeError").GetTuple1(0)
 check(0 < estimate < 0.2, "error estimate %g" % estimate)
 
+# The radiograph filter: Beer-Lambert turns each line integral L into exp(-L).
+radiograph = XRayRadiograph(Input=projector)
+radiograph.IncidentIntensity = 2.0
+film = servermanager.Fetch(radiograph)
+intensity = film.GetPointData().GetArray("Intensity")
+pixel = values.GetNumberOfTuples() // 2 + 64
+check(intensity is not None and abs(intensity.GetValue(pixel) - 2.0 * math.exp(-values.GetValue(pixel))) < 1e-12,
+      "radiograph intensity at pixel %d" % pixel)
+
 # The sampler: 2^16 - 1 points whose weights add up to the same integral.
 sampler = XRayPointSampler(Input=index)
 sampler.TransferFunction.Points = [400.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
