@@ -70,6 +70,22 @@ void Moments(vtkDataArray* values, double& mean, double& variance)
   variance = squares / (n - 1);
 }
 
+// A volume in HU indexed and projected exactly under the HU-to-mu TF.
+struct ExactAttenuation
+{
+  vtkNew<vtkMCXDensityIndex> Index;
+  vtkNew<vtkMCXAttenuationFunction> Mu;
+  vtkNew<vtkMCXReferenceProjector> Projector;
+
+  explicit ExactAttenuation(vtkImageData* volume, double muWater = MuWater)
+  {
+    this->Index->SetInputData(volume);
+    this->Mu->SetWaterAttenuation(muWater);
+    this->Projector->SetInputConnection(this->Index->GetOutputPort());
+    this->Projector->SetTransferFunction(this->Mu);
+  }
+};
+
 // A water cube (HU 0) of side `side` mm, 1 mm voxels, centred on the origin.
 vtkSmartPointer<vtkImageData> WaterCube(int side)
 {
@@ -115,13 +131,10 @@ TEST(Radiograph, UniformCubeGivesExpOfMinusMuL)
   // between the outer voxel centres) the trilinear field integrates to the
   // voxels' sum, mu_water x 21 mm, exactly: I = exp(-0.42).
   auto cube = WaterCube(20);
-  vtkNew<vtkMCXDensityIndex> index;
-  index->SetInputData(cube);
-  vtkNew<vtkMCXAttenuationFunction> mu;
-  mu->SetWaterAttenuation(MuWater);
-  vtkNew<vtkMCXReferenceProjector> exact;
-  exact->SetInputConnection(index->GetOutputPort());
-  exact->SetTransferFunction(mu);
+  ExactAttenuation scene(cube);
+  vtkMCXDensityIndex* index = scene.Index;
+  vtkMCXAttenuationFunction* mu = scene.Mu;
+  vtkMCXReferenceProjector* exact = scene.Projector;
   exact->SetImageSize(8, 8);
   exact->SetPixelSpacing(1.0);
   exact->CenterOnVolumeOff();
@@ -261,13 +274,9 @@ TEST(Radiograph, ConeBeamViewOfACubeHasTheExpectedLineIntegrals)
   vtkNew<vtkCamera> camera;
   geometry->ConfigureCamera(camera);
   auto cube = WaterCube(40);
-  vtkNew<vtkMCXDensityIndex> index;
-  index->SetInputData(cube);
-  vtkNew<vtkMCXAttenuationFunction> mu;
-  mu->SetWaterAttenuation(MuWater);
-  vtkNew<vtkMCXReferenceProjector> exact;
-  exact->SetInputConnection(index->GetOutputPort());
-  exact->SetTransferFunction(mu);
+  ExactAttenuation scene(cube);
+  vtkMCXDensityIndex* index = scene.Index;
+  vtkMCXReferenceProjector* exact = scene.Projector;
   exact->SetCamera(camera);
   exact->SetImageSize(101, 101);
   exact->SetPixelSpacing(geometry->GetPixelSpacingAtIsocenter());
@@ -364,13 +373,8 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   geometry->SetIsocenter(iso);
   vtkNew<vtkCamera> camera;
   geometry->ConfigureCamera(camera);
-  vtkNew<vtkMCXDensityIndex> index;
-  index->SetInputData(volume);
-  vtkNew<vtkMCXAttenuationFunction> mu;
-  mu->SetWaterAttenuation(0.0022);
-  vtkNew<vtkMCXReferenceProjector> exact;
-  exact->SetInputConnection(index->GetOutputPort());
-  exact->SetTransferFunction(mu);
+  ExactAttenuation scene(volume, 0.0022);
+  vtkMCXReferenceProjector* exact = scene.Projector;
   exact->SetCamera(camera);
   exact->SetImageSize(pixels, pixels);
   exact->SetPixelSpacing(geometry->GetPixelSpacingAtIsocenter());
