@@ -146,13 +146,14 @@ private:
 
 /// Converts the first `pixels` fixed-point sums to pixel values:
 /// sum / 2^32 * sampleWeight / pixelArea.
-inline void FixedSumsToValues(const FixedSum* sums, std::size_t pixels, double sampleWeight,
-  double pixelArea, double* values)
+template <typename Value>
+void FixedSumsToValues(const FixedSum* sums, std::size_t pixels, double sampleWeight,
+  double pixelArea, Value* values)
 {
   const double scale = sampleWeight / pixelArea / FixedOne;
   for (std::size_t i = 0; i < pixels; ++i)
   {
-    values[i] = static_cast<double>(sums[i]) * scale;
+    values[i] = static_cast<Value>(static_cast<double>(sums[i]) * scale);
   }
 }
 

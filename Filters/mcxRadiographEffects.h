@@ -23,6 +23,14 @@ struct RadiographEffects
 
   bool Any() const { return this->BeerLambert || this->PhotonsPerPixel > 0 || this->NegativeLog; }
 
+  bool operator==(const RadiographEffects& other) const
+  {
+    return this->BeerLambert == other.BeerLambert && this->IncidentIntensity == other.IncidentIntensity &&
+      this->PhotonsPerPixel == other.PhotonsPerPixel && this->Seed == other.Seed &&
+      this->NegativeLog == other.NegativeLog;
+  }
+  bool operator!=(const RadiographEffects& other) const { return !(*this == other); }
+
   /// The value of pixel `pixel` whose line integral of mu is `lineIntegral`:
   /// I0 exp(-L), its Poisson-noisy version, or -ln(I / I0).
   double Apply(double lineIntegral, std::uint64_t pixel, std::uint64_t seedKey) const

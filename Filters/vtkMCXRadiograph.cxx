@@ -1,6 +1,7 @@
 #include "vtkMCXRadiograph.h"
 
 #include "mcxRadiographEffects.h"
+#include "vtkMCXProjectorBase.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -14,9 +15,24 @@
 
 vtkStandardNewMacro(vtkMCXRadiograph);
 
+namespace
+{
+mcx::RadiographEffects EffectsOf(bool beerLambert, double incident, double photons, vtkTypeInt64 seed, bool negativeLog)
+{
+  mcx::RadiographEffects effects;
+  effects.BeerLambert = beerLambert;
+  effects.IncidentIntensity = incident;
+  effects.PhotonsPerPixel = photons;
+  effects.Seed = static_cast<std::uint64_t>(seed);
+  effects.NegativeLog = negativeLog;
+  return effects;
+}
+}
+
 bool vtkMCXRadiograph::HasEffects() const
 {
-  return this->BeerLambert || this->PhotonsPerPixel > 0 || this->NegativeLog;
+  return EffectsOf(this->BeerLambert, this->IncidentIntensity, this->PhotonsPerPixel, this->Seed, this->NegativeLog)
+    .Any();
 }
 
 int vtkMCXRadiograph::RequestData(
@@ -29,19 +45,16 @@ int vtkMCXRadiograph::RequestData(
   {
     return 1; // nothing asked for, nothing done
   }
-  vtkDataArray* lineIntegral = input->GetPointData()->GetArray("LineIntegral");
+  vtkDataArray* lineIntegral = input->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
   if (!lineIntegral || lineIntegral->GetNumberOfComponents() != 1)
   {
     vtkErrorMacro("The input has no one-component LineIntegral array (make it with vtkMCXProjector).");
     output->Initialize();
     return 0;
   }
-  mcx::RadiographEffects effects;
-  effects.BeerLambert = true;
-  effects.IncidentIntensity = this->IncidentIntensity;
-  effects.PhotonsPerPixel = this->PhotonsPerPixel;
-  effects.Seed = static_cast<std::uint64_t>(this->Seed);
-  effects.NegativeLog = this->NegativeLog;
+  // Any effect implies Beer-Lambert: noise and the log act on intensities.
+  const mcx::RadiographEffects effects =
+    EffectsOf(true, this->IncidentIntensity, this->PhotonsPerPixel, this->Seed, this->NegativeLog);
   const std::uint64_t seedKey = mcx::SeedKey(effects.Seed);
 
   vtkNew<vtkDoubleArray> values;

@@ -91,11 +91,7 @@ public:
   template <typename Value>
   void ToValues(double sampleWeight, Value* values) const
   {
-    const double scale = sampleWeight / this->Geometry.PixelArea() / FixedOne;
-    for (std::size_t p = 0; p < this->Total.size(); ++p)
-    {
-      values[p] = static_cast<Value>(static_cast<double>(this->Total[p]) * scale);
-    }
+    FixedSumsToValues(this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.PixelArea(), values);
   }
 
 private:

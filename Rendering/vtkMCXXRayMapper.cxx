@@ -2,6 +2,7 @@
 
 #include "mcxCameraGeometry.h"
 #include "mcxHalton.h"
+#include "mcxIndexView.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
 
@@ -10,6 +11,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMCXProjectorBase.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -360,19 +362,13 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
   output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
   vtkNew<vtkDoubleArray> values;
-  values->SetName("LineIntegral");
+  values->SetName(vtkMCXProjectorBase::LineIntegralName());
   values->SetNumberOfValues(static_cast<vtkIdType>(in.Image.NumberOfPixels()));
   const std::uint64_t count = in.Image.Count();
   in.Image.ToValues(in.SampleWeight(), values->GetPointer(0));
   output->GetPointData()->SetScalars(values);
-  vtkNew<vtkDoubleArray> samples;
-  samples->SetName("SampleCount");
-  samples->InsertNextValue(static_cast<double>(count));
-  output->GetFieldData()->AddArray(samples);
-  vtkNew<vtkDoubleArray> error;
-  error->SetName("EstimatedRelativeError");
-  error->InsertNextValue(in.Image.EstimateRelativeError());
-  output->GetFieldData()->AddArray(error);
+  mcx::AddFieldValue(output->GetFieldData(), "SampleCount", static_cast<long long>(count));
+  mcx::AddFieldValue(output->GetFieldData(), "EstimatedRelativeError", in.Image.EstimateRelativeError());
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
@@ -499,10 +495,7 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   effects.PhotonsPerPixel = this->PhotonsPerPixel;
   effects.Seed = static_cast<std::uint64_t>(this->NoiseSeed);
   effects.NegativeLog = this->NegativeLog;
-  const bool newEffects = effects.BeerLambert != in.Effects.BeerLambert ||
-    effects.IncidentIntensity != in.Effects.IncidentIntensity ||
-    effects.PhotonsPerPixel != in.Effects.PhotonsPerPixel || effects.Seed != in.Effects.Seed ||
-    effects.NegativeLog != in.Effects.NegativeLog;
+  const bool newEffects = effects != in.Effects;
   if (newEffects)
   {
     in.Effects = effects;

@@ -216,6 +216,27 @@ void ParseTriple(const std::string& text, double out[3], const std::string& what
   }
 }
 
+// The sampler's constants for --method (hybrid, mc, qmc) and --kernel.
+int StrategyOf(const std::string& method)
+{
+  return method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
+    : method == "qmc"   ? vtkMCXPointSampler::QUASI_MONTE_CARLO
+                        : vtkMCXPointSampler::HYBRID;
+}
+
+int KernelOf(const std::string& kernel)
+{
+  return kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
+}
+
+void CheckKernel(const std::string& kernel)
+{
+  if (kernel != "tent" && kernel != "box")
+  {
+    Fail("unknown --kernel '" + kernel + "' (expected tent or box)");
+  }
+}
+
 // The radiograph geometry and physics options, shared by render and view;
 // each is off unless asked for.
 struct RadiographOptions
@@ -484,10 +505,7 @@ Options Parse(int argc, char* argv[])
   {
     Fail("unknown --method '" + options.Method + "' (expected hybrid, mc, qmc or reference)");
   }
-  if (options.Kernel != "tent" && options.Kernel != "box")
-  {
-    Fail("unknown --kernel '" + options.Kernel + "' (expected tent or box)");
-  }
+  CheckKernel(options.Kernel);
   if ((options.TargetError > 0 || options.QuantizationLevels > 0) &&
     (options.StoredPoints || options.Method == "reference"))
   {
@@ -765,19 +783,14 @@ int RunView(int argc, char* argv[])
   {
     Fail("unknown --method '" + method + "' for view (expected hybrid, mc or qmc)");
   }
-  if (kernel != "tent" && kernel != "box")
-  {
-    Fail("unknown --kernel '" + kernel + "' (expected tent or box)");
-  }
+  CheckKernel(kernel);
   if (samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
   {
     Fail("the viewer holds at most 2^30 - 1 points");
   }
   viewer.SampleExponent = static_cast<int>(mcx::ExponentForSampleCount(samples));
-  viewer.Strategy = method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
-    : method == "qmc"              ? vtkMCXPointSampler::QUASI_MONTE_CARLO
-                                   : vtkMCXPointSampler::HYBRID;
-  viewer.Kernel = kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
+  viewer.Strategy = StrategyOf(method);
+  viewer.Kernel = KernelOf(kernel);
   viewer.OffScreen = !screenshot.empty();
   if (physics.Geometry && sizeGiven)
   {
@@ -996,10 +1009,8 @@ int main(int argc, char* argv[])
     Fail(error);
   }
 
-  const int strategy = options.Method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
-    : options.Method == "qmc"                  ? vtkMCXPointSampler::QUASI_MONTE_CARLO
-                                               : vtkMCXPointSampler::HYBRID;
-  const int kernel = options.Kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
+  const int strategy = StrategyOf(options.Method);
+  const int kernel = KernelOf(options.Kernel);
   vtkSmartPointer<vtkMCXProjectorBase> projector;
   if (options.Method == "reference")
   {
