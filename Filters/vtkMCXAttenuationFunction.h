@@ -13,10 +13,10 @@
 #ifndef vtkMCXAttenuationFunction_h
 #define vtkMCXAttenuationFunction_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkPiecewiseFunction.h"
 
-class MONTECARLOXRAY_EXPORT vtkMCXAttenuationFunction : public vtkPiecewiseFunction
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXAttenuationFunction : public vtkPiecewiseFunction
 {
 public:
   static vtkMCXAttenuationFunction* New();

@@ -1,7 +1,8 @@
 #include "vtkMCXDensityIndex.h"
 
 #include "mcxCountingSort.h"
-#include "mcxIndexView.h"
+#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -114,7 +115,7 @@ void SortIntoLevels(std::int64_t n, std::int64_t numberOfBins, std::int64_t numb
   ids->SetName(vtkMCXDensityIndex::SortedVoxelIdsName());
   ids->SetNumberOfValues(numberKept);
   std::vector<std::int64_t> binOffsets;
-  result.NonFinite = mcx::CountingSortByBin<IdType>(
+  result.NonFinite = mcx::CountingSortByBin<IdType>(mcx::SMPExecutor(),
     n, numberOfBins, binOf, binOffsets, reinterpret_cast<IdType*>(ids->GetPointer(0)));
   result.SortedIds = ids;
   // Keep the non-empty bins only.
@@ -195,16 +196,17 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     });
     return;
   }
-  const __int128 span = static_cast<__int128>(range.Max) - static_cast<__int128>(range.Min);
-  if (span < DenseIntegerBinLimit)
+  // Differences of integers in [Min, Max] fit 64 unsigned bits exactly
+  // (modular arithmetic), whatever T is.
+  const std::uint64_t minimum = static_cast<std::uint64_t>(range.Min);
+  const std::uint64_t span = static_cast<std::uint64_t>(range.Max) - minimum;
+  if (span < static_cast<std::uint64_t>(DenseIntegerBinLimit))
   {
-    const __int128 minimum = static_cast<__int128>(range.Min);
     SortIntoLevels<IdType>(
       n, static_cast<std::int64_t>(span) + 1, n,
-      [=](std::int64_t id) {
-        return static_cast<std::int64_t>(static_cast<__int128>(values[id]) - minimum);
-      },
-      [=](std::int64_t b) { return static_cast<double>(minimum + b); }, result);
+      [=](std::int64_t id) { return static_cast<std::int64_t>(static_cast<std::uint64_t>(values[id]) - minimum); },
+      [=](std::int64_t b) { return static_cast<double>(static_cast<T>(minimum + static_cast<std::uint64_t>(b))); },
+      result);
     return;
   }
   // Sparse integer values: one bin per distinct value, found by binary search.

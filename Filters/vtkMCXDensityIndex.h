@@ -28,10 +28,10 @@
 #ifndef vtkMCXDensityIndex_h
 #define vtkMCXDensityIndex_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
-class MONTECARLOXRAY_EXPORT vtkMCXDensityIndex : public vtkImageAlgorithm
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXDensityIndex : public vtkImageAlgorithm
 {
 public:
   static vtkMCXDensityIndex* New();

@@ -1,7 +1,7 @@
 #include "vtkMCXPointSampler.h"
 
-#include "mcxBatchedFor.h"
-#include "mcxIndexView.h"
+#include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXIndexViewPrivate.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -14,11 +14,23 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cmath>
 
 vtkStandardNewMacro(vtkMCXPointSampler);
+
+// The public constants are the core's, seen from VTK.
+static_assert(vtkMCXPointSampler::HYBRID == static_cast<int>(mcx::Strategy::Hybrid) &&
+    vtkMCXPointSampler::MONTE_CARLO == static_cast<int>(mcx::Strategy::MonteCarlo) &&
+    vtkMCXPointSampler::QUASI_MONTE_CARLO == static_cast<int>(mcx::Strategy::QuasiMonteCarlo),
+  "strategy values differ from mcx::Strategy");
+static_assert(vtkMCXPointSampler::TENT == static_cast<int>(mcx::Kernel::Tent) &&
+    vtkMCXPointSampler::BOX == static_cast<int>(mcx::Kernel::Box),
+  "kernel values differ from mcx::Kernel");
+static_assert(vtkMCXPointSampler::LargestSampleExponent == static_cast<int>(mcx::MaximumSampleExponent),
+  "the largest sample exponent differs from the core's");
 vtkCxxSetObjectMacro(vtkMCXPointSampler, TransferFunction, vtkPiecewiseFunction);
 vtkInformationKeyRestrictedMacro(vtkMCXPointSampler, SUPPORT_CORNERS, DoubleVector, 24);
 
@@ -123,24 +135,18 @@ int vtkMCXPointSampler::RequestData(
   const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
   const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
   const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
-  // Reuse only when this filter holds the sole reference (the previous output
-  // has released it): nobody downstream can see the points change.
-  const bool reusable = this->ReusablePoints && this->ReusablePoints->GetReferenceCount() == 1 &&
-    this->ReusablePoints->GetData()->GetReferenceCount() == 1 &&
-    this->ReusablePoints->GetDataType() == pointType &&
-    this->ReusablePoints->GetNumberOfPoints() == count;
-  vtkSmartPointer<vtkPoints> points = this->ReusablePoints;
-  if (!reusable)
+  vtkSmartPointer<vtkPoints> points = output->GetPoints();
+  if (this->ReusePoints && points && points->GetDataType() == pointType &&
+    points->GetNumberOfPoints() == count)
+  {
+    points->Modified();
+  }
+  else
   {
     points = vtkSmartPointer<vtkPoints>::New();
     points->SetDataType(pointType);
     points->SetNumberOfPoints(count);
   }
-  else
-  {
-    points->Modified();
-  }
-  this->ReusablePoints = points;
 
   bool completed = true;
   if (count > 0)
@@ -170,9 +176,9 @@ int vtkMCXPointSampler::RequestData(
 
   output->SetPoints(points);
   vtkFieldData* fd = output->GetFieldData();
-  mcx::AddFieldValue(fd, "SampleWeight", count > 0 ? integral / static_cast<double>(count) : 0.0);
-  mcx::AddFieldValue(fd, "Integral", integral);
-  mcx::AddFieldValue(fd, "SampleExponent", static_cast<long long>(m));
+  mcx::AddFieldValue(fd, SampleWeightName(), count > 0 ? integral / static_cast<double>(count) : 0.0);
+  mcx::AddFieldValue(fd, IntegralName(), integral);
+  mcx::AddFieldValue(fd, SampleExponentName(), static_cast<long long>(m));
   return 1;
 }
 
@@ -184,5 +190,6 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Strategy: " << this->Strategy << "\n";
   os << indent << "Kernel: " << this->Kernel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "ReusePoints: " << this->ReusePoints << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
 }

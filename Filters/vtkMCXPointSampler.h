@@ -24,15 +24,14 @@
 #ifndef vtkMCXPointSampler_h
 #define vtkMCXPointSampler_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
-#include "vtkSmartPointer.h" // for ReusablePoints
 
 class vtkInformationDoubleVectorKey;
 class vtkPiecewiseFunction;
 class vtkPoints;
 
-class MONTECARLOXRAY_EXPORT vtkMCXPointSampler : public vtkPolyDataAlgorithm
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXPointSampler : public vtkPolyDataAlgorithm
 {
 public:
   static vtkMCXPointSampler* New();
@@ -52,8 +51,29 @@ public:
     BOX = 1   ///< nearest-neighbour reconstruction
   };
 
-  /// Largest sample exponent a stored point cloud accepts (2^30 - 1 points).
+  ///@{
+  /**
+   * The sample-count limits of every class of the module, as exponents m of
+   * M = 2^m - 1 samples:
+   * - LargestSampleExponent: samples projected as they are generated (never
+   *   stored); M then still fits a signed 64-bit count;
+   * - MaximumPointCloudExponent: a stored cloud (this filter, the mapper):
+   *   2^30 points take 12 GiB as float triples, more than the machines this
+   *   runs on hold twice (the cloud and the renderer's copy);
+   * - PilotSampleExponent: the smallest pilot run of vtkMCXProjector's
+   *   target-accuracy controls, enough for the error estimate to settle.
+   */
+  static constexpr int LargestSampleExponent = 63;
   static constexpr int MaximumPointCloudExponent = 30;
+  static constexpr int PilotSampleExponent = 16;
+  ///@}
+
+  ///@{
+  /** Names of the output's field-data arrays. */
+  static const char* SampleWeightName() { return "SampleWeight"; }
+  static const char* IntegralName() { return "Integral"; }
+  static const char* SampleExponentName() { return "SampleExponent"; }
+  ///@}
 
   ///@{
   /**
@@ -99,6 +119,20 @@ public:
 
   ///@{
   /**
+   * Rewrite the previous output's points in place when their type and
+   * count fit (default off): a TF edit then fills memory that is already
+   * mapped instead of allocating the cloud again. Turn it on only where
+   * nothing keeps the previous output's points (a shallow copy, a reference
+   * from Python) that must not change: an interactive pipeline whose
+   * consumer is the mapper, as in the viewer and the ParaView representation.
+   */
+  vtkSetMacro(ReusePoints, bool);
+  vtkGetMacro(ReusePoints, bool);
+  vtkBooleanMacro(ReusePoints, bool);
+  ///@}
+
+  ///@{
+  /**
    * vtkAlgorithm::SINGLE_PRECISION (default) or DOUBLE_PRECISION points.
    */
   vtkSetClampMacro(OutputPointsPrecision, int, SINGLE_PRECISION, DOUBLE_PRECISION);
@@ -127,13 +161,10 @@ protected:
   int Strategy = HYBRID;
   int Kernel = TENT;
   vtkTypeInt64 Seed = 0;
+  bool ReusePoints = false;
   int OutputPointsPrecision = SINGLE_PRECISION;
 
 private:
-  // The last output's points, refilled in place when nothing else holds them:
-  // a TF edit then rewrites memory that is already mapped.
-  vtkSmartPointer<vtkPoints> ReusablePoints;
-
   vtkMCXPointSampler(const vtkMCXPointSampler&) = delete;
   void operator=(const vtkMCXPointSampler&) = delete;
 };

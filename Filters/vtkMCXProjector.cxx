@@ -1,8 +1,13 @@
 #include "vtkMCXProjector.h"
 
-#include "mcxAccumulator.h"
-#include "mcxBatchedFor.h"
-#include "mcxIndexView.h"
+#include "mcxErrorEstimate.h"
+#include "mcxFixedPoint.h"
+#include "mcxSampleAccumulator.h"
+#include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjectorBaseInternals.h"
+#include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -14,7 +19,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSMPThreadLocal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,119 +26,202 @@
 
 vtkStandardNewMacro(vtkMCXProjector);
 
-// Smallest pilot run of the target-accuracy controls: 2^16 - 1 samples.
-static constexpr int PilotSampleExponent = 16;
-
 namespace
 {
-// Thread-local fixed-point images summed at the end: integer addition makes
-// the result independent of the order and the number of threads. Each holds
-// two images, interleaved: all samples, and the samples of the first half
-// (output index below Half), for the error estimate.
-class ImageAccumulator
+using Accumulator = mcx::SampleAccumulator<mcx::SMPExecutor>;
+
+// The sums of one projection (all samples in the first half of Sums, the
+// first Halton half in the second, as mcx::EstimateRelativeError reads them)
+// and the samples they came from.
+struct Projection
 {
-public:
-  ImageAccumulator(std::size_t pixels, std::uint64_t half)
-    : Pixels(pixels)
-    , Half(half)
-  {
-  }
-
-  mcx::FixedSum* Local()
-  {
-    std::vector<mcx::FixedSum>& buffer = this->Buffers.Local();
-    if (buffer.empty())
-    {
-      buffer.assign(2 * this->Pixels, 0);
-    }
-    return buffer.data();
-  }
-
-  // The two sums of a pixel are neighbours, so both live in one cache line.
-  void Add(mcx::FixedSum* image, std::uint64_t k, std::int64_t pixel, mcx::FixedSum increment) const
-  {
-    mcx::FixedSum* sums = image + 2 * pixel;
-    sums[0] += increment;
-    sums[1] += k < this->Half ? increment : 0;
-  }
-
-  /// Sums of all threads: all samples in [0, pixels), first half after.
-  std::vector<mcx::FixedSum> Sum()
-  {
-    std::vector<mcx::FixedSum> total(2 * this->Pixels, 0);
-    for (auto& buffer : this->Buffers)
-    {
-      for (std::size_t p = 0; p < this->Pixels; ++p)
-      {
-        total[p] += buffer[2 * p];
-        total[this->Pixels + p] += buffer[2 * p + 1];
-      }
-    }
-    return total;
-  }
-
-private:
-  std::size_t Pixels;
-  std::uint64_t Half;
-  vtkSMPThreadLocal<std::vector<mcx::FixedSum>> Buffers;
+  std::vector<mcx::FixedSum> Sums;
+  std::uint64_t Count = 0;
+  double SampleWeight = 0.0;
+  double Integral = 0.0;
+  bool Completed = true;
 };
 
-template <typename IdType>
-bool ProjectFromIndex(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::TransferTable& table,
-  mcx::Strategy strategy, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m,
-  const mcx::ProjectionGeometry& geometry, ImageAccumulator& accumulator, double progressBegin,
-  double progressEnd)
+void CollectSums(Accumulator& accumulator, Projection& projection)
 {
-  mcx::SampleSource<IdType> source = view.MakeSource<IdType>(table);
-  source.Method = strategy;
-  source.Reconstruction = kernel;
-  source.Seed = seed;
-  source.Exponent = m;
-  double origin[3], matrix[9];
-  view.SourceToWorld(origin, matrix);
-  const mcx::PixelBinner binner(geometry, origin, matrix);
-  return mcx::BatchedFor(self, source.NumberOfSamples(), progressBegin, progressEnd,
-    [&](std::uint64_t b, std::uint64_t e) {
-      mcx::FixedSum* image = accumulator.Local();
-      auto sink = [&](std::uint64_t k, const double p[3]) {
-        std::int64_t pixel;
-        mcx::FixedSum increment;
-        if (binner.Bin(p, pixel, increment))
-        {
-          accumulator.Add(image, k, pixel, increment);
-        }
-      };
-      source.Generate(b, e, sink);
-    });
-}
-
-template <typename Real>
-bool ProjectPoints(vtkAlgorithm* self, const Real* points, std::uint64_t count,
-  const mcx::ProjectionGeometry& geometry, ImageAccumulator& accumulator)
-{
-  const double origin[3] = { 0, 0, 0 };
-  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  const mcx::PixelBinner binner(geometry, origin, identity);
-  return mcx::BatchedFor(self, count, 0.0, 1.0, [&](std::uint64_t b, std::uint64_t e) {
-    mcx::FixedSum* image = accumulator.Local();
-    for (std::uint64_t i = b; i < e; ++i)
-    {
-      const double p[3] = { static_cast<double>(points[3 * i]), static_cast<double>(points[3 * i + 1]),
-        static_cast<double>(points[3 * i + 2]) };
-      std::int64_t pixel;
-      mcx::FixedSum increment;
-      if (binner.Bin(p, pixel, increment))
-      {
-        accumulator.Add(image, i, pixel, increment);
-      }
-    }
-  });
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  projection.Sums.assign(2 * pixels, mcx::FixedSum(0));
+  accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels);
 }
 
 double FieldValue(vtkFieldData* fd, const char* name, double fallback)
 {
   vtkDataArray* array = fd ? fd->GetArray(name) : nullptr;
   return array && array->GetNumberOfTuples() > 0 ? array->GetTuple1(0) : fallback;
+}
+
+// Stage 1a: a stored point cloud, points in Halton order.
+bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionGeometry& geometry,
+  Projection& projection)
+{
+  vtkFieldData* fd = cloud->GetFieldData();
+  if (!fd || !fd->GetArray(vtkMCXPointSampler::SampleWeightName()))
+  {
+    vtkErrorWithObjectMacro(self, "The point cloud carries no SampleWeight (make it with vtkMCXPointSampler).");
+    return false;
+  }
+  vtkPoints* points = cloud->GetPoints();
+  if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+  {
+    vtkErrorWithObjectMacro(
+      self, "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+    return false;
+  }
+  projection.SampleWeight = FieldValue(fd, vtkMCXPointSampler::SampleWeightName(), 0.0);
+  projection.Integral = FieldValue(fd, vtkMCXPointSampler::IntegralName(), 0.0);
+  projection.Count = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
+
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  Accumulator accumulator;
+  accumulator.Reset(geometry, origin, identity);
+  accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
+  auto deposit = [&](const auto* coordinates) {
+    return mcx::BatchedFor(self, projection.Count, 0.0, 1.0,
+      [&](std::uint64_t b, std::uint64_t e) { accumulator.DepositRange(coordinates, b, e); });
+  };
+  if (projection.Count > 0)
+  {
+    projection.Completed = points->GetDataType() == VTK_FLOAT
+      ? deposit(static_cast<const float*>(points->GetVoidPointer(0)))
+      : deposit(static_cast<const double*>(points->GetVoidPointer(0)));
+  }
+  CollectSums(accumulator, projection);
+  return true;
+}
+
+// Stage 1b: samples generated from the index and deposited as they come,
+// never stored.
+class IndexProjection
+{
+public:
+  IndexProjection(vtkAlgorithm* self, const mcx::ProjectionGeometry& geometry)
+    : Self(self)
+    , Geometry(geometry)
+  {
+  }
+
+  /// Reads the index and evaluates the TF; false (reported) when no image can be made.
+  bool Prepare(vtkImageData* index, vtkPiecewiseFunction* tf)
+  {
+    return mcx::PrepareSampling(this->Self, "project", index, tf, this->View, this->Table, this->Integral);
+  }
+
+  bool IsEmpty() const { return this->Table.IsEmpty(); }
+
+  /// The image of 2^m - 1 samples, progress running from progressBegin to progressEnd.
+  Projection Project(unsigned m, double progressBegin, double progressEnd) const
+  {
+    Projection projection;
+    projection.Count = mcx::SampleCount(m);
+    projection.Integral = this->Integral;
+    projection.SampleWeight =
+      projection.Count > 0 ? this->Integral / static_cast<double>(projection.Count) : 0.0;
+    Accumulator accumulator;
+    double origin[3], matrix[9];
+    this->View.SourceToWorld(origin, matrix);
+    accumulator.Reset(this->Geometry, origin, matrix);
+    accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
+    if (m > 0)
+    {
+      projection.Completed = this->View.WideIds
+        ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
+        : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
+    }
+    CollectSums(accumulator, projection);
+    return projection;
+  }
+
+  mcx::Strategy Method = mcx::Strategy::Hybrid;
+  mcx::Kernel Reconstruction = mcx::Kernel::Tent;
+  std::uint64_t Seed = 0;
+
+private:
+  template <typename IdType>
+  bool Generate(unsigned m, Accumulator& accumulator, double progressBegin, double progressEnd) const
+  {
+    mcx::SampleSource<IdType> source = this->View.MakeSource<IdType>(this->Table);
+    source.Method = this->Method;
+    source.Reconstruction = this->Reconstruction;
+    source.Seed = this->Seed;
+    source.Exponent = m;
+    return mcx::BatchedFor(this->Self, source.NumberOfSamples(), progressBegin, progressEnd,
+      [&](std::uint64_t b, std::uint64_t e) {
+        const Accumulator::ThreadImage image = accumulator.Local();
+        auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
+        source.Generate(b, e, deposit);
+      });
+  }
+
+  vtkAlgorithm* Self;
+  const mcx::ProjectionGeometry& Geometry;
+  mcx::IndexView View;
+  mcx::TransferTable Table;
+  double Integral = 0.0;
+};
+
+// The sample count a target asks for, measured on a projection.
+double SamplesNeeded(const Projection& projection, double targetError, int targetLevels)
+{
+  double needed = 0.0;
+  if (targetError > 0)
+  {
+    const double error = mcx::EstimateRelativeError(projection.Sums, projection.Count);
+    const double ratio = error / targetError;
+    needed = std::max(needed, static_cast<double>(projection.Count) * ratio * ratio);
+  }
+  if (targetLevels > 0)
+  {
+    needed = std::max(needed, mcx::QuantizationSampleCount(projection.Sums, targetLevels));
+  }
+  return needed;
+}
+
+// Stage 2 (target controls): a pilot run (about 4 samples per pixel)
+// measures the image; the sample count is then scaled to meet the target and
+// re-checked on the larger run (up to three times), within
+// [pilot, maximumExponent].
+Projection ProjectToTarget(const IndexProjection& sampler, const mcx::ProjectionGeometry& geometry,
+  double targetError, int targetLevels, unsigned maximumExponent)
+{
+  const long long pixels = static_cast<long long>(geometry.Size[0]) * geometry.Size[1];
+  unsigned m = std::min(maximumExponent,
+    std::max(static_cast<unsigned>(vtkMCXPointSampler::PilotSampleExponent), mcx::ExponentForSampleCount(4 * pixels)));
+  Projection projection = sampler.Project(m, 0.0, 0.05);
+  const double passEnd[] = { 0.8, 0.95, 1.0 };
+  for (int pass = 0; pass < 3 && projection.Completed; ++pass)
+  {
+    const double needed = SamplesNeeded(projection, targetError, targetLevels);
+    const unsigned next = std::min(
+      maximumExponent, mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
+    if (next <= m)
+    {
+      break;
+    }
+    m = next;
+    projection = sampler.Project(m, pass == 0 ? 0.05 : passEnd[pass - 1], passEnd[pass]);
+  }
+  return projection;
+}
+
+// Stage 3: line integrals and the field data that tells how they were made.
+void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geometry, vtkDoubleArray* values,
+  vtkFieldData* fd)
+{
+  const std::size_t pixels = projection.Sums.size() / 2;
+  mcx::FixedSumsToValues(
+    projection.Sums.data(), pixels, projection.SampleWeight, geometry.PixelArea(), values->GetPointer(0));
+  fd->Initialize();
+  mcx::AddFieldValue(fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));
+  mcx::AddFieldValue(fd, vtkMCXPointSampler::SampleWeightName(), projection.SampleWeight);
+  mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), projection.Integral);
+  mcx::AddFieldValue(fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(),
+    mcx::EstimateRelativeError(projection.Sums, projection.Count));
 }
 }
 
@@ -163,120 +250,39 @@ int vtkMCXProjector::RequestData(
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  const mcx::ProjectionGeometry& geometry = this->GetGeometry();
-  const std::size_t pixels = static_cast<std::size_t>(geometry.Size[0]) * geometry.Size[1];
+  const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
 
-  std::uint64_t count = 0;
-  double weight = 0.0;
-  double integral = 0.0;
-  bool completed = true;
-  std::vector<mcx::FixedSum> sums(2 * pixels, 0);
+  Projection projection;
   if (auto* cloud = vtkPolyData::SafeDownCast(input))
   {
-    vtkFieldData* fd = cloud->GetFieldData();
-    if (!fd || !fd->GetArray("SampleWeight"))
+    if (!ProjectCloud(this, cloud, geometry, projection))
     {
-      vtkErrorMacro("The point cloud carries no SampleWeight (make it with vtkMCXPointSampler).");
       return 0;
     }
-    weight = FieldValue(fd, "SampleWeight", 0.0);
-    integral = FieldValue(fd, "Integral", 0.0);
-    vtkPoints* points = cloud->GetPoints();
-    count = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
-    if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
-    {
-      vtkErrorMacro("Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
-      return 0;
-    }
-    ImageAccumulator accumulator(pixels, mcx::FirstHalfSize(count));
-    if (count > 0)
-    {
-      completed = points->GetDataType() == VTK_FLOAT
-        ? ProjectPoints(this, static_cast<const float*>(points->GetVoidPointer(0)), count, geometry, accumulator)
-        : ProjectPoints(this, static_cast<const double*>(points->GetVoidPointer(0)), count, geometry, accumulator);
-    }
-    sums = accumulator.Sum();
   }
   else
   {
-    mcx::IndexView view;
-    mcx::TransferTable table;
-    if (!mcx::PrepareSampling(
-          this, "project", vtkImageData::SafeDownCast(input), this->TransferFunction, view, table, integral))
+    IndexProjection sampler(this, geometry);
+    if (!sampler.Prepare(vtkImageData::SafeDownCast(input), this->TransferFunction))
     {
       return 0;
     }
-    const auto strategy = static_cast<mcx::Strategy>(this->Strategy);
-    const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
-    auto project = [&](unsigned m, double progressBegin, double progressEnd) {
-      ImageAccumulator accumulator(pixels, mcx::FirstHalfSize(mcx::SampleCount(m)));
-      if (m > 0)
-      {
-        completed = view.WideIds
-          ? ProjectFromIndex<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, geometry,
-              accumulator, progressBegin, progressEnd)
-          : ProjectFromIndex<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, geometry,
-              accumulator, progressBegin, progressEnd);
-      }
-      sums = accumulator.Sum();
-    };
-    unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
+    sampler.Method = static_cast<mcx::Strategy>(this->Strategy);
+    sampler.Reconstruction = static_cast<mcx::Kernel>(this->Kernel);
+    sampler.Seed = static_cast<std::uint64_t>(this->Seed);
+    const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
     const bool targeted = this->TargetRelativeError > 0 || this->TargetQuantizationLevels > 0;
-    if (m > 0 && targeted)
-    {
-      // A pilot run (about 4 samples per pixel) measures the image; the
-      // sample count is then scaled to meet the target and re-checked on the
-      // larger run, within [pilot, MaximumSampleExponent].
-      const unsigned cap = static_cast<unsigned>(this->MaximumSampleExponent);
-      m = std::min(cap, std::max(static_cast<unsigned>(PilotSampleExponent),
-                          mcx::ExponentForSampleCount(static_cast<long long>(4 * pixels))));
-      project(m, 0.0, 0.05);
-      const double passEnd[] = { 0.8, 0.95, 1.0 };
-      for (int pass = 0; pass < 3 && completed; ++pass)
-      {
-        const std::uint64_t current = mcx::SampleCount(m);
-        double needed = 0.0;
-        if (this->TargetRelativeError > 0)
-        {
-          const double error = mcx::EstimateRelativeError(sums, current);
-          const double ratio = error / this->TargetRelativeError;
-          needed = std::max(needed, static_cast<double>(current) * ratio * ratio);
-        }
-        if (this->TargetQuantizationLevels > 0)
-        {
-          needed = std::max(needed, mcx::QuantizationSampleCount(sums, this->TargetQuantizationLevels));
-        }
-        const unsigned next = std::min(cap, mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
-        if (next <= m)
-        {
-          break;
-        }
-        m = next;
-        project(m, pass == 0 ? 0.05 : passEnd[pass - 1], passEnd[pass]);
-      }
-    }
-    else
-    {
-      project(m, 0.0, 1.0);
-    }
-    count = mcx::SampleCount(m);
-    weight = count > 0 ? integral / static_cast<double>(count) : 0.0;
+    projection = m > 0 && targeted
+      ? ProjectToTarget(sampler, geometry, this->TargetRelativeError, this->TargetQuantizationLevels,
+          static_cast<unsigned>(this->MaximumSampleExponent))
+      : sampler.Project(m, 0.0, 1.0);
   }
-  if (!completed)
+  if (!projection.Completed)
   {
     output->Initialize();
     return 1;
   }
-
-  vtkDoubleArray* values = this->AllocateLineIntegral(output);
-  mcx::FixedSumsToValues(sums.data(), pixels, weight, geometry.PixelArea(), values->GetPointer(0));
-
-  vtkFieldData* fd = output->GetFieldData();
-  fd->Initialize();
-  mcx::AddFieldValue(fd, "SampleCount", static_cast<long long>(count));
-  mcx::AddFieldValue(fd, "SampleWeight", weight);
-  mcx::AddFieldValue(fd, "Integral", integral);
-  mcx::AddFieldValue(fd, "EstimatedRelativeError", mcx::EstimateRelativeError(sums, count));
+  WriteImage(projection, geometry, this->AllocateLineIntegral(output), output->GetFieldData());
   return 1;
 }
 

@@ -29,10 +29,10 @@
 #ifndef vtkMCXProjector_h
 #define vtkMCXProjector_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkMCXProjectorBase.h"
 
-class MONTECARLOXRAY_EXPORT vtkMCXProjector : public vtkMCXProjectorBase
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXProjector : public vtkMCXProjectorBase
 {
 public:
   static vtkMCXProjector* New();

@@ -1,7 +1,8 @@
 #include "vtkMCXProjectorBase.h"
 
-#include "mcxCameraGeometry.h"
-#include "mcxIndexView.h"
+#include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXProjectorBaseInternals.h"
+#include "vtkMCXIndexViewPrivate.h"
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleGenerator.h"
 #include "vtkMCXPointSampler.h"
@@ -19,11 +20,6 @@
 
 #include <cmath>
 
-struct vtkMCXProjectorBase::vtkInternals
-{
-  mcx::ProjectionGeometry Geometry;
-};
-
 vtkCxxSetObjectMacro(vtkMCXProjectorBase, Camera, vtkCamera);
 vtkCxxSetObjectMacro(vtkMCXProjectorBase, TransferFunction, vtkPiecewiseFunction);
 
@@ -37,11 +33,6 @@ vtkMCXProjectorBase::~vtkMCXProjectorBase()
   this->SetCamera(nullptr);
   this->SetTransferFunction(nullptr);
   delete this->Internals;
-}
-
-const mcx::ProjectionGeometry& vtkMCXProjectorBase::GetGeometry() const
-{
-  return this->Internals->Geometry;
 }
 
 vtkMTimeType vtkMCXProjectorBase::GetMTime()

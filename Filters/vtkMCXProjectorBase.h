@@ -23,20 +23,14 @@
 #ifndef vtkMCXProjectorBase_h
 #define vtkMCXProjectorBase_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
 class vtkCamera;
 class vtkDoubleArray;
 class vtkPiecewiseFunction;
-#ifndef __VTK_WRAP__
-namespace mcx
-{
-struct ProjectionGeometry;
-}
-#endif
 
-class MONTECARLOXRAY_EXPORT vtkMCXProjectorBase : public vtkImageAlgorithm
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXProjectorBase : public vtkImageAlgorithm
 {
 public:
   vtkTypeMacro(vtkMCXProjectorBase, vtkImageAlgorithm);
@@ -105,8 +99,16 @@ public:
   vtkGetMacro(Kernel, int);
   ///@}
 
-  /** Name of the output point-data array. */
+  ///@{
+  /**
+   * Names of the output's point-data array and of the field-data arrays
+   * that tell how the image was made (the sample weight and integral keep
+   * vtkMCXPointSampler's names).
+   */
   static const char* LineIntegralName() { return "LineIntegral"; }
+  static const char* SampleCountName() { return "SampleCount"; }
+  static const char* EstimatedRelativeErrorName() { return "EstimatedRelativeError"; }
+  ///@}
 
   /** Includes the camera's and the transfer function's modification times. */
   vtkMTimeType GetMTime() override;
@@ -117,11 +119,6 @@ protected:
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-
-#ifndef __VTK_WRAP__
-  /** The geometry computed by the last RequestInformation. */
-  const mcx::ProjectionGeometry& GetGeometry() const;
-#endif
 
   /** Gives the output its extent, origin and spacing and a zeroed LineIntegral array. */
   vtkDoubleArray* AllocateLineIntegral(vtkImageData* output);
@@ -137,12 +134,14 @@ protected:
   vtkPiecewiseFunction* TransferFunction = nullptr;
   int Kernel = 0;
 
+  // The geometry computed by the last RequestInformation; defined in
+  // vtkMCXProjectorBaseInternals.h for the subclasses.
+  struct vtkInternals;
+  vtkInternals* Internals;
+
 private:
   vtkMCXProjectorBase(const vtkMCXProjectorBase&) = delete;
   void operator=(const vtkMCXProjectorBase&) = delete;
-
-  struct vtkInternals;
-  vtkInternals* Internals;
 };
 
 #endif

@@ -2,6 +2,7 @@
 
 #include "mcxRadiographEffects.h"
 #include "vtkMCXProjectorBase.h"
+#include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -11,28 +12,22 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkSMPTools.h"
 
 vtkStandardNewMacro(vtkMCXRadiograph);
 
 namespace
 {
-mcx::RadiographEffects EffectsOf(bool beerLambert, double incident, double photons, vtkTypeInt64 seed, bool negativeLog)
+// The properties in the core's terms (the getters are not const in VTK 9.1).
+mcx::RadiographEffects EffectsOf(vtkMCXRadiograph* self)
 {
-  mcx::RadiographEffects effects;
-  effects.BeerLambert = beerLambert;
-  effects.IncidentIntensity = incident;
-  effects.PhotonsPerPixel = photons;
-  effects.Seed = static_cast<std::uint64_t>(seed);
-  effects.NegativeLog = negativeLog;
-  return effects;
+  return mcx::RadiographEffects::FromProperties(self->GetBeerLambert(), self->GetIncidentIntensity(),
+    self->GetPhotonsPerPixel(), static_cast<std::uint64_t>(self->GetNoiseSeed()), self->GetNegativeLog());
 }
 }
 
-bool vtkMCXRadiograph::HasEffects() const
+bool vtkMCXRadiograph::HasEffects()
 {
-  return EffectsOf(this->BeerLambert, this->IncidentIntensity, this->PhotonsPerPixel, this->Seed, this->NegativeLog)
-    .Any();
+  return EffectsOf(this).Any();
 }
 
 int vtkMCXRadiograph::RequestData(
@@ -52,22 +47,13 @@ int vtkMCXRadiograph::RequestData(
     output->Initialize();
     return 0;
   }
-  // Any effect implies Beer-Lambert: noise and the log act on intensities.
-  const mcx::RadiographEffects effects =
-    EffectsOf(true, this->IncidentIntensity, this->PhotonsPerPixel, this->Seed, this->NegativeLog);
-  const std::uint64_t seedKey = mcx::SeedKey(effects.Seed);
-
   vtkNew<vtkDoubleArray> values;
-  values->SetName(this->NegativeLog ? "Attenuation" : "Intensity");
+  values->SetName(this->NegativeLog ? AttenuationName() : IntensityName());
   const vtkIdType pixels = lineIntegral->GetNumberOfTuples();
   values->SetNumberOfValues(pixels);
-  double* out = values->GetPointer(0);
-  vtkSMPTools::For(0, pixels, 4096, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType p = begin; p < end; ++p)
-    {
-      out[p] = effects.Apply(lineIntegral->GetComponent(p, 0), static_cast<std::uint64_t>(p), seedKey);
-    }
-  });
+  EffectsOf(this).ApplyToImage(mcx::SMPExecutor(), pixels,
+    [&](std::int64_t p) { return lineIntegral->GetComponent(static_cast<vtkIdType>(p), 0); },
+    values->GetPointer(0));
   output->GetPointData()->AddArray(values);
   output->GetPointData()->SetActiveScalars(values->GetName());
   return 1;
@@ -79,6 +65,6 @@ void vtkMCXRadiograph::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BeerLambert: " << this->BeerLambert << "\n";
   os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";
   os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "NoiseSeed: " << this->NoiseSeed << "\n";
   os << indent << "NegativeLog: " << this->NegativeLog << "\n";
 }

@@ -11,20 +11,21 @@
  * - BeerLambert: point data "Intensity" = I0 exp(-LineIntegral);
  * - PhotonsPerPixel N > 0 (implies Beer-Lambert): the detector counts
  *   k ~ Poisson(N exp(-LineIntegral)) photons and Intensity = I0 k / N;
- *   the noise is seeded (Seed), the same for any number of threads;
+ *   the noise is seeded (NoiseSeed), the same for any number of threads;
  * - NegativeLog: point data "Attenuation" = -ln(Intensity / I0), the display
  *   radiologists read (dense is bright); without noise it equals the line
  *   integral. A pixel that counted no photons is given half a photon.
  * The input's arrays and field data are kept; the new array is the active
- * scalars.
+ * scalars. vtkMCXXRayMapper has the same five properties, with the same
+ * names, defaults and ranges, for the image on screen.
  */
 #ifndef vtkMCXRadiograph_h
 #define vtkMCXRadiograph_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
-class MONTECARLOXRAY_EXPORT vtkMCXRadiograph : public vtkImageAlgorithm
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXRadiograph : public vtkImageAlgorithm
 {
 public:
   static vtkMCXRadiograph* New();
@@ -44,16 +45,25 @@ public:
   vtkGetMacro(IncidentIntensity, double);
   ///@}
 
+  /** Largest PhotonsPerPixel: Poisson counts stay exact in a double. */
+  static constexpr double MaximumPhotonsPerPixel = 1e15;
+
+  ///@{
+  /** Names of the output arrays: Beer-Lambert (with or without noise), negative log. */
+  static const char* IntensityName() { return "Intensity"; }
+  static const char* AttenuationName() { return "Attenuation"; }
+  ///@}
+
   ///@{
   /** Photons reaching an unattenuated pixel; 0 (default) means no noise. */
-  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, 1e15);
+  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, MaximumPhotonsPerPixel);
   vtkGetMacro(PhotonsPerPixel, double);
   ///@}
 
   ///@{
   /** Seed of the noise, 0 to 2^63 - 1 (default 0). */
-  vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
-  vtkGetMacro(Seed, vtkTypeInt64);
+  vtkSetClampMacro(NoiseSeed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(NoiseSeed, vtkTypeInt64);
   ///@}
 
   ///@{
@@ -64,7 +74,7 @@ public:
   ///@}
 
   /** True when some effect is on (else the filter passes its input through). */
-  bool HasEffects() const;
+  bool HasEffects();
 
 protected:
   vtkMCXRadiograph() = default;
@@ -75,7 +85,7 @@ protected:
   bool BeerLambert = false;
   double IncidentIntensity = 1.0;
   double PhotonsPerPixel = 0.0;
-  vtkTypeInt64 Seed = 0;
+  vtkTypeInt64 NoiseSeed = 0;
   bool NegativeLog = false;
 
 private:

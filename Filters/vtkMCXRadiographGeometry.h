@@ -18,14 +18,14 @@
 #ifndef vtkMCXRadiographGeometry_h
 #define vtkMCXRadiographGeometry_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkObject.h"
 
 #include <string> // for Validate
 
 class vtkCamera;
 
-class MONTECARLOXRAY_EXPORT vtkMCXRadiographGeometry : public vtkObject
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXRadiographGeometry : public vtkObject
 {
 public:
   static vtkMCXRadiographGeometry* New();

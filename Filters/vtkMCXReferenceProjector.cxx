@@ -1,7 +1,8 @@
 #include "vtkMCXReferenceProjector.h"
 
-#include "mcxBatchedFor.h"
-#include "mcxIndexView.h"
+#include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXProjectorBaseInternals.h"
 #include "mcxProjectionGeometry.h"
 #include "mcxRayIntegrator.h"
 
@@ -140,7 +141,7 @@ int vtkMCXReferenceProjector::RequestData(
   }
   const mcx::Kernel kernel = static_cast<mcx::Kernel>(this->Kernel);
   const mcx::RayIntegrator integrator(g.data(), view.Dimensions, kernel);
-  const mcx::ProjectionGeometry& geometry = this->GetGeometry();
+  const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
   const RayFactory rays(geometry, view);
   const int width = geometry.Size[0];
   const int height = geometry.Size[1];

@@ -19,10 +19,10 @@
 #ifndef vtkMCXReferenceProjector_h
 #define vtkMCXReferenceProjector_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkMCXProjectorBase.h"
 
-class MONTECARLOXRAY_EXPORT vtkMCXReferenceProjector : public vtkMCXProjectorBase
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXReferenceProjector : public vtkMCXProjectorBase
 {
 public:
   static vtkMCXReferenceProjector* New();

@@ -1,6 +1,6 @@
 # CMake package files, so that another project can:
-#   find_package(MonteCarloXRay REQUIRED)
-#   target_link_libraries(app PRIVATE MonteCarloXRay::MonteCarloXRay)
+#   find_package(MonteCarloXRay REQUIRED COMPONENTS Filters)
+#   target_link_libraries(app PRIVATE MonteCarloXRay::Filters)
 include(CMakePackageConfigHelpers)
 
 set(mcxray_cmake_destination "${CMAKE_INSTALL_LIBDIR}/cmake/MonteCarloXRay")

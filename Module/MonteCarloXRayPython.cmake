@@ -1,4 +1,5 @@
-# The Python package `mcxray`: the module's classes wrapped by VTK's wrapper,
+# The Python package `mcxray`: the classes of both modules (Filters and
+# Rendering) wrapped by VTK's wrapper,
 # plus NumPy helpers in __init__.py. Importable by Debian's /usr/bin/python3
 # (with python3-vtk9) from the build tree (PYTHONPATH=<build>/${MCXRAY_PYTHON_DESTINATION})
 # and after `cmake --install` to a prefix whose dist-packages Python searches.
@@ -27,7 +28,9 @@ configure_file("${CMAKE_CURRENT_LIST_DIR}/Python/__init__.py.in"
 install(FILES "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py"
   DESTINATION "${MCXRAY_PYTHON_DESTINATION}/mcxray")
 
-# The extension module finds libMonteCarloXRay relative to itself once installed.
+# The extension modules find the libraries relative to themselves once installed.
 file(RELATIVE_PATH mcxray_python_to_lib "/prefix/${MCXRAY_PYTHON_DESTINATION}/mcxray"
   "/prefix/${CMAKE_INSTALL_LIBDIR}")
-set_target_properties(MonteCarloXRayPython PROPERTIES INSTALL_RPATH "$ORIGIN/${mcxray_python_to_lib}")
+foreach (library IN ITEMS MonteCarloXRayFiltersPython MonteCarloXRayRenderingPython)
+  set_target_properties(${library} PROPERTIES INSTALL_RPATH "$ORIGIN/${mcxray_python_to_lib}")
+endforeach ()

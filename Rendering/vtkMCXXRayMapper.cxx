@@ -1,10 +1,13 @@
 #include "vtkMCXXRayMapper.h"
 
-#include "mcxCameraGeometry.h"
+#include "vtkMCXCameraGeometryPrivate.h"
 #include "mcxHalton.h"
-#include "mcxIndexView.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
+#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXRadiograph.h"
+#include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -26,7 +29,6 @@
 #include "vtkPolyData.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
-#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -165,7 +167,7 @@ std::vector<float> ReadDepth(vtkOpenGLRenderWindow* window, int x0, int y0, int 
 
 struct vtkMCXXRayMapper::vtkInternals
 {
-  mcx::ProgressiveImage Image;
+  mcx::ProgressiveImage<mcx::SMPExecutor> Image;
   bool HasImage = false;
 
   // What the image on screen was made from.
@@ -219,11 +221,11 @@ struct vtkMCXXRayMapper::vtkInternals
     const auto start = std::chrono::steady_clock::now();
     if (points->GetDataType() == VTK_FLOAT)
     {
-      this->Image.Advance(static_cast<const float*>(points->GetVoidPointer(0)), target);
+      this->Image.Advance(mcx::SMPExecutor(), static_cast<const float*>(points->GetVoidPointer(0)), target);
     }
     else
     {
-      this->Image.Advance(static_cast<const double*>(points->GetVoidPointer(0)), target);
+      this->Image.Advance(mcx::SMPExecutor(), static_cast<const double*>(points->GetVoidPointer(0)), target);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::uint64_t added = target - current;
@@ -241,15 +243,9 @@ struct vtkMCXXRayMapper::vtkInternals
     this->Image.ToValues(this->SampleWeight(), this->Values.data());
     if (this->Effects.Any())
     {
-      const mcx::RadiographEffects effects = this->Effects;
-      const std::uint64_t seedKey = mcx::SeedKey(effects.Seed);
       float* values = this->Values.data();
-      vtkSMPTools::For(0, static_cast<vtkIdType>(this->Values.size()), 4096, [&](vtkIdType b, vtkIdType e) {
-        for (vtkIdType p = b; p < e; ++p)
-        {
-          values[p] = static_cast<float>(effects.Apply(values[p], static_cast<std::uint64_t>(p), seedKey));
-        }
-      });
+      this->Effects.ApplyToImage(mcx::SMPExecutor(), static_cast<std::int64_t>(this->Values.size()),
+        [values](std::int64_t p) { return static_cast<double>(values[p]); }, values);
     }
     if (this->AutomaticWindowPending && this->Image.Count() > 0)
     {
@@ -367,8 +363,9 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   const std::uint64_t count = in.Image.Count();
   in.Image.ToValues(in.SampleWeight(), values->GetPointer(0));
   output->GetPointData()->SetScalars(values);
-  mcx::AddFieldValue(output->GetFieldData(), "SampleCount", static_cast<long long>(count));
-  mcx::AddFieldValue(output->GetFieldData(), "EstimatedRelativeError", in.Image.EstimateRelativeError());
+  mcx::AddFieldValue(output->GetFieldData(), vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(count));
+  mcx::AddFieldValue(
+    output->GetFieldData(), vtkMCXProjectorBase::EstimatedRelativeErrorName(), in.Image.EstimateRelativeError());
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
@@ -391,7 +388,7 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
   producer->Update(outputPort);
   vtkPolyData* cloud = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
-  vtkDataArray* integralArray = cloud ? cloud->GetFieldData()->GetArray("Integral") : nullptr;
+  vtkDataArray* integralArray = cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName()) : nullptr;
   if (!integralArray || integralArray->GetNumberOfTuples() < 1)
   {
     vtkErrorMacro("The input carries no Integral in its field data (make it with vtkMCXPointSampler).");
@@ -489,12 +486,8 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   }
 
   // Upload what changed; a display change only redraws.
-  mcx::RadiographEffects effects;
-  effects.BeerLambert = this->BeerLambert || this->PhotonsPerPixel > 0;
-  effects.IncidentIntensity = this->IncidentIntensity;
-  effects.PhotonsPerPixel = this->PhotonsPerPixel;
-  effects.Seed = static_cast<std::uint64_t>(this->NoiseSeed);
-  effects.NegativeLog = this->NegativeLog;
+  const mcx::RadiographEffects effects = mcx::RadiographEffects::FromProperties(this->BeerLambert,
+    this->IncidentIntensity, this->PhotonsPerPixel, static_cast<std::uint64_t>(this->NoiseSeed), this->NegativeLog);
   const bool newEffects = effects != in.Effects;
   if (newEffects)
   {
@@ -542,6 +535,8 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorWindow: " << this->ColorWindow << "\n";
   os << indent << "ColorLevel: " << this->ColorLevel << "\n";
   os << indent << "AutomaticWindowLevel: " << this->AutomaticWindowLevel << "\n";
+  os << indent << "DisplayedWindow: " << this->DisplayedWindow << "\n";
+  os << indent << "DisplayedLevel: " << this->DisplayedLevel << "\n";
   os << indent << "InvertDisplay: " << this->InvertDisplay << "\n";
   os << indent << "BeerLambert: " << this->BeerLambert << "\n";
   os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";

@@ -43,12 +43,14 @@
 #ifndef vtkMCXXRayMapper_h
 #define vtkMCXXRayMapper_h
 
-#include "MonteCarloXRayModule.h" // for export macro
+#include "MonteCarloXRayRenderingModule.h" // for export macro
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkMCXPointSampler.h" // for the sample-count limits
+#include "vtkMCXRadiograph.h"   // for the radiograph limits
 
 class vtkImageData;
 
-class MONTECARLOXRAY_EXPORT vtkMCXXRayMapper : public vtkAbstractVolumeMapper
+class MONTECARLOXRAYRENDERING_EXPORT vtkMCXXRayMapper : public vtkAbstractVolumeMapper
 {
 public:
   static vtkMCXXRayMapper* New();
@@ -94,14 +96,15 @@ public:
    * it off line (use vtkMCXAttenuationFunction as the TF): BeerLambert shows
    * I0 exp(-line integral); PhotonsPerPixel > 0 adds seeded Poisson noise;
    * NegativeLog shows -ln(I / I0). All off by default; a change re-maps the
-   * buffer, it does not re-project.
+   * buffer, it does not re-project. Names, defaults and ranges are
+   * vtkMCXRadiograph's.
    */
   vtkSetMacro(BeerLambert, bool);
   vtkGetMacro(BeerLambert, bool);
   vtkBooleanMacro(BeerLambert, bool);
   vtkSetClampMacro(IncidentIntensity, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(IncidentIntensity, double);
-  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, 1e15);
+  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, vtkMCXRadiograph::MaximumPhotonsPerPixel);
   vtkGetMacro(PhotonsPerPixel, double);
   vtkSetClampMacro(NoiseSeed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(NoiseSeed, vtkTypeInt64);
@@ -125,7 +128,7 @@ public:
    * The first image after a change has at least 2^InitialSampleExponent - 1
    * points (default 14), however little time is allocated.
    */
-  vtkSetClampMacro(InitialSampleExponent, int, 1, 40);
+  vtkSetClampMacro(InitialSampleExponent, int, 1, vtkMCXPointSampler::MaximumPointCloudExponent);
   vtkGetMacro(InitialSampleExponent, int);
   ///@}
 

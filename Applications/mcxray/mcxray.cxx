@@ -1104,7 +1104,7 @@ int main(int argc, char* argv[])
   physics->SetBeerLambert(options.Physics.BeerLambert);
   physics->SetIncidentIntensity(options.Physics.IncidentIntensity);
   physics->SetPhotonsPerPixel(options.Physics.Photons);
-  physics->SetSeed(options.Physics.NoiseSeed);
+  physics->SetNoiseSeed(options.Physics.NoiseSeed);
   physics->SetNegativeLog(options.Physics.NegativeLog);
   if (physics->HasEffects())
   {

@@ -1,6 +1,8 @@
 // The plain C++ kernels, without any pipeline.
-#include "mcxAccumulator.h"
 #include "mcxCountingSort.h"
+#include "mcxExecutor.h"
+#include "mcxFixedPoint.h"
+#include "mcxPixelBinner.h"
 #include "mcxFastDivide.h"
 #include "mcxHalton.h"
 #include "mcxRayIntegrator.h"
@@ -134,7 +136,7 @@ TEST(CountingSort, MatchesStableSortForAnyLayout)
         [&](std::uint32_t a, std::uint32_t b) { return bin[a] < bin[b]; });
       std::vector<std::uint32_t> sorted(expected.size());
       std::vector<std::int64_t> offsets;
-      const std::int64_t left = mcx::CountingSortByBin<std::uint32_t>(
+      const std::int64_t left = mcx::CountingSortByBin<std::uint32_t>(mcx::SerialExecutor(),
         n, bins, [&](std::int64_t id) { return bin[id]; }, offsets, sorted.data());
       EXPECT_EQ(n - static_cast<std::int64_t>(expected.size()), left);
       EXPECT_EQ(expected, sorted);
@@ -374,7 +376,7 @@ TEST(Accumulation, CountsAbove2To32StayExact)
   // 2^33 + 5 samples in one pixel (as 128-bit fixed point) convert exactly.
   std::vector<mcx::FixedSum> sums(2, 0);
   const std::uint64_t samples = (std::uint64_t(1) << 33) + 5;
-  sums[0] = static_cast<mcx::FixedSum>(samples) * mcx::FixedOneInteger;
+  sums[0] = mcx::FixedSum(samples) << 32; // samples times 2^32
   for (int i = 0; i < 3; ++i)
   {
     sums[1] += mcx::FixedOneInteger; // the accumulator's own additions
@@ -407,7 +409,7 @@ TEST(Accumulation, PerspectivePointsBehindOnAndBeforeTheEye)
   // On the near plane, on the axis: seen, with weight D^2 / near^2 = 100.
   const double onNear[3] = { 0.0, 0.0, 1.0 };
   ASSERT_TRUE(binner.Bin(onNear, pixel, increment));
-  EXPECT_EQ(static_cast<mcx::FixedSum>(100) * mcx::FixedOneInteger, increment);
+  EXPECT_TRUE(mcx::FixedSum(100) << 32 == increment);
   EXPECT_EQ(4 + 8 * 4, pixel);
   // Nearer than 1e-6 of the focal distance is refused as a geometry.
   g.NearDistance = 1e-6;

@@ -186,7 +186,7 @@ TEST(Radiograph, PoissonNoiseHasTheVarianceOfItsMean)
       auto input = ConstantLineIntegral(width, height, lineIntegral);
       vtkNew<vtkMCXRadiograph> physics;
       physics->SetPhotonsPerPixel(photons);
-      physics->SetSeed(11);
+      physics->SetNoiseSeed(11);
       auto output = Apply(physics, input);
       vtkDataArray* intensity = output->GetPointData()->GetArray("Intensity");
       vtkNew<vtkDoubleArray> counts;
@@ -212,7 +212,7 @@ TEST(Radiograph, NoiseIsSeededAndThreadIndependent)
   auto input = ConstantLineIntegral(128, 128, 1.0);
   vtkNew<vtkMCXRadiograph> physics;
   physics->SetPhotonsPerPixel(500);
-  physics->SetSeed(3);
+  physics->SetNoiseSeed(3);
   vtkSmartPointer<vtkImageData> images[2];
   const int threads[2] = { 1, 2 };
   for (int t = 0; t < 2; ++t)
@@ -228,7 +228,7 @@ TEST(Radiograph, NoiseIsSeededAndThreadIndependent)
   {
     ASSERT_EQ(a->GetTuple1(p), b->GetTuple1(p)) << p;
   }
-  physics->SetSeed(4);
+  physics->SetNoiseSeed(4);
   auto other = Apply(physics, input);
   vtkIdType differing = 0;
   for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)

@@ -4,6 +4,8 @@
 #ifndef mcxRandom_h
 #define mcxRandom_h
 
+#include "mcxWideInteger.h"
+
 #include <cstdint>
 
 namespace mcx
@@ -39,9 +41,9 @@ public:
   std::uint64_t Next()
   {
     this->State += 0xA0761D6478BD642Full;
-    const unsigned __int128 t =
-      static_cast<unsigned __int128>(this->State) * (this->State ^ 0xE7037ED1A0B428DBull);
-    return static_cast<std::uint64_t>(t >> 64) ^ static_cast<std::uint64_t>(t);
+    std::uint64_t high, low;
+    Multiply64(this->State, this->State ^ 0xE7037ED1A0B428DBull, high, low);
+    return high ^ low;
   }
 
   /// Uniform in (0, 1], 53 random bits.

@@ -1,4 +1,4 @@
-#include "mcxIndexView.h"
+#include "vtkMCXIndexViewPrivate.h"
 
 #include "vtkMCXDensityIndex.h"
 

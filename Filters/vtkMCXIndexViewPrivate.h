@@ -1,8 +1,9 @@
 // Read access to the output of vtkMCXDensityIndex for the samplers and
 // projectors, plus the transfer function evaluated per level.
-#ifndef mcxIndexView_h
-#define mcxIndexView_h
+#ifndef vtkMCXIndexViewPrivate_h
+#define vtkMCXIndexViewPrivate_h
 
+#include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxSampleGenerator.h"
 #include "mcxTransferTable.h"
 
@@ -78,8 +79,9 @@ bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* 
   vtkPiecewiseFunction* tf, IndexView& view, TransferTable& table, double& integral);
 
 /// Adds a one-value array to field data (the metadata that travels with outputs).
-void AddFieldValue(vtkFieldData* fd, const char* name, double value);
-void AddFieldValue(vtkFieldData* fd, const char* name, long long value);
+/// (Exported: the Rendering module's mapper writes its image's field data too.)
+MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(vtkFieldData* fd, const char* name, double value);
+MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(vtkFieldData* fd, const char* name, long long value);
 
 /// Support corners (see ComputeSupportCorners) from the pipeline information
 /// of an image (WHOLE_EXTENT, ORIGIN, SPACING and DIRECTION when present).

@@ -2,6 +2,8 @@
 #ifndef mcxFastDivide_h
 #define mcxFastDivide_h
 
+#include "mcxWideInteger.h"
+
 #include <cstdint>
 #include <type_traits>
 
@@ -25,8 +27,9 @@ public:
     {
       return n;
     }
-    return static_cast<std::uint64_t>(
-      (static_cast<unsigned __int128>(n) * this->Magic) >> 64);
+    std::uint64_t high, low;
+    Multiply64(n, this->Magic, high, low);
+    return high;
   }
   std::uint64_t Divisor;
 

@@ -1,4 +1,4 @@
-#include "mcxCameraGeometry.h"
+#include "vtkMCXCameraGeometryPrivate.h"
 
 #include "vtkCamera.h"
 #include "vtkMath.h"

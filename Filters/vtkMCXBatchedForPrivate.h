@@ -1,8 +1,8 @@
 // Runs a long parallel loop in batches so that the calling algorithm can
 // report progress and honour an abort request between them (VTK's progress
 // events must come from the thread that runs the pipeline).
-#ifndef mcxBatchedFor_h
-#define mcxBatchedFor_h
+#ifndef vtkMCXBatchedForPrivate_h
+#define vtkMCXBatchedForPrivate_h
 
 #include "vtkAlgorithm.h"
 #include "vtkSMPTools.h"

@@ -8,8 +8,6 @@
 #ifndef mcxCountingSort_h
 #define mcxCountingSort_h
 
-#include <vtkSMPTools.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -38,9 +36,10 @@ inline CountingSortLayout MakeCountingSortLayout(std::int64_t numberOfVoxels, st
 /// Sorts the ids 0 .. numberOfVoxels-1 by binOf(id), a bin in [0, numberOfBins)
 /// or -1 for a voxel to leave out. On return binOffsets (numberOfBins + 1
 /// entries) delimits each bin's ids in sortedIds, which must hold room for
-/// every voxel that is not left out. Returns the number left out.
-template <typename IdType, typename BinFunction>
-std::int64_t CountingSortByBin(std::int64_t numberOfVoxels, std::int64_t numberOfBins,
+/// every voxel that is not left out. Returns the number left out. Chunks run
+/// in parallel on `executor` (see mcxExecutor.h).
+template <typename IdType, typename BinFunction, typename Executor>
+std::int64_t CountingSortByBin(const Executor& executor, std::int64_t numberOfVoxels, std::int64_t numberOfBins,
   const BinFunction& binOf, std::vector<std::int64_t>& binOffsets, IdType* sortedIds)
 {
   const CountingSortLayout layout = MakeCountingSortLayout(numberOfVoxels, numberOfBins);
@@ -53,7 +52,7 @@ std::int64_t CountingSortByBin(std::int64_t numberOfVoxels, std::int64_t numberO
     end = std::min(numberOfVoxels, begin + layout.ChunkSize);
   };
 
-  vtkSMPTools::For(0, layout.NumberOfChunks, 1, [&](std::int64_t c0, std::int64_t c1) {
+  executor.For(0, layout.NumberOfChunks, 1, [&](std::int64_t c0, std::int64_t c1) {
     for (std::int64_t c = c0; c < c1; ++c)
     {
       std::int64_t* count = counters.data() + c * nb;
@@ -91,7 +90,7 @@ std::int64_t CountingSortByBin(std::int64_t numberOfVoxels, std::int64_t numberO
   }
   binOffsets[static_cast<std::size_t>(nb)] = running;
 
-  vtkSMPTools::For(0, layout.NumberOfChunks, 1, [&](std::int64_t c0, std::int64_t c1) {
+  executor.For(0, layout.NumberOfChunks, 1, [&](std::int64_t c0, std::int64_t c1) {
     for (std::int64_t c = c0; c < c1; ++c)
     {
       std::int64_t* cursor = counters.data() + c * nb;

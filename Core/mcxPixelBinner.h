@@ -1,0 +1,135 @@
+// Projection of points to pixels and fixed-point increments, the geometric
+// half of every deposit (see mcxFixedPoint.h for the increments' meaning).
+#ifndef mcxPixelBinner_h
+#define mcxPixelBinner_h
+
+#include "mcxFixedPoint.h"
+#include "mcxProjectionGeometry.h"
+
+#include <cmath>
+#include <cstdint>
+
+namespace mcx
+{
+
+/// Maps points given in a source frame (world = Origin + Matrix * p) to
+/// pixels and fixed-point increments for one ProjectionGeometry.
+class PixelBinner
+{
+public:
+  /// sourceOrigin and sourceMatrix (row-major 3x3) take source coordinates to world.
+  PixelBinner(const ProjectionGeometry& g, const double sourceOrigin[3], const double sourceMatrix[9])
+    : Perspective(g.Perspective)
+    , Width(g.Size[0])
+    , Height(g.Size[1])
+    , WidthAsDouble(g.Size[0])
+    , HeightAsDouble(g.Size[1])
+    , Near(g.NearDistance)
+    , FocalSquared(g.FocalDistance * g.FocalDistance)
+  {
+    const double* axes[3] = { g.U, g.V, g.W };
+    // Rows k = 0, 1 give (x - E) . U, . V (perspective) or x . U, x . V
+    // (parallel), row 2 the depth (x - E) . W, as affine functions of the
+    // source coordinates p.
+    for (int k = 0; k < 3; ++k)
+    {
+      this->Offset[k] = 0.0;
+      for (int r = 0; r < 3; ++r)
+      {
+        const double base = sourceOrigin[r] - (this->Perspective || k == 2 ? g.Eye[r] : 0.0);
+        this->Offset[k] += axes[k][r] * base;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        double sum = 0.0;
+        for (int r = 0; r < 3; ++r)
+        {
+          sum += axes[k][r] * sourceMatrix[3 * r + c];
+        }
+        this->Rows[3 * k + c] = sum;
+      }
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+      if (this->Perspective)
+      {
+        this->PixelScale[k] = g.FocalDistance / g.Spacing[k];
+        this->PixelOffset[k] = -g.Origin[k] / g.Spacing[k] + 0.5;
+      }
+      else
+      {
+        // Fold the pixel scaling into the rows: one affine map to pixel units.
+        for (int c = 0; c < 3; ++c)
+        {
+          this->Rows[3 * k + c] /= g.Spacing[k];
+        }
+        this->PixelOffset[k] = this->Offset[k] / g.Spacing[k] - g.Origin[k] / g.Spacing[k] + 0.5;
+      }
+    }
+  }
+
+  /// Pixel index (i + Width * j) and increment of a point, or false when it
+  /// misses the image or lies nearer than the near plane (perspective).
+  bool Bin(const double p[3], std::int64_t& pixel, FixedSum& increment) const
+  {
+    const double* m = this->Rows;
+    double fx, fy;
+    if (!this->Perspective)
+    {
+      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->PixelOffset[0];
+      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->PixelOffset[1];
+      increment = FixedOneInteger;
+    }
+    else
+    {
+      const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[0];
+      const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Offset[1];
+      const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Offset[2];
+      if (!(z >= this->Near))
+      {
+        return false;
+      }
+      const double inverseZ = 1.0 / z;
+      fx = u * inverseZ * this->PixelScale[0] + this->PixelOffset[0];
+      fy = v * inverseZ * this->PixelScale[1] + this->PixelOffset[1];
+      if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
+      {
+        return false;
+      }
+      // U, V, W are orthonormal, so the distance from the eye is |(u, v, z)|.
+      const double s = std::sqrt(u * u + v * v + z * z);
+      const double f = this->FocalSquared * s * inverseZ * inverseZ * inverseZ;
+      increment = FixedIncrement(f);
+    }
+    if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
+    {
+      return false;
+    }
+    pixel = static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * this->Width;
+    return true;
+  }
+
+  /// Distance of a point from the eye along the viewing direction W.
+  double Depth(const double p[3]) const
+  {
+    const double* m = this->Rows + 6;
+    return m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[2];
+  }
+
+private:
+  bool Perspective;
+  int Width;
+  int Height;
+  double WidthAsDouble;
+  double HeightAsDouble;
+  double Near;
+  double FocalSquared;
+  double Offset[3] = { 0, 0, 0 };
+  double Rows[9] = { 0 };
+  double PixelScale[2] = { 0, 0 };
+  double PixelOffset[2] = { 0, 0 };
+};
+
+} // namespace mcx
+
+#endif

@@ -1,0 +1,106 @@
+// The mapper's exact accumulation buffer, free of any graphics API so that the
+// tests can check it directly.
+//
+// It holds the fixed-point image of the first Count() points of a cloud in
+// Halton order and grows it by whole prefixes without ever starting over, so
+// a refined image only ever adds samples to the one on screen. When it grows
+// to 2^m - 1 points it also keeps the image of the first 2^(m-1) - 1, which
+// the error estimate compares with the rest (the same halves as the off-line
+// projector's). Sums are integers, so the image is the same for any number of
+// threads and equals vtkMCXProjector's for the same camera and points: both
+// deposit through SampleAccumulator.
+#ifndef mcxProgressiveImage_h
+#define mcxProgressiveImage_h
+
+#include "mcxErrorEstimate.h"
+#include "mcxFixedPoint.h"
+#include "mcxProjectionGeometry.h"
+#include "mcxSampleAccumulator.h"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace mcx
+{
+
+template <typename Executor>
+class ProgressiveImage
+{
+public:
+  /// Starts over for a view: see SampleAccumulator::Reset.
+  void Reset(const ProjectionGeometry& geometry, const double origin[3], const double matrix[9],
+    std::vector<double> depthLimits = std::vector<double>())
+  {
+    this->Geometry = geometry;
+    this->Accumulator.Reset(geometry, origin, matrix, std::move(depthLimits));
+    const std::size_t pixels = this->Accumulator.NumberOfPixels();
+    this->Total.assign(pixels, 0);
+    this->FirstHalf.assign(pixels, 0);
+    this->Counted = 0;
+    this->FirstHalfCount = 0;
+  }
+
+  /// Adds points [Count(), target) of `points` (x, y, z each) to the image.
+  template <typename Real>
+  void Advance(const Executor& executor, const Real* points, std::uint64_t target)
+  {
+    if (target <= this->Counted)
+    {
+      return;
+    }
+    // The image so far lies inside the new first half: it is where that
+    // half's sums start.
+    const std::uint64_t half = FirstHalfSize(target);
+    const bool splitsHere = half >= this->Counted && half > this->FirstHalfCount;
+    if (splitsHere)
+    {
+      this->FirstHalf = this->Total;
+      this->FirstHalfCount = half;
+    }
+    this->Accumulator.SetSplit(splitsHere ? half : 0);
+    this->Accumulator.DepositPoints(executor, points, this->Counted, target);
+    this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data());
+    this->Counted = target;
+  }
+
+  std::uint64_t Count() const { return this->Counted; }
+  std::size_t NumberOfPixels() const { return this->Total.size(); }
+  const ProjectionGeometry& GetGeometry() const { return this->Geometry; }
+  bool IsOccluded() const { return this->Accumulator.IsOccluded(); }
+
+  /// The fixed-point sums of the image of all Count() points.
+  const std::vector<FixedSum>& Sums() const { return this->Total; }
+
+  /// Relative RMS error of the current image, from its two halves; NaN when
+  /// the halves are not known (fewer than 3 points).
+  double EstimateRelativeError() const
+  {
+    if (this->FirstHalfCount != FirstHalfSize(this->Counted))
+    {
+      return std::nan("");
+    }
+    return mcx::EstimateRelativeError(
+      this->Total.data(), this->FirstHalf.data(), this->Total.size(), this->Counted);
+  }
+
+  /// Pixel values in physical units: the line integral, each point carrying
+  /// `sampleWeight` (the cloud's integral over Count()).
+  template <typename Value>
+  void ToValues(double sampleWeight, Value* values) const
+  {
+    FixedSumsToValues(this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.PixelArea(), values);
+  }
+
+private:
+  ProjectionGeometry Geometry;
+  SampleAccumulator<Executor> Accumulator;
+  std::vector<FixedSum> Total;
+  std::vector<FixedSum> FirstHalf;
+  std::uint64_t Counted = 0;
+  std::uint64_t FirstHalfCount = 0;
+};
+
+} // namespace mcx
+
+#endif

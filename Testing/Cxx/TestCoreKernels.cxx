@@ -1,0 +1,303 @@
+// Tests of the plain C++ core without VTK: the portable wide integer against
+// the compiler's, and the executor-driven kernels (counting sort, sample
+// accumulation, progressive image, radiograph effects) giving the same
+// result on one thread and on several.
+#include "mcxCountingSort.h"
+#include "mcxExecutor.h"
+#include "mcxFixedPoint.h"
+#include "mcxProgressiveImage.h"
+#include "mcxRadiographEffects.h"
+#include "mcxSampleAccumulator.h"
+#include "mcxWideInteger.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <list>
+#include <map>
+#include <mutex>
+#include <random>
+#include <thread>
+#include <vector>
+
+namespace
+{
+// An executor of std::threads with small chunks, so that work really is
+// split and interleaved (the VTK modules use vtkSMPTools instead).
+struct ThreadExecutor
+{
+  int Threads = 4;
+
+  template <typename F>
+  void For(std::int64_t begin, std::int64_t end, std::int64_t grain, const F& f) const
+  {
+    const std::int64_t chunk = std::max<std::int64_t>(1, std::min<std::int64_t>(grain, 97));
+    std::mutex mutex;
+    std::int64_t next = begin;
+    auto worker = [&]() {
+      for (;;)
+      {
+        std::int64_t b;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          b = next;
+          next = std::min(end, next + chunk);
+        }
+        if (b >= end)
+        {
+          return;
+        }
+        f(b, std::min(end, b + chunk));
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 0; t < this->Threads; ++t)
+    {
+      pool.emplace_back(worker);
+    }
+    for (std::thread& thread : pool)
+    {
+      thread.join();
+    }
+  }
+
+  template <typename T>
+  class ThreadLocal
+  {
+  public:
+    T& Local()
+    {
+      std::lock_guard<std::mutex> lock(this->Mutex);
+      auto found = this->Slots.find(std::this_thread::get_id());
+      if (found != this->Slots.end())
+      {
+        return *found->second;
+      }
+      this->Values.emplace_back();
+      this->Slots[std::this_thread::get_id()] = &this->Values.back();
+      return this->Values.back();
+    }
+    typename std::list<T>::iterator begin() { return this->Values.begin(); }
+    typename std::list<T>::iterator end() { return this->Values.end(); }
+
+  private:
+    std::mutex Mutex;
+    std::list<T> Values;
+    std::map<std::thread::id, T*> Slots;
+  };
+};
+
+#ifdef __SIZEOF_INT128__
+using Native = unsigned __int128;
+
+Native ToNative(const mcx::PortableUInt128& value)
+{
+  return (static_cast<Native>(value.HighHalf()) << 64) | value.LowHalf();
+}
+#endif
+}
+
+TEST(WideInteger, PortableMatchesTheCompilersType)
+{
+#ifndef __SIZEOF_INT128__
+  GTEST_SKIP() << "this compiler has no 128-bit integer to compare with";
+#else
+  std::mt19937_64 random(12345);
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const std::uint64_t a = random(), b = random(), c = random() >> (random() % 64);
+    const unsigned shift = static_cast<unsigned>(random() % 128);
+    mcx::PortableUInt128 x(a, b);
+    const Native nx = ToNative(x);
+    ASSERT_TRUE(ToNative(x << shift) == (nx << shift));
+    mcx::PortableUInt128 y(c);
+    y += x;
+    ASSERT_TRUE(ToNative(y) == nx + c);
+    ASSERT_EQ(nx < static_cast<Native>(c), x < mcx::PortableUInt128(c));
+    // Conversions to double round to nearest, as the compiler's do; values
+    // of every magnitude, including those just off a rounding tie.
+    const mcx::PortableUInt128 z = mcx::PortableUInt128(a >> (random() % 64), b) << (random() % 64);
+    ASSERT_EQ(static_cast<double>(ToNative(z)), static_cast<double>(z));
+    const double d = std::ldexp(static_cast<double>(a >> 11), static_cast<int>(random() % 74));
+    ASSERT_TRUE(ToNative(mcx::PortableUInt128::FromDouble(d)) == static_cast<Native>(d));
+    std::uint64_t high, low;
+    mcx::PortableMultiply64(a, c, high, low);
+    const Native product = static_cast<Native>(a) * c;
+    ASSERT_EQ(static_cast<std::uint64_t>(product >> 64), high);
+    ASSERT_EQ(static_cast<std::uint64_t>(product), low);
+  }
+  // Ties round to even, with and without a sticky bit below.
+  const mcx::PortableUInt128 tie(1, 0x400); // 2^64 + 2^10: halfway at 2^64 precision 2^11
+  EXPECT_EQ(static_cast<double>(ToNative(tie)), static_cast<double>(tie));
+  const mcx::PortableUInt128 aboveTie(1, 0x401);
+  EXPECT_EQ(static_cast<double>(ToNative(aboveTie)), static_cast<double>(aboveTie));
+  const mcx::PortableUInt128 top(~std::uint64_t(0), ~std::uint64_t(0));
+  EXPECT_EQ(std::ldexp(1.0, 128), static_cast<double>(top));
+  EXPECT_TRUE(mcx::PortableUInt128::FromDouble(-1.0) == mcx::PortableUInt128());
+#endif
+}
+
+TEST(WideInteger, FixedPointIncrementsAboveSixtyFourBits)
+{
+  // A perspective weight near the largest allowed (1e12) gives an increment
+  // above 2^64, which the fixed point keeps.
+  const mcx::FixedSum increment = mcx::FixedIncrement(1e12);
+  EXPECT_EQ(1e12 * 4294967296.0, mcx::ToDouble(increment));
+  EXPECT_TRUE(mcx::FixedIncrement(1.0) == mcx::FixedOneInteger);
+  EXPECT_TRUE(mcx::FixedIncrement(0.0) == mcx::FixedSum(0));
+}
+
+TEST(Executor, CountingSortIsTheSameOnOneThreadAndOnSeveral)
+{
+  const std::int64_t n = 300000, bins = 37;
+  std::vector<int> bin(static_cast<std::size_t>(n));
+  std::mt19937 random(7);
+  for (int& b : bin)
+  {
+    b = static_cast<int>(random() % (bins + 1)) - 1; // -1: left out
+  }
+  auto binOf = [&](std::int64_t id) { return static_cast<std::int64_t>(bin[static_cast<std::size_t>(id)]); };
+  std::vector<std::uint32_t> serial(static_cast<std::size_t>(n)), threaded(static_cast<std::size_t>(n));
+  std::vector<std::int64_t> serialOffsets, threadedOffsets;
+  const std::int64_t leftSerial =
+    mcx::CountingSortByBin<std::uint32_t>(mcx::SerialExecutor(), n, bins, binOf, serialOffsets, serial.data());
+  const std::int64_t leftThreaded =
+    mcx::CountingSortByBin<std::uint32_t>(ThreadExecutor(), n, bins, binOf, threadedOffsets, threaded.data());
+  EXPECT_EQ(leftSerial, leftThreaded);
+  EXPECT_EQ(serialOffsets, threadedOffsets);
+  EXPECT_EQ(serial, threaded);
+  EXPECT_GT(leftSerial, 0);
+}
+
+namespace
+{
+mcx::ProjectionGeometry SmallPerspectiveView()
+{
+  mcx::ProjectionGeometry g;
+  g.Perspective = true;
+  g.Eye[2] = -50;
+  g.FocalDistance = 50;
+  g.NearDistance = 1;
+  g.Size[0] = 24;
+  g.Size[1] = 16;
+  g.Spacing[0] = g.Spacing[1] = 0.5;
+  g.Origin[0] = -5.75;
+  g.Origin[1] = -3.75;
+  return g;
+}
+
+std::vector<float> RandomCloud(std::size_t points)
+{
+  std::mt19937 random(99);
+  std::normal_distribution<float> position(0.0f, 3.0f);
+  std::vector<float> cloud(3 * points);
+  for (float& x : cloud)
+  {
+    x = position(random);
+  }
+  return cloud;
+}
+}
+
+TEST(SampleAccumulator, SplitSumsAndThreadIndependence)
+{
+  const mcx::ProjectionGeometry g = SmallPerspectiveView();
+  ASSERT_EQ("", g.Validate());
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const std::uint64_t count = 4095, split = 2047;
+  const std::vector<float> cloud = RandomCloud(count);
+  const std::size_t pixels = 24 * 16;
+
+  // Each sample by hand, through the binner.
+  const mcx::PixelBinner binner(g, origin, identity);
+  std::vector<mcx::FixedSum> all(pixels, 0), first(pixels, 0);
+  std::uint64_t deposited = 0;
+  for (std::uint64_t k = 0; k < count; ++k)
+  {
+    const double p[3] = { cloud[3 * k], cloud[3 * k + 1], cloud[3 * k + 2] };
+    std::int64_t pixel;
+    mcx::FixedSum increment;
+    if (binner.Bin(p, pixel, increment))
+    {
+      all[static_cast<std::size_t>(pixel)] += increment;
+      first[static_cast<std::size_t>(pixel)] += k < split ? increment : mcx::FixedSum(0);
+      ++deposited;
+    }
+  }
+  ASSERT_GT(deposited, count / 2);
+
+  mcx::SampleAccumulator<ThreadExecutor> accumulator;
+  accumulator.Reset(g, origin, identity);
+  accumulator.SetSplit(split);
+  accumulator.DepositPoints(ThreadExecutor(), cloud.data(), 0, count);
+  std::vector<mcx::FixedSum> threadedAll(pixels, 0), threadedFirst(pixels, 0);
+  accumulator.Collect(threadedAll.data(), threadedFirst.data());
+  EXPECT_TRUE(all == threadedAll);
+  EXPECT_TRUE(first == threadedFirst);
+
+  // Collect leaves the threads' images zeroed: a second round adds nothing
+  // of the first.
+  accumulator.DepositPoints(ThreadExecutor(), cloud.data(), 0, 0);
+  std::vector<mcx::FixedSum> again(pixels, 0), againFirst(pixels, 0);
+  accumulator.Collect(again.data(), againFirst.data());
+  EXPECT_TRUE(std::all_of(again.begin(), again.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
+
+  // A depth limit drops what lies behind it: a limit of 0 everywhere hides all.
+  accumulator.Reset(g, origin, identity, std::vector<double>(pixels, 0.0));
+  accumulator.DepositPoints(ThreadExecutor(), cloud.data(), 0, count);
+  std::vector<mcx::FixedSum> hidden(pixels, 0), hiddenFirst(pixels, 0);
+  accumulator.Collect(hidden.data(), hiddenFirst.data());
+  EXPECT_TRUE(std::all_of(hidden.begin(), hidden.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
+}
+
+TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)
+{
+  const mcx::ProjectionGeometry g = SmallPerspectiveView();
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const std::uint64_t count = 8191;
+  const std::vector<float> cloud = RandomCloud(count);
+
+  mcx::SampleAccumulator<mcx::SerialExecutor> oneShot;
+  oneShot.Reset(g, origin, identity);
+  oneShot.SetSplit(mcx::FirstHalfSize(count));
+  oneShot.DepositPoints(mcx::SerialExecutor(), cloud.data(), 0, count);
+  const std::size_t pixels = oneShot.NumberOfPixels();
+  std::vector<mcx::FixedSum> sums(2 * pixels, 0);
+  oneShot.Collect(sums.data(), sums.data() + pixels);
+
+  mcx::ProgressiveImage<ThreadExecutor> image;
+  image.Reset(g, origin, identity);
+  for (std::uint64_t target = 1; target <= count; target = 2 * target + 1)
+  {
+    image.Advance(ThreadExecutor(), cloud.data(), target);
+    EXPECT_EQ(target, image.Count());
+  }
+  EXPECT_TRUE(std::equal(sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(pixels), image.Sums().begin()));
+  EXPECT_EQ(mcx::EstimateRelativeError(sums, count), image.EstimateRelativeError());
+  EXPECT_GT(image.EstimateRelativeError(), 0.0);
+}
+
+TEST(RadiographEffects, AppliedToAnImageAsPerPixel)
+{
+  const mcx::RadiographEffects effects = mcx::RadiographEffects::FromProperties(false, 2.0, 500.0, 9, true);
+  EXPECT_TRUE(effects.BeerLambert); // implied by the noise and the log
+  const std::int64_t pixels = 10000;
+  std::vector<double> lineIntegrals(static_cast<std::size_t>(pixels));
+  for (std::int64_t p = 0; p < pixels; ++p)
+  {
+    lineIntegrals[static_cast<std::size_t>(p)] = 0.001 * static_cast<double>(p % 5000);
+  }
+  std::vector<float> values(static_cast<std::size_t>(pixels));
+  effects.ApplyToImage(ThreadExecutor(), pixels,
+    [&](std::int64_t p) { return lineIntegrals[static_cast<std::size_t>(p)]; }, values.data());
+  const std::uint64_t key = mcx::SeedKey(9);
+  for (std::int64_t p = 0; p < pixels; ++p)
+  {
+    ASSERT_EQ(static_cast<float>(effects.Apply(lineIntegrals[static_cast<std::size_t>(p)], static_cast<std::uint64_t>(p), key)),
+      values[static_cast<std::size_t>(p)]);
+  }
+  EXPECT_FALSE(mcx::RadiographEffects::FromProperties(false, 1.0, 0.0, 0, false).Any());
+}
