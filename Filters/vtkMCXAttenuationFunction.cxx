@@ -1,26 +1,12 @@
 #include "vtkMCXAttenuationFunction.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
 
 #include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkMCXAttenuationFunction);
-
-vtkMCXAttenuationFunction::vtkMCXAttenuationFunction()
-{
-  this->Rebuild();
-}
-
-void vtkMCXAttenuationFunction::SetWaterAttenuation(double mu)
-{
-  mu = std::isfinite(mu) ? std::max(mu, 0.0) : 0.0;
-  if (mu != this->WaterAttenuation)
-  {
-    this->WaterAttenuation = mu;
-    this->Rebuild();
-  }
-}
 
 void vtkMCXAttenuationFunction::SetHounsfieldRange(double lowest, double highest)
 {
@@ -33,24 +19,29 @@ void vtkMCXAttenuationFunction::SetHounsfieldRange(double lowest, double highest
   {
     this->HounsfieldRange[0] = lowest;
     this->HounsfieldRange[1] = highest;
-    this->Rebuild();
+    this->Modified();
   }
 }
 
-void vtkMCXAttenuationFunction::Rebuild()
+void vtkMCXAttenuationFunction::FillTransferFunction(vtkPiecewiseFunction* tf)
 {
+  if (!tf)
+  {
+    vtkErrorMacro("FillTransferFunction needs a vtkPiecewiseFunction, not null.");
+    return;
+  }
   // Piecewise linear and exact: 0 up to air, then the straight line of mu.
   const double lowest = this->HounsfieldRange[0];
   const double highest = this->HounsfieldRange[1];
   auto mu = [this](double hu) { return std::max(0.0, this->WaterAttenuation * (1.0 + hu / 1000.0)); };
-  this->RemoveAllPoints();
-  this->ClampingOn();
-  this->AddPoint(lowest, mu(lowest));
+  tf->RemoveAllPoints();
+  tf->ClampingOn();
+  tf->AddPoint(lowest, mu(lowest));
   if (lowest < -1000.0 && highest > -1000.0)
   {
-    this->AddPoint(-1000.0, 0.0);
+    tf->AddPoint(-1000.0, 0.0);
   }
-  this->AddPoint(highest, mu(highest));
+  tf->AddPoint(highest, mu(highest));
 }
 
 void vtkMCXAttenuationFunction::PrintSelf(ostream& os, vtkIndent indent)

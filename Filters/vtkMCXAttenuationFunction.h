@@ -3,29 +3,33 @@
  * @brief   The transfer function from Hounsfield units to linear attenuation:
  *          mu = mu_water (1 + HU / 1000), 0 at and below air (-1000 HU).
  *
- * With it as the TF of a sampler or projector, each pixel holds the line
- * integral of mu, which vtkMCXRadiograph turns into a radiograph. mu_water
- * sets the beam energy (default 0.02 per mm, water at about 70 keV); the
- * unit of mu is the inverse of the volume's world unit (mm for DICOM and
- * NIfTI). The function is exact (linear) over HounsfieldRange and holds its
- * end values beyond it.
+ * A helper, not a function itself: FillTransferFunction() writes the map
+ * into a vtkPiecewiseFunction (replacing its points), which then serves as
+ * the TF of a sampler or projector; each pixel holds the line integral of
+ * mu, which vtkMCXRadiograph turns into a radiograph. Fill again after a
+ * change of the parameters. mu_water sets the beam energy (default 0.02 per
+ * mm, water at about 70 keV); the unit of mu is the inverse of the volume's
+ * world unit (mm for DICOM and NIfTI). The function is exact (linear) over
+ * HounsfieldRange and holds its end values beyond it.
  */
 #ifndef vtkMCXAttenuationFunction_h
 #define vtkMCXAttenuationFunction_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
-#include "vtkPiecewiseFunction.h"
+#include "vtkObject.h"
 
-class MONTECARLOXRAYFILTERS_EXPORT vtkMCXAttenuationFunction : public vtkPiecewiseFunction
+class vtkPiecewiseFunction;
+
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXAttenuationFunction : public vtkObject
 {
 public:
   static vtkMCXAttenuationFunction* New();
-  vtkTypeMacro(vtkMCXAttenuationFunction, vtkPiecewiseFunction);
+  vtkTypeMacro(vtkMCXAttenuationFunction, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
   /** mu of water per world unit (default 0.02, per mm at about 70 keV). */
-  void SetWaterAttenuation(double mu);
+  vtkSetClampMacro(WaterAttenuation, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(WaterAttenuation, double);
   ///@}
 
@@ -35,11 +39,15 @@ public:
   vtkGetVector2Macro(HounsfieldRange, double);
   ///@}
 
-protected:
-  vtkMCXAttenuationFunction();
-  ~vtkMCXAttenuationFunction() override = default;
+  /**
+   * Replaces the points of `tf` by the map (and turns its clamping on);
+   * an error and no change when `tf` is null.
+   */
+  void FillTransferFunction(vtkPiecewiseFunction* tf);
 
-  void Rebuild();
+protected:
+  vtkMCXAttenuationFunction() = default;
+  ~vtkMCXAttenuationFunction() override = default;
 
   double WaterAttenuation = 0.02;
   double HounsfieldRange[2] = { -1024.0, 3071.0 };

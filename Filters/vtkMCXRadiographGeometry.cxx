@@ -4,39 +4,63 @@
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkMCXRadiographGeometry);
 
-std::string vtkMCXRadiographGeometry::Validate() const
+void vtkMCXRadiographGeometry::SetDetectorPixels(int columns, int rows)
 {
-  const double sad = this->SourceToAxisDistance, sid = this->SourceToImageDistance;
-  if (!(sad > 0) || !std::isfinite(sad))
+  columns = std::min(std::max(columns, 1), MaximumDetectorPixels);
+  rows = std::min(std::max(rows, 1), MaximumDetectorPixels);
+  if (columns != this->DetectorPixels[0] || rows != this->DetectorPixels[1])
   {
-    return "the source-to-axis distance must be positive and finite";
+    this->DetectorPixels[0] = columns;
+    this->DetectorPixels[1] = rows;
+    this->Modified();
   }
-  if (!(sid > 0) || !std::isfinite(sid))
-  {
-    return "the source-to-image distance must be positive and finite";
-  }
-  if (this->DetectorPixels[0] < 1 || this->DetectorPixels[1] < 1)
-  {
-    return "the detector needs at least 1 x 1 pixels";
-  }
-  if (!(this->PixelPitch > 0) || !std::isfinite(this->PixelPitch))
-  {
-    return "the pixel pitch must be positive and finite";
-  }
-  if (!std::isfinite(this->GantryAngle) || !std::isfinite(this->Isocenter[0]) ||
-    !std::isfinite(this->Isocenter[1]) || !std::isfinite(this->Isocenter[2]))
-  {
-    return "the gantry angle and the isocentre must be finite";
-  }
-  return std::string();
 }
 
-void vtkMCXRadiographGeometry::ConfigureCamera(vtkCamera* camera) const
+bool vtkMCXRadiographGeometry::IsValid()
 {
+  const double sad = this->SourceToAxisDistance, sid = this->SourceToImageDistance;
+  const char* problem = nullptr;
+  if (!(sad > 0) || !std::isfinite(sad))
+  {
+    problem = "the source-to-axis distance must be positive and finite";
+  }
+  else if (!(sid > 0) || !std::isfinite(sid))
+  {
+    problem = "the source-to-image distance must be positive and finite";
+  }
+  else if (!(this->PixelPitch > 0) || !std::isfinite(this->PixelPitch))
+  {
+    problem = "the pixel pitch must be positive and finite";
+  }
+  else if (!std::isfinite(this->GantryAngle) || !std::isfinite(this->Isocenter[0]) ||
+    !std::isfinite(this->Isocenter[1]) || !std::isfinite(this->Isocenter[2]))
+  {
+    problem = "the gantry angle and the isocentre must be finite";
+  }
+  if (problem)
+  {
+    vtkErrorMacro("Invalid radiograph geometry: " << problem << ".");
+    return false;
+  }
+  return true;
+}
+
+bool vtkMCXRadiographGeometry::ConfigureCamera(vtkCamera* camera)
+{
+  if (!camera)
+  {
+    vtkErrorMacro("ConfigureCamera needs a vtkCamera, not null.");
+    return false;
+  }
+  if (!this->IsValid())
+  {
+    return false;
+  }
   const double angle = vtkMath::RadiansFromDegrees(this->GantryAngle);
   const double sad = this->SourceToAxisDistance;
   const double* iso = this->Isocenter;
@@ -49,6 +73,7 @@ void vtkMCXRadiographGeometry::ConfigureCamera(vtkCamera* camera) const
   camera->SetViewAngle(2.0 * vtkMath::DegreesFromRadians(std::atan(0.5 * height / this->SourceToImageDistance)));
   // Integrate from just in front of the source: nothing a radiograph sees is nearer.
   camera->SetClippingRange(1e-3 * sad, 10.0 * std::max(sad, this->SourceToImageDistance));
+  return true;
 }
 
 double vtkMCXRadiographGeometry::GetPixelSpacingAtIsocenter() const

@@ -21,8 +21,6 @@
 #include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkObject.h"
 
-#include <string> // for Validate
-
 class vtkCamera;
 
 class MONTECARLOXRAYFILTERS_EXPORT vtkMCXRadiographGeometry : public vtkObject
@@ -34,25 +32,26 @@ public:
 
   ///@{
   /** Source-to-axis (isocentre) distance, world units (default 1000). */
-  vtkSetMacro(SourceToAxisDistance, double);
+  vtkSetClampMacro(SourceToAxisDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SourceToAxisDistance, double);
   ///@}
 
   ///@{
   /** Source-to-image (detector) distance, world units (default 1500). */
-  vtkSetMacro(SourceToImageDistance, double);
+  vtkSetClampMacro(SourceToImageDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(SourceToImageDistance, double);
   ///@}
 
   ///@{
-  /** Detector size in pixels, columns x rows (default 512 x 512). */
-  vtkSetVector2Macro(DetectorPixels, int);
+  /** Detector size in pixels, columns x rows, each 1 to 65536 (default 512 x 512). */
+  virtual void SetDetectorPixels(int columns, int rows);
+  void SetDetectorPixels(const int pixels[2]) { this->SetDetectorPixels(pixels[0], pixels[1]); }
   vtkGetVector2Macro(DetectorPixels, int);
   ///@}
 
   ///@{
   /** Detector pixel pitch, world units (default 0.8). */
-  vtkSetMacro(PixelPitch, double);
+  vtkSetClampMacro(PixelPitch, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(PixelPitch, double);
   ///@}
 
@@ -68,11 +67,21 @@ public:
   vtkGetVector3Macro(Isocenter, double);
   ///@}
 
-  /** Why the geometry is unusable, or "" when it is usable. */
-  std::string Validate() const;
+  /** Largest detector side in pixels. */
+  static constexpr int MaximumDetectorPixels = 65536;
 
-  /** Sets position, focal point, view-up, view angle and clipping range. */
-  void ConfigureCamera(vtkCamera* camera) const;
+  /**
+   * True when the geometry is usable: positive, finite distances and pitch,
+   * a finite gantry angle and isocentre; otherwise an error says why.
+   */
+  bool IsValid();
+
+  /**
+   * Sets position, focal point, view-up, view angle and clipping range of
+   * `camera`; false, with an error, when the geometry is not valid or there
+   * is no camera.
+   */
+  bool ConfigureCamera(vtkCamera* camera);
 
   /** Pixel pitch scaled to the isocentre plane: PixelPitch SAD / SID. */
   double GetPixelSpacingAtIsocenter() const;

@@ -65,7 +65,7 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     }
     // Exact over the whole data range (and at least the usual CT range).
     mu->SetHounsfieldRange(std::min(-1024.0, dataRange[0]), std::max(3071.0, dataRange[1]));
-    tf->DeepCopy(mu);
+    mu->FillTransferFunction(tf);
     return tf;
   }
   std::stringstream items(spec);

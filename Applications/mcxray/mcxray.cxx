@@ -334,13 +334,11 @@ struct RadiographOptions
     volume->GetBounds(bounds);
     const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
     radiograph->SetIsocenter(this->HasIsocenter ? this->Isocenter : centre);
-    const std::string problem = radiograph->Validate();
-    if (!problem.empty())
-    {
-      Fail("bad radiograph geometry: " + problem);
-    }
     auto camera = vtkSmartPointer<vtkCamera>::New();
-    radiograph->ConfigureCamera(camera);
+    if (!radiograph->ConfigureCamera(camera)) // the geometry's error says why
+    {
+      Fail("bad radiograph geometry");
+    }
     size[0] = this->Detector[0];
     size[1] = this->Detector[1];
     spacing = radiograph->GetPixelSpacingAtIsocenter();
