@@ -54,6 +54,7 @@ check(0 < estimate < 0.2, "error estimate %g" % estimate)
 
 # The radiograph filter: Beer-Lambert turns each line integral L into exp(-L).
 radiograph = XRayRadiograph(Input=projector)
+radiograph.BeerLambert = 1
 radiograph.IncidentIntensity = 2.0
 film = servermanager.Fetch(radiograph)
 intensity = film.GetPointData().GetArray("Intensity")

@@ -23,6 +23,10 @@ vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
   // Until the colour map provides one: g = 0, an empty image.
   vtkNew<vtkPiecewiseFunction> zero;
   this->Sampler->SetTransferFunction(zero);
+  // The interactive preview's 4 M points; the mapper is the only consumer of
+  // the cloud, so a TF edit may rewrite it in place.
+  this->Sampler->SetSampleExponent(DefaultSampleExponent);
+  this->Sampler->ReusePointsOn();
   this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
   this->Volume->SetMapper(this->Mapper);
   this->Volume->SetVisibility(false);
@@ -186,6 +190,12 @@ vtkMCXXRayMapper* vtkMCXXRayRepresentation::GetMapper()
 void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Index: " << this->Index.GetPointer() << "\n";
   os << indent << "Sampler: " << this->Sampler.GetPointer() << "\n";
   os << indent << "Mapper: " << this->Mapper.GetPointer() << "\n";
+  os << indent << "Volume: " << this->Volume.GetPointer() << "\n";
+  os << indent << "DeliveredIndex: " << this->DeliveredIndex.GetPointer() << "\n";
+  os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
+     << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
+     << this->DataBounds[5] << "\n";
 }

@@ -1,0 +1,104 @@
+"""The ParaView XML says what the C++ classes do: for every filter proxy, each
+property's default equals the default of the wrapped class (so pvpython and
+`import mcxray` make the same image from the same class), each range lies
+within the setter's clamp, and each enumeration's values are the class's
+constants. Run with the XML's path as the argument."""
+import sys
+import unittest
+import xml.etree.ElementTree as ET
+
+import mcxray
+
+XML = sys.argv.pop(1) if len(sys.argv) > 1 else None
+
+# Enumeration entries (by text) and the C++ constants they stand for.
+CONSTANTS = {
+    "Hybrid": mcxray.vtkMCXPointSampler.HYBRID,
+    "Monte Carlo": mcxray.vtkMCXPointSampler.MONTE_CARLO,
+    "Quasi-Monte Carlo": mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO,
+    "Tent (trilinear)": mcxray.vtkMCXPointSampler.TENT,
+    "Box (nearest)": mcxray.vtkMCXPointSampler.BOX,
+}
+VECTOR_PROPERTIES = ("IntVectorProperty", "DoubleVectorProperty", "IdTypeVectorProperty")
+
+
+def as_list(value):
+    return list(value) if isinstance(value, (tuple, list)) else [value]
+
+
+class XMLDefaults(unittest.TestCase):
+    def setUp(self):
+        self.root = ET.parse(XML).getroot()
+        self.filters = [p for p in self.root.iter("SourceProxy")]
+        self.assertGreaterEqual(len(self.filters), 4)
+
+    def properties(self):
+        for proxy in self.filters:
+            cls = getattr(mcxray, proxy.get("class"))
+            for kind in VECTOR_PROPERTIES:
+                for prop in proxy.iter(kind):
+                    command = prop.get("command")
+                    if command and command.startswith("Set") and prop.get("default_values") is not None:
+                        yield proxy, cls, prop, command[3:]
+
+    def test_defaults_equal_the_classes(self):
+        checked = 0
+        for proxy, cls, prop, name in self.properties():
+            instance = cls()
+            getter = getattr(instance, "Get" + name)
+            expected = [float(v) for v in prop.get("default_values").split()]
+            actual = [float(v) for v in as_list(getter())]
+            self.assertEqual(expected, actual, "%s.%s: XML %s, C++ %s" % (proxy.get("name"), prop.get("name"), expected, actual))
+            checked += 1
+        self.assertGreaterEqual(checked, 20)
+
+    def test_ranges_are_what_the_setters_accept(self):
+        for proxy, cls, prop, name in self.properties():
+            domain = prop.find("IntRangeDomain")
+            if domain is None:
+                domain = prop.find("DoubleRangeDomain")
+            if domain is None:
+                continue
+            for bound in ("min", "max"):
+                if domain.get(bound) is None:
+                    continue
+                convert = float if domain.tag == "DoubleRangeDomain" else int
+                values = [convert(v) for v in domain.get(bound).split()]
+                instance = cls()
+                setter = getattr(instance, "Set" + name)
+                getter = getattr(instance, "Get" + name)
+                setter(*values) if len(values) > 1 else setter(values[0])
+                self.assertEqual(values, [convert(v) for v in as_list(getter())],
+                                 "%s.%s: the XML %s %s is clamped by C++" % (proxy.get("name"), prop.get("name"), bound, values))
+
+    def test_enumerations_are_the_constants(self):
+        entries = 0
+        for entry in self.root.iter("Entry"):
+            self.assertIn(entry.get("text"), CONSTANTS)
+            self.assertEqual(CONSTANTS[entry.get("text")], int(entry.get("value")))
+            entries += 1
+        self.assertGreaterEqual(entries, 10)
+
+    def test_representation_defaults(self):
+        # The representation is ParaView-only; its sampler and mapper defaults
+        # are the C++ classes', except the sample exponent it sets itself (22).
+        mapper = mcxray.vtkMCXXRayMapper()
+        sampler = mcxray.vtkMCXPointSampler()
+        getters = {"SetSampleExponent": lambda: 22, "SetStrategy": sampler.GetStrategy,
+                   "SetKernel": sampler.GetKernel, "SetSeed": sampler.GetSeed,
+                   "SetInvertDisplay": mapper.GetInvertDisplay, "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
+                   "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,
+                   "SetProgressiveRefinement": mapper.GetProgressiveRefinement}
+        representation = next(self.root.iter("RepresentationProxy"))
+        checked = 0
+        for kind in VECTOR_PROPERTIES:
+            for prop in representation.iter(kind):
+                command = prop.get("command")
+                if command in getters:
+                    self.assertEqual(float(prop.get("default_values")), float(getters[command]()), prop.get("name"))
+                    checked += 1
+        self.assertEqual(len(getters), checked)
+
+
+if __name__ == "__main__":
+    unittest.main()
