@@ -125,6 +125,13 @@ void ChooseAutomaticWindow(const std::vector<float>& values, int width, int heig
   level = 0.5 * *rank;
 }
 
+// The radiograph physics the mapper's properties ask for.
+mcx::RadiographEffects EffectsOf(vtkMCXXRayMapper* self)
+{
+  return mcx::RadiographEffects::FromProperties(self->GetBeerLambert(), self->GetIncidentIntensity(),
+    self->GetPhotonsPerPixel(), static_cast<std::uint64_t>(self->GetNoiseSeed()), self->GetNegativeLog());
+}
+
 // Eye distance (along the view direction) of a depth-buffer value; +inf for
 // the far plane, where nothing was drawn.
 double DepthToDistance(float depth, bool perspective, double nearPlane, double farPlane)
@@ -189,6 +196,142 @@ struct vtkMCXXRayMapper::vtkInternals
   mcx::RadiographEffects Effects; // what the uploaded values went through
   vtkSmartPointer<vtkTextureObject> Texture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+
+  // What a render sees: the camera's geometry for the viewport, the prop's
+  // matrix and, when opaque props can hide samples, the depth buffer.
+  struct View
+  {
+    vtkCamera* Camera = nullptr;
+    mcx::ProjectionGeometry Geometry;
+    int Size[2] = { 0, 0 };
+    double Matrix[16] = { 0 };
+    std::vector<float> Depth;
+  };
+
+  // Stage 1: brings the input up to date; null (reported) when it is not a
+  // sampler's cloud.
+  vtkPolyData* UpdateInput(vtkMCXXRayMapper* self)
+  {
+    int outputPort = 0;
+    vtkAlgorithm* producer =
+      self->GetNumberOfInputConnections(0) > 0 ? self->GetInputAlgorithm(0, 0, outputPort) : nullptr;
+    if (!producer)
+    {
+      vtkErrorWithObjectMacro(self, "No input: connect a vtkMCXPointSampler.");
+      return nullptr;
+    }
+    producer->Update(outputPort);
+    vtkPolyData* cloud = vtkPolyData::SafeDownCast(self->GetInputDataObject(0, 0));
+    vtkDataArray* integral = cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName()) : nullptr;
+    if (!integral || integral->GetNumberOfTuples() < 1)
+    {
+      vtkErrorWithObjectMacro(
+        self, "The input carries no Integral in its field data (make it with vtkMCXPointSampler).");
+      return nullptr;
+    }
+    vtkPoints* points = cloud->GetPoints();
+    if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+    {
+      vtkErrorWithObjectMacro(
+        self, "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+      return nullptr;
+    }
+    return cloud;
+  }
+
+  // Stage 2: the view of this render; false when there is nothing to draw
+  // (an empty viewport) or the camera is unusable (reported).
+  bool ReadView(vtkMCXXRayMapper* self, vtkRenderer* renderer, vtkVolume* volume, vtkOpenGLRenderWindow* window,
+    View& view)
+  {
+    int x0 = 0, y0 = 0;
+    renderer->GetTiledSizeAndOrigin(&view.Size[0], &view.Size[1], &x0, &y0);
+    if (view.Size[0] < 1 || view.Size[1] < 1)
+    {
+      return false;
+    }
+    view.Camera = renderer->GetActiveCamera();
+    std::string problem = mcx::GeometryFromCamera(view.Camera, view.Size, 0.0, view.Geometry);
+    if (problem.empty())
+    {
+      problem = view.Geometry.Validate();
+    }
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(self, "Cannot render this view: " << problem << ".");
+      return false;
+    }
+    vtkMatrix4x4::DeepCopy(view.Matrix, volume->GetMatrix());
+    // Depth work only when something opaque can hide part of the volume.
+    self->LastRenderUsedDepth = HasOccluders(renderer, volume);
+    if (self->LastRenderUsedDepth)
+    {
+      view.Depth = ReadDepth(window, x0, y0, view.Size[0], view.Size[1]);
+    }
+    return true;
+  }
+
+  // Stage 3: starts the image over when the input or the view changed;
+  // true when it did.
+  bool RestartIfChanged(vtkMCXXRayMapper* self, vtkPolyData* cloud, View& view)
+  {
+    const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime;
+    if (this->HasImage && !newInput && SameGeometry(view.Geometry, this->Geometry) &&
+      std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth)
+    {
+      return false;
+    }
+    vtkCamera* camera = view.Camera;
+    const double* windowCenter = camera->GetWindowCenter();
+    if (windowCenter[0] != 0 || windowCenter[1] != 0 || camera->GetUseOffAxisProjection() ||
+      camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0)
+    {
+      vtkWarningWithObjectMacro(self, "Window centre, view shear and off-axis projection are ignored: the X-ray "
+                                      "is drawn for the camera without them.");
+    }
+    std::vector<double> limits(view.Depth.size());
+    const double* range = camera->GetClippingRange();
+    for (std::size_t p = 0; p < view.Depth.size(); ++p)
+    {
+      limits[p] = DepthToDistance(view.Depth[p], view.Geometry.Perspective, range[0], range[1]);
+    }
+    const double* m = view.Matrix;
+    const double origin[3] = { m[3], m[7], m[11] };
+    const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
+    this->Image.Reset(view.Geometry, origin, linear, std::move(limits));
+    this->HasImage = true;
+    this->Cloud = cloud;
+    this->CloudTime = cloud->GetMTime();
+    this->Geometry = view.Geometry;
+    std::copy(m, m + 16, this->Matrix);
+    this->Depth = std::move(view.Depth);
+    vtkPoints* points = cloud->GetPoints();
+    this->NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
+    this->ScaledIntegral = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0) *
+      std::fabs(vtkMatrix4x4::Determinant(m));
+    this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
+    this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
+    return true;
+  }
+
+  // Stage 5: uploads what changed (new points, other effects, a new
+  // context); true when it uploaded. A display change only redraws.
+  bool UploadIfChanged(vtkOpenGLRenderWindow* window, const mcx::RadiographEffects& effects, const int size[2])
+  {
+    const bool newEffects = effects != this->Effects;
+    if (newEffects)
+    {
+      this->Effects = effects;
+      this->AutomaticWindowPending = true; // other quantity, other scale
+    }
+    if (!newEffects && this->Image.Count() == this->UploadedCount && this->Texture &&
+      this->Texture->GetContext() == window)
+    {
+      return false;
+    }
+    this->Upload(window, size[0], size[1]);
+    return true;
+  }
 
   double SampleWeight() const
   {
@@ -378,94 +521,17 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     vtkErrorMacro("vtkMCXXRayMapper needs an OpenGL render window.");
     return;
   }
-  int outputPort = 0;
-  vtkAlgorithm* producer =
-    this->GetNumberOfInputConnections(0) > 0 ? this->GetInputAlgorithm(0, 0, outputPort) : nullptr;
-  if (!producer)
-  {
-    vtkErrorMacro("No input: connect a vtkMCXPointSampler.");
-    return;
-  }
-  producer->Update(outputPort);
-  vtkPolyData* cloud = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
-  vtkDataArray* integralArray = cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName()) : nullptr;
-  if (!integralArray || integralArray->GetNumberOfTuples() < 1)
-  {
-    vtkErrorMacro("The input carries no Integral in its field data (make it with vtkMCXPointSampler).");
-    return;
-  }
-  vtkPoints* points = cloud->GetPoints();
-  if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
-  {
-    vtkErrorMacro("Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
-    return;
-  }
-
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  if (width < 1 || height < 1)
+  vtkPolyData* cloud = in.UpdateInput(this);
+  vtkInternals::View view;
+  if (!cloud || !in.ReadView(this, renderer, volume, window, view))
   {
     return;
   }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  mcx::ProjectionGeometry geometry;
-  const int size[2] = { width, height };
-  std::string problem = mcx::GeometryFromCamera(camera, size, 0.0, geometry);
-  if (problem.empty())
-  {
-    problem = geometry.Validate();
-  }
-  if (!problem.empty())
-  {
-    vtkErrorMacro("Cannot render this view: " << problem << ".");
-    return;
-  }
-  double matrix[16];
-  vtkMatrix4x4::DeepCopy(matrix, volume->GetMatrix());
-
-  // Depth work only when something opaque can hide part of the volume.
-  this->LastRenderUsedDepth = HasOccluders(renderer, volume);
-  std::vector<float> depth;
-  if (this->LastRenderUsedDepth)
-  {
-    depth = ReadDepth(window, x0, y0, width, height);
-  }
-
-  const bool newInput = cloud != in.Cloud || cloud->GetMTime() != in.CloudTime;
-  const bool restart = !in.HasImage || newInput || !SameGeometry(geometry, in.Geometry) ||
-    !std::equal(matrix, matrix + 16, in.Matrix) || depth != in.Depth;
+  const bool restart = in.RestartIfChanged(this, cloud, view);
   if (restart)
   {
-    const double* windowCenter = camera->GetWindowCenter();
-    if (windowCenter[0] != 0 || windowCenter[1] != 0 || camera->GetUseOffAxisProjection() ||
-      camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0)
-    {
-      vtkWarningMacro("Window centre, view shear and off-axis projection are ignored: the X-ray is "
-                      "drawn for the camera without them.");
-    }
-    std::vector<double> limits(depth.size());
-    const double* range = camera->GetClippingRange();
-    for (std::size_t p = 0; p < depth.size(); ++p)
-    {
-      limits[p] = DepthToDistance(depth[p], geometry.Perspective, range[0], range[1]);
-    }
-    const double origin[3] = { matrix[3], matrix[7], matrix[11] };
-    const double linear[9] = { matrix[0], matrix[1], matrix[2], matrix[4], matrix[5], matrix[6], matrix[8],
-      matrix[9], matrix[10] };
-    in.Image.Reset(geometry, origin, linear, std::move(limits));
-    in.HasImage = true;
-    in.Cloud = cloud;
-    in.CloudTime = cloud->GetMTime();
-    in.Geometry = geometry;
-    std::copy(matrix, matrix + 16, in.Matrix);
-    in.Depth = std::move(depth);
-    in.NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
-    in.ScaledIntegral = integralArray->GetTuple1(0) * std::fabs(vtkMatrix4x4::Determinant(matrix));
-    in.UploadedCount = std::numeric_limits<std::uint64_t>::max();
-    in.AutomaticWindowPending = in.AutomaticWindowPending || newInput;
     ++this->NumberOfRestarts;
   }
-
   if (in.Image.Count() < in.NumberOfPoints)
   {
     std::uint64_t target = in.NumberOfPoints;
@@ -475,28 +541,17 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
       // enough points for a stable percentile (4 per pixel, 64 per block).
       const double floor =
         std::max(static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
-          in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * width * height : 0.0);
+          in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * view.Size[0] * view.Size[1] : 0.0);
       target = in.RefinementTarget(volume->GetAllocatedRenderTime(), floor);
     }
-    in.Advance(points, target);
+    in.Advance(cloud->GetPoints(), target); // stage 4: refine within the time budget
     if (!restart)
     {
       ++this->NumberOfRefinements;
     }
   }
-
-  // Upload what changed; a display change only redraws.
-  const mcx::RadiographEffects effects = mcx::RadiographEffects::FromProperties(this->BeerLambert,
-    this->IncidentIntensity, this->PhotonsPerPixel, static_cast<std::uint64_t>(this->NoiseSeed), this->NegativeLog);
-  const bool newEffects = effects != in.Effects;
-  if (newEffects)
+  if (in.UploadIfChanged(window, EffectsOf(this), view.Size))
   {
-    in.Effects = effects;
-    in.AutomaticWindowPending = true; // other quantity, other scale
-  }
-  if (newEffects || in.Image.Count() != in.UploadedCount || !in.Texture || in.Texture->GetContext() != window)
-  {
-    in.Upload(window, width, height);
     ++this->NumberOfUploads;
   }
   this->DisplayedWindow = this->AutomaticWindowLevel ? in.AutomaticWindow : this->ColorWindow;
