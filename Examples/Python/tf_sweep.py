@@ -39,6 +39,7 @@ def main():
     sampler.SetInputConnection(index.GetOutputPort())
     sampler.SetTransferFunction(tf)
     sampler.SetNumberOfSamples(args.samples)
+    sampler.ReusePointsOn()  # nothing here keeps an old cloud: refill it in place
     projector = mcxray.vtkMCXProjector()
     projector.SetInputConnection(sampler.GetOutputPort())
     projector.SetImageSize(args.size, args.size)

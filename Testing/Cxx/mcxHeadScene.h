@@ -38,6 +38,7 @@ struct HeadScene
     this->TransferFunction->AddPoint(400, 0);
     this->TransferFunction->AddPoint(3926, 1);
     this->Sampler->SetInputConnection(this->Index->GetOutputPort());
+    this->Sampler->ReusePointsOn(); // the mapper is the cloud's only consumer
     this->Sampler->SetTransferFunction(this->TransferFunction);
     this->Sampler->SetSampleExponent(exponent);
     this->Sampler->SetSeed(7);
