@@ -33,6 +33,19 @@ struct Option
   void (*Apply)(Settings& settings, const Argument& argument);
 };
 
+// A distance of the radiograph geometry: giving one selects the geometry.
+void SetGeometryDistance(Settings& settings, double& distance, const Argument& argument)
+{
+  distance = ParsePositive(argument.Value, argument.Name);
+  settings.Radiograph.Geometry = true;
+}
+
+void SetSize(Settings& settings, const Argument& argument, int smallest, int largest)
+{
+  ParseSize(argument.Value, smallest, largest, settings.Size);
+  settings.SizeGiven = true;
+}
+
 // Values are checked as they are read; what depends on other options is
 // checked by the command once all are read.
 const Option Options[] = {
@@ -58,24 +71,10 @@ const Option Options[] = {
       s.View = a.Value;
       s.ViewGiven = true;
     } },
-  { "--sad", Both, true,
-    [](Settings& s, const Argument& a)
-    {
-      s.Radiograph.SourceToAxis = ParsePositive(a.Value, a.Name);
-      s.Radiograph.Geometry = true;
-    } },
+  { "--sad", Both, true, [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToAxis, a); } },
   { "--sid", Both, true,
-    [](Settings& s, const Argument& a)
-    {
-      s.Radiograph.SourceToImage = ParsePositive(a.Value, a.Name);
-      s.Radiograph.Geometry = true;
-    } },
-  { "--pitch", Both, true,
-    [](Settings& s, const Argument& a)
-    {
-      s.Radiograph.Pitch = ParsePositive(a.Value, a.Name);
-      s.Radiograph.Geometry = true;
-    } },
+    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToImage, a); } },
+  { "--pitch", Both, true, [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.Pitch, a); } },
   { "--detector", Both, true,
     [](Settings& s, const Argument& a)
     {
@@ -110,18 +109,8 @@ const Option Options[] = {
     [](Settings& s, const Argument& a) { s.Radiograph.NoiseSeed = ParseInteger(a.Value, a.Name, 0); } },
   { "--camera", Render, true, [](Settings& s, const Argument& a) { s.Camera = a.Value; } },
   // An image may be large; a window must fit a screen.
-  { "--size", Render, true,
-    [](Settings& s, const Argument& a)
-    {
-      ParseSize(a.Value, 1, 65536, s.Size);
-      s.SizeGiven = true;
-    } },
-  { "--size", View, true,
-    [](Settings& s, const Argument& a)
-    {
-      ParseSize(a.Value, 16, 8192, s.Size);
-      s.SizeGiven = true;
-    } },
+  { "--size", Render, true, [](Settings& s, const Argument& a) { SetSize(s, a, 1, 65536); } },
+  { "--size", View, true, [](Settings& s, const Argument& a) { SetSize(s, a, 16, 8192); } },
   { "--pixel-spacing", Render, true,
     [](Settings& s, const Argument& a) { s.PixelSpacing = ParsePositive(a.Value, a.Name); } },
   { "--output", Render, true, [](Settings& s, const Argument& a) { s.Output = a.Value; } },
