@@ -7,6 +7,7 @@
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtksys/SystemInformation.hxx"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -14,8 +15,6 @@
 #include <cstdio>
 #include <fstream>
 #include <vector>
-
-#include <unistd.h>
 
 namespace mcxapp
 {
@@ -84,11 +83,14 @@ bool IsSupportedOutput(const std::string& path)
 namespace
 {
 // Runs write(temporary) and renames the result to path only if it succeeded.
+// The process id keeps concurrent runs writing the same path apart.
+// (std::rename: VTK 9.1's kwsys has no RenameFile.)
 template <typename Write>
 bool WriteAtomically(const std::string& path, const Write& write, std::string& error)
 {
   const std::string ext = Extension(path);
-  const std::string temporary = path + ".part-" + std::to_string(getpid()) + ext;
+  const std::string temporary =
+    path + ".part-" + std::to_string(vtksys::SystemInformation().GetProcessId()) + ext;
   if (!write(temporary) || std::rename(temporary.c_str(), path.c_str()) != 0)
   {
     std::remove(temporary.c_str());

@@ -71,6 +71,7 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   this->Index->SetInputData(volume);
   this->Sampler->SetInputConnection(this->Index->GetOutputPort());
   this->Sampler->SetTransferFunction(this->TransferFunction);
+  this->Sampler->ReusePointsOn(); // the mapper is the cloud's only consumer
   this->Sampler->SetSampleExponent(options.SampleExponent);
   this->Sampler->SetStrategy(options.Strategy);
   this->Sampler->SetKernel(options.Kernel);

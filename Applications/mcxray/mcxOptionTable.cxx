@@ -1,0 +1,211 @@
+#include "mcxOptionTable.h"
+
+#include "mcxFail.h"
+#include "mcxOptionValues.h"
+#include "mcxSettings.h"
+
+#include <string>
+#include <vector>
+
+namespace mcxapp
+{
+
+namespace
+{
+struct Argument
+{
+  const std::string& Name;
+  const std::string& Value; // empty for a flag
+};
+
+enum Accepted
+{
+  Render = static_cast<int>(Command::Render),
+  View = static_cast<int>(Command::View),
+  Both = Render | View
+};
+
+struct Option
+{
+  const char* Name;
+  int Commands; // Accepted bits
+  bool TakesValue;
+  void (*Apply)(Settings& settings, const Argument& argument);
+};
+
+// A distance of the radiograph geometry: giving one selects the geometry.
+void SetGeometryDistance(Settings& settings, double& distance, const Argument& argument)
+{
+  distance = ParsePositive(argument.Value, argument.Name);
+  settings.Radiograph.Geometry = true;
+}
+
+void SetSize(Settings& settings, const Argument& argument, int smallest, int largest)
+{
+  ParseSize(argument.Value, smallest, largest, settings.Size);
+  settings.SizeGiven = true;
+}
+
+// Values are checked as they are read; what depends on other options is
+// checked by the command once all are read.
+const Option Options[] = {
+  { "--quiet", Render, false, [](Settings& s, const Argument&) { s.Quiet = true; } },
+  { "--stored-points", Render, false, [](Settings& s, const Argument&) { s.StoredPoints = true; } },
+  { "--beer-lambert", Both, false, [](Settings& s, const Argument&) { s.Radiograph.BeerLambert = true; } },
+  { "--negative-log", Both, false, [](Settings& s, const Argument&) { s.Radiograph.NegativeLog = true; } },
+  { "--tf", Both, true, [](Settings& s, const Argument& a) { s.TF = a.Value; } },
+  { "--samples", Both, true, [](Settings& s, const Argument& a) { s.Samples = ParseInteger(a.Value, a.Name, 1); } },
+  { "--target-error", Render, true,
+    [](Settings& s, const Argument& a) { s.TargetError = ParseOpenUnitFraction(a.Value, a.Name); } },
+  { "--quantization-levels", Render, true,
+    [](Settings& s, const Argument& a) { s.QuantizationLevels = static_cast<int>(ParseInteger(a.Value, a.Name, 2)); } },
+  { "--method", Both, true, [](Settings& s, const Argument& a) { s.Method = a.Value; } },
+  { "--kernel", Both, true, [](Settings& s, const Argument& a) { s.Kernel = a.Value; } },
+  { "--seed", Both, true,
+    [](Settings& s, const Argument& a) { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },
+  { "--threads", Both, true,
+    [](Settings& s, const Argument& a) { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1)); } },
+  { "--view", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.View = a.Value;
+      s.ViewGiven = true;
+    } },
+  { "--sad", Both, true, [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToAxis, a); } },
+  { "--sid", Both, true,
+    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToImage, a); } },
+  { "--pitch", Both, true, [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.Pitch, a); } },
+  { "--detector", Both, true,
+    [](Settings& s, const Argument& a)
+    {
+      ParseSize(a.Value, 1, 65536, s.Radiograph.Detector);
+      s.Radiograph.Geometry = true;
+    } },
+  { "--gantry", Both, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Radiograph.Gantry = ParseNumber(a.Value, a.Name);
+      s.Radiograph.Geometry = true;
+    } },
+  { "--isocenter", Both, true,
+    [](Settings& s, const Argument& a)
+    {
+      ParseTriple(a.Value, s.Radiograph.Isocenter, "isocenter");
+      s.Radiograph.HasIsocenter = true;
+      s.Radiograph.Geometry = true;
+    } },
+  { "--i0", Both, true,
+    [](Settings& s, const Argument& a) { s.Radiograph.IncidentIntensity = ParsePositive(a.Value, a.Name); } },
+  { "--photons", Both, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Radiograph.Photons = ParseNumber(a.Value, a.Name);
+      if (!(s.Radiograph.Photons > 0) || s.Radiograph.Photons > 1e15)
+      {
+        Fail("--photons must lie in (0, 1e15]");
+      }
+    } },
+  { "--noise-seed", Both, true,
+    [](Settings& s, const Argument& a) { s.Radiograph.NoiseSeed = ParseInteger(a.Value, a.Name, 0); } },
+  { "--camera", Render, true, [](Settings& s, const Argument& a) { s.Camera = a.Value; } },
+  // An image may be large; a window must fit a screen.
+  { "--size", Render, true, [](Settings& s, const Argument& a) { SetSize(s, a, 1, 65536); } },
+  { "--size", View, true, [](Settings& s, const Argument& a) { SetSize(s, a, 16, 8192); } },
+  { "--pixel-spacing", Render, true,
+    [](Settings& s, const Argument& a) { s.PixelSpacing = ParsePositive(a.Value, a.Name); } },
+  { "--output", Render, true, [](Settings& s, const Argument& a) { s.Output = a.Value; } },
+  { "--window", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      const std::vector<std::string> parts = Split(a.Value, ':');
+      if (parts.size() != 2)
+      {
+        Fail("bad --window '" + a.Value + "' (expected LO:HI)");
+      }
+      s.Window.Automatic = false;
+      s.Window.Low = ParseNumber(parts[0], a.Name);
+      s.Window.High = ParseNumber(parts[1], a.Name);
+      if (!(s.Window.High > s.Window.Low))
+      {
+        Fail("--window needs LO < HI");
+      }
+    } },
+  { "--bits", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Window.Bits = static_cast<int>(ParseInteger(a.Value, a.Name, 8));
+      if (s.Window.Bits != 8 && s.Window.Bits != 16)
+      {
+        Fail("--bits must be 8 or 16");
+      }
+    } },
+  { "--tolerance", Render, true,
+    [](Settings& s, const Argument& a) { s.Tolerance = ParseOpenUnitFraction(a.Value, a.Name); } },
+  { "--screenshot", View, true, [](Settings& s, const Argument& a) { s.Screenshot = a.Value; } },
+};
+
+// The option named name that command accepts; null if none.
+const Option* Find(const std::string& name, Command command)
+{
+  for (const Option& option : Options)
+  {
+    if (name == option.Name && (option.Commands & static_cast<int>(command)) != 0)
+    {
+      return &option;
+    }
+  }
+  return nullptr;
+}
+
+void SetInput(Settings& settings, const std::string& input)
+{
+  if (!settings.Input.empty())
+  {
+    Fail("more than one input: '" + settings.Input + "' and '" + input + "'");
+  }
+  settings.Input = input;
+}
+}
+
+const char* CommandName(Command command)
+{
+  return command == Command::View ? "view" : "render";
+}
+
+bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
+{
+  for (int i = 2; i < argc; ++i)
+  {
+    const std::string name = argv[i];
+    if (name == "--help" || name == "-h")
+    {
+      return false;
+    }
+    const Option* option = Find(name, command);
+    if (option && !option->TakesValue)
+    {
+      option->Apply(settings, { name, std::string() });
+      continue;
+    }
+    if (name.rfind("--", 0) != 0)
+    {
+      SetInput(settings, name);
+      continue;
+    }
+    // An option unknown to this command is taken to have a value, so that
+    // one left without any is reported as such.
+    if (i + 1 >= argc)
+    {
+      Fail("option " + name + " needs a value");
+    }
+    const std::string value = argv[++i];
+    if (!option)
+    {
+      Fail("unknown option " + name + " (try: mcxray " + CommandName(command) + " --help)");
+    }
+    option->Apply(settings, { name, value });
+  }
+  return true;
+}
+
+} // namespace mcxapp

@@ -1,0 +1,100 @@
+#include "mcxOptionValues.h"
+
+#include "mcxFail.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace mcxapp
+{
+
+double ParseNumber(const std::string& text, const std::string& option)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+  {
+    Fail("bad value '" + text + "' for " + option);
+  }
+  return value;
+}
+
+double ParsePositive(const std::string& text, const std::string& option)
+{
+  const double value = ParseNumber(text, option);
+  if (!(value > 0))
+  {
+    Fail(option + " must be positive");
+  }
+  return value;
+}
+
+double ParseOpenUnitFraction(const std::string& text, const std::string& option)
+{
+  const double value = ParseNumber(text, option);
+  if (!(value > 0 && value < 1))
+  {
+    Fail(option + " must lie in (0, 1)");
+  }
+  return value;
+}
+
+long long ParseInteger(const std::string& text, const std::string& option, long long minimum)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || value < minimum)
+  {
+    Fail("bad value '" + text + "' for " + option + " (expected an integer >= " + std::to_string(minimum) + ")");
+  }
+  return value;
+}
+
+std::vector<std::string> Split(const std::string& text, char separator)
+{
+  std::vector<std::string> parts;
+  std::stringstream stream(text);
+  std::string part;
+  while (std::getline(stream, part, separator))
+  {
+    parts.push_back(part);
+  }
+  return parts;
+}
+
+// The messages say --size even for --detector, as they always have.
+void ParseSize(const std::string& text, int smallest, int largest, int size[2])
+{
+  const std::vector<std::string> parts = Split(text, 'x');
+  if (parts.size() != 2)
+  {
+    Fail("bad --size '" + text + "' (expected WxH, e.g. 512x512)");
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    size[k] = static_cast<int>(ParseInteger(parts[k], "--size", smallest));
+    if (size[k] > largest)
+    {
+      Fail("--size is limited to " + std::to_string(largest) + " pixels per side");
+    }
+  }
+}
+
+// The messages say --camera even for --isocenter, as they always have.
+void ParseTriple(const std::string& text, double out[3], const std::string& what)
+{
+  const std::vector<std::string> parts = Split(text, ',');
+  if (parts.size() != 3)
+  {
+    Fail("bad --camera " + what + " '" + text + "' (expected x,y,z)");
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    out[a] = ParseNumber(parts[a], "--camera " + what);
+  }
+}
+
+} // namespace mcxapp

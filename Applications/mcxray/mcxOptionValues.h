@@ -1,0 +1,36 @@
+// The values of command-line options: numbers, sizes and triples, each
+// checked as it is read; a bad value ends the run with a one-line error
+// that names the option.
+#ifndef mcxOptionValues_h
+#define mcxOptionValues_h
+
+#include <string>
+#include <vector>
+
+namespace mcxapp
+{
+
+/// A finite number.
+double ParseNumber(const std::string& text, const std::string& option);
+
+/// A number > 0 (else "OPTION must be positive").
+double ParsePositive(const std::string& text, const std::string& option);
+
+/// A number in (0, 1) (else "OPTION must lie in (0, 1)").
+double ParseOpenUnitFraction(const std::string& text, const std::string& option);
+
+/// A decimal integer >= minimum.
+long long ParseInteger(const std::string& text, const std::string& option, long long minimum);
+
+/// "WxH" with each side in [smallest, largest].
+void ParseSize(const std::string& text, int smallest, int largest, int size[2]);
+
+/// "x,y,z"; `what` names the triple in errors (e.g. "position").
+void ParseTriple(const std::string& text, double out[3], const std::string& what);
+
+/// The parts of text between separators.
+std::vector<std::string> Split(const std::string& text, char separator);
+
+} // namespace mcxapp
+
+#endif

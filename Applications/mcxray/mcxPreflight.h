@@ -1,0 +1,20 @@
+// Checks that need no data, made before any work so that a bad command
+// line fails at once rather than after reading and indexing a volume.
+#ifndef mcxPreflight_h
+#define mcxPreflight_h
+
+#include <string>
+
+namespace mcxapp
+{
+
+/// Fails unless the directory that path would be written in exists and is
+/// writable.
+void CheckOutputDirectory(const std::string& path);
+
+/// Fails if spec is no transfer function, whatever the data.
+void CheckTransferFunction(const std::string& spec);
+
+} // namespace mcxapp
+
+#endif

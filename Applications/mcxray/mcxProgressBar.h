@@ -1,0 +1,47 @@
+// A progress bar on stderr for the stages of a run, shown only on a
+// terminal and only once a stage runs long, so that logs and pipes stay clean.
+#ifndef mcxProgressBar_h
+#define mcxProgressBar_h
+
+#include "vtkNew.h"
+
+#include <chrono>
+
+class vtkAlgorithm;
+class vtkCallbackCommand;
+class vtkObject;
+
+namespace mcxapp
+{
+
+class ProgressBar
+{
+public:
+  ProgressBar();
+  ~ProgressBar();
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+  /// Shows the progress events of algorithm.
+  void Watch(vtkAlgorithm* algorithm);
+
+  /// A stage starts: the bar is labelled stage until End().
+  void Begin(const char* stage);
+
+  /// The stage is over: clears the bar if it was shown.
+  void End();
+
+private:
+  static void OnProgress(vtkObject*, unsigned long, void* self, void* fraction);
+  void Update(double fraction);
+
+  bool Enabled = false;
+  const char* Stage = "";
+  std::chrono::steady_clock::time_point Start;
+  bool Shown = false;
+  vtkNew<vtkCallbackCommand> Command;
+};
+
+} // namespace mcxapp
+
+#endif

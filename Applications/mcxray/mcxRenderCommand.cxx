@@ -1,0 +1,452 @@
+#include "mcxRenderCommand.h"
+
+#include "mcxCameraSpec.h"
+#include "mcxErrorCapture.h"
+#include "mcxFail.h"
+#include "mcxImageOutput.h"
+#include "mcxOptionTable.h"
+#include "mcxPreflight.h"
+#include "mcxProgressBar.h"
+#include "mcxSamplingMethod.h"
+#include "mcxSettings.h"
+#include "mcxTransferFunctionSpec.h"
+#include "mcxVolumeReader.h"
+
+#include "vtkAlgorithmOutput.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjector.h"
+#include "vtkMCXRadiograph.h"
+#include "vtkMCXReferenceProjector.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace mcxapp
+{
+
+namespace
+{
+const char* const Usage = R"(usage: mcxray render [INPUT] [options]
+       mcxray view [INPUT] [options]     (interactive; see mcxray view --help)
+
+Renders a simulated X-ray image (a DRR): per pixel, the mean over the pixel's
+area of the line integral of g = TF(density), reconstructed with the chosen
+kernel, in TF units times world length (mm for medical data).
+
+INPUT   a volume: .vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a
+        DICOM series directory. Default: the bundled CT head (VTK's headsq).
+
+options:
+  --tf SPEC             transfer function: value:weight,value:weight,... in data
+                        units (held constant beyond its end points), or a preset:
+                        %s. Default: raw
+  --samples N           number of samples, rounded up to 2^m - 1 (default 16777215)
+  --target-error E      choose the sample count for a relative RMS error E (a
+                        pilot run of 65535 samples measures the image; up to
+                        2^30 - 1 samples); replaces --samples
+  --quantization-levels L
+                        choose the sample count by the paper's criterion: the
+                        mean pixel deviation below one of L grey levels
+  --method M            hybrid (default), mc, qmc, or reference (exact, slow)
+  --kernel K            tent (trilinear, default) or box (nearest neighbour)
+  --seed N              seed of the pseudo-random parts (default 0)
+  --threads N           worker threads (default: all cores); results do not depend on it
+  --view AXIS           parallel view along +x, -x, +y, -y, +z or -z (default +z).
+                        Image axis 0 runs along the first remaining world axis in
+                        x, y, z order, axis 1 along the second; never mirrored.
+  --camera P:F:U:KIND   any view: position P, focal point F and view-up U as
+                        x,y,z triples, and KIND parallel=SCALE (half the image
+                        height in world units) or angle=DEGREES (perspective,
+                        vertical view angle), optionally followed by :near=D
+                        (perspective: depth where integration starts; default
+                        0.001 times the camera distance)
+  --sad MM, --sid MM, --detector WxH, --pitch MM, --gantry DEG, --isocenter X,Y,Z
+                        a cone-beam radiograph as radiographers give it (any one of
+                        these selects it): source-to-axis distance (default 1000),
+                        source-to-image distance (1500), detector pixels (512x512)
+                        and pitch (0.8), gantry angle (0: source on +x, turning
+                        about z), isocentre (default: the volume's centre). Image
+                        columns run along +y at angle 0, rows along +z, as in
+                        plastimatch drr; replaces --view, --camera, --size and
+                        --pixel-spacing
+  --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)
+  --i0 I                unattenuated intensity I0 (default 1)
+  --photons N           quantum noise: N photons reach an unattenuated pixel,
+                        counts are Poisson (implies --beer-lambert; default off)
+  --noise-seed N        seed of the noise (default 0)
+  --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
+  --size WxH            image size in pixels (default: 512 along the longer side)
+  --pixel-spacing S     pixel size in world units on the detector plane
+  --output FILE         .vti (float64 LineIntegral with geometry), .png or .pfm
+                        (default: mcxray.png)
+  --window LO:HI        PNG grey window in image units (default 0:maximum)
+  --bits 8|16           PNG bit depth (default 8)
+  --tolerance T         reference method: relative RMS tolerance (default 1e-3)
+  --stored-points       store the point cloud (as an interactive view would),
+                        then project it, and time the two stages apart; by
+                        default samples are projected as they are generated
+  --quiet               print nothing but errors
+  --help                this text
+)";
+
+const long long DefaultSamples = 16777215;
+
+double Seconds(std::chrono::steady_clock::time_point since)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// What one option allows depends on another: checked once all are read.
+void CheckCombinations(const Settings& settings)
+{
+  if (!IsSamplingMethod(settings.Method) && settings.Method != "reference")
+  {
+    Fail("unknown --method '" + settings.Method + "' (expected hybrid, mc, qmc or reference)");
+  }
+  CheckKernel(settings.Kernel);
+  if ((settings.TargetError > 0 || settings.QuantizationLevels > 0) &&
+    (settings.StoredPoints || settings.Method == "reference"))
+  {
+    Fail("--target-error and --quantization-levels apply to off-line Monte Carlo rendering only");
+  }
+  if (settings.QuantizationLevels > 65536)
+  {
+    Fail("--quantization-levels is limited to 65536");
+  }
+  if (settings.StoredPoints && settings.Method == "reference")
+  {
+    Fail("--stored-points applies to the Monte Carlo methods, not to reference");
+  }
+  if (settings.StoredPoints && settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+  {
+    Fail("--stored-points holds at most 2^30 - 1 points; use fewer --samples or the default off-line projection");
+  }
+  if (!IsSupportedOutput(settings.Output))
+  {
+    Fail("unknown output format of '" + settings.Output + "' (expected .vti, .png or .pfm)");
+  }
+  if (settings.Radiograph.Geometry &&
+    (!settings.Camera.empty() || settings.ViewGiven || settings.SizeGiven || settings.PixelSpacing > 0))
+  {
+    Fail("the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter) replaces "
+         "--view, --camera, --size and --pixel-spacing");
+  }
+}
+
+// The camera of --camera, or else the detector axes of the --view axis,
+// checked before the volume is read. (A radiograph geometry's camera needs
+// the volume: it comes once that is read.)
+struct ViewChoice
+{
+  vtkSmartPointer<vtkCamera> Camera;
+  double DetectorU[3] = { 0, 0, 0 };
+  double DetectorV[3] = { 0, 0, 0 };
+};
+
+ViewChoice ChooseView(const Settings& settings)
+{
+  ViewChoice view;
+  if (!settings.Camera.empty())
+  {
+    view.Camera = ParseCamera(settings.Camera);
+  }
+  else
+  {
+    AxisViewDetector(settings.View, view.DetectorU, view.DetectorV);
+  }
+  return view;
+}
+
+void Log(const Settings& settings, const std::string& line)
+{
+  if (!settings.Quiet)
+  {
+    std::cout << line << std::endl;
+  }
+}
+
+vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
+{
+  const std::string input = settings.Input.empty() ? BundledVolumePath() : settings.Input;
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+  vtkSmartPointer<vtkImageData> volume = ReadVolume(input, error);
+  if (!volume)
+  {
+    Fail(error);
+  }
+  int dims[3];
+  volume->GetDimensions(dims);
+  std::ostringstream line;
+  line << "input:       " << input << " (" << dims[0] << "x" << dims[1] << "x" << dims[2] << ", "
+       << volume->GetPointData()->GetScalars()->GetDataTypeAsString() << ")  read " << Seconds(start) << " s";
+  Log(settings, line.str());
+  return volume;
+}
+
+// The render of a volume, stage by stage: index, (sample,) project,
+// radiograph physics, write. Each stage logs a line unless --quiet; an
+// error from a watched algorithm, or else from VTK itself, ends the run.
+class RenderPipeline
+{
+public:
+  RenderPipeline(const Settings& settings, ErrorCapture& capture, const ViewChoice& view)
+    : Options(settings)
+    , Capture(capture)
+    , View(view)
+  {
+  }
+
+  int Run(vtkImageData* volume)
+  {
+    if (this->Options.Radiograph.Geometry)
+    {
+      this->View.Camera = this->Options.Radiograph.MakeCamera(volume, this->Options.Size, this->Options.PixelSpacing);
+    }
+    this->BuildIndex(volume);
+    std::string error;
+    vtkSmartPointer<vtkPiecewiseFunction> tf = MakeTransferFunction(this->Options.TF, this->DataRange(), error);
+    if (!tf)
+    {
+      Fail(error);
+    }
+    vtkImageData* image = this->ApplyRadiograph(this->Project(tf));
+    this->Write(image);
+    return 0;
+  }
+
+private:
+  void Log(const std::string& line) const { mcxapp::Log(this->Options, line); }
+
+  void BuildIndex(vtkImageData* volume)
+  {
+    this->Index->SetInputData(volume);
+    this->Capture.Watch(this->Index);
+    this->Progress.Watch(this->Index);
+    this->Progress.Begin("index");
+    const auto start = std::chrono::steady_clock::now();
+    this->Index->Update();
+    this->Progress.End();
+    this->Capture.FailOnAnyError();
+    const double seconds = Seconds(start);
+    int dims[3];
+    volume->GetDimensions(dims);
+    std::ostringstream line;
+    line << "index:       " << seconds << " s (" << this->Levels()->GetNumberOfTuples() << " density levels, "
+         << static_cast<double>(dims[0]) * dims[1] * dims[2] / seconds / 1e6 << " M voxels/s)";
+    this->Log(line.str());
+  }
+
+  vtkDataArray* Levels() const
+  {
+    return this->Index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName());
+  }
+
+  // The lowest and highest density level (what the raw TF spans).
+  const double* DataRange()
+  {
+    vtkDataArray* levels = this->Levels();
+    if (levels->GetNumberOfTuples() > 0)
+    {
+      this->Range[0] = levels->GetTuple1(0);
+      this->Range[1] = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
+    }
+    return this->Range;
+  }
+
+  vtkSmartPointer<vtkMCXProjectorBase> MakeProjector() const
+  {
+    if (this->Options.Method == "reference")
+    {
+      auto reference = vtkSmartPointer<vtkMCXReferenceProjector>::New();
+      reference->SetRelativeTolerance(this->Options.Tolerance);
+      return reference;
+    }
+    auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
+    monteCarlo->SetNumberOfSamples(this->Options.Samples);
+    monteCarlo->SetStrategy(StrategyOf(this->Options.Method));
+    monteCarlo->SetSeed(this->Options.Seed);
+    monteCarlo->SetTargetRelativeError(this->Options.TargetError);
+    monteCarlo->SetTargetQuantizationLevels(this->Options.QuantizationLevels);
+    return monteCarlo;
+  }
+
+  // --stored-points: the point cloud an interactive view would hold, timed
+  // apart from its projection.
+  vtkAlgorithmOutput* SampleStoredPoints(vtkPiecewiseFunction* tf)
+  {
+    this->Sampler = vtkSmartPointer<vtkMCXPointSampler>::New();
+    vtkMCXPointSampler* sampler = this->Sampler;
+    sampler->SetInputConnection(this->Index->GetOutputPort());
+    sampler->SetTransferFunction(tf);
+    sampler->SetNumberOfSamples(this->Options.Samples);
+    sampler->SetStrategy(StrategyOf(this->Options.Method));
+    sampler->SetKernel(KernelOf(this->Options.Kernel));
+    sampler->SetSeed(this->Options.Seed);
+    this->Capture.Watch(sampler);
+    this->Progress.Watch(sampler);
+    this->Progress.Begin("sampling");
+    const auto start = std::chrono::steady_clock::now();
+    sampler->Update();
+    this->Progress.End();
+    this->Capture.FailOnAnyError();
+    const double seconds = Seconds(start);
+    std::ostringstream line;
+    line << "sampling:    " << seconds << " s (" << sampler->GetOutput()->GetNumberOfPoints() << " stored points, "
+         << sampler->GetOutput()->GetNumberOfPoints() / seconds / 1e6 << " M points/s)";
+    this->Log(line.str());
+    return sampler->GetOutputPort();
+  }
+
+  vtkImageData* Project(vtkPiecewiseFunction* tf)
+  {
+    this->Projector = this->MakeProjector();
+    vtkMCXProjectorBase* projector = this->Projector;
+    projector->SetInputConnection(this->Index->GetOutputPort());
+    if (this->Options.StoredPoints)
+    {
+      projector->SetInputConnection(this->SampleStoredPoints(tf));
+    }
+    projector->SetTransferFunction(tf);
+    projector->SetKernel(KernelOf(this->Options.Kernel));
+    projector->SetImageSize(this->Options.Size[0], this->Options.Size[1]);
+    projector->SetPixelSpacing(this->Options.PixelSpacing);
+    projector->SetCamera(this->View.Camera);
+    projector->SetDetectorAxisU(this->View.DetectorU);
+    projector->SetDetectorAxisV(this->View.DetectorV);
+    this->Capture.Watch(projector);
+    this->Progress.Watch(projector);
+    this->Progress.Begin(this->Options.Method == "reference" ? "reference" : "projection");
+    const auto start = std::chrono::steady_clock::now();
+    projector->Update();
+    this->Progress.End();
+    for (const std::string& warning : this->Capture.Warnings())
+    {
+      std::cerr << "mcxray: warning: " << warning << std::endl;
+    }
+    this->Capture.FailOnAnyError();
+    const double seconds = Seconds(start);
+    vtkImageData* image = projector->GetOutput();
+    this->LogProjection(image, seconds);
+    return image;
+  }
+
+  void LogProjection(vtkImageData* image, double seconds) const
+  {
+    vtkFieldData* fields = image->GetFieldData();
+    std::ostringstream line;
+    if (this->Options.Method == "reference")
+    {
+      line << "reference:   " << seconds << " s (exact line integrals, "
+           << fields->GetArray("RaysPerPixelAxis")->GetTuple1(0) << "^2 rays per pixel, estimated relative error "
+           << fields->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
+    }
+    else
+    {
+      const double samples = fields->GetArray("SampleCount")->GetTuple1(0);
+      line << (this->Options.StoredPoints ? "projection:  " : "sampling + projection (off-line, fused): ") << seconds
+           << " s (" << static_cast<long long>(samples) << " samples, " << samples / seconds / 1e6
+           << " M samples/s, estimated relative RMS error " << fields->GetArray("EstimatedRelativeError")->GetTuple1(0)
+           << ")";
+    }
+    this->Log(line.str());
+    int size[3];
+    image->GetDimensions(size);
+    const double* range = image->GetPointData()->GetScalars()->GetRange();
+    std::ostringstream geometry;
+    geometry << "image:       " << size[0] << "x" << size[1] << " pixels of " << image->GetSpacing()[0] << " x "
+             << image->GetSpacing()[1] << ", LineIntegral range " << range[0] << " .. " << range[1]
+             << " (TF units x length)";
+    this->Log(geometry.str());
+  }
+
+  // The physics after accumulation, only what was asked for.
+  vtkImageData* ApplyRadiograph(vtkImageData* image)
+  {
+    const RadiographSettings& physics = this->Options.Radiograph;
+    this->Radiograph = vtkSmartPointer<vtkMCXRadiograph>::New();
+    physics.Configure(this->Radiograph.GetPointer());
+    if (!this->Radiograph->HasEffects())
+    {
+      return image;
+    }
+    this->Radiograph->SetInputData(image);
+    const auto start = std::chrono::steady_clock::now();
+    this->Radiograph->Update();
+    vtkImageData* result = this->Radiograph->GetOutput();
+    const double* range = result->GetPointData()->GetScalars()->GetRange();
+    std::ostringstream line;
+    line << "radiograph:  " << Seconds(start) << " s ("
+         << (physics.NegativeLog ? "-ln(I/I0)" : "I = I0 exp(-line integral)")
+         << (physics.Photons > 0 ? ", Poisson noise of " + std::to_string(physics.Photons) + " photons per pixel" : "")
+         << "), range " << range[0] << " .. " << range[1];
+    this->Log(line.str());
+    return result;
+  }
+
+  void Write(vtkImageData* image) const
+  {
+    const auto start = std::chrono::steady_clock::now();
+    std::string error;
+    if (!WriteImage(image, this->Options.Output, this->Options.Window, error))
+    {
+      Fail(error);
+    }
+    this->Log("output:      " + this->Options.Output + "  written " + std::to_string(Seconds(start)) + " s");
+  }
+
+  Settings Options; // a copy: the radiograph geometry sets the size and spacing
+  ErrorCapture& Capture;
+  ViewChoice View;
+  ProgressBar Progress;
+  double Range[2] = { 0, 0 };
+  vtkNew<vtkMCXDensityIndex> Index;
+  vtkSmartPointer<vtkMCXPointSampler> Sampler;
+  vtkSmartPointer<vtkMCXProjectorBase> Projector;
+  vtkSmartPointer<vtkMCXRadiograph> Radiograph;
+};
+}
+
+void PrintRenderUsage()
+{
+  std::printf(Usage, TransferFunctionPresetHelp());
+}
+
+int RunRender(int argc, char* argv[])
+{
+  Settings settings;
+  settings.Samples = DefaultSamples;
+  if (!ParseArguments(argc, argv, Command::Render, settings))
+  {
+    PrintRenderUsage();
+    return 0;
+  }
+  CheckCombinations(settings);
+  ErrorCapture capture;
+  if (settings.Threads > 0)
+  {
+    vtkSMPTools::Initialize(settings.Threads);
+  }
+  CheckOutputDirectory(settings.Output);
+  CheckTransferFunction(settings.TF);
+  const ViewChoice view = ChooseView(settings);
+  vtkSmartPointer<vtkImageData> volume = ReadInput(settings);
+  RenderPipeline pipeline(settings, capture, view);
+  return pipeline.Run(volume);
+}
+
+} // namespace mcxapp

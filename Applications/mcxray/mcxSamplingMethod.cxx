@@ -1,0 +1,35 @@
+#include "mcxSamplingMethod.h"
+
+#include "mcxFail.h"
+
+#include "vtkMCXPointSampler.h"
+
+namespace mcxapp
+{
+
+bool IsSamplingMethod(const std::string& method)
+{
+  return method == "hybrid" || method == "mc" || method == "qmc";
+}
+
+int StrategyOf(const std::string& method)
+{
+  return method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
+    : method == "qmc"   ? vtkMCXPointSampler::QUASI_MONTE_CARLO
+                        : vtkMCXPointSampler::HYBRID;
+}
+
+void CheckKernel(const std::string& kernel)
+{
+  if (kernel != "tent" && kernel != "box")
+  {
+    Fail("unknown --kernel '" + kernel + "' (expected tent or box)");
+  }
+}
+
+int KernelOf(const std::string& kernel)
+{
+  return kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
+}
+
+} // namespace mcxapp

@@ -1,0 +1,24 @@
+// The names of --method and --kernel, and the sampler's constants for them.
+#ifndef mcxSamplingMethod_h
+#define mcxSamplingMethod_h
+
+#include <string>
+
+namespace mcxapp
+{
+
+/// hybrid, mc or qmc: the methods that sample points (not reference).
+bool IsSamplingMethod(const std::string& method);
+
+/// vtkMCXPointSampler's strategy for a sampling method.
+int StrategyOf(const std::string& method);
+
+/// Fails unless kernel is tent or box.
+void CheckKernel(const std::string& kernel);
+
+/// vtkMCXPointSampler's kernel for tent or box.
+int KernelOf(const std::string& kernel);
+
+} // namespace mcxapp
+
+#endif

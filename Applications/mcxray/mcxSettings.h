@@ -1,0 +1,46 @@
+// What the command line says: the options of both commands in one place,
+// filled by the option table. Each command reads the part it accepts.
+#ifndef mcxSettings_h
+#define mcxSettings_h
+
+#include "mcxImageOutput.h"
+#include "mcxRadiographSettings.h"
+
+#include <string>
+
+namespace mcxapp
+{
+
+struct Settings
+{
+  std::string Input; // empty: the bundled CT
+  std::string TF = "raw";
+  long long Samples = 0; // each command sets its default before parsing
+  std::string Method = "hybrid";
+  std::string Kernel = "tent";
+  unsigned long long Seed = 0;
+  int Threads = 0; // 0: all cores
+  bool SizeGiven = false;
+  int Size[2] = { 0, 0 };
+  RadiographSettings Radiograph;
+
+  // render only
+  std::string View = "+z";
+  bool ViewGiven = false;
+  std::string Camera;
+  double PixelSpacing = 0.0;
+  std::string Output = "mcxray.png";
+  PngWindow Window;
+  double Tolerance = 1e-3;
+  bool Quiet = false;
+  bool StoredPoints = false;
+  double TargetError = 0.0;
+  int QuantizationLevels = 0;
+
+  // view only
+  std::string Screenshot;
+};
+
+} // namespace mcxapp
+
+#endif

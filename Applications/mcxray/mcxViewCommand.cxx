@@ -1,0 +1,216 @@
+#include "mcxViewCommand.h"
+
+#include "mcxErrorCapture.h"
+#include "mcxFail.h"
+#include "mcxHalton.h"
+#include "mcxImageOutput.h"
+#include "mcxOptionTable.h"
+#include "mcxPreflight.h"
+#include "mcxProgressBar.h"
+#include "mcxSamplingMethod.h"
+#include "mcxSettings.h"
+#include "mcxVolumeReader.h"
+#include "mcxXRayViewer.h"
+
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkNew.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+namespace mcxapp
+{
+
+namespace
+{
+const char* const Usage = R"(usage: mcxray view [INPUT] [options]
+
+Opens an interactive X-ray view of a volume: drag to rotate, right-drag or
+wheel to zoom, middle-drag to pan. While the view is still the image refines
+up to all points; the overlay shows the sample count, the time per frame and
+the image's estimated relative error.
+
+INPUT   a volume, as for mcxray render (default: the bundled CT head).
+
+options:
+  --tf SPEC          initial transfer function (as for mcxray render; default raw)
+  --samples N        points in the cloud, rounded up to 2^m - 1 (default 4194303)
+  --method M         hybrid (default), mc or qmc
+  --kernel K         tent (default) or box
+  --seed N           seed of the pseudo-random parts (default 0)
+  --threads N        worker threads (default: all cores)
+  --size WxH         window size (default 768x768)
+  --sad, --sid, --detector, --pitch, --gantry, --isocenter
+                     a cone-beam radiograph view as for mcxray render (the
+                     detector's pixels become the window)
+  --beer-lambert, --i0 I, --photons N, --noise-seed N, --negative-log
+                     radiograph physics as for mcxray render (with --tf mu)
+  --screenshot FILE  no window: render off screen until all points count,
+                     save the window as FILE (.png) and exit
+  --help             this text
+
+controls: sliders for the TF window (centre and width, in data units);
+  keys 1 raw, 2 bone, 3 soft-tissue presets; + / - double or halve the points;
+  i inverts the display; b switches Beer-Lambert intensity on and off;
+  p switches parallel / perspective; r resets the camera; q quits.
+)";
+
+const long long DefaultSamples = (1LL << 22) - 1;
+
+// What one option allows depends on another: checked once all are read.
+void CheckCombinations(const Settings& settings)
+{
+  if (!IsSamplingMethod(settings.Method))
+  {
+    Fail("unknown --method '" + settings.Method + "' for view (expected hybrid, mc or qmc)");
+  }
+  CheckKernel(settings.Kernel);
+  if (settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+  {
+    Fail("the viewer holds at most 2^30 - 1 points");
+  }
+  const RadiographSettings& radiograph = settings.Radiograph;
+  if (radiograph.Geometry && settings.SizeGiven)
+  {
+    Fail("the radiograph geometry's --detector sets the window size; leave out --size");
+  }
+  if (radiograph.Geometry && (radiograph.Detector[0] < 16 || radiograph.Detector[1] < 16 ||
+                               radiograph.Detector[0] > 8192 || radiograph.Detector[1] > 8192))
+  {
+    Fail("the viewer's --detector must lie between 16x16 and 8192x8192 pixels");
+  }
+}
+
+void CheckScreenshot(const std::string& screenshot)
+{
+  if (vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(screenshot)) != ".png")
+  {
+    Fail("--screenshot writes .png, not '" + screenshot + "'");
+  }
+  CheckOutputDirectory(screenshot);
+}
+
+// The window is the detector when a radiograph geometry is given.
+ViewerOptions MakeViewerOptions(const Settings& settings)
+{
+  ViewerOptions viewer;
+  viewer.TransferFunction = settings.TF;
+  viewer.Seed = settings.Seed;
+  viewer.SampleExponent = static_cast<int>(mcx::ExponentForSampleCount(settings.Samples));
+  viewer.Strategy = StrategyOf(settings.Method);
+  viewer.Kernel = KernelOf(settings.Kernel);
+  viewer.OffScreen = !settings.Screenshot.empty();
+  const int* size = settings.Radiograph.Geometry ? settings.Radiograph.Detector
+    : settings.SizeGiven                         ? settings.Size
+                                                 : nullptr;
+  if (size)
+  {
+    viewer.Size[0] = size[0];
+    viewer.Size[1] = size[1];
+  }
+  return viewer;
+}
+
+// The radiograph geometry's camera and the physics, when asked for.
+void ConfigureRadiograph(XRayViewer& view, vtkImageData* volume, const RadiographSettings& radiograph)
+{
+  if (radiograph.Geometry)
+  {
+    int size[2];
+    double spacing = 0;
+    view.GetRenderer()->GetActiveCamera()->DeepCopy(radiograph.MakeCamera(volume, size, spacing));
+  }
+  radiograph.Configure(view.GetMapper());
+}
+
+// The index is built before the first frame, with a progress bar.
+void BuildIndex(XRayViewer& view, const ErrorCapture& capture, ProgressBar& progress)
+{
+  progress.Watch(view.GetIndex());
+  progress.Begin("index");
+  view.GetIndex()->Update();
+  progress.End();
+  capture.FailOnWatchedError();
+}
+
+// Off screen: refine until every point counts, save the window.
+void SaveScreenshot(XRayViewer& view, const ErrorCapture& capture, const std::string& screenshot)
+{
+  const int renders = view.RefineUntilComplete();
+  capture.FailOnWatchedError();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view.GetRenderWindow());
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  std::string error;
+  if (!WriteScreenshot(grab->GetOutput(), screenshot, error))
+  {
+    Fail(error);
+  }
+  const std::string overlay = view.OverlayText(false);
+  std::cout << "view:        " << renders << " renders, " << overlay.substr(0, overlay.find('\n'))
+            << "\nscreenshot:  " << screenshot << std::endl;
+}
+}
+
+int RunView(int argc, char* argv[])
+{
+  Settings settings;
+  settings.Samples = DefaultSamples;
+  if (!ParseArguments(argc, argv, Command::View, settings))
+  {
+    std::printf("%s", Usage);
+    return 0;
+  }
+  CheckCombinations(settings);
+  if (!settings.Screenshot.empty())
+  {
+    CheckScreenshot(settings.Screenshot);
+  }
+  CheckTransferFunction(settings.TF);
+  if (settings.Threads > 0)
+  {
+    vtkSMPTools::Initialize(settings.Threads);
+  }
+  if (settings.Screenshot.empty() && !vtksys::SystemTools::GetEnv("DISPLAY"))
+  {
+    Fail("no display (DISPLAY is not set): use --screenshot FILE, or run under xvfb-run");
+  }
+  ErrorCapture capture; // outlives the view, whose pipeline reports to it
+  std::string error;
+  vtkSmartPointer<vtkImageData> volume =
+    ReadVolume(settings.Input.empty() ? BundledVolumePath() : settings.Input, error);
+  if (!volume)
+  {
+    Fail(error);
+  }
+  XRayViewer view(volume, MakeViewerOptions(settings));
+  if (!view.Error().empty())
+  {
+    Fail(view.Error());
+  }
+  ConfigureRadiograph(view, volume, settings.Radiograph);
+  capture.Watch(view.GetIndex());
+  capture.Watch(view.GetSampler());
+  ProgressBar progress; // lives while the view runs: its index reports to it
+  BuildIndex(view, capture, progress);
+  if (settings.Screenshot.empty())
+  {
+    view.Start();
+    return 0;
+  }
+  SaveScreenshot(view, capture, settings.Screenshot);
+  return 0;
+}
+
+} // namespace mcxapp
