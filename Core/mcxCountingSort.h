@@ -22,12 +22,14 @@ struct CountingSortLayout
 };
 
 /// Chunks of at least 2^16 voxels, and at most 2^24 (chunk, bin) counters.
-inline CountingSortLayout MakeCountingSortLayout(std::int64_t numberOfVoxels, std::int64_t numberOfBins)
+inline CountingSortLayout MakeCountingSortLayout(
+  std::int64_t numberOfVoxels, std::int64_t numberOfBins)
 {
   const std::int64_t minimumChunk = std::int64_t(1) << 16;
   const std::int64_t counterBudget = std::int64_t(1) << 24;
   std::int64_t chunks = std::max<std::int64_t>(1, numberOfVoxels / minimumChunk);
-  chunks = std::min<std::int64_t>(chunks, std::max<std::int64_t>(1, counterBudget / std::max<std::int64_t>(numberOfBins, 1)));
+  chunks = std::min<std::int64_t>(
+    chunks, std::max<std::int64_t>(1, counterBudget / std::max<std::int64_t>(numberOfBins, 1)));
   chunks = std::min<std::int64_t>(chunks, 1024);
   const std::int64_t size = numberOfVoxels == 0 ? 1 : (numberOfVoxels + chunks - 1) / chunks;
   return { chunks, size };
@@ -39,40 +41,44 @@ inline CountingSortLayout MakeCountingSortLayout(std::int64_t numberOfVoxels, st
 /// every voxel that is not left out. Returns the number left out. Chunks run
 /// in parallel on `executor` (see mcxExecutor.h).
 template <typename IdType, typename BinFunction, typename Executor>
-std::int64_t CountingSortByBin(const Executor& executor, std::int64_t numberOfVoxels, std::int64_t numberOfBins,
-  const BinFunction& binOf, std::vector<std::int64_t>& binOffsets, IdType* sortedIds)
+std::int64_t CountingSortByBin(const Executor& executor, std::int64_t numberOfVoxels,
+  std::int64_t numberOfBins, const BinFunction& binOf, std::vector<std::int64_t>& binOffsets,
+  IdType* sortedIds)
 {
   const CountingSortLayout layout = MakeCountingSortLayout(numberOfVoxels, numberOfBins);
   const std::int64_t nb = numberOfBins;
   std::vector<std::int64_t> counters(static_cast<std::size_t>(layout.NumberOfChunks * nb), 0);
   std::vector<std::int64_t> skipped(static_cast<std::size_t>(layout.NumberOfChunks), 0);
 
-  auto chunkRange = [&](std::int64_t c, std::int64_t& begin, std::int64_t& end) {
+  auto chunkRange = [&](std::int64_t c, std::int64_t& begin, std::int64_t& end)
+  {
     begin = c * layout.ChunkSize;
     end = std::min(numberOfVoxels, begin + layout.ChunkSize);
   };
 
-  executor.For(0, layout.NumberOfChunks, 1, [&](std::int64_t c0, std::int64_t c1) {
-    for (std::int64_t c = c0; c < c1; ++c)
+  executor.For(0, layout.NumberOfChunks, 1,
+    [&](std::int64_t c0, std::int64_t c1)
     {
-      std::int64_t* count = counters.data() + c * nb;
-      std::int64_t begin, end, left = 0;
-      chunkRange(c, begin, end);
-      for (std::int64_t id = begin; id < end; ++id)
+      for (std::int64_t c = c0; c < c1; ++c)
       {
-        const std::int64_t b = binOf(id);
-        if (b < 0)
+        std::int64_t* count = counters.data() + c * nb;
+        std::int64_t begin, end, left = 0;
+        chunkRange(c, begin, end);
+        for (std::int64_t id = begin; id < end; ++id)
         {
-          ++left;
+          const std::int64_t b = binOf(id);
+          if (b < 0)
+          {
+            ++left;
+          }
+          else
+          {
+            ++count[b];
+          }
         }
-        else
-        {
-          ++count[b];
-        }
+        skipped[static_cast<std::size_t>(c)] = left;
       }
-      skipped[static_cast<std::size_t>(c)] = left;
-    }
-  });
+    });
 
   // Exclusive prefix sum in (bin, chunk) order turns counts into write cursors.
   binOffsets.assign(static_cast<std::size_t>(nb + 1), 0);
@@ -90,22 +96,24 @@ std::int64_t CountingSortByBin(const Executor& executor, std::int64_t numberOfVo
   }
   binOffsets[static_cast<std::size_t>(nb)] = running;
 
-  executor.For(0, layout.NumberOfChunks, 1, [&](std::int64_t c0, std::int64_t c1) {
-    for (std::int64_t c = c0; c < c1; ++c)
+  executor.For(0, layout.NumberOfChunks, 1,
+    [&](std::int64_t c0, std::int64_t c1)
     {
-      std::int64_t* cursor = counters.data() + c * nb;
-      std::int64_t begin, end;
-      chunkRange(c, begin, end);
-      for (std::int64_t id = begin; id < end; ++id)
+      for (std::int64_t c = c0; c < c1; ++c)
       {
-        const std::int64_t b = binOf(id);
-        if (b >= 0)
+        std::int64_t* cursor = counters.data() + c * nb;
+        std::int64_t begin, end;
+        chunkRange(c, begin, end);
+        for (std::int64_t id = begin; id < end; ++id)
         {
-          sortedIds[cursor[b]++] = static_cast<IdType>(id);
+          const std::int64_t b = binOf(id);
+          if (b >= 0)
+          {
+            sortedIds[cursor[b]++] = static_cast<IdType>(id);
+          }
         }
       }
-    }
-  });
+    });
 
   std::int64_t total = 0;
   for (std::int64_t s : skipped)

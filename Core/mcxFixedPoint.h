@@ -32,8 +32,8 @@ inline FixedSum FixedIncrement(double f)
 /// Converts the first `pixels` fixed-point sums to pixel values:
 /// sum / 2^32 * sampleWeight / pixelArea.
 template <typename Value>
-void FixedSumsToValues(const FixedSum* sums, std::size_t pixels, double sampleWeight,
-  double pixelArea, Value* values)
+void FixedSumsToValues(
+  const FixedSum* sums, std::size_t pixels, double sampleWeight, double pixelArea, Value* values)
 {
   const double scale = sampleWeight / pixelArea / FixedOne;
   for (std::size_t i = 0; i < pixels; ++i)

@@ -18,7 +18,8 @@ class PixelBinner
 {
 public:
   /// sourceOrigin and sourceMatrix (row-major 3x3) take source coordinates to world.
-  PixelBinner(const ProjectionGeometry& g, const double sourceOrigin[3], const double sourceMatrix[9])
+  PixelBinner(
+    const ProjectionGeometry& g, const double sourceOrigin[3], const double sourceMatrix[9])
     : Perspective(g.Perspective)
     , Width(g.Size[0])
     , Height(g.Size[1])

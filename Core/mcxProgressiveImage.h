@@ -89,7 +89,8 @@ public:
   template <typename Value>
   void ToValues(double sampleWeight, Value* values) const
   {
-    FixedSumsToValues(this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.PixelArea(), values);
+    FixedSumsToValues(
+      this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.PixelArea(), values);
   }
 
 private:

@@ -98,7 +98,8 @@ bool ProjectToPlane(const ProjectionGeometry& g, const double x[3], double& a, d
 bool FrameCorners(ProjectionGeometry& g, const double corners[24], const int requestedSize[2],
   double requestedSpacing, int defaultLongSide)
 {
-  double lo[2] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
+  double lo[2] = { std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
   double hi[2] = { -lo[0], -lo[1] };
   int seen = 0;
   for (int c = 0; c < 8; ++c)

@@ -54,8 +54,8 @@ bool ProjectToPlane(const ProjectionGeometry& geometry, const double x[3], doubl
 /// its 8 corners, so corners behind the eye are ignored). A requested size or
 /// spacing (> 0) is kept; with neither, the longest side gets defaultLongSide
 /// pixels. Returns false if nothing can be framed.
-bool FrameCorners(ProjectionGeometry& geometry, const double corners[24], const int requestedSize[2],
-  double requestedSpacing, int defaultLongSide);
+bool FrameCorners(ProjectionGeometry& geometry, const double corners[24],
+  const int requestedSize[2], double requestedSpacing, int defaultLongSide);
 
 /// Parallel view along a world axis (0, 1, 2): U and V are the two remaining
 /// axes in x, y, z order, so the image is never mirrored.

@@ -23,8 +23,8 @@ struct RadiographEffects
 
   /// What a radiograph's properties ask for: any effect implies Beer-Lambert,
   /// because noise and the log act on intensities.
-  static RadiographEffects FromProperties(
-    bool beerLambert, double incidentIntensity, double photonsPerPixel, std::uint64_t noiseSeed, bool negativeLog)
+  static RadiographEffects FromProperties(bool beerLambert, double incidentIntensity,
+    double photonsPerPixel, std::uint64_t noiseSeed, bool negativeLog)
   {
     RadiographEffects effects;
     effects.BeerLambert = beerLambert || photonsPerPixel > 0 || negativeLog;
@@ -39,7 +39,8 @@ struct RadiographEffects
 
   bool operator==(const RadiographEffects& other) const
   {
-    return this->BeerLambert == other.BeerLambert && this->IncidentIntensity == other.IncidentIntensity &&
+    return this->BeerLambert == other.BeerLambert &&
+      this->IncidentIntensity == other.IncidentIntensity &&
       this->PhotonsPerPixel == other.PhotonsPerPixel && this->NoiseSeed == other.NoiseSeed &&
       this->NegativeLog == other.NegativeLog;
   }
@@ -67,16 +68,19 @@ struct RadiographEffects
   /// values[p] = Apply(lineIntegralOf(p), p) for every pixel p < pixels, in
   /// parallel on `executor` (values may be where lineIntegralOf reads).
   template <typename Executor, typename LineIntegralOf, typename Value>
-  void ApplyToImage(
-    const Executor& executor, std::int64_t pixels, const LineIntegralOf& lineIntegralOf, Value* values) const
+  void ApplyToImage(const Executor& executor, std::int64_t pixels,
+    const LineIntegralOf& lineIntegralOf, Value* values) const
   {
     const std::uint64_t seedKey = SeedKey(this->NoiseSeed);
-    executor.For(0, pixels, 4096, [&](std::int64_t begin, std::int64_t end) {
-      for (std::int64_t p = begin; p < end; ++p)
+    executor.For(0, pixels, 4096,
+      [&](std::int64_t begin, std::int64_t end)
       {
-        values[p] = static_cast<Value>(this->Apply(lineIntegralOf(p), static_cast<std::uint64_t>(p), seedKey));
-      }
-    });
+        for (std::int64_t p = begin; p < end; ++p)
+        {
+          values[p] = static_cast<Value>(
+            this->Apply(lineIntegralOf(p), static_cast<std::uint64_t>(p), seedKey));
+        }
+      });
   }
 };
 

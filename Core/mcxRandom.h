@@ -49,7 +49,6 @@ public:
   /// Uniform in (0, 1], 53 random bits.
   double NextOpenClosed() { return static_cast<double>((this->Next() >> 11) + 1) * 0x1.0p-53; }
 
-
 private:
   std::uint64_t State;
 };

@@ -164,7 +164,8 @@ private:
     return c0 + fz * (c1 - c0);
   }
 
-  double CellIntegral(const int cell[3], const double q0[3], const double d[3], double t0, double t1) const
+  double CellIntegral(
+    const int cell[3], const double q0[3], const double d[3], double t0, double t1) const
   {
     if (this->Reconstruction == Kernel::Box)
     {

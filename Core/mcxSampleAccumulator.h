@@ -103,17 +103,19 @@ public:
     const ThreadImage image = this->Local();
     for (std::uint64_t i = begin; i < end; ++i)
     {
-      const double p[3] = { static_cast<double>(points[3 * i]), static_cast<double>(points[3 * i + 1]),
-        static_cast<double>(points[3 * i + 2]) };
+      const double p[3] = { static_cast<double>(points[3 * i]),
+        static_cast<double>(points[3 * i + 1]), static_cast<double>(points[3 * i + 2]) };
       image.Deposit(i, p);
     }
   }
 
   /// The same, in parallel on `executor`.
   template <typename Real>
-  void DepositPoints(const Executor& executor, const Real* points, std::uint64_t begin, std::uint64_t end)
+  void DepositPoints(
+    const Executor& executor, const Real* points, std::uint64_t begin, std::uint64_t end)
   {
-    executor.For(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end), std::int64_t(1) << 15,
+    executor.For(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end),
+      std::int64_t(1) << 15,
       [&](std::int64_t b, std::int64_t e) {
         this->DepositRange(points, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e));
       });

@@ -83,7 +83,7 @@ struct SampleSource
   const double* RankScale = nullptr;          // per level: voxel count / level mass
   const std::int64_t* Guide = nullptr;        // GuideSize entries, see TransferTable
   std::int64_t GuideSize = 0;
-  double GuideScale = 0.0;                    // GuideSize / Cumulative[NumberOfLevels]
+  double GuideScale = 0.0; // GuideSize / Cumulative[NumberOfLevels]
   std::int64_t NumberOfLevels = 0;
   VoxelDecoder<IdType> Decoder;
   Strategy Method = Strategy::Hybrid;
@@ -163,11 +163,12 @@ struct SampleSource
     if (this->Method == Strategy::MonteCarlo)
     {
       const std::uint64_t perItem = tile << low;
-      this->GenerateInOutputOrder(itemBegin * perItem,
-        std::min(this->NumberOfSamples(), itemEnd * perItem), sink);
+      this->GenerateInOutputOrder(
+        itemBegin * perItem, std::min(this->NumberOfSamples(), itemEnd * perItem), sink);
       return;
     }
-    const double step = std::ldexp(this->Cumulative[this->NumberOfLevels], -static_cast<int>(this->Exponent));
+    const double step =
+      std::ldexp(this->Cumulative[this->NumberOfLevels], -static_cast<int>(this->Exponent));
     const std::uint64_t key = SeedKey(this->Seed);
     const RotationShift shift(this->Seed);
     for (std::uint64_t t = itemBegin; t < itemEnd; ++t)
@@ -238,7 +239,8 @@ private:
   std::int64_t FindLevel(double target) const
   {
     const double bucket = target * this->GuideScale;
-    const std::int64_t b = std::min<std::int64_t>(this->GuideSize - 1, static_cast<std::int64_t>(bucket));
+    const std::int64_t b =
+      std::min<std::int64_t>(this->GuideSize - 1, static_cast<std::int64_t>(bucket));
     std::int64_t c = this->Guide[std::max<std::int64_t>(0, b)];
     while (c > 1 && target <= this->Cumulative[c - 1])
     {
@@ -252,8 +254,8 @@ private:
   }
 
   template <typename Sink>
-  void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random, const RotationShift& shift,
-    Sink& sink) const
+  void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random,
+    const RotationShift& shift, Sink& sink) const
   {
     const std::int64_t first = this->LevelOffsets[c - 1];
     const std::int64_t rank = this->VoxelRank(target, c);

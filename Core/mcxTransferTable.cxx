@@ -58,14 +58,16 @@ TransferTable BuildTransferTable(
   }
   for (std::int64_t l = 0; l < numberOfLevels; ++l)
   {
-    const double mass = table.Cumulative[static_cast<std::size_t>(l + 1)] - table.Cumulative[static_cast<std::size_t>(l)];
+    const double mass = table.Cumulative[static_cast<std::size_t>(l + 1)] -
+      table.Cumulative[static_cast<std::size_t>(l)];
     if (mass > 0)
     {
       table.RankScale[static_cast<std::size_t>(l)] =
         static_cast<double>(levelOffsets[l + 1] - levelOffsets[l]) / mass;
     }
   }
-  const std::int64_t buckets = std::min<std::int64_t>(2 * numberOfLevels + 16, std::int64_t(1) << 22);
+  const std::int64_t buckets =
+    std::min<std::int64_t>(2 * numberOfLevels + 16, std::int64_t(1) << 22);
   table.Guide.assign(static_cast<std::size_t>(buckets), 1);
   std::int64_t c = 1;
   for (std::int64_t b = 0; b < buckets; ++b)

@@ -48,14 +48,17 @@ public:
     return shift == 0 ? a
       : shift >= 128  ? PortableUInt128()
       : shift >= 64   ? PortableUInt128(a.Low << (shift - 64), 0)
-                      : PortableUInt128((a.High << shift) | (a.Low >> (64 - shift)), a.Low << shift);
+                    : PortableUInt128((a.High << shift) | (a.Low >> (64 - shift)), a.Low << shift);
   }
 
   friend constexpr bool operator==(const PortableUInt128& a, const PortableUInt128& b)
   {
     return a.Low == b.Low && a.High == b.High;
   }
-  friend constexpr bool operator!=(const PortableUInt128& a, const PortableUInt128& b) { return !(a == b); }
+  friend constexpr bool operator!=(const PortableUInt128& a, const PortableUInt128& b)
+  {
+    return !(a == b);
+  }
   friend constexpr bool operator<(const PortableUInt128& a, const PortableUInt128& b)
   {
     return a.High < b.High || (a.High == b.High && a.Low < b.Low);
@@ -109,7 +112,8 @@ private:
 };
 
 /// High and low 64 bits of a * b, portably.
-inline void PortableMultiply64(std::uint64_t a, std::uint64_t b, std::uint64_t& high, std::uint64_t& low)
+inline void PortableMultiply64(
+  std::uint64_t a, std::uint64_t b, std::uint64_t& high, std::uint64_t& low)
 {
   const std::uint64_t a0 = a & 0xFFFFFFFFu, a1 = a >> 32;
   const std::uint64_t b0 = b & 0xFFFFFFFFu, b1 = b >> 32;

@@ -25,9 +25,9 @@ bool BatchedFor(vtkAlgorithm* algorithm, std::uint64_t total, double progressBeg
   {
     const std::uint64_t end = std::min(total, begin + batch);
     vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
-      static_cast<vtkIdType>(grain), [&](vtkIdType b, vtkIdType e) {
-        work(static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e));
-      });
+      static_cast<vtkIdType>(grain),
+      [&](vtkIdType b, vtkIdType e)
+      { work(static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e)); });
     algorithm->UpdateProgress(
       progressBegin + (progressEnd - progressBegin) * static_cast<double>(end) / total);
     if (algorithm->GetAbortExecute())

@@ -8,7 +8,8 @@
 namespace mcx
 {
 
-std::string GeometryFromCamera(vtkCamera* camera, const int size[2], double spacing, ProjectionGeometry& g)
+std::string GeometryFromCamera(
+  vtkCamera* camera, const int size[2], double spacing, ProjectionGeometry& g)
 {
   double position[3], focal[3], up[3];
   camera->GetPosition(position);
@@ -47,7 +48,8 @@ std::string GeometryFromCamera(vtkCamera* camera, const int size[2], double spac
     g.NearDistance = camera->GetClippingRange()[0];
     if (!(spacing > 0))
     {
-      spacing = 2.0 * distance * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0) / across;
+      spacing = 2.0 * distance *
+        std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0) / across;
     }
   }
   else

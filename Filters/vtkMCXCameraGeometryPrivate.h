@@ -17,7 +17,8 @@ namespace mcx
 /// pixels (0 = 512) with square pixels of `spacing` world units on the focal
 /// plane (0 = what the camera's view angle or parallel scale gives, as VTK
 /// renders it). Returns why the camera is unusable, or "".
-MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(vtkCamera* camera, const int size[2], double spacing, ProjectionGeometry& g);
+MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(
+  vtkCamera* camera, const int size[2], double spacing, ProjectionGeometry& g);
 
 } // namespace mcx
 

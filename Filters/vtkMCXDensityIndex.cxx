@@ -4,26 +4,26 @@
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXSMPExecutorPrivate.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkTypeUInt32Array.h"
 #include "vtkTypeUInt64Array.h"
-#include "vtkCellData.h"
-#include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkSmartPointer.h"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -72,27 +72,30 @@ ValueRange<T> ComputeRange(const T* values, std::int64_t n)
   const std::int64_t chunks = std::max<std::int64_t>(1, (n + chunk - 1) / chunk);
   std::vector<ValueRange<T>> parts(static_cast<std::size_t>(chunks),
     ValueRange<T>{ std::numeric_limits<T>::max(), std::numeric_limits<T>::lowest(), 0, true });
-  vtkSMPTools::For(0, chunks, 1, [&](std::int64_t c0, std::int64_t c1) {
-    for (std::int64_t c = c0; c < c1; ++c)
+  vtkSMPTools::For(0, chunks, 1,
+    [&](std::int64_t c0, std::int64_t c1)
     {
-      ValueRange<T>& r = parts[static_cast<std::size_t>(c)];
-      const std::int64_t end = std::min(n, (c + 1) * chunk);
-      for (std::int64_t i = c * chunk; i < end; ++i)
+      for (std::int64_t c = c0; c < c1; ++c)
       {
-        const T v = values[i];
-        if (IsFiniteValue(v))
+        ValueRange<T>& r = parts[static_cast<std::size_t>(c)];
+        const std::int64_t end = std::min(n, (c + 1) * chunk);
+        for (std::int64_t i = c * chunk; i < end; ++i)
         {
-          r.Min = std::min(r.Min, v);
-          r.Max = std::max(r.Max, v);
-          ++r.Finite;
-          if (std::is_floating_point<T>::value)
+          const T v = values[i];
+          if (IsFiniteValue(v))
           {
-            r.AllIntegers = r.AllIntegers && std::floor(static_cast<double>(v)) == static_cast<double>(v);
+            r.Min = std::min(r.Min, v);
+            r.Max = std::max(r.Max, v);
+            ++r.Finite;
+            if (std::is_floating_point<T>::value)
+            {
+              r.AllIntegers =
+                r.AllIntegers && std::floor(static_cast<double>(v)) == static_cast<double>(v);
+            }
           }
         }
       }
-    }
-  });
+    });
   ValueRange<T> total = parts[0];
   for (std::size_t c = 1; c < parts.size(); ++c)
   {
@@ -106,17 +109,17 @@ ValueRange<T> ComputeRange(const T* values, std::int64_t n)
 
 template <typename IdType, typename BinFunction>
 void SortIntoLevels(std::int64_t n, std::int64_t numberOfBins, std::int64_t numberKept,
-  const BinFunction& binOf, const std::function<double(std::int64_t)>& binValue, IndexResult& result)
+  const BinFunction& binOf, const std::function<double(std::int64_t)>& binValue,
+  IndexResult& result)
 {
-  using ArrayType =
-    typename std::conditional<std::is_same<IdType, std::uint32_t>::value, vtkTypeUInt32Array,
-      vtkTypeUInt64Array>::type;
+  using ArrayType = typename std::conditional<std::is_same<IdType, std::uint32_t>::value,
+    vtkTypeUInt32Array, vtkTypeUInt64Array>::type;
   vtkNew<ArrayType> ids;
   ids->SetName(vtkMCXDensityIndex::SortedVoxelIdsName());
   ids->SetNumberOfValues(numberKept);
   std::vector<std::int64_t> binOffsets;
-  result.NonFinite = mcx::CountingSortByBin<IdType>(mcx::SMPExecutor(),
-    n, numberOfBins, binOf, binOffsets, reinterpret_cast<IdType*>(ids->GetPointer(0)));
+  result.NonFinite = mcx::CountingSortByBin<IdType>(mcx::SMPExecutor(), n, numberOfBins, binOf,
+    binOffsets, reinterpret_cast<IdType*>(ids->GetPointer(0)));
   result.SortedIds = ids;
   // Keep the non-empty bins only.
   result.LevelOffsets.push_back(0);
@@ -137,8 +140,8 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
   if (range.Finite == 0)
   {
     SortIntoLevels<IdType>(
-      n, 0, 0, [](std::int64_t) { return std::int64_t(-1); },
-      [](std::int64_t) { return 0.0; }, result);
+      n, 0, 0, [](std::int64_t) { return std::int64_t(-1); }, [](std::int64_t) { return 0.0; },
+      result);
     return;
   }
   const bool wholeNumbers = range.AllIntegers &&
@@ -149,7 +152,8 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     const double minimum = static_cast<double>(range.Min);
     SortIntoLevels<IdType>(
       n, static_cast<std::int64_t>(static_cast<double>(range.Max) - minimum) + 1, range.Finite,
-      [=](std::int64_t id) -> std::int64_t {
+      [=](std::int64_t id) -> std::int64_t
+      {
         const double v = static_cast<double>(values[id]);
         return std::isfinite(v) ? static_cast<std::int64_t>(v - minimum) : -1;
       },
@@ -166,7 +170,8 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     result.BinWidth = hi > lo ? 2.0 * (hi - lo) / floatLevels : 0.0;
     SortIntoLevels<IdType>(
       n, floatLevels, range.Finite,
-      [=](std::int64_t id) -> std::int64_t {
+      [=](std::int64_t id) -> std::int64_t
+      {
         const double v = static_cast<double>(values[id]);
         if (!std::isfinite(v))
         {
@@ -179,21 +184,23 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     // A level stands for the mean of its voxels' values: exact when they are all equal.
     const IdType* ids = static_cast<const IdType*>(result.SortedIds->GetVoidPointer(0));
     const std::int64_t levels = static_cast<std::int64_t>(result.LevelValues.size());
-    vtkSMPTools::For(0, levels, [&](std::int64_t l0, std::int64_t l1) {
-      for (std::int64_t l = l0; l < l1; ++l)
+    vtkSMPTools::For(0, levels,
+      [&](std::int64_t l0, std::int64_t l1)
       {
-        const std::int64_t begin = result.LevelOffsets[static_cast<std::size_t>(l)];
-        const std::int64_t end = result.LevelOffsets[static_cast<std::size_t>(l + 1)];
-        double sum = 0.0;
-        for (std::int64_t i = begin; i < end; ++i)
+        for (std::int64_t l = l0; l < l1; ++l)
         {
-          sum += 0.5 * static_cast<double>(values[ids[i]]);
+          const std::int64_t begin = result.LevelOffsets[static_cast<std::size_t>(l)];
+          const std::int64_t end = result.LevelOffsets[static_cast<std::size_t>(l + 1)];
+          double sum = 0.0;
+          for (std::int64_t i = begin; i < end; ++i)
+          {
+            sum += 0.5 * static_cast<double>(values[ids[i]]);
+          }
+          const double mean = 2.0 * (sum / static_cast<double>(end - begin));
+          result.LevelValues[static_cast<std::size_t>(l)] = std::min(
+            static_cast<double>(range.Max), std::max(static_cast<double>(range.Min), mean));
         }
-        const double mean = 2.0 * (sum / static_cast<double>(end - begin));
-        result.LevelValues[static_cast<std::size_t>(l)] =
-          std::min(static_cast<double>(range.Max), std::max(static_cast<double>(range.Min), mean));
-      }
-    });
+      });
     return;
   }
   // Differences of integers in [Min, Max] fit 64 unsigned bits exactly
@@ -204,8 +211,10 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
   {
     SortIntoLevels<IdType>(
       n, static_cast<std::int64_t>(span) + 1, n,
-      [=](std::int64_t id) { return static_cast<std::int64_t>(static_cast<std::uint64_t>(values[id]) - minimum); },
-      [=](std::int64_t b) { return static_cast<double>(static_cast<T>(minimum + static_cast<std::uint64_t>(b))); },
+      [=](std::int64_t id)
+      { return static_cast<std::int64_t>(static_cast<std::uint64_t>(values[id]) - minimum); },
+      [=](std::int64_t b)
+      { return static_cast<double>(static_cast<T>(minimum + static_cast<std::uint64_t>(b))); },
       result);
     return;
   }
@@ -217,7 +226,8 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
   const T* last = distinct.data() + distinct.size();
   SortIntoLevels<IdType>(
     n, static_cast<std::int64_t>(distinct.size()), n,
-    [=](std::int64_t id) { return static_cast<std::int64_t>(std::lower_bound(first, last, values[id]) - first); },
+    [=](std::int64_t id)
+    { return static_cast<std::int64_t>(std::lower_bound(first, last, values[id]) - first); },
     [=](std::int64_t b) { return static_cast<double>(first[b]); }, result);
 }
 } // namespace
@@ -296,18 +306,17 @@ int vtkMCXDensityIndex::RequestData(
   const bool wide = this->AlwaysUseWideIds || vtkMCXDensityIndex::NeedsWideIds(n);
   switch (scalars->GetDataType())
   {
-    vtkTemplateMacro(
+    vtkTemplateMacro({
+      const VTK_TT* values = static_cast<const VTK_TT*>(scalars->GetVoidPointer(0));
+      if (wide)
       {
-        const VTK_TT* values = static_cast<const VTK_TT*>(scalars->GetVoidPointer(0));
-        if (wide)
-        {
-          BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, result);
-        }
-        else
-        {
-          BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, result);
-        }
-      });
+        BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, result);
+      }
+      else
+      {
+        BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, result);
+      }
+    });
     default:
       vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
       return 0;

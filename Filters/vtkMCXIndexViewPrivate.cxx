@@ -2,18 +2,18 @@
 
 #include "vtkMCXDensityIndex.h"
 
+#include "mcxProjectionGeometry.h"
 #include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
-#include "mcxProjectionGeometry.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 
 #include <cmath>
@@ -41,9 +41,12 @@ std::string IndexView::Read(vtkImageData* index)
     return "no index image";
   }
   vtkFieldData* fd = index->GetFieldData();
-  auto* values = vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelValuesName()));
-  auto* offsets = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelOffsetsName()));
-  auto* ids = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::SortedVoxelIdsName()));
+  auto* values =
+    vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelValuesName()));
+  auto* offsets =
+    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelOffsetsName()));
+  auto* ids =
+    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::SortedVoxelIdsName()));
   if (!values || !offsets || !ids)
   {
     return "the input is not a density index (run vtkMCXDensityIndex first)";
@@ -78,9 +81,10 @@ std::string IndexView::Read(vtkImageData* index)
   this->NumberOfLevels = values->GetNumberOfValues();
   this->Ids = ids;
   this->WideIds = ids->GetDataTypeSize() == 8;
-  const std::int64_t voxels = static_cast<std::int64_t>(this->Dimensions[0]) * this->Dimensions[1] *
-    this->Dimensions[2];
-  if (this->LevelOffsets[0] != 0 || this->LevelOffsets[this->NumberOfLevels] != ids->GetNumberOfValues() ||
+  const std::int64_t voxels =
+    static_cast<std::int64_t>(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
+  if (this->LevelOffsets[0] != 0 ||
+    this->LevelOffsets[this->NumberOfLevels] != ids->GetNumberOfValues() ||
     ids->GetNumberOfValues() > voxels)
   {
     return "the index's ids do not match its levels and extent";
@@ -98,7 +102,8 @@ std::string IndexView::Read(vtkImageData* index)
   }
   for (int a = 0; a < 3; ++a)
   {
-    if (!(this->Spacing[a] != 0.0) || !std::isfinite(this->Spacing[a]) || !std::isfinite(this->Origin[a]))
+    if (!(this->Spacing[a] != 0.0) || !std::isfinite(this->Spacing[a]) ||
+      !std::isfinite(this->Origin[a]))
     {
       return "the volume's spacing must be non-zero and finite and its origin finite";
     }

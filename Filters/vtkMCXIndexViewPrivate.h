@@ -81,7 +81,8 @@ bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* 
 /// Adds a one-value array to field data (the metadata that travels with outputs).
 /// (Exported: the Rendering module's mapper writes its image's field data too.)
 MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(vtkFieldData* fd, const char* name, double value);
-MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(vtkFieldData* fd, const char* name, long long value);
+MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(
+  vtkFieldData* fd, const char* name, long long value);
 
 /// Support corners (see ComputeSupportCorners) from the pipeline information
 /// of an image (WHOLE_EXTENT, ORIGIN, SPACING and DIRECTION when present).

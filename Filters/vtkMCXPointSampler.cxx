@@ -29,7 +29,8 @@ static_assert(vtkMCXPointSampler::HYBRID == static_cast<int>(mcx::Strategy::Hybr
 static_assert(vtkMCXPointSampler::TENT == static_cast<int>(mcx::Kernel::Tent) &&
     vtkMCXPointSampler::BOX == static_cast<int>(mcx::Kernel::Box),
   "kernel values differ from mcx::Kernel");
-static_assert(vtkMCXPointSampler::LargestSampleExponent == static_cast<int>(mcx::MaximumSampleExponent),
+static_assert(
+  vtkMCXPointSampler::LargestSampleExponent == static_cast<int>(mcx::MaximumSampleExponent),
   "the largest sample exponent differs from the core's");
 vtkCxxSetObjectMacro(vtkMCXPointSampler, TransferFunction, vtkPiecewiseFunction);
 vtkInformationKeyRestrictedMacro(vtkMCXPointSampler, SUPPORT_CORNERS, DoubleVector, 24);
@@ -47,7 +48,8 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
   source.Exponent = m;
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
-  auto store = [&](std::uint64_t k, const double p[3]) {
+  auto store = [&](std::uint64_t k, const double p[3])
+  {
     Real* x = points + 3 * k;
     for (int r = 0; r < 3; ++r)
     {
@@ -55,7 +57,8 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
         origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
     }
   };
-  return mcx::BatchedFor(self, source.NumberOfStorageItems(), 0.05, 1.0,
+  return mcx::BatchedFor(
+    self, source.NumberOfStorageItems(), 0.05, 1.0,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
 }
@@ -157,15 +160,17 @@ int vtkMCXPointSampler::RequestData(
     const bool isDouble = this->OutputPointsPrecision == DOUBLE_PRECISION;
     if (view.WideIds)
     {
-      completed = isDouble
-        ? GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<double*>(raw))
-        : GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<float*>(raw));
+      completed = isDouble ? GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel,
+                               this->Seed, m, static_cast<double*>(raw))
+                           : GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel,
+                               this->Seed, m, static_cast<float*>(raw));
     }
     else
     {
-      completed = isDouble
-        ? GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<double*>(raw))
-        : GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel, this->Seed, m, static_cast<float*>(raw));
+      completed = isDouble ? GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel,
+                               this->Seed, m, static_cast<double*>(raw))
+                           : GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel,
+                               this->Seed, m, static_cast<float*>(raw));
     }
   }
   if (!completed)
@@ -176,7 +181,8 @@ int vtkMCXPointSampler::RequestData(
 
   output->SetPoints(points);
   vtkFieldData* fd = output->GetFieldData();
-  mcx::AddFieldValue(fd, SampleWeightName(), count > 0 ? integral / static_cast<double>(count) : 0.0);
+  mcx::AddFieldValue(
+    fd, SampleWeightName(), count > 0 ? integral / static_cast<double>(count) : 0.0);
   mcx::AddFieldValue(fd, IntegralName(), integral);
   mcx::AddFieldValue(fd, SampleExponentName(), static_cast<long long>(m));
   return 1;

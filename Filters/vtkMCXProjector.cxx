@@ -62,14 +62,15 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   vtkFieldData* fd = cloud->GetFieldData();
   if (!fd || !fd->GetArray(vtkMCXPointSampler::SampleWeightName()))
   {
-    vtkErrorWithObjectMacro(self, "The point cloud carries no SampleWeight (make it with vtkMCXPointSampler).");
+    vtkErrorWithObjectMacro(
+      self, "The point cloud carries no SampleWeight (make it with vtkMCXPointSampler).");
     return false;
   }
   vtkPoints* points = cloud->GetPoints();
   if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
   {
-    vtkErrorWithObjectMacro(
-      self, "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+    vtkErrorWithObjectMacro(self,
+      "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
     return false;
   }
   projection.SampleWeight = FieldValue(fd, vtkMCXPointSampler::SampleWeightName(), 0.0);
@@ -81,7 +82,8 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   Accumulator accumulator;
   accumulator.Reset(geometry, origin, identity);
   accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
-  auto deposit = [&](const auto* coordinates) {
+  auto deposit = [&](const auto* coordinates)
+  {
     return mcx::BatchedFor(self, projection.Count, 0.0, 1.0,
       [&](std::uint64_t b, std::uint64_t e) { accumulator.DepositRange(coordinates, b, e); });
   };
@@ -109,7 +111,8 @@ public:
   /// Reads the index and evaluates the TF; false (reported) when no image can be made.
   bool Prepare(vtkImageData* index, vtkPiecewiseFunction* tf)
   {
-    return mcx::PrepareSampling(this->Self, "project", index, tf, this->View, this->Table, this->Integral);
+    return mcx::PrepareSampling(
+      this->Self, "project", index, tf, this->View, this->Table, this->Integral);
   }
 
   bool IsEmpty() const { return this->Table.IsEmpty(); }
@@ -143,7 +146,8 @@ public:
 
 private:
   template <typename IdType>
-  bool Generate(unsigned m, Accumulator& accumulator, double progressBegin, double progressEnd) const
+  bool Generate(
+    unsigned m, Accumulator& accumulator, double progressBegin, double progressEnd) const
   {
     mcx::SampleSource<IdType> source = this->View.MakeSource<IdType>(this->Table);
     source.Method = this->Method;
@@ -151,7 +155,8 @@ private:
     source.Seed = this->Seed;
     source.Exponent = m;
     return mcx::BatchedFor(this->Self, source.NumberOfSamples(), progressBegin, progressEnd,
-      [&](std::uint64_t b, std::uint64_t e) {
+      [&](std::uint64_t b, std::uint64_t e)
+      {
         const Accumulator::ThreadImage image = accumulator.Local();
         auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
         source.Generate(b, e, deposit);
@@ -191,14 +196,15 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
 {
   const long long pixels = static_cast<long long>(geometry.Size[0]) * geometry.Size[1];
   unsigned m = std::min(maximumExponent,
-    std::max(static_cast<unsigned>(vtkMCXPointSampler::PilotSampleExponent), mcx::ExponentForSampleCount(4 * pixels)));
+    std::max(static_cast<unsigned>(vtkMCXPointSampler::PilotSampleExponent),
+      mcx::ExponentForSampleCount(4 * pixels)));
   Projection projection = sampler.Project(m, 0.0, 0.05);
   const double passEnd[] = { 0.8, 0.95, 1.0 };
   for (int pass = 0; pass < 3 && projection.Completed; ++pass)
   {
     const double needed = SamplesNeeded(projection, targetError, targetLevels);
-    const unsigned next = std::min(
-      maximumExponent, mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
+    const unsigned next = std::min(maximumExponent,
+      mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
     if (next <= m)
     {
       break;
@@ -210,14 +216,15 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
 }
 
 // Stage 3: line integrals and the field data that tells how they were made.
-void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geometry, vtkDoubleArray* values,
-  vtkFieldData* fd)
+void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geometry,
+  vtkDoubleArray* values, vtkFieldData* fd)
 {
   const std::size_t pixels = projection.Sums.size() / 2;
-  mcx::FixedSumsToValues(
-    projection.Sums.data(), pixels, projection.SampleWeight, geometry.PixelArea(), values->GetPointer(0));
+  mcx::FixedSumsToValues(projection.Sums.data(), pixels, projection.SampleWeight,
+    geometry.PixelArea(), values->GetPointer(0));
   fd->Initialize();
-  mcx::AddFieldValue(fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));
+  mcx::AddFieldValue(
+    fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));
   mcx::AddFieldValue(fd, vtkMCXPointSampler::SampleWeightName(), projection.SampleWeight);
   mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), projection.Integral);
   mcx::AddFieldValue(fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(),
@@ -273,8 +280,8 @@ int vtkMCXProjector::RequestData(
     const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
     const bool targeted = this->TargetRelativeError > 0 || this->TargetQuantizationLevels > 0;
     projection = m > 0 && targeted
-      ? ProjectToTarget(sampler, geometry, this->TargetRelativeError, this->TargetQuantizationLevels,
-          static_cast<unsigned>(this->MaximumSampleExponent))
+      ? ProjectToTarget(sampler, geometry, this->TargetRelativeError,
+          this->TargetQuantizationLevels, static_cast<unsigned>(this->MaximumSampleExponent))
       : sampler.Project(m, 0.0, 1.0);
   }
   if (!projection.Completed)

@@ -1,11 +1,11 @@
 #include "vtkMCXProjectorBase.h"
 
-#include "vtkMCXCameraGeometryPrivate.h"
-#include "vtkMCXProjectorBaseInternals.h"
-#include "vtkMCXIndexViewPrivate.h"
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleGenerator.h"
+#include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXPointSampler.h"
+#include "vtkMCXProjectorBaseInternals.h"
 
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
@@ -80,7 +80,8 @@ int vtkMCXProjectorBase::RequestInformation(
       g.V[a] = this->DetectorAxisV[a];
     }
     vtkMath::Cross(g.U, g.V, g.W);
-    const bool explicitImage = this->ImageSize[0] > 0 && this->ImageSize[1] > 0 && this->PixelSpacing > 0;
+    const bool explicitImage =
+      this->ImageSize[0] > 0 && this->ImageSize[1] > 0 && this->PixelSpacing > 0;
     if (!framed && !explicitImage)
     {
       problem = "the input carries no volume extent to frame the image; set ImageSize and "
@@ -162,7 +163,8 @@ void vtkMCXProjectorBase::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->DetectorAxisU[2] << "\n";
   os << indent << "DetectorAxisV: " << this->DetectorAxisV[0] << " " << this->DetectorAxisV[1]
      << " " << this->DetectorAxisV[2] << "\n";
-  os << indent << "DetectorCenter: " << this->DetectorCenter[0] << " " << this->DetectorCenter[1] << "\n";
+  os << indent << "DetectorCenter: " << this->DetectorCenter[0] << " " << this->DetectorCenter[1]
+     << "\n";
   os << indent << "CenterOnVolume: " << this->CenterOnVolume << "\n";
   os << indent << "ImageSize: " << this->ImageSize[0] << " " << this->ImageSize[1] << "\n";
   os << indent << "PixelSpacing: " << this->PixelSpacing << "\n";

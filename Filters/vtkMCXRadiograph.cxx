@@ -20,8 +20,9 @@ namespace
 // The properties in the core's terms (the getters are not const in VTK 9.1).
 mcx::RadiographEffects EffectsOf(vtkMCXRadiograph* self)
 {
-  return mcx::RadiographEffects::FromProperties(self->GetBeerLambert(), self->GetIncidentIntensity(),
-    self->GetPhotonsPerPixel(), static_cast<std::uint64_t>(self->GetNoiseSeed()), self->GetNegativeLog());
+  return mcx::RadiographEffects::FromProperties(self->GetBeerLambert(),
+    self->GetIncidentIntensity(), self->GetPhotonsPerPixel(),
+    static_cast<std::uint64_t>(self->GetNoiseSeed()), self->GetNegativeLog());
 }
 }
 
@@ -40,10 +41,12 @@ int vtkMCXRadiograph::RequestData(
   {
     return 1; // nothing asked for, nothing done
   }
-  vtkDataArray* lineIntegral = input->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
+  vtkDataArray* lineIntegral =
+    input->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
   if (!lineIntegral || lineIntegral->GetNumberOfComponents() != 1)
   {
-    vtkErrorMacro("The input has no one-component LineIntegral array (make it with vtkMCXProjector).");
+    vtkErrorMacro(
+      "The input has no one-component LineIntegral array (make it with vtkMCXProjector).");
     output->Initialize();
     return 0;
   }
@@ -51,7 +54,8 @@ int vtkMCXRadiograph::RequestData(
   values->SetName(this->NegativeLog ? AttenuationName() : IntensityName());
   const vtkIdType pixels = lineIntegral->GetNumberOfTuples();
   values->SetNumberOfValues(pixels);
-  EffectsOf(this).ApplyToImage(mcx::SMPExecutor(), pixels,
+  EffectsOf(this).ApplyToImage(
+    mcx::SMPExecutor(), pixels,
     [&](std::int64_t p) { return lineIntegral->GetComponent(static_cast<vtkIdType>(p), 0); },
     values->GetPointer(0));
   output->GetPointData()->AddArray(values);

@@ -70,7 +70,8 @@ bool vtkMCXRadiographGeometry::ConfigureCamera(vtkCamera* camera)
   camera->SetPosition(iso[0] + sad * std::cos(angle), iso[1] + sad * std::sin(angle), iso[2]);
   camera->SetViewUp(0, 0, 1);
   const double height = this->DetectorPixels[1] * this->PixelPitch;
-  camera->SetViewAngle(2.0 * vtkMath::DegreesFromRadians(std::atan(0.5 * height / this->SourceToImageDistance)));
+  camera->SetViewAngle(
+    2.0 * vtkMath::DegreesFromRadians(std::atan(0.5 * height / this->SourceToImageDistance)));
   // Integrate from just in front of the source: nothing a radiograph sees is nearer.
   camera->SetClippingRange(1e-3 * sad, 10.0 * std::max(sad, this->SourceToImageDistance));
   return true;
@@ -86,8 +87,10 @@ void vtkMCXRadiographGeometry::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SourceToAxisDistance: " << this->SourceToAxisDistance << "\n";
   os << indent << "SourceToImageDistance: " << this->SourceToImageDistance << "\n";
-  os << indent << "DetectorPixels: " << this->DetectorPixels[0] << " " << this->DetectorPixels[1] << "\n";
+  os << indent << "DetectorPixels: " << this->DetectorPixels[0] << " " << this->DetectorPixels[1]
+     << "\n";
   os << indent << "PixelPitch: " << this->PixelPitch << "\n";
   os << indent << "GantryAngle: " << this->GantryAngle << "\n";
-  os << indent << "Isocenter: " << this->Isocenter[0] << " " << this->Isocenter[1] << " " << this->Isocenter[2] << "\n";
+  os << indent << "Isocenter: " << this->Isocenter[0] << " " << this->Isocenter[1] << " "
+     << this->Isocenter[2] << "\n";
 }

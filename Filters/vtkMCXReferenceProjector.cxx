@@ -1,10 +1,10 @@
 #include "vtkMCXReferenceProjector.h"
 
+#include "mcxProjectionGeometry.h"
+#include "mcxRayIntegrator.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXProjectorBaseInternals.h"
-#include "mcxProjectionGeometry.h"
-#include "mcxRayIntegrator.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -27,28 +27,31 @@ namespace
 // g at every voxel, from the index: the TF value of the voxel's level.
 // Returns false if an id lies outside the volume (a corrupt index).
 template <typename IdType>
-bool ScatterLevelWeights(const mcx::IndexView& view, const std::vector<double>& weights, std::vector<double>& g)
+bool ScatterLevelWeights(
+  const mcx::IndexView& view, const std::vector<double>& weights, std::vector<double>& g)
 {
   const IdType* ids = view.IdPointer<IdType>();
   const std::uint64_t voxels = g.size();
   std::atomic<bool> valid(true);
-  vtkSMPTools::For(0, view.NumberOfLevels, [&](vtkIdType l0, vtkIdType l1) {
-    for (vtkIdType l = l0; l < l1; ++l)
+  vtkSMPTools::For(0, view.NumberOfLevels,
+    [&](vtkIdType l0, vtkIdType l1)
     {
-      const double w = weights[static_cast<std::size_t>(l)];
-      const double value = (w > 0 && std::isfinite(w)) ? w : 0.0;
-      for (std::int64_t i = view.LevelOffsets[l]; i < view.LevelOffsets[l + 1]; ++i)
+      for (vtkIdType l = l0; l < l1; ++l)
       {
-        const std::uint64_t id = static_cast<std::uint64_t>(ids[i]);
-        if (id >= voxels)
+        const double w = weights[static_cast<std::size_t>(l)];
+        const double value = (w > 0 && std::isfinite(w)) ? w : 0.0;
+        for (std::int64_t i = view.LevelOffsets[l]; i < view.LevelOffsets[l + 1]; ++i)
         {
-          valid = false;
-          return;
+          const std::uint64_t id = static_cast<std::uint64_t>(ids[i]);
+          if (id >= voxels)
+          {
+            valid = false;
+            return;
+          }
+          g[id] = value;
         }
-        g[id] = value;
       }
-    }
-  });
+    });
   return valid;
 }
 
@@ -61,8 +64,8 @@ public:
   {
     double matrix[9];
     view.SourceToWorld(this->SourceOrigin, matrix);
-    vtkMath::Invert3x3(reinterpret_cast<const double(*)[3]>(matrix),
-      reinterpret_cast<double(*)[3]>(this->Inverse));
+    vtkMath::Invert3x3(
+      reinterpret_cast<const double(*)[3]>(matrix), reinterpret_cast<double(*)[3]>(this->Inverse));
   }
 
   // Ray through plane point (a, b): start p0, direction d (per unit world length), t range.
@@ -124,13 +127,14 @@ int vtkMCXReferenceProjector::RequestData(
   mcx::IndexView view;
   mcx::TransferTable table;
   double integral = 0.0;
-  if (!mcx::PrepareSampling(
-        this, "project", vtkImageData::GetData(inputVector[0]), this->TransferFunction, view, table, integral))
+  if (!mcx::PrepareSampling(this, "project", vtkImageData::GetData(inputVector[0]),
+        this->TransferFunction, view, table, integral))
   {
     return 0;
   }
 
-  std::vector<double> g(static_cast<std::size_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2], 0.0);
+  std::vector<double> g(
+    static_cast<std::size_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2], 0.0);
   const std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
   const bool validIds = view.WideIds ? ScatterLevelWeights<std::uint64_t>(view, weights, g)
                                      : ScatterLevelWeights<std::uint32_t>(view, weights, g);
@@ -163,7 +167,9 @@ int vtkMCXReferenceProjector::RequestData(
     subdivision = s;
     const double progressBegin = static_cast<double>(step) / steps;
     const bool completed = mcx::BatchedFor(this, static_cast<std::uint64_t>(height), progressBegin,
-      progressBegin + 1.0 / steps, [&](std::uint64_t j0, std::uint64_t j1) {
+      progressBegin + 1.0 / steps,
+      [&](std::uint64_t j0, std::uint64_t j1)
+      {
         for (std::uint64_t j = j0; j < j1; ++j)
         {
           for (int i = 0; i < width; ++i)

@@ -17,9 +17,9 @@ struct SMPExecutor
   void For(std::int64_t begin, std::int64_t end, std::int64_t grain, const F& f) const
   {
     vtkSMPTools::For(static_cast<vtkIdType>(begin), static_cast<vtkIdType>(end),
-      static_cast<vtkIdType>(grain), [&](vtkIdType b, vtkIdType e) {
-        f(static_cast<std::int64_t>(b), static_cast<std::int64_t>(e));
-      });
+      static_cast<vtkIdType>(grain),
+      [&](vtkIdType b, vtkIdType e)
+      { f(static_cast<std::int64_t>(b), static_cast<std::int64_t>(e)); });
   }
 
   template <typename T>

@@ -1,9 +1,9 @@
 #include "vtkMCXXRayMapper.h"
 
-#include "vtkMCXCameraGeometryPrivate.h"
 #include "mcxHalton.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
+#include "vtkMCXCameraGeometryPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXRadiograph.h"
@@ -14,8 +14,8 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
-#include "vtkMCXProjectorBase.h"
 #include "vtkInformation.h"
+#include "vtkMCXProjectorBase.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -81,8 +81,8 @@ bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    if (prop != self && prop->GetVisibility() && prop->IsA("vtkProp3D") && !prop->IsA("vtkVolume") &&
-      prop->HasOpaqueGeometry())
+    if (prop != self && prop->GetVisibility() && prop->IsA("vtkProp3D") &&
+      !prop->IsA("vtkVolume") && prop->HasOpaqueGeometry())
     {
       return true;
     }
@@ -93,7 +93,8 @@ bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
 // Window 0 .. the 99.5th percentile of the positive means of 4 x 4 pixel
 // blocks: the blocks average out most of a coarse image's noise, which would
 // otherwise push a high percentile up.
-void ChooseAutomaticWindow(const std::vector<float>& values, int width, int height, double& window, double& level)
+void ChooseAutomaticWindow(
+  const std::vector<float>& values, int width, int height, double& window, double& level)
 {
   std::vector<double> blocks;
   for (int by = 0; by < height; by += 4)
@@ -119,7 +120,8 @@ void ChooseAutomaticWindow(const std::vector<float>& values, int width, int heig
   {
     return;
   }
-  auto rank = blocks.begin() + static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(blocks.size() - 1));
+  auto rank =
+    blocks.begin() + static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(blocks.size() - 1));
   std::nth_element(blocks.begin(), rank, blocks.end());
   window = *rank;
   level = 0.5 * *rank;
@@ -128,8 +130,9 @@ void ChooseAutomaticWindow(const std::vector<float>& values, int width, int heig
 // The radiograph physics the mapper's properties ask for.
 mcx::RadiographEffects EffectsOf(vtkMCXXRayMapper* self)
 {
-  return mcx::RadiographEffects::FromProperties(self->GetBeerLambert(), self->GetIncidentIntensity(),
-    self->GetPhotonsPerPixel(), static_cast<std::uint64_t>(self->GetNoiseSeed()), self->GetNegativeLog());
+  return mcx::RadiographEffects::FromProperties(self->GetBeerLambert(),
+    self->GetIncidentIntensity(), self->GetPhotonsPerPixel(),
+    static_cast<std::uint64_t>(self->GetNoiseSeed()), self->GetNegativeLog());
 }
 
 // Eye distance (along the view direction) of a depth-buffer value; +inf for
@@ -213,8 +216,9 @@ struct vtkMCXXRayMapper::vtkInternals
   vtkPolyData* UpdateInput(vtkMCXXRayMapper* self)
   {
     int outputPort = 0;
-    vtkAlgorithm* producer =
-      self->GetNumberOfInputConnections(0) > 0 ? self->GetInputAlgorithm(0, 0, outputPort) : nullptr;
+    vtkAlgorithm* producer = self->GetNumberOfInputConnections(0) > 0
+      ? self->GetInputAlgorithm(0, 0, outputPort)
+      : nullptr;
     if (!producer)
     {
       vtkErrorWithObjectMacro(self, "No input: connect a vtkMCXPointSampler.");
@@ -222,7 +226,8 @@ struct vtkMCXXRayMapper::vtkInternals
     }
     producer->Update(outputPort);
     vtkPolyData* cloud = vtkPolyData::SafeDownCast(self->GetInputDataObject(0, 0));
-    vtkDataArray* integral = cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName()) : nullptr;
+    vtkDataArray* integral =
+      cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName()) : nullptr;
     if (!integral || integral->GetNumberOfTuples() < 1)
     {
       vtkErrorWithObjectMacro(
@@ -232,8 +237,8 @@ struct vtkMCXXRayMapper::vtkInternals
     vtkPoints* points = cloud->GetPoints();
     if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
     {
-      vtkErrorWithObjectMacro(
-        self, "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+      vtkErrorWithObjectMacro(self,
+        "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
       return nullptr;
     }
     return cloud;
@@ -241,8 +246,8 @@ struct vtkMCXXRayMapper::vtkInternals
 
   // Stage 2: the view of this render; false when there is nothing to draw
   // (an empty viewport) or the camera is unusable (reported).
-  bool ReadView(vtkMCXXRayMapper* self, vtkRenderer* renderer, vtkVolume* volume, vtkOpenGLRenderWindow* window,
-    View& view)
+  bool ReadView(vtkMCXXRayMapper* self, vtkRenderer* renderer, vtkVolume* volume,
+    vtkOpenGLRenderWindow* window, View& view)
   {
     int x0 = 0, y0 = 0;
     renderer->GetTiledSizeAndOrigin(&view.Size[0], &view.Size[1], &x0, &y0);
@@ -286,8 +291,9 @@ struct vtkMCXXRayMapper::vtkInternals
     if (windowCenter[0] != 0 || windowCenter[1] != 0 || camera->GetUseOffAxisProjection() ||
       camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0)
     {
-      vtkWarningWithObjectMacro(self, "Window centre, view shear and off-axis projection are ignored: the X-ray "
-                                      "is drawn for the camera without them.");
+      vtkWarningWithObjectMacro(self,
+        "Window centre, view shear and off-axis projection are ignored: the X-ray "
+        "is drawn for the camera without them.");
     }
     std::vector<double> limits(view.Depth.size());
     const double* range = camera->GetClippingRange();
@@ -307,7 +313,8 @@ struct vtkMCXXRayMapper::vtkInternals
     this->Depth = std::move(view.Depth);
     vtkPoints* points = cloud->GetPoints();
     this->NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
-    this->ScaledIntegral = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0) *
+    this->ScaledIntegral =
+      cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0) *
       std::fabs(vtkMatrix4x4::Determinant(m));
     this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
     this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
@@ -316,7 +323,8 @@ struct vtkMCXXRayMapper::vtkInternals
 
   // Stage 5: uploads what changed (new points, other effects, a new
   // context); true when it uploaded. A display change only redraws.
-  bool UploadIfChanged(vtkOpenGLRenderWindow* window, const mcx::RadiographEffects& effects, const int size[2])
+  bool UploadIfChanged(
+    vtkOpenGLRenderWindow* window, const mcx::RadiographEffects& effects, const int size[2])
   {
     const bool newEffects = effects != this->Effects;
     if (newEffects)
@@ -364,17 +372,21 @@ struct vtkMCXXRayMapper::vtkInternals
     const auto start = std::chrono::steady_clock::now();
     if (points->GetDataType() == VTK_FLOAT)
     {
-      this->Image.Advance(mcx::SMPExecutor(), static_cast<const float*>(points->GetVoidPointer(0)), target);
+      this->Image.Advance(
+        mcx::SMPExecutor(), static_cast<const float*>(points->GetVoidPointer(0)), target);
     }
     else
     {
-      this->Image.Advance(mcx::SMPExecutor(), static_cast<const double*>(points->GetVoidPointer(0)), target);
+      this->Image.Advance(
+        mcx::SMPExecutor(), static_cast<const double*>(points->GetVoidPointer(0)), target);
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::uint64_t added = target - current;
     if (added >= 4096 && seconds > 0)
     {
-      this->SecondsPerSample = 0.5 * (this->SecondsPerSample + seconds / static_cast<double>(added));
+      this->SecondsPerSample =
+        0.5 * (this->SecondsPerSample + seconds / static_cast<double>(added));
     }
   }
 
@@ -387,12 +399,14 @@ struct vtkMCXXRayMapper::vtkInternals
     if (this->Effects.Any())
     {
       float* values = this->Values.data();
-      this->Effects.ApplyToImage(mcx::SMPExecutor(), static_cast<std::int64_t>(this->Values.size()),
+      this->Effects.ApplyToImage(
+        mcx::SMPExecutor(), static_cast<std::int64_t>(this->Values.size()),
         [values](std::int64_t p) { return static_cast<double>(values[p]); }, values);
     }
     if (this->AutomaticWindowPending && this->Image.Count() > 0)
     {
-      ChooseAutomaticWindow(this->Values, width, height, this->AutomaticWindow, this->AutomaticLevel);
+      ChooseAutomaticWindow(
+        this->Values, width, height, this->AutomaticWindow, this->AutomaticLevel);
       this->AutomaticWindowPending = false;
     }
     if (!this->Texture || this->Texture->GetContext() != window)
@@ -404,8 +418,8 @@ struct vtkMCXXRayMapper::vtkInternals
       this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
       this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
     }
-    this->Texture->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height), 1,
-      VTK_FLOAT, this->Values.data());
+    this->Texture->Create2DFromRaw(static_cast<unsigned int>(width),
+      static_cast<unsigned int>(height), 1, VTK_FLOAT, this->Values.data());
     this->UploadedCount = this->Image.Count();
   }
 
@@ -418,8 +432,8 @@ struct vtkMCXXRayMapper::vtkInternals
       std::string fragment = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
       vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Decl", DisplayShaderDeclarations);
       vtkShaderProgram::Substitute(fragment, "//VTK::FSQ::Impl", DisplayShaderBody);
-      this->Quad.reset(new vtkOpenGLQuadHelper(
-        window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fragment.c_str(), ""));
+      this->Quad.reset(new vtkOpenGLQuadHelper(window,
+        vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fragment.c_str(), ""));
     }
     else
     {
@@ -506,9 +520,10 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   const std::uint64_t count = in.Image.Count();
   in.Image.ToValues(in.SampleWeight(), values->GetPointer(0));
   output->GetPointData()->SetScalars(values);
-  mcx::AddFieldValue(output->GetFieldData(), vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(count));
   mcx::AddFieldValue(
-    output->GetFieldData(), vtkMCXProjectorBase::EstimatedRelativeErrorName(), in.Image.EstimateRelativeError());
+    output->GetFieldData(), vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(count));
+  mcx::AddFieldValue(output->GetFieldData(), vtkMCXProjectorBase::EstimatedRelativeErrorName(),
+    in.Image.EstimateRelativeError());
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
@@ -539,9 +554,10 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     {
       // The first image of a new input sets the automatic window: give it
       // enough points for a stable percentile (4 per pixel, 64 per block).
-      const double floor =
-        std::max(static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
-          in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * view.Size[0] * view.Size[1] : 0.0);
+      const double floor = std::max(
+        static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
+        in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * view.Size[0] * view.Size[1]
+                                                                : 0.0);
       target = in.RefinementTarget(volume->GetAllocatedRenderTime(), floor);
     }
     in.Advance(cloud->GetPoints(), target); // stage 4: refine within the time budget
@@ -565,7 +581,8 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   ++this->NumberOfDraws;
-  this->TimeToDraw = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->TimeToDraw =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void vtkMCXXRayMapper::ReleaseGraphicsResources(vtkWindow* window)

@@ -32,10 +32,9 @@
  *
  * Display: the image is mapped by a window and level (in line-integral units;
  * automatic by default: 0 to the 99.5th percentile of the 4 x 4 block means
- * of the first image of each input) to a grey value g in [0, 1] and composited as emitted light (added to
- * what is behind it). With InvertDisplay on, 1 - g multiplies what is behind
- * it instead, as film does on a light box: give the renderer a white
- * background.
+ * of the first image of each input) to a grey value g in [0, 1] and composited as emitted light
+ * (added to what is behind it). With InvertDisplay on, 1 - g multiplies what is behind it instead,
+ * as film does on a light box: give the renderer a white background.
  *
  * The accumulation runs on the CPU with vtkSMPTools; images are the same for
  * any number of threads.

@@ -33,7 +33,8 @@ void SetParallel(vtkCamera* camera, const std::string& kind, bool hasNear)
 
 // Integration starts at the near plane: 0.001 times the camera distance
 // unless near=D says otherwise.
-void SetPerspective(vtkCamera* camera, const std::string& kind, const std::string* nearPart, double distance)
+void SetPerspective(
+  vtkCamera* camera, const std::string& kind, const std::string* nearPart, double distance)
 {
   const double angle = ParseNumber(kind.substr(6), "--camera angle");
   if (!(angle > 0 && angle < 180))
@@ -97,8 +98,8 @@ vtkSmartPointer<vtkCamera> ParseCamera(const std::string& text)
 
 void AxisViewDetector(const std::string& axis, double detectorU[3], double detectorV[3])
 {
-  static const std::map<std::string, int> axes = { { "+x", 0 }, { "-x", 0 }, { "x", 0 }, { "+y", 1 },
-    { "-y", 1 }, { "y", 1 }, { "+z", 2 }, { "-z", 2 }, { "z", 2 } };
+  static const std::map<std::string, int> axes = { { "+x", 0 }, { "-x", 0 }, { "x", 0 },
+    { "+y", 1 }, { "-y", 1 }, { "y", 1 }, { "+z", 2 }, { "-z", 2 }, { "z", 2 } };
   const auto found = axes.find(axis);
   if (found == axes.end())
   {

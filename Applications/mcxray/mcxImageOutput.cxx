@@ -24,7 +24,8 @@ namespace
 std::string Extension(const std::string& path)
 {
   std::string ext = vtksys::SystemTools::GetFilenameLastExtension(path);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -42,9 +43,11 @@ bool WritePFM(vtkImageData* image, const std::string& path)
   {
     for (int i = 0; i < dims[0]; ++i)
     {
-      row[static_cast<std::size_t>(i)] = static_cast<float>(values->GetTuple1(static_cast<vtkIdType>(j) * dims[0] + i));
+      row[static_cast<std::size_t>(i)] =
+        static_cast<float>(values->GetTuple1(static_cast<vtkIdType>(j) * dims[0] + i));
     }
-    out.write(reinterpret_cast<const char*>(row.data()), static_cast<std::streamsize>(row.size() * sizeof(float)));
+    out.write(reinterpret_cast<const char*>(row.data()),
+      static_cast<std::streamsize>(row.size() * sizeof(float)));
   }
   return static_cast<bool>(out);
 }
@@ -101,7 +104,8 @@ bool WriteAtomically(const std::string& path, const Write& write, std::string& e
 }
 }
 
-bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error)
+bool WriteImage(
+  vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error)
 {
   const std::string ext = Extension(path);
   if (!IsSupportedOutput(path))
@@ -109,18 +113,22 @@ bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& w
     error = "unknown output format '" + ext + "' (expected .vti, .png or .pfm)";
     return false;
   }
-  return WriteAtomically(path, [&](const std::string& temporary) {
-    if (ext == ".vti")
+  return WriteAtomically(
+    path,
+    [&](const std::string& temporary)
     {
-      vtkNew<vtkXMLImageDataWriter> writer;
-      writer->SetInputData(image);
-      writer->SetFileName(temporary.c_str());
-      writer->SetDataModeToAppended();
-      writer->SetCompressorTypeToZLib();
-      return writer->Write() == 1 && writer->GetErrorCode() == 0;
-    }
-    return ext == ".png" ? WritePNG(image, temporary, window) : WritePFM(image, temporary);
-  }, error);
+      if (ext == ".vti")
+      {
+        vtkNew<vtkXMLImageDataWriter> writer;
+        writer->SetInputData(image);
+        writer->SetFileName(temporary.c_str());
+        writer->SetDataModeToAppended();
+        writer->SetCompressorTypeToZLib();
+        return writer->Write() == 1 && writer->GetErrorCode() == 0;
+      }
+      return ext == ".png" ? WritePNG(image, temporary, window) : WritePFM(image, temporary);
+    },
+    error);
 }
 
 bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error)
@@ -130,13 +138,17 @@ bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& 
     error = "a screenshot is written as .png, not '" + path + "'";
     return false;
   }
-  return WriteAtomically(path, [&](const std::string& temporary) {
-    vtkNew<vtkPNGWriter> writer;
-    writer->SetInputData(image);
-    writer->SetFileName(temporary.c_str());
-    writer->Write();
-    return writer->GetErrorCode() == 0;
-  }, error);
+  return WriteAtomically(
+    path,
+    [&](const std::string& temporary)
+    {
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetInputData(image);
+      writer->SetFileName(temporary.c_str());
+      writer->Write();
+      return writer->GetErrorCode() == 0;
+    },
+    error);
 }
 
 } // namespace mcxapp

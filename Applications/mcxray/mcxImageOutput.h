@@ -22,7 +22,8 @@ struct PngWindow
 /// True when the extension is one the writer knows.
 bool IsSupportedOutput(const std::string& path);
 
-bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error);
+bool WriteImage(
+  vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error);
 
 /// Writes an 8-bit RGB(A) image, a screenshot, as .png, all or nothing.
 bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error);

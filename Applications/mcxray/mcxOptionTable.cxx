@@ -51,30 +51,39 @@ void SetSize(Settings& settings, const Argument& argument, int smallest, int lar
 const Option Options[] = {
   { "--quiet", Render, false, [](Settings& s, const Argument&) { s.Quiet = true; } },
   { "--stored-points", Render, false, [](Settings& s, const Argument&) { s.StoredPoints = true; } },
-  { "--beer-lambert", Both, false, [](Settings& s, const Argument&) { s.Radiograph.BeerLambert = true; } },
-  { "--negative-log", Both, false, [](Settings& s, const Argument&) { s.Radiograph.NegativeLog = true; } },
+  { "--beer-lambert", Both, false,
+    [](Settings& s, const Argument&) { s.Radiograph.BeerLambert = true; } },
+  { "--negative-log", Both, false,
+    [](Settings& s, const Argument&) { s.Radiograph.NegativeLog = true; } },
   { "--tf", Both, true, [](Settings& s, const Argument& a) { s.TF = a.Value; } },
-  { "--samples", Both, true, [](Settings& s, const Argument& a) { s.Samples = ParseInteger(a.Value, a.Name, 1); } },
+  { "--samples", Both, true,
+    [](Settings& s, const Argument& a) { s.Samples = ParseInteger(a.Value, a.Name, 1); } },
   { "--target-error", Render, true,
-    [](Settings& s, const Argument& a) { s.TargetError = ParseOpenUnitFraction(a.Value, a.Name); } },
+    [](Settings& s, const Argument& a)
+    { s.TargetError = ParseOpenUnitFraction(a.Value, a.Name); } },
   { "--quantization-levels", Render, true,
-    [](Settings& s, const Argument& a) { s.QuantizationLevels = static_cast<int>(ParseInteger(a.Value, a.Name, 2)); } },
+    [](Settings& s, const Argument& a)
+    { s.QuantizationLevels = static_cast<int>(ParseInteger(a.Value, a.Name, 2)); } },
   { "--method", Both, true, [](Settings& s, const Argument& a) { s.Method = a.Value; } },
   { "--kernel", Both, true, [](Settings& s, const Argument& a) { s.Kernel = a.Value; } },
   { "--seed", Both, true,
-    [](Settings& s, const Argument& a) { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },
+    [](Settings& s, const Argument& a)
+    { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },
   { "--threads", Both, true,
-    [](Settings& s, const Argument& a) { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1)); } },
+    [](Settings& s, const Argument& a)
+    { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1)); } },
   { "--view", Render, true,
     [](Settings& s, const Argument& a)
     {
       s.View = a.Value;
       s.ViewGiven = true;
     } },
-  { "--sad", Both, true, [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToAxis, a); } },
+  { "--sad", Both, true,
+    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToAxis, a); } },
   { "--sid", Both, true,
     [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToImage, a); } },
-  { "--pitch", Both, true, [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.Pitch, a); } },
+  { "--pitch", Both, true,
+    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.Pitch, a); } },
   { "--detector", Both, true,
     [](Settings& s, const Argument& a)
     {
@@ -95,7 +104,8 @@ const Option Options[] = {
       s.Radiograph.Geometry = true;
     } },
   { "--i0", Both, true,
-    [](Settings& s, const Argument& a) { s.Radiograph.IncidentIntensity = ParsePositive(a.Value, a.Name); } },
+    [](Settings& s, const Argument& a)
+    { s.Radiograph.IncidentIntensity = ParsePositive(a.Value, a.Name); } },
   { "--photons", Both, true,
     [](Settings& s, const Argument& a)
     {
@@ -106,7 +116,8 @@ const Option Options[] = {
       }
     } },
   { "--noise-seed", Both, true,
-    [](Settings& s, const Argument& a) { s.Radiograph.NoiseSeed = ParseInteger(a.Value, a.Name, 0); } },
+    [](Settings& s, const Argument& a)
+    { s.Radiograph.NoiseSeed = ParseInteger(a.Value, a.Name, 0); } },
   { "--camera", Render, true, [](Settings& s, const Argument& a) { s.Camera = a.Value; } },
   // An image may be large; a window must fit a screen.
   { "--size", Render, true, [](Settings& s, const Argument& a) { SetSize(s, a, 1, 65536); } },

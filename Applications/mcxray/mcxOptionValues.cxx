@@ -48,7 +48,8 @@ long long ParseInteger(const std::string& text, const std::string& option, long 
   const long long value = std::strtoll(text.c_str(), &end, 10);
   if (text.empty() || *end != '\0' || errno != 0 || value < minimum)
   {
-    Fail("bad value '" + text + "' for " + option + " (expected an integer >= " + std::to_string(minimum) + ")");
+    Fail("bad value '" + text + "' for " + option +
+      " (expected an integer >= " + std::to_string(minimum) + ")");
   }
   return value;
 }

@@ -67,7 +67,8 @@ void ProgressBar::OnProgress(vtkObject*, unsigned long, void* self, void* fracti
 // Half a second of silence first: short stages never show a bar.
 void ProgressBar::Update(double fraction)
 {
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+  const double elapsed =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
   if (!this->Enabled || elapsed < 0.5)
   {
     return;

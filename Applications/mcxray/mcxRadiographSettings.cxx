@@ -14,7 +14,8 @@
 namespace mcxapp
 {
 
-vtkSmartPointer<vtkCamera> RadiographSettings::MakeCamera(vtkImageData* volume, int size[2], double& spacing) const
+vtkSmartPointer<vtkCamera> RadiographSettings::MakeCamera(
+  vtkImageData* volume, int size[2], double& spacing) const
 {
   vtkNew<vtkMCXRadiographGeometry> radiograph;
   radiograph->SetSourceToAxisDistance(this->SourceToAxis);
@@ -24,7 +25,8 @@ vtkSmartPointer<vtkCamera> RadiographSettings::MakeCamera(vtkImageData* volume, 
   radiograph->SetGantryAngle(this->Gantry);
   double bounds[6];
   volume->GetBounds(bounds);
-  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+    (bounds[4] + bounds[5]) / 2 };
   radiograph->SetIsocenter(this->HasIsocenter ? this->Isocenter : centre);
   auto camera = vtkSmartPointer<vtkCamera>::New();
   if (!radiograph->ConfigureCamera(camera)) // the geometry's error says why

@@ -131,19 +131,23 @@ void CheckCombinations(const Settings& settings)
   {
     Fail("--stored-points applies to the Monte Carlo methods, not to reference");
   }
-  if (settings.StoredPoints && settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+  if (settings.StoredPoints &&
+    settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
   {
-    Fail("--stored-points holds at most 2^30 - 1 points; use fewer --samples or the default off-line projection");
+    Fail("--stored-points holds at most 2^30 - 1 points; use fewer --samples or the default "
+         "off-line projection");
   }
   if (!IsSupportedOutput(settings.Output))
   {
     Fail("unknown output format of '" + settings.Output + "' (expected .vti, .png or .pfm)");
   }
   if (settings.Radiograph.Geometry &&
-    (!settings.Camera.empty() || settings.ViewGiven || settings.SizeGiven || settings.PixelSpacing > 0))
+    (!settings.Camera.empty() || settings.ViewGiven || settings.SizeGiven ||
+      settings.PixelSpacing > 0))
   {
-    Fail("the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter) replaces "
-         "--view, --camera, --size and --pixel-spacing");
+    Fail(
+      "the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter) replaces "
+      "--view, --camera, --size and --pixel-spacing");
   }
 }
 
@@ -193,7 +197,8 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
   volume->GetDimensions(dims);
   std::ostringstream line;
   line << "input:       " << input << " (" << dims[0] << "x" << dims[1] << "x" << dims[2] << ", "
-       << volume->GetPointData()->GetScalars()->GetDataTypeAsString() << ")  read " << Seconds(start) << " s";
+       << volume->GetPointData()->GetScalars()->GetDataTypeAsString() << ")  read "
+       << Seconds(start) << " s";
   Log(settings, line.str());
   return volume;
 }
@@ -215,11 +220,13 @@ public:
   {
     if (this->Options.Radiograph.Geometry)
     {
-      this->View.Camera = this->Options.Radiograph.MakeCamera(volume, this->Options.Size, this->Options.PixelSpacing);
+      this->View.Camera =
+        this->Options.Radiograph.MakeCamera(volume, this->Options.Size, this->Options.PixelSpacing);
     }
     this->BuildIndex(volume);
     std::string error;
-    vtkSmartPointer<vtkPiecewiseFunction> tf = MakeTransferFunction(this->Options.TF, this->DataRange(), error);
+    vtkSmartPointer<vtkPiecewiseFunction> tf =
+      MakeTransferFunction(this->Options.TF, this->DataRange(), error);
     if (!tf)
     {
       Fail(error);
@@ -246,14 +253,16 @@ private:
     int dims[3];
     volume->GetDimensions(dims);
     std::ostringstream line;
-    line << "index:       " << seconds << " s (" << this->Levels()->GetNumberOfTuples() << " density levels, "
-         << static_cast<double>(dims[0]) * dims[1] * dims[2] / seconds / 1e6 << " M voxels/s)";
+    line << "index:       " << seconds << " s (" << this->Levels()->GetNumberOfTuples()
+         << " density levels, " << static_cast<double>(dims[0]) * dims[1] * dims[2] / seconds / 1e6
+         << " M voxels/s)";
     this->Log(line.str());
   }
 
   vtkDataArray* Levels() const
   {
-    return this->Index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName());
+    return this->Index->GetOutput()->GetFieldData()->GetArray(
+      vtkMCXDensityIndex::LevelValuesName());
   }
 
   // The lowest and highest density level (what the raw TF spans).
@@ -306,8 +315,9 @@ private:
     this->Capture.FailOnAnyError();
     const double seconds = Seconds(start);
     std::ostringstream line;
-    line << "sampling:    " << seconds << " s (" << sampler->GetOutput()->GetNumberOfPoints() << " stored points, "
-         << sampler->GetOutput()->GetNumberOfPoints() / seconds / 1e6 << " M points/s)";
+    line << "sampling:    " << seconds << " s (" << sampler->GetOutput()->GetNumberOfPoints()
+         << " stored points, " << sampler->GetOutput()->GetNumberOfPoints() / seconds / 1e6
+         << " M points/s)";
     this->Log(line.str());
     return sampler->GetOutputPort();
   }
@@ -352,25 +362,27 @@ private:
     if (this->Options.Method == "reference")
     {
       line << "reference:   " << seconds << " s (exact line integrals, "
-           << fields->GetArray("RaysPerPixelAxis")->GetTuple1(0) << "^2 rays per pixel, estimated relative error "
+           << fields->GetArray("RaysPerPixelAxis")->GetTuple1(0)
+           << "^2 rays per pixel, estimated relative error "
            << fields->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
     }
     else
     {
       const double samples = fields->GetArray("SampleCount")->GetTuple1(0);
-      line << (this->Options.StoredPoints ? "projection:  " : "sampling + projection (off-line, fused): ") << seconds
-           << " s (" << static_cast<long long>(samples) << " samples, " << samples / seconds / 1e6
-           << " M samples/s, estimated relative RMS error " << fields->GetArray("EstimatedRelativeError")->GetTuple1(0)
-           << ")";
+      line << (this->Options.StoredPoints ? "projection:  "
+                                          : "sampling + projection (off-line, fused): ")
+           << seconds << " s (" << static_cast<long long>(samples) << " samples, "
+           << samples / seconds / 1e6 << " M samples/s, estimated relative RMS error "
+           << fields->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
     }
     this->Log(line.str());
     int size[3];
     image->GetDimensions(size);
     const double* range = image->GetPointData()->GetScalars()->GetRange();
     std::ostringstream geometry;
-    geometry << "image:       " << size[0] << "x" << size[1] << " pixels of " << image->GetSpacing()[0] << " x "
-             << image->GetSpacing()[1] << ", LineIntegral range " << range[0] << " .. " << range[1]
-             << " (TF units x length)";
+    geometry << "image:       " << size[0] << "x" << size[1] << " pixels of "
+             << image->GetSpacing()[0] << " x " << image->GetSpacing()[1] << ", LineIntegral range "
+             << range[0] << " .. " << range[1] << " (TF units x length)";
     this->Log(geometry.str());
   }
 
@@ -392,7 +404,9 @@ private:
     std::ostringstream line;
     line << "radiograph:  " << Seconds(start) << " s ("
          << (physics.NegativeLog ? "-ln(I/I0)" : "I = I0 exp(-line integral)")
-         << (physics.Photons > 0 ? ", Poisson noise of " + std::to_string(physics.Photons) + " photons per pixel" : "")
+         << (physics.Photons > 0
+                ? ", Poisson noise of " + std::to_string(physics.Photons) + " photons per pixel"
+                : "")
          << "), range " << range[0] << " .. " << range[1];
     this->Log(line.str());
     return result;
@@ -406,7 +420,8 @@ private:
     {
       Fail(error);
     }
-    this->Log("output:      " + this->Options.Output + "  written " + std::to_string(Seconds(start)) + " s");
+    this->Log("output:      " + this->Options.Output + "  written " +
+      std::to_string(Seconds(start)) + " s");
   }
 
   Settings Options; // a copy: the radiograph geometry sets the size and spacing

@@ -19,7 +19,8 @@ const char* TransferFunctionPresetHelp()
   return "raw (g = value - minimum: density above the darkest voxel), "
          "bone (CT in HU: 0 below 150 HU, rising to 1 at 700 HU and above), "
          "soft-tissue (CT in HU: 1 from -50 to 150 HU, 0 below -200 and above 300), "
-         "mu or mu=MU_WATER (CT in HU to linear attenuation, mu = MU_WATER (1 + HU/1000) per world unit, "
+         "mu or mu=MU_WATER (CT in HU to linear attenuation, mu = MU_WATER (1 + HU/1000) per world "
+         "unit, "
          "0 at air; default MU_WATER 0.02 per mm, water at about 70 keV)";
 }
 
@@ -31,7 +32,8 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
   if (spec == "raw")
   {
     tf->AddPoint(dataRange[0], 0.0);
-    tf->AddPoint(dataRange[1] > dataRange[0] ? dataRange[1] : dataRange[0] + 1, dataRange[1] - dataRange[0]);
+    tf->AddPoint(
+      dataRange[1] > dataRange[0] ? dataRange[1] : dataRange[0] + 1, dataRange[1] - dataRange[0]);
     return tf;
   }
   if (spec == "bone")
@@ -58,7 +60,8 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
       const double water = std::strtod(text.c_str(), &end);
       if (text.empty() || *end != '\0' || !std::isfinite(water) || !(water > 0))
       {
-        error = "bad --tf '" + spec + "' (expected mu=MU_WATER with a positive number, e.g. mu=0.02)";
+        error =
+          "bad --tf '" + spec + "' (expected mu=MU_WATER with a positive number, e.g. mu=0.02)";
         return nullptr;
       }
       mu->SetWaterAttenuation(water);
@@ -83,7 +86,8 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     if (colon == std::string::npos || valueText.empty() || weightText.empty() || *end1 != '\0' ||
       *end2 != '\0' || !std::isfinite(value) || !std::isfinite(weight))
     {
-      error = "bad --tf point '" + item + "' (expected value:weight with finite numbers, or a preset: raw, bone, soft-tissue, mu)";
+      error = "bad --tf point '" + item +
+        "' (expected value:weight with finite numbers, or a preset: raw, bone, soft-tissue, mu)";
       return nullptr;
     }
     tf->AddPoint(value, weight);

@@ -84,8 +84,9 @@ void CheckCombinations(const Settings& settings)
   {
     Fail("the radiograph geometry's --detector sets the window size; leave out --size");
   }
-  if (radiograph.Geometry && (radiograph.Detector[0] < 16 || radiograph.Detector[1] < 16 ||
-                               radiograph.Detector[0] > 8192 || radiograph.Detector[1] > 8192))
+  if (radiograph.Geometry &&
+    (radiograph.Detector[0] < 16 || radiograph.Detector[1] < 16 || radiograph.Detector[0] > 8192 ||
+      radiograph.Detector[1] > 8192))
   {
     Fail("the viewer's --detector must lie between 16x16 and 8192x8192 pixels");
   }
@@ -93,7 +94,8 @@ void CheckCombinations(const Settings& settings)
 
 void CheckScreenshot(const std::string& screenshot)
 {
-  if (vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(screenshot)) != ".png")
+  if (vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(screenshot)) !=
+    ".png")
   {
     Fail("--screenshot writes .png, not '" + screenshot + "'");
   }
@@ -122,7 +124,8 @@ ViewerOptions MakeViewerOptions(const Settings& settings)
 }
 
 // The radiograph geometry's camera and the physics, when asked for.
-void ConfigureRadiograph(XRayViewer& view, vtkImageData* volume, const RadiographSettings& radiograph)
+void ConfigureRadiograph(
+  XRayViewer& view, vtkImageData* volume, const RadiographSettings& radiograph)
 {
   if (radiograph.Geometry)
   {

@@ -4,6 +4,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDICOMImageReader.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkMatrix3x3.h"
@@ -13,7 +14,6 @@
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
 #include "vtkPointData.h"
-#include "vtkDataArray.h"
 #include "vtkSLCReader.h"
 #include "vtkStructuredPointsReader.h"
 #include "vtkXMLImageDataReader.h"
@@ -29,8 +29,10 @@ namespace
 {
 bool EndsWith(std::string text, const std::string& suffix)
 {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+  std::transform(
+    text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text.size() >= suffix.size() &&
+    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // Captures a reader's error messages instead of letting VTK print them.
@@ -42,13 +44,15 @@ struct ErrorCapture
   explicit ErrorCapture(vtkAlgorithm* algorithm)
   {
     this->Command->SetClientData(&this->Message);
-    this->Command->SetCallback([](vtkObject*, unsigned long, void* data, void* text) {
-      auto* message = static_cast<std::string*>(data);
-      if (message->empty() && text)
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* data, void* text)
       {
-        *message = static_cast<const char*>(text);
-      }
-    });
+        auto* message = static_cast<std::string*>(data);
+        if (message->empty() && text)
+        {
+          *message = static_cast<const char*>(text);
+        }
+      });
     algorithm->AddObserver(vtkCommand::ErrorEvent, this->Command);
   }
 };
@@ -70,7 +74,8 @@ std::string FirstLine(const std::string& text)
 // direction, and the scl_slope/scl_inter rescaling, so values and geometry are physical.
 void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
 {
-  vtkMatrix4x4* form = reader->GetSFormMatrix() ? reader->GetSFormMatrix() : reader->GetQFormMatrix();
+  vtkMatrix4x4* form =
+    reader->GetSFormMatrix() ? reader->GetSFormMatrix() : reader->GetQFormMatrix();
   if (form)
   {
     double direction[9];
@@ -81,7 +86,8 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
         direction[3 * r + c] = form->GetElement(r, c);
       }
     }
-    const double origin[3] = { form->GetElement(0, 3), form->GetElement(1, 3), form->GetElement(2, 3) };
+    const double origin[3] = { form->GetElement(0, 3), form->GetElement(1, 3),
+      form->GetElement(2, 3) };
     image->SetDirectionMatrix(direction);
     image->SetOrigin(origin);
   }
@@ -90,7 +96,8 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
   if ((slope != 0.0 && slope != 1.0) || intercept != 0.0)
   {
     vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    vtkSmartPointer<vtkDataArray> rescaled = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
+    vtkSmartPointer<vtkDataArray> rescaled =
+      vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
     rescaled->SetName(scalars->GetName());
     rescaled->SetNumberOfTuples(scalars->GetNumberOfTuples());
     for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
@@ -168,7 +175,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   else
   {
     error = "cannot read '" + path +
-      "': unknown format (expected .vti, .mha, .mhd, .nii, .nii.gz, .nrrd, .nhdr, .vtk, .slc or a DICOM directory)";
+      "': unknown format (expected .vti, .mha, .mhd, .nii, .nii.gz, .nrrd, .nhdr, .vtk, .slc or a "
+      "DICOM directory)";
     return nullptr;
   }
   ErrorCapture capture(reader);
@@ -178,7 +186,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
     !image->GetPointData()->GetScalars())
   {
     error = "cannot read '" + path + "'" +
-      (capture.Message.empty() ? std::string(": no volume data") : ": " + FirstLine(capture.Message));
+      (capture.Message.empty() ? std::string(": no volume data")
+                               : ": " + FirstLine(capture.Message));
     return nullptr;
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();

@@ -36,8 +36,9 @@ namespace
 constexpr double InteractiveRate = 30.0;
 constexpr int MaximumViewerExponent = 28;
 
-const char* const KeyHelp = "keys: 1 raw, 2 bone, 3 soft tissue, +/- points, i invert, b Beer-Lambert, "
-                            "p projection, r reset camera, q quit";
+const char* const KeyHelp =
+  "keys: 1 raw, 2 bone, 3 soft tissue, +/- points, i invert, b Beer-Lambert, "
+  "p projection, r reset camera, q quit";
 
 std::string Thousands(long long n)
 {
@@ -60,7 +61,8 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   }
   scalars->GetRange(this->DataRange);
   std::string error;
-  vtkSmartPointer<vtkPiecewiseFunction> tf = MakeTransferFunction(options.TransferFunction, this->DataRange, error);
+  vtkSmartPointer<vtkPiecewiseFunction> tf =
+    MakeTransferFunction(options.TransferFunction, this->DataRange, error);
   if (!tf)
   {
     this->ErrorMessage = error;
@@ -103,14 +105,16 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   vtkCamera* camera = this->Renderer->GetActiveCamera();
   double bounds[6];
   volume->GetBounds(bounds);
-  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+    (bounds[4] + bounds[5]) / 2 };
   camera->SetFocalPoint(centre);
   camera->SetPosition(centre[0], centre[1] - 1.0, centre[2]);
   camera->SetViewUp(0, 0, 1);
   this->Renderer->ResetCamera(bounds);
 
   // Density-axis sliders span the data range; the width may reach all of it.
-  const double span = this->DataRange[1] > this->DataRange[0] ? this->DataRange[1] - this->DataRange[0] : 1.0;
+  const double span =
+    this->DataRange[1] > this->DataRange[0] ? this->DataRange[1] - this->DataRange[0] : 1.0;
   this->AddSlider(this->CentreSlider, "TF centre", this->DataRange[0], this->DataRange[1], 0.17);
   this->AddSlider(this->WidthSlider, "TF width", span / 1000.0, 2.0 * span, 0.07);
   this->UpdateSlidersFromTransferFunction();
@@ -131,7 +135,8 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
 
 XRayViewer::~XRayViewer() = default;
 
-void XRayViewer::AddSlider(vtkSliderWidget* slider, const char* title, double lowest, double highest, double y)
+void XRayViewer::AddSlider(
+  vtkSliderWidget* slider, const char* title, double lowest, double highest, double y)
 {
   vtkNew<vtkSliderRepresentation2D> representation;
   representation->SetMinimumValue(lowest);
@@ -197,7 +202,8 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
   std::ostringstream text;
   text.precision(3);
   const long long total = static_cast<long long>(this->Sampler->GetNumberOfSamples());
-  text << Thousands(mapper->GetNumberOfAccumulatedSamples()) << " of " << Thousands(total) << " samples   ";
+  text << Thousands(mapper->GetNumberOfAccumulatedSamples()) << " of " << Thousands(total)
+       << " samples   ";
   if (withFrameTime)
   {
     text << this->LastFrameSeconds * 1000.0 << " ms/frame   ";
@@ -213,13 +219,14 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
   }
   double range[2];
   this->TransferFunction->GetRange(range);
-  text << "\nTF " << range[0] << " .. " << range[1] << " (data units)   window " << mapper->GetDisplayedLevel() -
-      0.5 * mapper->GetDisplayedWindow()
-       << " .. " << mapper->GetDisplayedLevel() + 0.5 * mapper->GetDisplayedWindow() << " (TF x length)   "
+  text << "\nTF " << range[0] << " .. " << range[1] << " (data units)   window "
+       << mapper->GetDisplayedLevel() - 0.5 * mapper->GetDisplayedWindow() << " .. "
+       << mapper->GetDisplayedLevel() + 0.5 * mapper->GetDisplayedWindow() << " (TF x length)   "
        << (this->Renderer->GetActiveCamera()->GetParallelProjection() ? "parallel" : "perspective")
        << (mapper->GetInvertDisplay() ? ", inverted" : "")
        << (mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 ? ", Beer-Lambert" : "")
-       << (mapper->GetPhotonsPerPixel() > 0 ? ", Poisson noise" : "") << (mapper->GetNegativeLog() ? ", -ln" : "") << "\n"
+       << (mapper->GetPhotonsPerPixel() > 0 ? ", Poisson noise" : "")
+       << (mapper->GetNegativeLog() ? ", -ln" : "") << "\n"
        << KeyHelp;
   return text.str();
 }
@@ -252,9 +259,8 @@ void XRayViewer::OnTimer(vtkObject*, unsigned long, void* self, void*)
 void XRayViewer::OnSlider(vtkObject*, unsigned long, void* self, void*)
 {
   auto* viewer = static_cast<XRayViewer*>(self);
-  auto value = [](vtkSliderWidget* slider) {
-    return vtkSliderRepresentation2D::SafeDownCast(slider->GetRepresentation())->GetValue();
-  };
+  auto value = [](vtkSliderWidget* slider)
+  { return vtkSliderRepresentation2D::SafeDownCast(slider->GetRepresentation())->GetValue(); };
   viewer->SetTransferFunctionWindow(value(viewer->CentreSlider), value(viewer->WidthSlider));
 }
 
@@ -277,7 +283,8 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
     case 'i':
       viewer->Mapper->SetInvertDisplay(!viewer->Mapper->GetInvertDisplay());
       viewer->Renderer->SetBackground(viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0,
-        viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0, viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0);
+        viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0,
+        viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0);
       break;
     case 'b':
       viewer->Mapper->SetBeerLambert(!viewer->Mapper->GetBeerLambert());
@@ -290,7 +297,8 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
     }
     case '+':
     case '=':
-      viewer->Sampler->SetSampleExponent(std::min(MaximumViewerExponent, viewer->Sampler->GetSampleExponent() + 1));
+      viewer->Sampler->SetSampleExponent(
+        std::min(MaximumViewerExponent, viewer->Sampler->GetSampleExponent() + 1));
       break;
     case '-':
       viewer->Sampler->SetSampleExponent(std::max(10, viewer->Sampler->GetSampleExponent() - 1));

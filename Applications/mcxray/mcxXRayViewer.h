@@ -84,7 +84,8 @@ private:
   static void OnTimer(vtkObject*, unsigned long, void* self, void*);
   static void OnSlider(vtkObject*, unsigned long, void* self, void*);
   static void OnRenderEnd(vtkObject*, unsigned long, void* self, void*);
-  void AddSlider(vtkSliderWidget* slider, const char* title, double lowest, double highest, double y);
+  void AddSlider(
+    vtkSliderWidget* slider, const char* title, double lowest, double highest, double y);
   void UpdateSlidersFromTransferFunction();
 
   std::string ErrorMessage;

@@ -24,5 +24,6 @@ int main(int argc, char* argv[])
     mcxapp::PrintRenderUsage();
     return argc < 2 ? 2 : 0;
   }
-  mcxapp::Fail("unknown command '" + command + "' (expected render or view; try: mcxray render --help)");
+  mcxapp::Fail(
+    "unknown command '" + command + "' (expected render or view; try: mcxray render --help)");
 }

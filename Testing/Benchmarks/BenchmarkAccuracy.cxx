@@ -17,15 +17,9 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkGPUVolumeRayCastMapper.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageResize.h"
 #include "vtkMath.h"
@@ -34,7 +28,13 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -97,10 +97,10 @@ std::vector<double> Values(vtkImageData* image)
 
 struct Case
 {
-  std::string Name;  // short label
-  std::string File;  // in the data folder
-  std::string TF;    // mcxray --tf spec
-  bool Hounsfield;   // calibrated CT: compared with plastimatch
+  std::string Name; // short label
+  std::string File; // in the data folder
+  std::string TF;   // mcxray --tf spec
+  bool Hounsfield;  // calibrated CT: compared with plastimatch
   double PaperVoxels;
   double PaperIndexSeconds;
   double PaperOfflineSeconds;
@@ -121,8 +121,10 @@ std::vector<View> Views(vtkImageData* volume)
 {
   double bounds[6];
   volume->GetBounds(bounds);
-  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
-  const double size = std::max(bounds[1] - bounds[0], std::max(bounds[3] - bounds[2], bounds[5] - bounds[4]));
+  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+    (bounds[4] + bounds[5]) / 2 };
+  const double size =
+    std::max(bounds[1] - bounds[0], std::max(bounds[3] - bounds[2], bounds[5] - bounds[4]));
   std::vector<View> views(2);
   views[0].Name = "parallel-y";
   views[0].Camera = vtkSmartPointer<vtkCamera>::New();
@@ -134,15 +136,16 @@ std::vector<View> Views(vtkImageData* volume)
   views[1].Name = "oblique-perspective";
   views[1].Camera = vtkSmartPointer<vtkCamera>::New();
   views[1].Camera->SetFocalPoint(centre);
-  views[1].Camera->SetPosition(centre[0] + 1.2 * size, centre[1] - 1.5 * size, centre[2] + 0.8 * size);
+  views[1].Camera->SetPosition(
+    centre[0] + 1.2 * size, centre[1] - 1.5 * size, centre[2] + 0.8 * size);
   views[1].Camera->SetViewUp(0, 0, 1);
   views[1].Camera->SetViewAngle(30);
   views[1].Camera->SetClippingRange(0.1 * size, 10 * size);
   return views;
 }
 
-vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera,
-  int size, double tolerance, int maximumSubdivision, double& seconds)
+vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
+  vtkCamera* camera, int size, double tolerance, int maximumSubdivision, double& seconds)
 {
   vtkNew<vtkMCXReferenceProjector> reference;
   reference->SetInputConnection(index->GetOutputPort());
@@ -158,8 +161,8 @@ vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunctio
 }
 
 // A Monte Carlo projector on an index, configured for one view.
-vtkSmartPointer<vtkMCXProjector> MakeProjector(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera,
-  int size, int exponent, int strategy = vtkMCXPointSampler::HYBRID)
+vtkSmartPointer<vtkMCXProjector> MakeProjector(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
+  vtkCamera* camera, int size, int exponent, int strategy = vtkMCXPointSampler::HYBRID)
 {
   auto projector = vtkSmartPointer<vtkMCXProjector>::New();
   projector->SetInputConnection(index->GetOutputPort());
@@ -185,7 +188,8 @@ bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& 
     return false;
   }
   std::vector<float> raw(static_cast<std::size_t>(width) * height);
-  in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size() * sizeof(float)));
+  in.read(
+    reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size() * sizeof(float)));
   if (!in)
   {
     return false;
@@ -195,7 +199,8 @@ bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& 
   {
     for (int c = 0; c < width; ++c)
     {
-      values[static_cast<std::size_t>(height - 1 - r) * width + c] = raw[static_cast<std::size_t>(r) * width + c];
+      values[static_cast<std::size_t>(height - 1 - r) * width + c] =
+        raw[static_cast<std::size_t>(r) * width + c];
     }
   }
   return true;
@@ -306,14 +311,17 @@ int main(int argc, char* argv[])
   vtksys::SystemTools::MakeDirectory(output);
   const int size = quick ? 64 : 256;
   const double tolerance = quick ? 1e-2 : 1e-3;
-  std::vector<int> exponents = quick ? std::vector<int>{ 14, 16 } : std::vector<int>{ 16, 18, 20, 22, 24, 26 };
+  std::vector<int> exponents =
+    quick ? std::vector<int>{ 14, 16 } : std::vector<int>{ 16, 18, 20, 22, 24, 26 };
   const bool havePlastimatch = std::system("plastimatch --version > /dev/null 2>&1") == 0;
 
   std::vector<Case> cases = {
-    { "CT head (headsq)", std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", "1000:0,1500:1", false,
-      10420224, 3.29, 4.71 },
-    { "CT body (TotalSegmentator)", data + "/ct_body_totalseg.nii.gz", AttenuationTF, true, 7829520, 3.87, 5.04 },
-    { "angiography (aneurism)", data + "/angio_aneurism.vti", "60:0,255:1", false, 8126464, 3.36, 4.61 },
+    { "CT head (headsq)", std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti",
+      "1000:0,1500:1", false, 10420224, 3.29, 4.71 },
+    { "CT body (TotalSegmentator)", data + "/ct_body_totalseg.nii.gz", AttenuationTF, true, 7829520,
+      3.87, 5.04 },
+    { "angiography (aneurism)", data + "/angio_aneurism.vti", "60:0,255:1", false, 8126464, 3.36,
+      4.61 },
   };
 
   std::ofstream convergence(output + "/convergence.csv");
@@ -323,7 +331,8 @@ int main(int argc, char* argv[])
   std::ofstream peers(output + "/peers.csv");
   peers << "volume,view,tool,algorithm,size,seconds,error\n";
   std::ofstream table1(output + "/table1.csv");
-  table1 << "volume,voxels,index_seconds,offline_seconds_16M,tf_edit_seconds_4M,paper_voxels,paper_index_seconds,paper_offline_seconds_16M\n";
+  table1 << "volume,voxels,index_seconds,offline_seconds_16M,tf_edit_seconds_4M,paper_voxels,paper_"
+            "index_seconds,paper_offline_seconds_16M\n";
   std::ofstream targets(output + "/targets.csv");
   targets << "volume,target,samples,true_error,estimated_error\n";
 
@@ -378,24 +387,24 @@ int main(int argc, char* argv[])
       sampler->Update();
       edits.push_back(Since(start));
     }
-    table1 << '"' << c.Name << "\"," << volume->GetNumberOfPoints() << ',' << Median(indexTimes) << ','
-           << Median(offline) << ',' << Median(edits) << ',' << static_cast<long long>(c.PaperVoxels) << ','
-           << c.PaperIndexSeconds << ','
+    table1 << '"' << c.Name << "\"," << volume->GetNumberOfPoints() << ',' << Median(indexTimes)
+           << ',' << Median(offline) << ',' << Median(edits) << ','
+           << static_cast<long long>(c.PaperVoxels) << ',' << c.PaperIndexSeconds << ','
            << c.PaperOfflineSeconds << '\n';
 
     for (const View& view : views)
     {
       double referenceSeconds = 0;
       auto reference = Reference(index, tf, view.Camera, size, tolerance, 9, referenceSeconds);
-      references << '"' << c.Name << "\"," << view.Name << ',' << size << ',' << referenceSeconds << ','
-                 << FieldValue(reference, "EstimatedRelativeError") << ','
+      references << '"' << c.Name << "\"," << view.Name << ',' << size << ',' << referenceSeconds
+                 << ',' << FieldValue(reference, "EstimatedRelativeError") << ','
                  << FieldValue(reference, "RaysPerPixelAxis") << '\n';
       for (int method = 0; method < 3; ++method)
       {
         for (int m : exponents)
         {
           auto projector = MakeProjector(index, tf, view.Camera, size, m,
-            method == 0       ? vtkMCXPointSampler::HYBRID
+            method == 0     ? vtkMCXPointSampler::HYBRID
               : method == 1 ? vtkMCXPointSampler::MONTE_CARLO
                             : vtkMCXPointSampler::QUASI_MONTE_CARLO);
           const Clock::time_point start = Clock::now();
@@ -434,7 +443,8 @@ int main(int argc, char* argv[])
     {
       double bounds[6];
       volume->GetBounds(bounds);
-      const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+      const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+        (bounds[4] + bounds[5]) / 2 };
       const double sad = 1000, sid = 1500, detector = 600;
       const std::string mha = output + "/plastimatch_input.mha";
       vtkNew<vtkMetaImageWriter> writer;
@@ -452,15 +462,17 @@ int main(int argc, char* argv[])
       {
         double referenceSeconds = 0;
         auto reference = Reference(index, tf, camera, pixels, tolerance, 9, referenceSeconds);
-        peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,reference," << pixels << ',' << referenceSeconds << ','
-              << FieldValue(reference, "EstimatedRelativeError") << '\n';
+        peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,reference," << pixels << ','
+              << referenceSeconds << ',' << FieldValue(reference, "EstimatedRelativeError") << '\n';
         for (const char* algorithm : { "exact", "uniform" })
         {
           std::ostringstream command;
-          const std::string prefix = output + "/plastimatch_" + algorithm + "_" + std::to_string(pixels) + "_";
-          command << "plastimatch drr -I " << mha << " -O " << prefix << " -t pfm -i " << algorithm << " -r \""
-                  << pixels << " " << pixels << "\" -z \"" << detector << " " << detector << "\" --sad " << sad
-                  << " --sid " << sid << " -o \"" << iso[0] << " " << iso[1] << " " << iso[2] << "\" > /dev/null 2>&1";
+          const std::string prefix =
+            output + "/plastimatch_" + algorithm + "_" + std::to_string(pixels) + "_";
+          command << "plastimatch drr -I " << mha << " -O " << prefix << " -t pfm -i " << algorithm
+                  << " -r \"" << pixels << " " << pixels << "\" -z \"" << detector << " "
+                  << detector << "\" --sad " << sad << " --sid " << sid << " -o \"" << iso[0] << " "
+                  << iso[1] << " " << iso[2] << "\" > /dev/null 2>&1";
           const Clock::time_point start = Clock::now();
           const int status = std::system(command.str().c_str());
           const double seconds = Since(start);
@@ -473,22 +485,23 @@ int main(int argc, char* argv[])
             std::cerr << "plastimatch " << algorithm << " failed" << std::endl;
             continue;
           }
-          peers << '"' << c.Name << "\",cone-beam,plastimatch," << algorithm << ',' << pixels << ',' << seconds << ','
-                << RelativeRMS(values, reference) << '\n';
+          peers << '"' << c.Name << "\",cone-beam,plastimatch," << algorithm << ',' << pixels << ','
+                << seconds << ',' << RelativeRMS(values, reference) << '\n';
         }
         double vtkSeconds = 0, vtkError = 0;
         if (RenderWithVTK(volume, tf, camera, pixels, reference, vtkSeconds, vtkError))
         {
-          peers << '"' << c.Name << "\",cone-beam,VTK GPU ray cast (additive; software GL),8-bit," << pixels << ','
-                << vtkSeconds << ',' << vtkError << '\n';
+          peers << '"' << c.Name << "\",cone-beam,VTK GPU ray cast (additive; software GL),8-bit,"
+                << pixels << ',' << vtkSeconds << ',' << vtkError << '\n';
         }
         for (int m : quick ? std::vector<int>{ 16 } : std::vector<int>{ 20, 22, 24, 26 })
         {
           auto projector = MakeProjector(index, tf, camera, pixels, m);
           const Clock::time_point start = Clock::now();
           projector->Update();
-          peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,hybrid 2^" << m << "-1," << pixels << ','
-                << Since(start) << ',' << RelativeRMS(Values(projector->GetOutput()), reference) << '\n';
+          peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,hybrid 2^" << m << "-1," << pixels
+                << ',' << Since(start) << ','
+                << RelativeRMS(Values(projector->GetOutput()), reference) << '\n';
         }
       }
       std::remove(mha.c_str());
@@ -500,15 +513,19 @@ int main(int argc, char* argv[])
   scaling << "kind,voxels,samples,index_seconds,offline_seconds,index_bytes_per_voxel\n";
   {
     std::string error;
-    vtkSmartPointer<vtkImageData> head = mcxapp::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
+    vtkSmartPointer<vtkImageData> head =
+      mcxapp::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
     double range[2] = { 0, 1 };
-    vtkSmartPointer<vtkPiecewiseFunction> tf = mcxapp::MakeTransferFunction("1000:0,1500:1", range, error);
-    const std::vector<double> factors = quick ? std::vector<double>{ 1, 2 } : std::vector<double>{ 1, 2, 3, 4 };
+    vtkSmartPointer<vtkPiecewiseFunction> tf =
+      mcxapp::MakeTransferFunction("1000:0,1500:1", range, error);
+    const std::vector<double> factors =
+      quick ? std::vector<double>{ 1, 2 } : std::vector<double>{ 1, 2, 3, 4 };
     for (double factor : factors)
     {
       vtkNew<vtkImageResize> resize;
       resize->SetInputData(head);
-      resize->SetOutputDimensions(static_cast<int>(64 * factor), static_cast<int>(64 * factor), static_cast<int>(93 * factor));
+      resize->SetOutputDimensions(static_cast<int>(64 * factor), static_cast<int>(64 * factor),
+        static_cast<int>(93 * factor));
       resize->InterpolateOff();
       resize->Update();
       vtkNew<vtkMCXDensityIndex> index;
@@ -522,13 +539,14 @@ int main(int argc, char* argv[])
       {
         bytes += static_cast<double>(fd->GetArray(a)->GetActualMemorySize()) * 1024.0;
       }
-      auto projector = MakeProjector(index, tf, Views(resize->GetOutput())[1].Camera, 256, quick ? 16 : 22);
+      auto projector =
+        MakeProjector(index, tf, Views(resize->GetOutput())[1].Camera, 256, quick ? 16 : 22);
       start = Clock::now();
       projector->Update();
       const double voxels = static_cast<double>(resize->GetOutput()->GetNumberOfPoints());
-      scaling << "voxels," << static_cast<long long>(voxels) << ',' << projector->GetNumberOfSamples() << ','
-              << indexSeconds << ','
-              << Since(start) << ',' << bytes / voxels << '\n';
+      scaling << "voxels," << static_cast<long long>(voxels) << ','
+              << projector->GetNumberOfSamples() << ',' << indexSeconds << ',' << Since(start)
+              << ',' << bytes / voxels << '\n';
     }
     vtkNew<vtkMCXDensityIndex> index;
     index->SetInputData(head);
@@ -538,8 +556,8 @@ int main(int argc, char* argv[])
       auto projector = MakeProjector(index, tf, Views(head)[1].Camera, 256, m);
       const Clock::time_point start = Clock::now();
       projector->Update();
-      scaling << "samples," << head->GetNumberOfPoints() << ',' << projector->GetNumberOfSamples() << ",0,"
-              << Since(start) << ",0\n";
+      scaling << "samples," << head->GetNumberOfPoints() << ',' << projector->GetNumberOfSamples()
+              << ",0," << Since(start) << ",0\n";
     }
   }
   std::ofstream memory(output + "/memory.csv");

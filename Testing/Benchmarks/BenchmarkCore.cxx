@@ -44,8 +44,9 @@ Volume& Get(const std::string& name)
   {
     return found->second;
   }
-  const std::string path = name == "bundled" ? std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti"
-                                             : std::string(MCXRAY_SHARED_DATA_DIR) + "/ct_bonsai.vti";
+  const std::string path = name == "bundled"
+    ? std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti"
+    : std::string(MCXRAY_SHARED_DATA_DIR) + "/ct_bonsai.vti";
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName(path.c_str());
   reader->Update();
@@ -61,8 +62,10 @@ Volume& Get(const std::string& name)
   v.TF->AddPoint(range[1], 1.0);
   double bounds[6];
   v.Image->GetBounds(bounds);
-  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
-  const double size = std::max(bounds[1] - bounds[0], std::max(bounds[3] - bounds[2], bounds[5] - bounds[4]));
+  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+    (bounds[4] + bounds[5]) / 2 };
+  const double size =
+    std::max(bounds[1] - bounds[0], std::max(bounds[3] - bounds[2], bounds[5] - bounds[4]));
   v.Camera = vtkSmartPointer<vtkCamera>::New();
   v.Camera->SetFocalPoint(centre);
   v.Camera->SetPosition(centre[0] + 1.2 * size, centre[1] - 1.5 * size, centre[2] + 0.8 * size);
@@ -140,7 +143,8 @@ void RadiographEffects(benchmark::State& state)
   values->SetNumberOfValues(size * size);
   for (vtkIdType p = 0; p < size * size; ++p)
   {
-    values->SetValue(p, 4.0 * static_cast<double>(p % size) / size); // 0 .. 4: transmissions 1 .. 0.018
+    values->SetValue(
+      p, 4.0 * static_cast<double>(p % size) / size); // 0 .. 4: transmissions 1 .. 0.018
   }
   image->GetPointData()->SetScalars(values);
   vtkNew<vtkMCXRadiograph> physics;
@@ -173,8 +177,16 @@ void Memcpy(benchmark::State& state)
 
 BENCHMARK(Memcpy)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(Index)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(StoredPointCloud)->Args({ 0, 24 })->Args({ 1, 24 })->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(OfflinePerspective)->Args({ 0, 24 })->Args({ 1, 24 })->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(StoredPointCloud)
+  ->Args({ 0, 24 })
+  ->Args({ 1, 24 })
+  ->Unit(benchmark::kMillisecond)
+  ->UseRealTime();
+BENCHMARK(OfflinePerspective)
+  ->Args({ 0, 24 })
+  ->Args({ 1, 24 })
+  ->Unit(benchmark::kMillisecond)
+  ->UseRealTime();
 BENCHMARK(RadiographEffects)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

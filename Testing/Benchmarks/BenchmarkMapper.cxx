@@ -30,14 +30,16 @@ struct Scene : mcxtest::HeadScene
 // Arguments: sample exponent, image size, perspective (0/1).
 void CameraChange(benchmark::State& state)
 {
-  Scene scene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), state.range(2) != 0);
+  Scene scene(
+    static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), state.range(2) != 0);
   for (auto _ : state)
   {
     scene.Renderer->GetActiveCamera()->Azimuth(1);
     scene.Window->Render();
   }
   const double points = static_cast<double>(scene.Mapper->GetNumberOfAccumulatedSamples());
-  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["fps"] =
+    benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * points));
   state.SetLabel("points");
 }

@@ -38,8 +38,8 @@ Result RunCLI(const std::string& arguments, const std::string& environment = "")
   // One log per test: ctest may run the tests of this file in parallel.
   const std::string log = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/mcxray-" +
     ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::string command =
-    environment + std::string(MCXRAY_CLI) + " " + arguments + " > " + log + ".out 2> " + log + ".err";
+  const std::string command = environment + std::string(MCXRAY_CLI) + " " + arguments + " > " +
+    log + ".out 2> " + log + ".err";
   const int raw = std::system(command.c_str());
   return { WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, Slurp(log + ".out"), Slurp(log + ".err") };
 }
@@ -109,7 +109,9 @@ TEST(CommandLine, AxisViewsFollowTheContract)
   const int dims[3] = { 10, 12, 6 };
   const double spacing[3] = { 2.0, 0.5, 1.5 };
   const double origin[3] = { 1.0, -4.0, 10.0 };
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return i == 3 && j == 5 && k == 2 ? 200.0 : 0.0; }, spacing, origin);
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims,
+    [](int i, int j, int k) { return i == 3 && j == 5 && k == 2 ? 200.0 : 0.0; }, spacing, origin);
   const std::string input = Temporary("cli_point.vti");
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(volume);
@@ -123,8 +125,10 @@ TEST(CommandLine, AxisViewsFollowTheContract)
     for (int sign = 0; sign < 2; ++sign)
     {
       const std::string view = std::string(sign ? "-" : "+") + "xyz"[axis];
-      const std::string output = Temporary("cli_point_" + std::to_string(axis) + std::to_string(sign) + ".vti");
-      Result r = RunCLI("render " + input + " --view " + view + " --method reference --kernel box --pixel-spacing 0.25 --quiet --output " + output);
+      const std::string output =
+        Temporary("cli_point_" + std::to_string(axis) + std::to_string(sign) + ".vti");
+      Result r = RunCLI("render " + input + " --view " + view +
+        " --method reference --kernel box --pixel-spacing 0.25 --quiet --output " + output);
       ASSERT_EQ(0, r.Status) << r.Errors;
       images[sign] = Read(output);
       vtkDataArray* values = mcxtest::LineIntegral(images[sign]);
@@ -134,7 +138,8 @@ TEST(CommandLine, AxisViewsFollowTheContract)
         best = values->GetTuple1(p) > values->GetTuple1(best) ? p : best;
       }
       const int width = images[sign]->GetDimensions()[0];
-      const double centre[2] = { images[sign]->GetOrigin()[0] + (best % width) * images[sign]->GetSpacing()[0],
+      const double centre[2] = { images[sign]->GetOrigin()[0] +
+          (best % width) * images[sign]->GetSpacing()[0],
         images[sign]->GetOrigin()[1] + (best / width) * images[sign]->GetSpacing()[1] };
       // The box voxel covers +-spacing/2 around its centre; the peak plateau lies inside it.
       EXPECT_NEAR(world[first], centre[0], spacing[first] / 2) << view;
@@ -164,7 +169,8 @@ TEST(CommandLine, BundledCTAndEveryOutputFormat)
     EXPECT_TRUE(vtksys::SystemTools::FileExists(output));
   }
   // The stored-point pipeline times sampling and projection apart.
-  Result stored = RunCLI("render --samples 65535 --stored-points --output " + Temporary("cli_stored.vti"));
+  Result stored =
+    RunCLI("render --samples 65535 --stored-points --output " + Temporary("cli_stored.vti"));
   ASSERT_EQ(0, stored.Status) << stored.Errors;
   EXPECT_NE(std::string::npos, stored.Output.find("sampling:")) << stored.Output;
   EXPECT_NE(std::string::npos, stored.Output.find("projection:")) << stored.Output;
@@ -174,15 +180,18 @@ TEST(CommandLine, BundledCTAndEveryOutputFormat)
   ASSERT_EQ(0, targeted.Status) << targeted.Errors;
   auto image = Read(targetOutput);
   EXPECT_LT(mcxtest::FieldValue(image, "EstimatedRelativeError"), 0.05);
-  EXPECT_NE(std::string::npos, targeted.Output.find("estimated relative RMS error")) << targeted.Output;
+  EXPECT_NE(std::string::npos, targeted.Output.find("estimated relative RMS error"))
+    << targeted.Output;
   // PFM: header plus 96 * 80 float32 values.
   EXPECT_EQ(std::string("Pf\n96 80\n-1.0\n").size() + 96 * 80 * 4,
-    vtksys::SystemTools::FileLength(vtksys::SystemTools::GetCurrentWorkingDirectory() + "/cli_default.pfm"));
+    vtksys::SystemTools::FileLength(
+      vtksys::SystemTools::GetCurrentWorkingDirectory() + "/cli_default.pfm"));
 }
 
 TEST(CommandLine, OtherFormatsFromSharedData)
 {
-  for (const char* name : { "ct_head_headsq_dicom", "mri_head_vtk_small.mhd", "ct_tooth.nrrd", "sci_ironprot.vtk" })
+  for (const char* name :
+    { "ct_head_headsq_dicom", "mri_head_vtk_small.mhd", "ct_tooth.nrrd", "sci_ironprot.vtk" })
   {
     const std::string input = SharedData(name);
     if (!vtksys::SystemTools::FileExists(input))
@@ -190,7 +199,8 @@ TEST(CommandLine, OtherFormatsFromSharedData)
       GTEST_SKIP() << "shared data not found: " << input;
     }
     const std::string output = Temporary("cli_format.vti");
-    Result r = RunCLI("render " + input + " --samples 65535 --size 32x32 --quiet --output " + output);
+    Result r =
+      RunCLI("render " + input + " --samples 65535 --size 32x32 --quiet --output " + output);
     ASSERT_EQ(0, r.Status) << name << ": " << r.Errors;
     auto image = Read(output);
     EXPECT_GT(mcxtest::LineIntegral(image)->GetRange()[1], 0.0) << name;
@@ -274,8 +284,10 @@ TEST(CommandLine, RadiographGeometryAndPhysics)
   // 2 mm at SID 800, i.e. 1.25 mm at the isocentre (SAD 500), intensities
   // I0 exp(-line integral) in (0, I0].
   const std::string output = Temporary("cli_radiograph.vti");
-  Result r = RunCLI("render --tf mu --sad 500 --sid 800 --detector 64x48 --pitch 2 --gantry 30 --samples 65535 "
-                    "--beer-lambert --i0 100 --output " + output);
+  Result r = RunCLI(
+    "render --tf mu --sad 500 --sid 800 --detector 64x48 --pitch 2 --gantry 30 --samples 65535 "
+    "--beer-lambert --i0 100 --output " +
+    output);
   ASSERT_EQ(0, r.Status) << r.Errors;
   EXPECT_NE(std::string::npos, r.Output.find("radiograph:")) << r.Output;
   auto image = Read(output);
@@ -297,8 +309,10 @@ TEST(CommandLine, RadiographGeometryAndPhysics)
   const std::string noisy[2] = { Temporary("cli_noisy_a.vti"), Temporary("cli_noisy_b.vti") };
   for (const std::string& path : noisy)
   {
-    Result n = RunCLI("render --tf mu --detector 32x32 --samples 65535 --photons 500 --noise-seed 9 --negative-log "
-                      "--output " + path);
+    Result n = RunCLI(
+      "render --tf mu --detector 32x32 --samples 65535 --photons 500 --noise-seed 9 --negative-log "
+      "--output " +
+      path);
     ASSERT_EQ(0, n.Status) << n.Errors;
   }
   auto first = Read(noisy[0]);

@@ -35,7 +35,8 @@ struct ThreadExecutor
     const std::int64_t chunk = std::max<std::int64_t>(1, std::min<std::int64_t>(grain, 97));
     std::mutex mutex;
     std::int64_t next = begin;
-    auto worker = [&]() {
+    auto worker = [&]()
+    {
       for (;;)
       {
         std::int64_t b;
@@ -157,13 +158,15 @@ TEST(Executor, CountingSortIsTheSameOnOneThreadAndOnSeveral)
   {
     b = static_cast<int>(random() % (bins + 1)) - 1; // -1: left out
   }
-  auto binOf = [&](std::int64_t id) { return static_cast<std::int64_t>(bin[static_cast<std::size_t>(id)]); };
-  std::vector<std::uint32_t> serial(static_cast<std::size_t>(n)), threaded(static_cast<std::size_t>(n));
+  auto binOf = [&](std::int64_t id)
+  { return static_cast<std::int64_t>(bin[static_cast<std::size_t>(id)]); };
+  std::vector<std::uint32_t> serial(static_cast<std::size_t>(n)),
+    threaded(static_cast<std::size_t>(n));
   std::vector<std::int64_t> serialOffsets, threadedOffsets;
-  const std::int64_t leftSerial =
-    mcx::CountingSortByBin<std::uint32_t>(mcx::SerialExecutor(), n, bins, binOf, serialOffsets, serial.data());
-  const std::int64_t leftThreaded =
-    mcx::CountingSortByBin<std::uint32_t>(ThreadExecutor(), n, bins, binOf, threadedOffsets, threaded.data());
+  const std::int64_t leftSerial = mcx::CountingSortByBin<std::uint32_t>(
+    mcx::SerialExecutor(), n, bins, binOf, serialOffsets, serial.data());
+  const std::int64_t leftThreaded = mcx::CountingSortByBin<std::uint32_t>(
+    ThreadExecutor(), n, bins, binOf, threadedOffsets, threaded.data());
   EXPECT_EQ(leftSerial, leftThreaded);
   EXPECT_EQ(serialOffsets, threadedOffsets);
   EXPECT_EQ(serial, threaded);
@@ -242,14 +245,16 @@ TEST(SampleAccumulator, SplitSumsAndThreadIndependence)
   accumulator.DepositPoints(ThreadExecutor(), cloud.data(), 0, 0);
   std::vector<mcx::FixedSum> again(pixels, 0), againFirst(pixels, 0);
   accumulator.Collect(again.data(), againFirst.data());
-  EXPECT_TRUE(std::all_of(again.begin(), again.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
+  EXPECT_TRUE(std::all_of(
+    again.begin(), again.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
 
   // A depth limit drops what lies behind it: a limit of 0 everywhere hides all.
   accumulator.Reset(g, origin, identity, std::vector<double>(pixels, 0.0));
   accumulator.DepositPoints(ThreadExecutor(), cloud.data(), 0, count);
   std::vector<mcx::FixedSum> hidden(pixels, 0), hiddenFirst(pixels, 0);
   accumulator.Collect(hidden.data(), hiddenFirst.data());
-  EXPECT_TRUE(std::all_of(hidden.begin(), hidden.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
+  EXPECT_TRUE(std::all_of(
+    hidden.begin(), hidden.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
 }
 
 TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)
@@ -275,14 +280,16 @@ TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)
     image.Advance(ThreadExecutor(), cloud.data(), target);
     EXPECT_EQ(target, image.Count());
   }
-  EXPECT_TRUE(std::equal(sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(pixels), image.Sums().begin()));
+  EXPECT_TRUE(std::equal(
+    sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(pixels), image.Sums().begin()));
   EXPECT_EQ(mcx::EstimateRelativeError(sums, count), image.EstimateRelativeError());
   EXPECT_GT(image.EstimateRelativeError(), 0.0);
 }
 
 TEST(RadiographEffects, AppliedToAnImageAsPerPixel)
 {
-  const mcx::RadiographEffects effects = mcx::RadiographEffects::FromProperties(false, 2.0, 500.0, 9, true);
+  const mcx::RadiographEffects effects =
+    mcx::RadiographEffects::FromProperties(false, 2.0, 500.0, 9, true);
   EXPECT_TRUE(effects.BeerLambert); // implied by the noise and the log
   const std::int64_t pixels = 10000;
   std::vector<double> lineIntegrals(static_cast<std::size_t>(pixels));
@@ -291,12 +298,14 @@ TEST(RadiographEffects, AppliedToAnImageAsPerPixel)
     lineIntegrals[static_cast<std::size_t>(p)] = 0.001 * static_cast<double>(p % 5000);
   }
   std::vector<float> values(static_cast<std::size_t>(pixels));
-  effects.ApplyToImage(ThreadExecutor(), pixels,
+  effects.ApplyToImage(
+    ThreadExecutor(), pixels,
     [&](std::int64_t p) { return lineIntegrals[static_cast<std::size_t>(p)]; }, values.data());
   const std::uint64_t key = mcx::SeedKey(9);
   for (std::int64_t p = 0; p < pixels; ++p)
   {
-    ASSERT_EQ(static_cast<float>(effects.Apply(lineIntegrals[static_cast<std::size_t>(p)], static_cast<std::uint64_t>(p), key)),
+    ASSERT_EQ(static_cast<float>(effects.Apply(
+                lineIntegrals[static_cast<std::size_t>(p)], static_cast<std::uint64_t>(p), key)),
       values[static_cast<std::size_t>(p)]);
   }
   EXPECT_FALSE(mcx::RadiographEffects::FromProperties(false, 1.0, 0.0, 0, false).Any());

@@ -85,10 +85,12 @@ TEST_P(EveryScalarType, IntegerValuesGetOneExactLevelEach)
   const int dims[3] = { 7, 5, 3 };
   const bool isSigned = type != VTK_UNSIGNED_CHAR && type != VTK_UNSIGNED_SHORT &&
     type != VTK_UNSIGNED_INT && type != VTK_UNSIGNED_LONG && type != VTK_UNSIGNED_LONG_LONG;
-  auto volume = mcxtest::MakeVolume(type, dims, [&](int i, int j, int k) {
-    const int v = (i * 13 + j * 7 + k * 3) % 17;
-    return isSigned ? v - 8.0 : static_cast<double>(v);
-  });
+  auto volume = mcxtest::MakeVolume(type, dims,
+    [&](int i, int j, int k)
+    {
+      const int v = (i * 13 + j * 7 + k * 3) % 17;
+      return isSigned ? v - 8.0 : static_cast<double>(v);
+    });
   ExpectExactIndex(volume);
 }
 
@@ -101,8 +103,10 @@ TEST(DensityIndex, WideIntegerRangeUsesDistinctValues)
 {
   // int32 values at the limits of the type: the range is too wide to bin directly.
   const int dims[3] = { 4, 3, 2 };
-  const double values[] = { std::numeric_limits<int>::min(), -1, 0, 5, std::numeric_limits<int>::max() };
-  auto volume = mcxtest::MakeVolume(VTK_INT, dims, [&](int i, int j, int k) { return values[(i + j + k) % 5]; });
+  const double values[] = { std::numeric_limits<int>::min(), -1, 0, 5,
+    std::numeric_limits<int>::max() };
+  auto volume = mcxtest::MakeVolume(
+    VTK_INT, dims, [&](int i, int j, int k) { return values[(i + j + k) % 5]; });
   ExpectExactIndex(volume);
 }
 
@@ -136,8 +140,8 @@ TEST(DensityIndex, IdenticalForOneAndTwoThreads)
   vtkSmartPointer<vtkImageData> one, two;
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&]() { one = Index(volume); });
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { two = Index(volume); });
-  for (const char* name : { vtkMCXDensityIndex::LevelValuesName(), vtkMCXDensityIndex::LevelOffsetsName(),
-         vtkMCXDensityIndex::SortedVoxelIdsName() })
+  for (const char* name : { vtkMCXDensityIndex::LevelValuesName(),
+         vtkMCXDensityIndex::LevelOffsetsName(), vtkMCXDensityIndex::SortedVoxelIdsName() })
   {
     vtkDataArray* a = Field(one, name);
     vtkDataArray* b = Field(two, name);
@@ -157,5 +161,6 @@ TEST(DensityIndex, RejectsMultiComponentScalars)
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   index->Update(); // reports an error, produces no index
-  EXPECT_EQ(nullptr, index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName()));
+  EXPECT_EQ(
+    nullptr, index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName()));
 }

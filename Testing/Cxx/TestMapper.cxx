@@ -121,7 +121,8 @@ void CompareWithBaseline(vtkRenderWindow* window, const std::string& name)
   writer->SetFileName(actual.c_str());
   writer->Write();
   const std::string baseline = MCXRAY_BASELINE_DIR "/" + name + ".png";
-  if (!vtksys::SystemTools::FileExists(baseline) && vtksys::SystemTools::GetEnv("MCXRAY_UPDATE_BASELINES"))
+  if (!vtksys::SystemTools::FileExists(baseline) &&
+    vtksys::SystemTools::GetEnv("MCXRAY_UPDATE_BASELINES"))
   {
     vtksys::SystemTools::CopyFileAlways(actual, baseline);
   }
@@ -193,15 +194,17 @@ TEST(Mapper, SameImageForAnyNumberOfThreads)
   const int threads[2] = { 1, 2 };
   for (int t = 0; t < 2; ++t)
   {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads[t] }, [&] {
-      // Away and back: a new projection of the same view each time.
-      vtkCamera* camera = scene.Renderer->GetActiveCamera();
-      camera->SetPosition(102, -400, 70);
-      scene.Window->Render();
-      camera->SetPosition(102, -500, 70);
-      scene.Window->Render();
-      images[t] = scene.OnScreen();
-    });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads[t] },
+      [&]
+      {
+        // Away and back: a new projection of the same view each time.
+        vtkCamera* camera = scene.Renderer->GetActiveCamera();
+        camera->SetPosition(102, -400, 70);
+        scene.Window->Render();
+        camera->SetPosition(102, -500, 70);
+        scene.Window->Render();
+        images[t] = scene.OnScreen();
+      });
   }
   EXPECT_EQ(4, scene.Mapper->GetNumberOfRestarts());
   EXPECT_EQ(0, DifferingPixels(images[0], images[1]));

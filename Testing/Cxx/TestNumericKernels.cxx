@@ -1,10 +1,10 @@
 // The plain C++ kernels, without any pipeline.
 #include "mcxCountingSort.h"
 #include "mcxExecutor.h"
-#include "mcxFixedPoint.h"
-#include "mcxPixelBinner.h"
 #include "mcxFastDivide.h"
+#include "mcxFixedPoint.h"
 #include "mcxHalton.h"
+#include "mcxPixelBinner.h"
 #include "mcxRayIntegrator.h"
 #include "mcxSampleGenerator.h"
 #include "mcxTransferTable.h"
@@ -136,8 +136,9 @@ TEST(CountingSort, MatchesStableSortForAnyLayout)
         [&](std::uint32_t a, std::uint32_t b) { return bin[a] < bin[b]; });
       std::vector<std::uint32_t> sorted(expected.size());
       std::vector<std::int64_t> offsets;
-      const std::int64_t left = mcx::CountingSortByBin<std::uint32_t>(mcx::SerialExecutor(),
-        n, bins, [&](std::int64_t id) { return bin[id]; }, offsets, sorted.data());
+      const std::int64_t left = mcx::CountingSortByBin<std::uint32_t>(
+        mcx::SerialExecutor(), n, bins, [&](std::int64_t id) { return bin[id]; }, offsets,
+        sorted.data());
       EXPECT_EQ(n - static_cast<std::int64_t>(expected.size()), left);
       EXPECT_EQ(expected, sorted);
       ASSERT_EQ(static_cast<std::size_t>(bins + 1), offsets.size());
@@ -185,17 +186,20 @@ TEST(SampleGenerator, HybridVisitsEveryLevelInProportion)
   source.Decoder = mcx::VoxelDecoder<std::uint32_t>(4, 1);
   source.Exponent = 12;
   std::vector<char> seen(source.NumberOfSamples(), 0);
-  auto sink = [&](std::uint64_t k, const double p[3]) {
+  auto sink = [&](std::uint64_t k, const double p[3])
+  {
     seen[k] = 1; // every output index is written exactly once
     EXPECT_LT(std::fabs(p[1]), 1.0);
     EXPECT_LT(std::fabs(p[2]), 1.0);
   };
   source.Generate(0, source.NumberOfSamples(), sink);
-  EXPECT_EQ(source.NumberOfSamples(), static_cast<std::uint64_t>(std::count(seen.begin(), seen.end(), 1)));
+  EXPECT_EQ(
+    source.NumberOfSamples(), static_cast<std::uint64_t>(std::count(seen.begin(), seen.end(), 1)));
   // With the box kernel the voxel of a sample is floor(p + 0.5).
   source.Reconstruction = mcx::Kernel::Box;
   std::vector<std::int64_t> counts(4, 0);
-  auto counter = [&](std::uint64_t, const double p[3]) { ++counts[static_cast<int>(std::floor(p[0] + 0.5))]; };
+  auto counter = [&](std::uint64_t, const double p[3])
+  { ++counts[static_cast<int>(std::floor(p[0] + 0.5))]; };
   source.Generate(0, source.NumberOfSamples(), counter);
   // 4095 samples over voxel weights 1, 1, 3, 3 (total 8): 511.875 each for the
   // first two and 1535.625 for the others; stratification keeps each within 1.
@@ -252,7 +256,8 @@ TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
   const std::int64_t offsets[] = { 0, 7, 30, 31, 60 };
   const double weights[] = { 0.5, 2.0, 40.0, 1.0 };
   const mcx::TransferTable table = mcx::BuildTransferTable(weights, offsets, 4);
-  for (auto method : { mcx::Strategy::Hybrid, mcx::Strategy::MonteCarlo, mcx::Strategy::QuasiMonteCarlo })
+  for (auto method :
+    { mcx::Strategy::Hybrid, mcx::Strategy::MonteCarlo, mcx::Strategy::QuasiMonteCarlo })
   {
     for (unsigned m : { 1u, 2u, 3u, 5u, 12u, 13u })
     {
@@ -271,7 +276,8 @@ TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
       {
         orders[o].assign(count, { NAN, NAN, NAN });
         hits[o].assign(count, 0);
-        auto sink = [&](std::uint64_t k, const double p[3]) {
+        auto sink = [&](std::uint64_t k, const double p[3])
+        {
           orders[o][k] = { p[0], p[1], p[2] };
           ++hits[o][k];
         };
@@ -339,7 +345,8 @@ TEST(SampleGenerator, LargeExponentsOnASmallVolume)
     source.Exponent = m;
     const std::uint64_t count = source.NumberOfSamples();
     int seen = 0;
-    auto check = [&](std::uint64_t k, const double p[3]) {
+    auto check = [&](std::uint64_t k, const double p[3])
+    {
       ++seen;
       EXPECT_LT(k, count);
       EXPECT_TRUE(p[0] > -1 && p[0] < 4 && p[1] > -1 && p[1] < 3 && p[2] > -1 && p[2] < 2)
@@ -352,7 +359,8 @@ TEST(SampleGenerator, LargeExponentsOnASmallVolume)
     // The level masses 12 : 20 put the first 12/32 of the u-grid in level 0
     // (voxels 0..3, i.e. y = 0 and z = 0 rows of x = 0..3).
     int inFirstLevel = 0;
-    auto level = [&](std::uint64_t, const double p[3]) { inFirstLevel += (std::lround(p[1]) <= 0 && std::lround(p[2]) <= 0) ? 1 : 0; };
+    auto level = [&](std::uint64_t, const double p[3])
+    { inFirstLevel += (std::lround(p[1]) <= 0 && std::lround(p[2]) <= 0) ? 1 : 0; };
     source.Reconstruction = mcx::Kernel::Box;
     source.Generate(0, 1000, level);
     EXPECT_EQ(1000, inFirstLevel) << m; // the smallest u all fall in level 0
@@ -362,7 +370,8 @@ TEST(SampleGenerator, LargeExponentsOnASmallVolume)
 TEST(CountingSort, LayoutForMoreThan2To32Voxels)
 {
   const std::int64_t n = std::int64_t(1) << 34;
-  for (std::int64_t bins : { std::int64_t(1), std::int64_t(4096), std::int64_t(65536), std::int64_t(1) << 24 })
+  for (std::int64_t bins :
+    { std::int64_t(1), std::int64_t(4096), std::int64_t(65536), std::int64_t(1) << 24 })
   {
     const mcx::CountingSortLayout layout = mcx::MakeCountingSortLayout(n, bins);
     EXPECT_GE(layout.NumberOfChunks * layout.ChunkSize, n);

@@ -37,9 +37,8 @@ struct Messages
   {
     this->OnWarning->SetClientData(&this->Warnings);
     this->OnError->SetClientData(&this->Errors);
-    auto append = [](vtkObject*, unsigned long, void* target, void* text) {
-      *static_cast<std::string*>(target) += static_cast<const char*>(text);
-    };
+    auto append = [](vtkObject*, unsigned long, void* target, void* text)
+    { *static_cast<std::string*>(target) += static_cast<const char*>(text); };
     this->OnWarning->SetCallback(append);
     this->OnError->SetCallback(append);
     object->AddObserver(vtkCommand::WarningEvent, this->OnWarning);
@@ -127,15 +126,16 @@ double PixelArea(vtkImageData* image)
 }
 
 // The Monte Carlo image agrees with the exact one within the binomial bound.
-void ExpectAgreement(vtkImageData* volume, vtkPiecewiseFunction* tf, const char* what, vtkCamera* camera = nullptr,
-  double fMax = 1.0)
+void ExpectAgreement(vtkImageData* volume, vtkPiecewiseFunction* tf, const char* what,
+  vtkCamera* camera = nullptr, double fMax = 1.0)
 {
   const Outcome exact = Project(volume, tf, true, 0, 24, camera);
   const Outcome estimate = Project(volume, tf, false, 18, 24, camera);
   ASSERT_TRUE(exact.Errors.empty()) << what << ": " << exact.Errors;
   ASSERT_TRUE(AllFinite(exact.Image) && AllFinite(estimate.Image)) << what;
   const double integral = mcxtest::FieldValue(exact.Image, "Integral");
-  const double bound = mcxtest::ExpectedRelativeRMS(exact.Image, integral, PixelArea(exact.Image), std::ldexp(1.0, 18) - 1, fMax);
+  const double bound = mcxtest::ExpectedRelativeRMS(
+    exact.Image, integral, PixelArea(exact.Image), std::ldexp(1.0, 18) - 1, fMax);
   EXPECT_LT(mcxtest::RelativeRMS(estimate.Image, exact.Image), 1.5 * bound + 1e-3) << what;
 }
 
@@ -151,7 +151,8 @@ const int Dims[3] = { 10, 9, 8 };
 
 vtkSmartPointer<vtkImageData> Phantom(int type = VTK_SHORT)
 {
-  return mcxtest::MakeVolume(type, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); });
+  return mcxtest::MakeVolume(
+    type, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); });
 }
 }
 
@@ -177,7 +178,8 @@ TEST(TransferFunctions, NonZeroAtOneLevelOnly)
   tf->AddPoint(399, 0);
   tf->AddPoint(400, 5);
   tf->AddPoint(401, 0);
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims) >= 400 ? 400 : 100; });
+  auto volume = mcxtest::MakeVolume(VTK_SHORT, Dims,
+    [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims) >= 400 ? 400 : 100; });
   ExpectAgreement(volume, tf, "one level");
   const Outcome run = Project(volume, tf, false);
   double count = 0;
@@ -201,7 +203,8 @@ TEST(TransferFunctions, NegativeAndNaNValuesCountAsZeroWithAWarning)
   const Outcome a = Project(Phantom(), negative, false);
   const Outcome b = Project(Phantom(), clamped, false);
   EXPECT_NE(std::string::npos, a.Warnings.find("negative")) << a.Warnings;
-  EXPECT_DOUBLE_EQ(mcxtest::FieldValue(b.Image, "Integral"), mcxtest::FieldValue(a.Image, "Integral"));
+  EXPECT_DOUBLE_EQ(
+    mcxtest::FieldValue(b.Image, "Integral"), mcxtest::FieldValue(a.Image, "Integral"));
   EXPECT_EQ(0.0, mcxtest::RelativeRMS(a.Image, b.Image));
 
   auto withNaN = Ramp(0, 1, 400, 1);
@@ -215,7 +218,8 @@ TEST(TransferFunctions, WeightsFrom1e300To1eMinus300)
 {
   // Level weights 1e-300 and 1e300 in one volume: the integral is exact in
   // double and the image is the 1e300 part alone, finite.
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, Dims, [](int i, int, int) { return i < 5 ? 1 : 2; });
+  auto volume =
+    mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, Dims, [](int i, int, int) { return i < 5 ? 1 : 2; });
   auto tf = vtkSmartPointer<vtkPiecewiseFunction>::New();
   tf->AddPoint(1, 1e-300);
   tf->AddPoint(2, 1e300);
@@ -224,7 +228,8 @@ TEST(TransferFunctions, WeightsFrom1e300To1eMinus300)
   const double voxels = 5.0 * Dims[1] * Dims[2];
   EXPECT_DOUBLE_EQ(voxels * 1e300 + voxels * 1e-300, mcxtest::FieldValue(run.Image, "Integral"));
   EXPECT_TRUE(AllFinite(run.Image));
-  EXPECT_NEAR(1.0, Sum(run.Image) * PixelArea(run.Image) / mcxtest::FieldValue(run.Image, "Integral"), 1e-12);
+  EXPECT_NEAR(
+    1.0, Sum(run.Image) * PixelArea(run.Image) / mcxtest::FieldValue(run.Image, "Integral"), 1e-12);
   ExpectAgreement(volume, tf, "1e-300..1e300");
 }
 
@@ -240,25 +245,30 @@ TEST(TransferFunctions, InfiniteWeightIsAnError)
 
 TEST(Data, NaNAndInfVoxelsAreLeftOut)
 {
-  auto volume = mcxtest::MakeVolume(VTK_DOUBLE, Dims, [](int i, int j, int k) {
-    if ((i + j + k) % 7 == 0)
-      return std::nan("");
-    if ((i + j + k) % 11 == 0)
-      return (i % 2 ? 1.0 : -1.0) * std::numeric_limits<double>::infinity();
-    return 1.0 + 0.25 * ((i * j + k) % 5);
-  });
+  auto volume = mcxtest::MakeVolume(VTK_DOUBLE, Dims,
+    [](int i, int j, int k)
+    {
+      if ((i + j + k) % 7 == 0)
+        return std::nan("");
+      if ((i + j + k) % 11 == 0)
+        return (i % 2 ? 1.0 : -1.0) * std::numeric_limits<double>::infinity();
+      return 1.0 + 0.25 * ((i * j + k) % 5);
+    });
   // The same volume with those voxels at 0 under a TF that is 0 there.
-  auto zeroed = mcxtest::MakeVolume(VTK_DOUBLE, Dims, [](int i, int j, int k) {
-    if ((i + j + k) % 7 == 0 || (i + j + k) % 11 == 0)
-      return 0.0;
-    return 1.0 + 0.25 * ((i * j + k) % 5);
-  });
+  auto zeroed = mcxtest::MakeVolume(VTK_DOUBLE, Dims,
+    [](int i, int j, int k)
+    {
+      if ((i + j + k) % 7 == 0 || (i + j + k) % 11 == 0)
+        return 0.0;
+      return 1.0 + 0.25 * ((i * j + k) % 5);
+    });
   auto tf = Ramp(0, 0, 2, 2);
   const Outcome a = Project(volume, tf, true);
   const Outcome b = Project(zeroed, tf, true);
   EXPECT_TRUE(AllFinite(a.Image));
   EXPECT_NEAR(0.0, mcxtest::RelativeRMS(a.Image, b.Image), 1e-12);
-  EXPECT_NEAR(mcxtest::FieldValue(b.Image, "Integral"), mcxtest::FieldValue(a.Image, "Integral"), 1e-9);
+  EXPECT_NEAR(
+    mcxtest::FieldValue(b.Image, "Integral"), mcxtest::FieldValue(a.Image, "Integral"), 1e-9);
   ExpectAgreement(volume, tf, "NaN/Inf voxels");
 }
 
@@ -267,7 +277,8 @@ TEST(Data, SingleNonZeroVoxel)
   // One voxel of value 8 at (4, 3, 5), unit spacing, tent kernel: the pixel
   // at its centre, averaged over its unit area, sees
   // 8 * (integral over the pixel of (1 - |x|)(1 - |z|)) = 8 * 0.75^2.
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, Dims, [](int i, int j, int k) { return i == 4 && j == 3 && k == 5 ? 8 : 0; });
+  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, Dims,
+    [](int i, int j, int k) { return i == 4 && j == 3 && k == 5 ? 8 : 0; });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   vtkNew<vtkMCXReferenceProjector> exact;
@@ -283,7 +294,8 @@ TEST(Data, SingleNonZeroVoxel)
   exact->Update();
   vtkDataArray* values = mcxtest::LineIntegral(exact->GetOutput());
   EXPECT_NEAR(8 * 0.75 * 0.75, values->GetTuple1(4), 1e-4);
-  EXPECT_NEAR(8 * 0.75 * 0.125, values->GetTuple1(1), 1e-4); // below: 0.125 of the tent's area per axis
+  EXPECT_NEAR(
+    8 * 0.75 * 0.125, values->GetTuple1(1), 1e-4); // below: 0.125 of the tent's area per axis
   EXPECT_NEAR(8 * 0.125 * 0.125, values->GetTuple1(0), 1e-4);
   ExpectAgreement(volume, nullptr, "single voxel");
 }
@@ -297,7 +309,8 @@ TEST(Data, DegenerateShapes)
   const double spacing[3] = { 2, 3, 4 };
   for (const auto& shape : shapes)
   {
-    auto volume = mcxtest::MakeVolume(VTK_FLOAT, shape, [](int, int, int) { return 3.0; }, spacing);
+    auto volume = mcxtest::MakeVolume(
+      VTK_FLOAT, shape, [](int, int, int) { return 3.0; }, spacing);
     for (bool reference : { false, true })
     {
       const Outcome run = Project(volume, nullptr, reference, 16, 9);
@@ -313,7 +326,8 @@ TEST(Data, DegenerateShapes)
     ExpectAgreement(volume, nullptr, "degenerate shape");
   }
   // The line integral at the centre of a single voxel, exactly.
-  auto single = mcxtest::MakeVolume(VTK_FLOAT, shapes[0], [](int, int, int) { return 3.0; }, spacing);
+  auto single = mcxtest::MakeVolume(
+    VTK_FLOAT, shapes[0], [](int, int, int) { return 3.0; }, spacing);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(single);
   vtkNew<vtkMCXReferenceProjector> exact;
@@ -332,8 +346,10 @@ TEST(Data, ExtentNotAtZeroAndDirectionMatrixMoveTheImageRigidly)
   // extent 0 with its origin moved; a rotated direction matrix viewed along
   // the rotated axes gives the unrotated image.
   const double spacing[3] = { 1.5, 1.0, 2.0 };
-  auto plain = mcxtest::MakeVolume(VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
-  auto shifted = mcxtest::MakeVolume(VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
+  auto plain = mcxtest::MakeVolume(
+    VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
+  auto shifted = mcxtest::MakeVolume(
+    VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
   shifted->SetExtent(5, 5 + Dims[0] - 1, -3, -3 + Dims[1] - 1, 2, 2 + Dims[2] - 1);
   shifted->SetOrigin(-5 * 1.5, 3 * 1.0, -2 * 2.0);
   const Outcome a = Project(plain, nullptr, false);
@@ -342,7 +358,8 @@ TEST(Data, ExtentNotAtZeroAndDirectionMatrixMoveTheImageRigidly)
   EXPECT_NEAR(a.Image->GetOrigin()[0], b.Image->GetOrigin()[0], 1e-12);
 
   // Rotate by 90 degrees about y: grid x -> world -z, grid z -> world x.
-  auto rotated = mcxtest::MakeVolume(VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
+  auto rotated = mcxtest::MakeVolume(
+    VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
   rotated->SetDirectionMatrix(0, 0, 1, 0, 1, 0, -1, 0, 0);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(rotated);
@@ -369,7 +386,9 @@ TEST(Data, TinyAndHugeSpacings)
   for (double s : { 1e-6, 1e6 })
   {
     const double spacing[3] = { s, s, s };
-    auto volume = mcxtest::MakeVolume(VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); }, spacing);
+    auto volume = mcxtest::MakeVolume(
+      VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims); },
+      spacing);
     auto unit = Phantom();
     const Outcome scaled = Project(volume, nullptr, true);
     const Outcome reference = Project(unit, nullptr, true);
@@ -391,7 +410,8 @@ TEST(TypesAndRanges, IntegersAtTheLimitsOfTheirTypes)
     static_cast<double>(std::numeric_limits<int>::max()) };
   const long long limits64[] = { std::numeric_limits<long long>::min(), -1, 0,
     std::numeric_limits<long long>::max() };
-  auto int32 = mcxtest::MakeVolume(VTK_INT, Dims, [&](int i, int j, int k) { return limits32[(i + j + k) % 3]; });
+  auto int32 = mcxtest::MakeVolume(
+    VTK_INT, Dims, [&](int i, int j, int k) { return limits32[(i + j + k) % 3]; });
   auto int64 = vtkSmartPointer<vtkImageData>::New();
   int64->SetDimensions(Dims[0], Dims[1], Dims[2]);
   int64->AllocateScalars(VTK_LONG_LONG, 1);
@@ -405,7 +425,10 @@ TEST(TypesAndRanges, IntegersAtTheLimitsOfTheirTypes)
     vtkNew<vtkMCXDensityIndex> index;
     index->SetInputData(volume);
     index->Update();
-    const vtkIdType levels = index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName())->GetNumberOfTuples();
+    const vtkIdType levels = index->GetOutput()
+                               ->GetFieldData()
+                               ->GetArray(vtkMCXDensityIndex::LevelValuesName())
+                               ->GetNumberOfTuples();
     EXPECT_EQ(volume == int32.Get() ? 3 : 4, levels);
     // g = 1 where the value is at the maximum of the type, else 0.
     auto tf = Ramp(0.99 * VTK_INT_MAX, 0, VTK_INT_MAX, 1);
@@ -419,7 +442,9 @@ TEST(TypesAndRanges, IntegersAtTheLimitsOfTheirTypes)
 
 TEST(TypesAndRanges, FloatFrom1eMinus30To1e30)
 {
-  auto volume = mcxtest::MakeVolume(VTK_FLOAT, Dims, [](int i, int j, int k) { return std::pow(10.0, -30 + 60.0 * ((i + 2 * j + 3 * k) % 13) / 12.0); });
+  auto volume = mcxtest::MakeVolume(VTK_FLOAT, Dims,
+    [](int i, int j, int k)
+    { return std::pow(10.0, -30 + 60.0 * ((i + 2 * j + 3 * k) % 13) / 12.0); });
   auto tf = Ramp(0, 0, 1e30, 1);
   const Outcome run = Project(volume, tf, false);
   EXPECT_TRUE(run.Errors.empty()) << run.Errors;
@@ -429,7 +454,8 @@ TEST(TypesAndRanges, FloatFrom1eMinus30To1e30)
 
 TEST(TypesAndRanges, NegativeHounsfieldUnits)
 {
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, Dims, [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims) * 5 - 1024; });
+  auto volume = mcxtest::MakeVolume(VTK_SHORT, Dims,
+    [](int i, int j, int k) { return mcxtest::Phantom(i, j, k, Dims) * 5 - 1024; });
   ExpectAgreement(volume, Ramp(-1024, 0, 1000, 1.5), "HU");
 }
 
@@ -535,7 +561,8 @@ TEST(Perspective, CameraInsideTheVolume)
   // The eye in the middle of a constant block: samples behind it, on it and
   // before the near plane are dropped; the rest agree with the exact image.
   const int dims[3] = { 16, 16, 16 };
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return 10 + (i + j + k) % 3; });
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return 10 + (i + j + k) % 3; });
   vtkNew<vtkCamera> camera;
   camera->SetPosition(7.5, 7.5, 7.5);
   camera->SetFocalPoint(7.5, 20, 7.5);
@@ -544,7 +571,8 @@ TEST(Perspective, CameraInsideTheVolume)
   camera->SetClippingRange(2.0, 100);
   // f = D^2 s / z^3 <= (D / near)^2 / cos^3 with D = 12.5, near = 2 and the
   // corner ray at atan(sqrt(2) tan 30 deg).
-  const double cosine = std::cos(std::atan(std::sqrt(2.0) * std::tan(vtkMath::RadiansFromDegrees(30.0))));
+  const double cosine =
+    std::cos(std::atan(std::sqrt(2.0) * std::tan(vtkMath::RadiansFromDegrees(30.0))));
   const double fMax = (12.5 / 2.0) * (12.5 / 2.0) / (cosine * cosine * cosine);
   ExpectAgreement(volume, nullptr, "camera inside", camera, fMax);
   const Outcome run = Project(volume, nullptr, false, 16, 24, camera);
@@ -558,7 +586,8 @@ TEST(LongAccumulation, MoreThan2To32SamplesInOnePixelStayExact)
   // A 1 x 1 image wider than the volume's support receives all 2^33 - 1
   // samples; a 32-bit count would have wrapped and lost 2^32 of them.
   const int dims[3] = { 4, 4, 4 };
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return 1 + (i + j + k) % 3; });
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return 1 + (i + j + k) % 3; });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   vtkNew<vtkMCXProjector> projector;
@@ -568,9 +597,11 @@ TEST(LongAccumulation, MoreThan2To32SamplesInOnePixelStayExact)
   projector->SetPixelSpacing(100.0);
   projector->Update();
   vtkImageData* image = projector->GetOutput();
-  EXPECT_EQ((std::int64_t(1) << 33) - 1, static_cast<std::int64_t>(mcxtest::FieldValue(image, "SampleCount")));
+  EXPECT_EQ((std::int64_t(1) << 33) - 1,
+    static_cast<std::int64_t>(mcxtest::FieldValue(image, "SampleCount")));
   const double integral = mcxtest::FieldValue(image, "Integral");
-  EXPECT_NEAR(integral, mcxtest::LineIntegral(image)->GetTuple1(0) * PixelArea(image), 1e-12 * integral);
+  EXPECT_NEAR(
+    integral, mcxtest::LineIntegral(image)->GetTuple1(0) * PixelArea(image), 1e-12 * integral);
 }
 
 // ---- A corrupt index -------------------------------------------------------
@@ -606,7 +637,8 @@ TEST(Data, ACorruptIndexIsAnErrorNotACrash)
         EXPECT_TRUE(messages.Errors.empty()) << messages.Errors;
         continue;
       }
-      EXPECT_NE(std::string::npos, messages.Errors.find("Cannot project")) << damage << " " << reference;
+      EXPECT_NE(std::string::npos, messages.Errors.find("Cannot project"))
+        << damage << " " << reference;
     }
   }
 }

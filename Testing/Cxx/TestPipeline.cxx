@@ -17,7 +17,8 @@
 TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
 {
   const int dims[3] = { 12, 10, 8 };
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   vtkNew<vtkPiecewiseFunction> tf;
@@ -74,11 +75,13 @@ TEST(Pipeline, TheIndexTravelsThroughAVTKFile)
   // The index is plain VTK data: written as .vti and read back, it gives the
   // same image bit for bit.
   const int dims[3] = { 12, 10, 8 };
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   volume->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  const std::string path = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/pipeline_index.vti";
+  const std::string path =
+    vtksys::SystemTools::GetCurrentWorkingDirectory() + "/pipeline_index.vti";
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputConnection(index->GetOutputPort());
   writer->SetFileName(path.c_str());

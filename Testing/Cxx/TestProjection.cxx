@@ -8,8 +8,8 @@
 #include "vtkMCXReferenceProjector.h"
 
 #include "vtkCamera.h"
-#include "vtkFieldData.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPoints.h"
@@ -34,8 +34,9 @@ struct Scene
     const int dims[3] = { 24, 20, 16 };
     const double spacing[3] = { 1.0, 1.25, 1.5 };
     const double origin[3] = { -12, -12, -12 };
-    this->Volume = mcxtest::MakeVolume(VTK_SHORT, dims,
-      [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims) - 50; }, spacing, origin);
+    this->Volume = mcxtest::MakeVolume(
+      VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims) - 50; },
+      spacing, origin);
     this->Index->SetInputData(this->Volume);
     this->TF->AddPoint(-50, 0);
     this->TF->AddPoint(50, 1);
@@ -66,7 +67,8 @@ struct Scene
     return reference->GetOutput();
   }
 
-  vtkSmartPointer<vtkImageData> MonteCarlo(vtkCamera* camera, int size, int m, int strategy, vtkTypeUInt64 seed)
+  vtkSmartPointer<vtkImageData> MonteCarlo(
+    vtkCamera* camera, int size, int m, int strategy, vtkTypeUInt64 seed)
   {
     vtkNew<vtkMCXProjector> projector;
     this->Configure(projector.Get(), camera, size);
@@ -114,16 +116,19 @@ TEST(Projection, ParallelViewsConvergeWithinTheMonteCarloBound)
   {
     auto reference = scene.Reference(view, 48);
     const double integral = mcxtest::FieldValue(reference, "Integral");
-    for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO })
+    for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID,
+           vtkMCXPointSampler::QUASI_MONTE_CARLO })
     {
       for (int m : { 14, 18, 22 })
       {
         auto image = scene.MonteCarlo(view, 48, m, strategy, 1);
-        const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), std::ldexp(1.0, m) - 1);
+        const double bound = mcxtest::ExpectedRelativeRMS(
+          reference, integral, PixelArea(reference), std::ldexp(1.0, m) - 1);
         const double error = mcxtest::RelativeRMS(image, reference);
         // The squared error is a sum over ~2000 pixels, so it stays close to its
         // expectation; 1.5x covers its spread plus the reference's own 1e-3.
-        EXPECT_LT(error, 1.5 * bound + 1e-3) << "strategy " << strategy << " m " << m << (view ? " camera" : " axes");
+        EXPECT_LT(error, 1.5 * bound + 1e-3)
+          << "strategy " << strategy << " m " << m << (view ? " camera" : " axes");
       }
     }
   }
@@ -138,8 +143,10 @@ TEST(Projection, HybridIsAtLeastAsAccurateAsMonteCarlo)
     double hybrid = 0, plain = 0;
     for (vtkTypeUInt64 seed = 0; seed < 4; ++seed)
     {
-      hybrid += mcxtest::RelativeRMS(scene.MonteCarlo(nullptr, 48, m, vtkMCXPointSampler::HYBRID, seed), reference);
-      plain += mcxtest::RelativeRMS(scene.MonteCarlo(nullptr, 48, m, vtkMCXPointSampler::MONTE_CARLO, seed), reference);
+      hybrid += mcxtest::RelativeRMS(
+        scene.MonteCarlo(nullptr, 48, m, vtkMCXPointSampler::HYBRID, seed), reference);
+      plain += mcxtest::RelativeRMS(
+        scene.MonteCarlo(nullptr, 48, m, vtkMCXPointSampler::MONTE_CARLO, seed), reference);
     }
     EXPECT_LE(hybrid, plain) << "m " << m;
   }
@@ -208,7 +215,8 @@ TEST(Projection, HaltonPrefixHasTheErrorOfItsOwnSize)
     vtkImageData* image = projector->GetOutput();
     // Same framing as the reference, and the error of a count-sample run.
     EXPECT_NEAR(reference->GetOrigin()[0], image->GetOrigin()[0], 1e-9);
-    const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), static_cast<double>(count));
+    const double bound = mcxtest::ExpectedRelativeRMS(
+      reference, integral, PixelArea(reference), static_cast<double>(count));
     const double error = mcxtest::RelativeRMS(image, reference);
     EXPECT_LT(error, 1.5 * bound + 1e-3) << "prefix 2^" << k << " - 1";
     EXPECT_GT(error, 0.3 * bound) << "prefix 2^" << k << " - 1"; // and not a larger sample
@@ -226,13 +234,16 @@ TEST(Projection, PerspectiveViewConvergesWithinItsBound)
   // image corners below 33 degrees.
   const double d = std::sqrt(30.0 * 30 + 40 * 40 + 20 * 20);
   const double zMin = d - 26.0;
-  const double cosine = std::cos(std::atan(std::sqrt(2.0) * std::tan(vtkMath::RadiansFromDegrees(25.0))));
+  const double cosine =
+    std::cos(std::atan(std::sqrt(2.0) * std::tan(vtkMath::RadiansFromDegrees(25.0))));
   const double fMax = d * d / (zMin * zMin) / (cosine * cosine);
   for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID })
   {
     auto image = scene.MonteCarlo(camera, 40, 20, strategy, 3);
-    const double bound = mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), std::ldexp(1.0, 20) - 1, fMax);
-    EXPECT_LT(mcxtest::RelativeRMS(image, reference), 1.5 * bound + 1e-3) << "strategy " << strategy;
+    const double bound = mcxtest::ExpectedRelativeRMS(
+      reference, integral, PixelArea(reference), std::ldexp(1.0, 20) - 1, fMax);
+    EXPECT_LT(mcxtest::RelativeRMS(image, reference), 1.5 * bound + 1e-3)
+      << "strategy " << strategy;
   }
 }
 
@@ -243,8 +254,10 @@ TEST(Projection, ImagesAreBitIdenticalForOneAndTwoThreads)
   for (vtkCamera* camera : { static_cast<vtkCamera*>(nullptr), perspective.Get() })
   {
     vtkSmartPointer<vtkImageData> one, two;
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&]() { one = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { two = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 },
+      [&]() { one = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 },
+      [&]() { two = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
     vtkDataArray* a = mcxtest::LineIntegral(one);
     vtkDataArray* b = mcxtest::LineIntegral(two);
     ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
@@ -262,7 +275,8 @@ TEST(Projection, ConstantSlabHasAnalyticLineIntegrals)
   // at both ends add up to one spacing).
   const int dims[3] = { 8, 6, 10 };
   const double spacing[3] = { 2, 3, 0.5 };
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_SHORT, dims, [](int, int, int) { return 4.0; }, spacing);
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_SHORT, dims, [](int, int, int) { return 4.0; }, spacing);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   for (int kernel : { vtkMCXPointSampler::TENT, vtkMCXPointSampler::BOX })
@@ -292,8 +306,9 @@ TEST(Projection, WideVoxelIdsGiveTheSameImage)
   auto narrow = scene.MonteCarlo(nullptr, 32, 16, vtkMCXPointSampler::HYBRID, 2);
   scene.Index->AlwaysUseWideIdsOn();
   auto wide = scene.MonteCarlo(nullptr, 32, 16, vtkMCXPointSampler::HYBRID, 2);
-  ASSERT_NE(nullptr, vtkTypeUInt64Array::SafeDownCast(
-    scene.Index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::SortedVoxelIdsName())));
+  ASSERT_NE(nullptr,
+    vtkTypeUInt64Array::SafeDownCast(scene.Index->GetOutput()->GetFieldData()->GetArray(
+      vtkMCXDensityIndex::SortedVoxelIdsName())));
   vtkDataArray* a = mcxtest::LineIntegral(narrow);
   vtkDataArray* b = mcxtest::LineIntegral(wide);
   for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
@@ -312,7 +327,8 @@ TEST(Projection, ErrorEstimateTracksTheTrueError)
   Scene scene;
   auto camera = ObliqueParallelCamera();
   auto reference = scene.Reference(camera, 48);
-  for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO })
+  for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID,
+         vtkMCXPointSampler::QUASI_MONTE_CARLO })
   {
     for (int m : { 14, 18, 22 })
     {
@@ -345,7 +361,8 @@ TEST(Projection, TargetAccuracyControlsChooseEnoughSamples)
     // power of two of rounding, one of M^-1/2 extrapolation).
     EXPECT_LT(mcxtest::RelativeRMS(image, reference), 1.02 * target) << target;
     const double integral = mcxtest::FieldValue(reference, "Integral");
-    const double needed = std::pow(mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), 1.0) / target, 2);
+    const double needed = std::pow(
+      mcxtest::ExpectedRelativeRMS(reference, integral, PixelArea(reference), 1.0) / target, 2);
     EXPECT_LT(samples, 4.0 * needed) << target;
   }
   // The paper's criterion for 256 grey levels: M > (W H - 1) B^2 L^2.

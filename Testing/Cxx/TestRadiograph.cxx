@@ -3,12 +3,12 @@
 // each against an analytic expectation; and a real CT against plastimatch.
 #include "mcxTestHelpers.h"
 #include "vtkMCXAttenuationFunction.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXProjector.h"
 #include "vtkMCXRadiograph.h"
 #include "vtkMCXRadiographGeometry.h"
 #include "vtkMCXReferenceProjector.h"
+#include "vtkPiecewiseFunction.h"
 
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
@@ -95,7 +95,8 @@ vtkSmartPointer<vtkImageData> WaterCube(int side)
   const int dims[3] = { side + 1, side + 1, side + 1 };
   const double spacing[3] = { 1, 1, 1 };
   const double origin[3] = { -side / 2.0, -side / 2.0, -side / 2.0 };
-  return mcxtest::MakeVolume(VTK_SHORT, dims, [](int, int, int) { return 0.0; }, spacing, origin);
+  return mcxtest::MakeVolume(
+    VTK_SHORT, dims, [](int, int, int) { return 0.0; }, spacing, origin);
 }
 }
 
@@ -128,7 +129,8 @@ TEST(Radiograph, NothingAskedForIsAPassThrough)
   vtkNew<vtkMCXRadiograph> physics;
   EXPECT_FALSE(physics->HasEffects());
   auto output = Apply(physics, input);
-  EXPECT_EQ(input->GetPointData()->GetArray("LineIntegral"), output->GetPointData()->GetArray("LineIntegral"));
+  EXPECT_EQ(input->GetPointData()->GetArray("LineIntegral"),
+    output->GetPointData()->GetArray("LineIntegral"));
   EXPECT_EQ(1, output->GetPointData()->GetNumberOfArrays());
 }
 
@@ -175,7 +177,9 @@ TEST(Radiograph, UniformCubeGivesExpOfMinusMuL)
   intensity = physics->GetOutput()->GetPointData()->GetArray("Intensity");
   for (vtkIdType p = 0; p < intensity->GetNumberOfTuples(); ++p)
   {
-    EXPECT_NEAR(std::exp(-MuWater * 21), intensity->GetTuple1(p), 5 * sigmaL * std::exp(-MuWater * 21)) << p;
+    EXPECT_NEAR(
+      std::exp(-MuWater * 21), intensity->GetTuple1(p), 5 * sigmaL * std::exp(-MuWater * 21))
+      << p;
   }
 }
 
@@ -207,7 +211,8 @@ TEST(Radiograph, PoissonNoiseHasTheVarianceOfItsMean)
       double mean, variance;
       Moments(counts, mean, variance);
       const double lambda = photons * std::exp(-lineIntegral);
-      EXPECT_NEAR(lambda, mean, 5 * std::sqrt(lambda / n)) << photons << " photons, L " << lineIntegral;
+      EXPECT_NEAR(lambda, mean, 5 * std::sqrt(lambda / n))
+        << photons << " photons, L " << lineIntegral;
       EXPECT_NEAR(lambda, variance, 5 * lambda * std::sqrt(2 / (n - 1) + 1 / (lambda * n)))
         << photons << " photons, L " << lineIntegral;
     }
@@ -224,10 +229,12 @@ TEST(Radiograph, NoiseIsSeededAndThreadIndependent)
   const int threads[2] = { 1, 2 };
   for (int t = 0; t < 2; ++t)
   {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads[t] }, [&] {
-      physics->Modified();
-      images[t] = Apply(physics, input);
-    });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads[t] },
+      [&]
+      {
+        physics->Modified();
+        images[t] = Apply(physics, input);
+      });
   }
   vtkDataArray* a = images[0]->GetPointData()->GetArray("Intensity");
   vtkDataArray* b = images[1]->GetPointData()->GetArray("Intensity");
@@ -240,7 +247,8 @@ TEST(Radiograph, NoiseIsSeededAndThreadIndependent)
   vtkIdType differing = 0;
   for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)
   {
-    differing += other->GetPointData()->GetArray("Intensity")->GetTuple1(p) != a->GetTuple1(p) ? 1 : 0;
+    differing +=
+      other->GetPointData()->GetArray("Intensity")->GetTuple1(p) != a->GetTuple1(p) ? 1 : 0;
   }
   EXPECT_GT(differing, a->GetNumberOfTuples() / 2);
 }
@@ -262,7 +270,8 @@ TEST(Radiograph, NegativeLogGivesBackTheLineIntegral)
   double mean, variance;
   Moments(noisy->GetPointData()->GetArray("Attenuation"), mean, variance);
   const double lambda = 10000 * std::exp(-2.0);
-  EXPECT_NEAR(2.0 + 0.5 / lambda, mean, 5 * std::sqrt(1 / lambda / (256.0 * 256.0)) + 1 / (lambda * lambda));
+  EXPECT_NEAR(
+    2.0 + 0.5 / lambda, mean, 5 * std::sqrt(1 / lambda / (256.0 * 256.0)) + 1 / (lambda * lambda));
   EXPECT_NEAR(1 / lambda, variance, 0.05 / lambda);
   // No photons at all: half a photon, a finite value.
   physics->SetPhotonsPerPixel(1e-9);
@@ -289,7 +298,8 @@ TEST(Radiograph, ConeBeamViewOfACubeHasTheExpectedLineIntegrals)
   exact->SetPixelSpacing(geometry->GetPixelSpacingAtIsocenter());
   exact->Update();
   vtkDataArray* values = mcxtest::LineIntegral(exact->GetOutput());
-  auto at = [&](int column, int row) { return values->GetTuple1(static_cast<vtkIdType>(row) * 101 + column); };
+  auto at = [&](int column, int row)
+  { return values->GetTuple1(static_cast<vtkIdType>(row) * 101 + column); };
   // The central ray integrates the 41 voxels it crosses: mu_water x 41 mm.
   EXPECT_NEAR(MuWater * 41, at(centre[0], centre[1]), 1e-6 * MuWater * 41);
   // Magnification: the support (+-21 mm) seen from 979 mm spans +-21 x 1500 / 979 = 32.2 mm on the
@@ -307,8 +317,9 @@ TEST(Radiograph, ConeBeamViewOfACubeHasTheExpectedLineIntegrals)
   const int dims[3] = { 41, 41, 41 };
   const double spacing[3] = { 1, 1, 1 };
   const double origin[3] = { -20, -20, -20 };
-  auto block = mcxtest::MakeVolume(VTK_SHORT, dims,
-    [](int, int j, int k) { return j > 30 && k > 25 ? 1000.0 : -1000.0; }, spacing, origin);
+  auto block = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [](int, int j, int k) { return j > 30 && k > 25 ? 1000.0 : -1000.0; }, spacing,
+    origin);
   index->SetInputData(block);
   exact->Update();
   values = mcxtest::LineIntegral(exact->GetOutput());
@@ -336,14 +347,16 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   // trilinear field over each pixel, so the images differ by modelling;
   // the accuracy report measures 1.9 % at 256^2. Stated bound: 3 %.
   const std::string path = MCXRAY_SHARED_DATA_DIR "/ct_body_totalseg.nii.gz";
-  if (!vtksys::SystemTools::FileExists(path) || std::system("plastimatch --version > /dev/null 2>&1") != 0)
+  if (!vtksys::SystemTools::FileExists(path) ||
+    std::system("plastimatch --version > /dev/null 2>&1") != 0)
   {
     GTEST_SKIP() << "needs " << path << " and plastimatch";
   }
   std::string error;
   vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
   ASSERT_TRUE(volume) << error;
-  const std::string work = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/radiograph-plastimatch";
+  const std::string work =
+    vtksys::SystemTools::GetCurrentWorkingDirectory() + "/radiograph-plastimatch";
   vtksys::SystemTools::MakeDirectory(work);
   vtkNew<vtkMetaImageWriter> writer;
   writer->SetInputData(volume);
@@ -355,11 +368,12 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   const double pitch = 600.0 / pixels;
   double bounds[6];
   volume->GetBounds(bounds);
-  const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2 };
+  const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+    (bounds[4] + bounds[5]) / 2 };
   std::ostringstream command;
-  command << "plastimatch drr -I " << work << "/ct.mha -O " << work << "/drr_ -t pfm -i exact -r \"" << pixels << " "
-          << pixels << "\" -z \"600 600\" --sad 1000 --sid 1500 -o \"" << iso[0] << " " << iso[1] << " " << iso[2]
-          << "\" > " << work << "/plastimatch.log 2>&1";
+  command << "plastimatch drr -I " << work << "/ct.mha -O " << work << "/drr_ -t pfm -i exact -r \""
+          << pixels << " " << pixels << "\" -z \"600 600\" --sad 1000 --sid 1500 -o \"" << iso[0]
+          << " " << iso[1] << " " << iso[2] << "\" > " << work << "/plastimatch.log 2>&1";
   ASSERT_EQ(0, std::system(command.str().c_str())) << command.str();
   std::ifstream in(work + "/drr_0000.pfm", std::ios::binary);
   std::string magic;
@@ -371,7 +385,8 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   ASSERT_EQ(pixels, width);
   ASSERT_EQ(pixels, height);
   std::vector<float> theirs(static_cast<std::size_t>(pixels) * pixels);
-  in.read(reinterpret_cast<char*>(theirs.data()), static_cast<std::streamsize>(theirs.size() * sizeof(float)));
+  in.read(reinterpret_cast<char*>(theirs.data()),
+    static_cast<std::streamsize>(theirs.size() * sizeof(float)));
   ASSERT_TRUE(in);
 
   vtkNew<vtkMCXRadiographGeometry> geometry;

@@ -17,8 +17,8 @@
 
 namespace
 {
-vtkSmartPointer<vtkPolyData> Sample(vtkMCXDensityIndex* index, int m, int strategy, vtkPiecewiseFunction* tf,
-  int precision = vtkAlgorithm::DOUBLE_PRECISION, vtkTypeUInt64 seed = 5)
+vtkSmartPointer<vtkPolyData> Sample(vtkMCXDensityIndex* index, int m, int strategy,
+  vtkPiecewiseFunction* tf, int precision = vtkAlgorithm::DOUBLE_PRECISION, vtkTypeUInt64 seed = 5)
 {
   vtkNew<vtkMCXPointSampler> sampler;
   sampler->SetInputConnection(index->GetOutputPort());
@@ -36,7 +36,8 @@ TEST(PointSampler, WeightIsTheIntegralOverM)
 {
   const int dims[3] = { 6, 5, 4 };
   const double spacing[3] = { 0.5, 2.0, 3.0 };
-  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return (i + j + k) % 4; }, spacing);
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return (i + j + k) % 4; }, spacing);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   vtkNew<vtkPiecewiseFunction> tf; // 0 -> 0, 3 -> 6, linear: g = 2 f
@@ -62,7 +63,9 @@ TEST(PointSampler, PointsLieInTheKernelSupportOfTheirVoxelInWorldSpace)
   const int dims[3] = { 5, 4, 3 };
   const double spacing[3] = { 1e-6, 2e-6, 3e-6 };
   const double origin[3] = { 10.0, -20.0, 5.0 };
-  auto volume = mcxtest::MakeVolume(VTK_FLOAT, dims, [](int i, int j, int k) { return i == 3 && j == 1 && k == 2 ? 7.0 : 0.0; }, spacing, origin);
+  auto volume = mcxtest::MakeVolume(
+    VTK_FLOAT, dims, [](int i, int j, int k) { return i == 3 && j == 1 && k == 2 ? 7.0 : 0.0; },
+    spacing, origin);
   volume->SetExtent(2, 6, -1, 2, 10, 12);
   const double c = std::cos(0.3), s = std::sin(0.3);
   volume->SetDirectionMatrix(c, -s, 0, s, c, 0, 0, 0, 1);
@@ -81,7 +84,8 @@ TEST(PointSampler, PointsLieInTheKernelSupportOfTheirVoxelInWorldSpace)
     for (int a = 0; a < 3; ++a)
     {
       const double along = ((x[0] - voxel[0]) * axes[a][0] + (x[1] - voxel[1]) * axes[a][1] +
-        (x[2] - voxel[2]) * axes[a][2]) / spacing[a];
+                             (x[2] - voxel[2]) * axes[a][2]) /
+        spacing[a];
       ASSERT_LT(std::fabs(along), 1.0 + 1e-6);
       mean[a] += along / n;
     }
@@ -91,16 +95,19 @@ TEST(PointSampler, PointsLieInTheKernelSupportOfTheirVoxelInWorldSpace)
   {
     EXPECT_LT(std::fabs(mean[a]), 5.0 * std::sqrt(1.0 / 6.0 / n));
   }
-  EXPECT_NEAR(7.0 * spacing[0] * spacing[1] * spacing[2], mcxtest::FieldValue(cloud, "Integral"), 1e-30);
+  EXPECT_NEAR(
+    7.0 * spacing[0] * spacing[1] * spacing[2], mcxtest::FieldValue(cloud, "Integral"), 1e-30);
 }
 
 TEST(PointSampler, HaltonPrefixIsExactlyTheSmallerRun)
 {
   const int dims[3] = { 16, 12, 9 };
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO, vtkMCXPointSampler::MONTE_CARLO })
+  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO,
+         vtkMCXPointSampler::MONTE_CARLO })
   {
     auto big = Sample(index, 16, strategy, nullptr);
     auto small = Sample(index, 9, strategy, nullptr);
@@ -121,14 +128,18 @@ TEST(PointSampler, HaltonPrefixIsExactlyTheSmallerRun)
 TEST(PointSampler, SameSeedSamePointsForOneAndTwoThreads)
 {
   const int dims[3] = { 40, 30, 20 };
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::QUASI_MONTE_CARLO })
+  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::MONTE_CARLO,
+         vtkMCXPointSampler::QUASI_MONTE_CARLO })
   {
     vtkSmartPointer<vtkPolyData> one, two, otherSeed;
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&]() { one = Sample(index, 20, strategy, nullptr, vtkAlgorithm::SINGLE_PRECISION); });
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { two = Sample(index, 20, strategy, nullptr, vtkAlgorithm::SINGLE_PRECISION); });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 },
+      [&]() { one = Sample(index, 20, strategy, nullptr, vtkAlgorithm::SINGLE_PRECISION); });
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 },
+      [&]() { two = Sample(index, 20, strategy, nullptr, vtkAlgorithm::SINGLE_PRECISION); });
     otherSeed = Sample(index, 20, strategy, nullptr, vtkAlgorithm::SINGLE_PRECISION, 6);
     const float* a = static_cast<const float*>(one->GetPoints()->GetVoidPointer(0));
     const float* b = static_cast<const float*>(two->GetPoints()->GetVoidPointer(0));
@@ -156,7 +167,8 @@ TEST(PointSampler, ZeroTransferFunctionGivesNoPoints)
 TEST(PointSampler, ATFEditNeverChangesPointsSomeoneStillHolds)
 {
   const int dims[3] = { 8, 8, 8 };
-  auto volume = mcxtest::MakeVolume(VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
   vtkNew<vtkPiecewiseFunction> tf;

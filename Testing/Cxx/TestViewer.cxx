@@ -131,8 +131,10 @@ TEST(Viewer, ScriptedSession)
   EXPECT_EQ(3, samplerRuns.Count);
 
   // A click on the centre slider's track jumps the TF window's centre there.
-  auto* centre = vtkSliderRepresentation2D::SafeDownCast(viewer.GetCentreSlider()->GetRepresentation());
-  auto* width = vtkSliderRepresentation2D::SafeDownCast(viewer.GetWidthSlider()->GetRepresentation());
+  auto* centre =
+    vtkSliderRepresentation2D::SafeDownCast(viewer.GetCentreSlider()->GetRepresentation());
+  auto* width =
+    vtkSliderRepresentation2D::SafeDownCast(viewer.GetWidthSlider()->GetRepresentation());
   const double* p1 = centre->GetPoint1Coordinate()->GetValue();
   const double* p2 = centre->GetPoint2Coordinate()->GetValue();
   const double t = 0.6;
@@ -142,8 +144,10 @@ TEST(Viewer, ScriptedSession)
   interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
   interactor->InvokeEvent(vtkCommand::LeftButtonPressEvent);
   interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
-  const double expectedCentre = centre->GetMinimumValue() + t * (centre->GetMaximumValue() - centre->GetMinimumValue());
-  EXPECT_NEAR(expectedCentre, centre->GetValue(), 0.02 * (centre->GetMaximumValue() - centre->GetMinimumValue()));
+  const double expectedCentre =
+    centre->GetMinimumValue() + t * (centre->GetMaximumValue() - centre->GetMinimumValue());
+  EXPECT_NEAR(expectedCentre, centre->GetValue(),
+    0.02 * (centre->GetMaximumValue() - centre->GetMinimumValue()));
   double range[2];
   tf->GetRange(range);
   EXPECT_NEAR(centre->GetValue(), 0.5 * (range[0] + range[1]), 1e-9 * centre->GetMaximumValue());
@@ -170,7 +174,8 @@ TEST(Viewer, ScriptedSession)
   EXPECT_TRUE(viewer.GetMapper()->IsRefinementComplete());
   EXPECT_GT(ticks, 2);
   interactor->InvokeEvent(vtkCommand::TimerEvent); // one more frame brings the overlay up to date
-  EXPECT_NE(std::string::npos, viewer.OverlayText().find("262,143 of 262,143")) << viewer.OverlayText();
+  EXPECT_NE(std::string::npos, viewer.OverlayText().find("262,143 of 262,143"))
+    << viewer.OverlayText();
 
   // Key i inverts the display (film on a white light box); p switches to parallel.
   const double dark = MeanBrightness(viewer.GetRenderWindow());

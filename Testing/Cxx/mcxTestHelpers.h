@@ -55,7 +55,8 @@ inline vtkSmartPointer<vtkImageData> MakeVolume(int type, const int dims[3],
 /// A smooth blob with a denser core: a volume with structure at several scales.
 inline double Phantom(int i, int j, int k, const int dims[3])
 {
-  const double x = (i + 0.5) / dims[0] - 0.5, y = (j + 0.5) / dims[1] - 0.5, z = (k + 0.5) / dims[2] - 0.5;
+  const double x = (i + 0.5) / dims[0] - 0.5, y = (j + 0.5) / dims[1] - 0.5,
+               z = (k + 0.5) / dims[2] - 0.5;
   const double r2 = x * x + y * y + z * z;
   double v = r2 < 0.16 ? 100.0 : 0.0;
   if ((x - 0.1) * (x - 0.1) + y * y + (z + 0.05) * (z + 0.05) < 0.01)
@@ -101,8 +102,8 @@ inline double RelativeRMS(vtkImageData* estimate, vtkImageData* reference)
 /// samples: each pixel count is binomial with p = I A / Integral, so
 /// E[sum (I_hat - I)^2] = sum I (Integral / (A M)) (1 - p) <= Integral sum I / (A M).
 /// For perspective views fMax bounds the per-sample weight factor.
-inline double ExpectedRelativeRMS(vtkImageData* reference, double integral, double pixelArea,
-  double samples, double fMax = 1.0)
+inline double ExpectedRelativeRMS(
+  vtkImageData* reference, double integral, double pixelArea, double samples, double fMax = 1.0)
 {
   vtkDataArray* b = LineIntegral(reference);
   const double scale = MaximumAbsolute(b);

@@ -64,7 +64,7 @@ int main()
   std::cout << "peak line integral " << values->GetRange()[1] << " mm, total " << sum * area
             << " mm^3 of " << integral << " mm^3" << std::endl;
   // The image holds every sample; the sphere's diameter is about 40 mm.
-  const bool ok = std::fabs(sum * area - integral) < 1e-9 * integral && values->GetRange()[1] > 30 &&
-    values->GetRange()[1] < 50;
+  const bool ok = std::fabs(sum * area - integral) < 1e-9 * integral &&
+    values->GetRange()[1] > 30 && values->GetRange()[1] < 50;
   return ok ? 0 : 1;
 }

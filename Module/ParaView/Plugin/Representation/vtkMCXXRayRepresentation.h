@@ -16,7 +16,7 @@
 #define vtkMCXXRayRepresentation_h
 
 #include "MonteCarloXRayParaViewModule.h" // for export macro
-#include "vtkNew.h"                        // for members
+#include "vtkNew.h"                       // for members
 #include "vtkPVDataRepresentation.h"
 #include "vtkSmartPointer.h" // for members
 
@@ -34,8 +34,8 @@ public:
   vtkTypeMacro(vtkMCXXRayRepresentation, vtkPVDataRepresentation);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  int ProcessViewRequest(vtkInformationRequestKey* request, vtkInformation* inInfo,
-    vtkInformation* outInfo) override;
+  int ProcessViewRequest(
+    vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
   void SetVisibility(bool visible) override;
 
   /** The TF from data values to g: the colour map's scalar opacity function. */
