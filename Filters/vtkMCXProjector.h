@@ -30,6 +30,7 @@
 #define vtkMCXProjector_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
+#include "vtkMCXPointSampler.h"          // for the sample-count limits
 #include "vtkMCXProjectorBase.h"
 
 class MONTECARLOXRAYFILTERS_EXPORT vtkMCXProjector : public vtkMCXProjectorBase
@@ -45,7 +46,7 @@ public:
    * the sampling strategy (vtkMCXPointSampler::HYBRID, MONTE_CARLO,
    * QUASI_MONTE_CARLO) and the seed. Ignored for a point-cloud input.
    */
-  vtkSetClampMacro(SampleExponent, int, 0, 63);
+  vtkSetClampMacro(SampleExponent, int, 0, vtkMCXPointSampler::LargestSampleExponent);
   vtkGetMacro(SampleExponent, int);
   void SetNumberOfSamples(vtkTypeInt64 n);
   vtkTypeInt64 GetNumberOfSamples();
@@ -69,7 +70,8 @@ public:
 
   ///@{
   /** Upper bound of the exponent the target controls may choose (default 30). */
-  vtkSetClampMacro(MaximumSampleExponent, int, 16, 63);
+  vtkSetClampMacro(MaximumSampleExponent, int, vtkMCXPointSampler::PilotSampleExponent,
+    vtkMCXPointSampler::LargestSampleExponent);
   vtkGetMacro(MaximumSampleExponent, int);
   ///@}
 
