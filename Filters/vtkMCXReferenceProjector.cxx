@@ -4,6 +4,7 @@
 #include "mcxRayIntegrator.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
 
 #include "vtkDoubleArray.h"
@@ -217,9 +218,9 @@ int vtkMCXReferenceProjector::RequestData(
   std::copy(current.begin(), current.end(), values->GetPointer(0));
   vtkFieldData* fd = output->GetFieldData();
   fd->Initialize();
-  mcx::AddFieldValue(fd, "EstimatedRelativeError", change);
+  mcx::AddFieldValue(fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(), change);
   mcx::AddFieldValue(fd, "RaysPerPixelAxis", static_cast<long long>(subdivision));
-  mcx::AddFieldValue(fd, "Integral", integral);
+  mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), integral);
   return 1;
 }
 

@@ -364,16 +364,18 @@ private:
       line << "reference:   " << seconds << " s (exact line integrals, "
            << fields->GetArray("RaysPerPixelAxis")->GetTuple1(0)
            << "^2 rays per pixel, estimated relative error "
-           << fields->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
+           << fields->GetArray(vtkMCXProjectorBase::EstimatedRelativeErrorName())->GetTuple1(0)
+           << ")";
     }
     else
     {
-      const double samples = fields->GetArray("SampleCount")->GetTuple1(0);
+      const double samples = fields->GetArray(vtkMCXProjectorBase::SampleCountName())->GetTuple1(0);
       line << (this->Options.StoredPoints ? "projection:  "
                                           : "sampling + projection (off-line, fused): ")
            << seconds << " s (" << static_cast<long long>(samples) << " samples, "
            << samples / seconds / 1e6 << " M samples/s, estimated relative RMS error "
-           << fields->GetArray("EstimatedRelativeError")->GetTuple1(0) << ")";
+           << fields->GetArray(vtkMCXProjectorBase::EstimatedRelativeErrorName())->GetTuple1(0)
+           << ")";
     }
     this->Log(line.str());
     int size[3];
