@@ -67,7 +67,6 @@ public:
   std::uint64_t Count() const { return this->Counted; }
   std::size_t NumberOfPixels() const { return this->Total.size(); }
   const ProjectionGeometry& GetGeometry() const { return this->Geometry; }
-  bool IsOccluded() const { return this->Accumulator.IsOccluded(); }
 
   /// The fixed-point sums of the image of all Count() points.
   const std::vector<FixedSum>& Sums() const { return this->Total; }

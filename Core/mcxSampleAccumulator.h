@@ -53,7 +53,6 @@ public:
   void SetSplit(std::uint64_t split) { this->Split = split; }
 
   std::size_t NumberOfPixels() const { return this->Pixels; }
-  bool IsOccluded() const { return !this->DepthLimits.empty(); }
 
   /// One thread's image; get it once per chunk of work, inside the executor's For.
   class ThreadImage

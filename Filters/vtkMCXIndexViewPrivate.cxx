@@ -13,6 +13,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPoints.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 
@@ -166,6 +167,17 @@ bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* 
   if (!warning.empty())
   {
     vtkWarningWithObjectMacro(algorithm, << warning);
+  }
+  return true;
+}
+
+bool CheckPointType(vtkObject* reporter, vtkPoints* points)
+{
+  if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+  {
+    vtkErrorWithObjectMacro(reporter,
+      "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
+    return false;
   }
   return true;
 }

@@ -16,6 +16,8 @@ class vtkDataArray;
 class vtkFieldData;
 class vtkImageData;
 class vtkInformation;
+class vtkObject;
+class vtkPoints;
 class vtkPiecewiseFunction;
 
 namespace mcx
@@ -83,6 +85,11 @@ bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* 
 MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(vtkFieldData* fd, const char* name, double value);
 MONTECARLOXRAYFILTERS_EXPORT void AddFieldValue(
   vtkFieldData* fd, const char* name, long long value);
+
+/// True when a cloud's points (null: none) are float or double, the types
+/// the projector and the mapper read; else an error on `reporter`.
+/// (Exported: the Rendering module's mapper checks its input too.)
+MONTECARLOXRAYFILTERS_EXPORT bool CheckPointType(vtkObject* reporter, vtkPoints* points);
 
 /// Support corners (see ComputeSupportCorners) from the pipeline information
 /// of an image (WHOLE_EXTENT, ORIGIN, SPACING and DIRECTION when present).

@@ -67,10 +67,8 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
     return false;
   }
   vtkPoints* points = cloud->GetPoints();
-  if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+  if (!mcx::CheckPointType(self, points))
   {
-    vtkErrorWithObjectMacro(self,
-      "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
     return false;
   }
   projection.SampleWeight = FieldValue(fd, vtkMCXPointSampler::SampleWeightName(), 0.0);

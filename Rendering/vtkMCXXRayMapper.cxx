@@ -235,10 +235,8 @@ struct vtkMCXXRayMapper::vtkInternals
       return nullptr;
     }
     vtkPoints* points = cloud->GetPoints();
-    if (points && points->GetDataType() != VTK_FLOAT && points->GetDataType() != VTK_DOUBLE)
+    if (!mcx::CheckPointType(self, points))
     {
-      vtkErrorWithObjectMacro(self,
-        "Points must be float or double, not " << points->GetData()->GetDataTypeAsString() << ".");
       return nullptr;
     }
     return cloud;
