@@ -4,18 +4,22 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace mcxtest
 {
@@ -114,6 +118,131 @@ inline double ExpectedRelativeRMS(
     squares += (b->GetTuple1(i) / scale) * (b->GetTuple1(i) / scale);
   }
   return std::sqrt(fMax * (integral / scale) * sum / (pixelArea * samples * squares));
+}
+
+/// Display coordinates of a world point in a width x height image of the
+/// camera, from VTK's own composite projection matrix (pixel i covers
+/// [i, i + 1), as in vtkRenderer::WorldToDisplay); false behind the eye. An
+/// independent check of the projectors' camera-to-detector code.
+inline bool DisplayCoordinates(
+  vtkCamera* camera, int width, int height, const double x[3], double display[2])
+{
+  vtkMatrix4x4* m =
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1, 1);
+  const double in[4] = { x[0], x[1], x[2], 1.0 };
+  double out[4];
+  m->MultiplyPoint(in, out);
+  if (!(out[3] > 0))
+  {
+    return false;
+  }
+  display[0] = 0.5 * (out[0] / out[3] + 1.0) * width;
+  display[1] = 0.5 * (out[1] / out[3] + 1.0) * height;
+  return true;
+}
+
+/// The factor f = D^2 s / z^3 by which a perspective view scales a sample's
+/// count (D the focal distance, z the depth and s the distance of the point
+/// from the eye: the Jacobian of the central projection onto the focal
+/// plane, times the ray length per depth); 1 for a parallel view.
+inline double PerspectiveWeight(vtkCamera* camera, const double x[3])
+{
+  if (camera->GetParallelProjection())
+  {
+    return 1.0;
+  }
+  const double* eye = camera->GetPosition();
+  const double* w = camera->GetDirectionOfProjection();
+  const double d[3] = { x[0] - eye[0], x[1] - eye[1], x[2] - eye[2] };
+  const double z = d[0] * w[0] + d[1] * w[1] + d[2] * w[2];
+  const double s = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const double focal = camera->GetDistance();
+  return focal * focal * s / (z * z * z);
+}
+
+/// Second moments of the per-sample weight f over a cloud drawn from the
+/// sampling distribution: MeanSquare = E[f^2 1{seen}], and per pixel
+/// E[f^2 1{in pixel}], with pixels found by DisplayCoordinates and samples
+/// nearer than the camera's near plane unseen. The variance of a pixel
+/// estimate of M samples of weight W / M is at most W^2 E[f^2 1{pixel}] /
+/// (A^2 M) (A the pixel area): the bound a perspective image is held to.
+struct WeightMoments
+{
+  double MeanSquare = 0;
+  std::vector<double> PixelMeanSquare;
+};
+
+inline WeightMoments MeasureWeights(vtkPoints* points, vtkCamera* camera, int width, int height)
+{
+  WeightMoments moments;
+  moments.PixelMeanSquare.assign(static_cast<std::size_t>(width) * height, 0.0);
+  const double* eye = camera->GetPosition();
+  const double* w = camera->GetDirectionOfProjection();
+  const double nearPlane = camera->GetClippingRange()[0];
+  const double n = static_cast<double>(points->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    const double* x = points->GetPoint(i);
+    double display[2];
+    const double depth = (x[0] - eye[0]) * w[0] + (x[1] - eye[1]) * w[1] + (x[2] - eye[2]) * w[2];
+    if ((!camera->GetParallelProjection() && !(depth >= nearPlane)) ||
+      !DisplayCoordinates(camera, width, height, x, display) || !(display[0] >= 0) ||
+      !(display[0] < width) || !(display[1] >= 0) || !(display[1] < height))
+    {
+      continue;
+    }
+    const double f = PerspectiveWeight(camera, x);
+    moments.MeanSquare += f * f / n;
+    moments.PixelMeanSquare[static_cast<std::size_t>(display[1]) * width +
+      static_cast<std::size_t>(display[0])] += f * f / n;
+  }
+  return moments;
+}
+
+/// The expected relative RMS error of an image of M samples whose weights
+/// have the second moment meanSquare = E[f^2 1{seen}]: the pixel variances
+/// W^2 E[f^2 1{pixel}] / (A^2 M) summed over the image (each sample lands in
+/// one pixel), over sum I^2 of the reference. Parallel views have f = 1.
+inline double ExpectedRelativeRMSOfWeights(
+  vtkImageData* reference, double integral, double pixelArea, double samples, double meanSquare)
+{
+  vtkDataArray* b = LineIntegral(reference);
+  const double scale = MaximumAbsolute(b);
+  double squares = 0;
+  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
+  {
+    squares += (b->GetTuple1(i) / scale) * (b->GetTuple1(i) / scale);
+  }
+  const double w = integral / scale / pixelArea;
+  return std::sqrt(w * w * meanSquare / samples / squares);
+}
+
+/// The effective number of independent pixels (sum v)^2 / sum v^2 of pixel
+/// variances v: a sum of n squared errors of variances v has a relative
+/// standard deviation of sqrt(2 / n), so a relative RMS error, or an
+/// estimate of it, has a relative spread of about 1 / sqrt(2 n).
+inline double EffectivePixelCount(const std::vector<double>& variances)
+{
+  double sum = 0, squares = 0;
+  for (double v : variances)
+  {
+    sum += v;
+    squares += v * v;
+  }
+  return squares > 0 ? sum * sum / squares : 0.0;
+}
+
+/// Pixel variances proportional to the reference (a parallel view: a pixel
+/// count is binomial with mean proportional to I).
+inline std::vector<double> ParallelPixelVariances(vtkImageData* reference)
+{
+  vtkDataArray* b = LineIntegral(reference);
+  std::vector<double> variances(static_cast<std::size_t>(b->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
+  {
+    variances[static_cast<std::size_t>(i)] = std::max(0.0, b->GetTuple1(i));
+  }
+  return variances;
 }
 
 /// Counts the executions of an algorithm (its StartEvents).
