@@ -1,0 +1,235 @@
+// The camera-to-detector geometry against VTK's own: the projectors and the
+// mapper share one piece of code (mcx::GeometryFromCamera), so comparing
+// them with one another cannot catch an error in it. Here world points are
+// projected with vtkCamera's composite projection matrix, for parallel and
+// perspective cameras and square and non-square images, and the pixels our
+// code gives must agree.
+#include "mcxTestHelpers.h"
+#include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjector.h"
+#include "vtkMCXReferenceProjector.h"
+
+#include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct View
+{
+  std::string Name;
+  vtkSmartPointer<vtkCamera> Camera;
+  int Width;
+  int Height;
+};
+
+vtkSmartPointer<vtkCamera> NewCamera(bool parallel, bool horizontalAngle)
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetFocalPoint(3, -2, 5);
+  camera->SetPosition(43, 28, 25);
+  camera->SetViewUp(0.2, 0, 1);
+  camera->SetViewAngle(40);
+  camera->SetParallelScale(17);
+  camera->SetParallelProjection(parallel);
+  camera->SetUseHorizontalViewAngle(horizontalAngle);
+  camera->SetClippingRange(1, 500);
+  return camera;
+}
+
+std::vector<View> Views()
+{
+  std::vector<View> views;
+  const int sizes[][2] = { { 64, 64 }, { 200, 160 }, { 160, 200 }, { 37, 91 } };
+  for (bool parallel : { true, false })
+  {
+    for (bool horizontal : { false, true })
+    {
+      for (const auto& size : sizes)
+      {
+        views.push_back({ std::string(parallel ? "parallel " : "perspective ") +
+            (horizontal ? "horizontal angle " : "") + std::to_string(size[0]) + "x" +
+            std::to_string(size[1]),
+          NewCamera(parallel, horizontal), size[0], size[1] });
+      }
+    }
+  }
+  return views;
+}
+
+// Points spread over the view's field around the focal point.
+std::vector<std::array<double, 3>> WorldPoints(vtkCamera* camera)
+{
+  std::vector<std::array<double, 3>> points;
+  const double* focal = camera->GetFocalPoint();
+  for (int k = 0; k < 40; ++k)
+  {
+    // Deterministic, irregular offsets within about 14 of the focal point.
+    const double a = std::sin(1.7 * k + 0.3), b = std::cos(2.3 * k + 1.1), c = std::sin(0.9 * k);
+    points.push_back({ focal[0] + 14 * a, focal[1] + 14 * b, focal[2] + 14 * c });
+  }
+  return points;
+}
+
+// Our continuous pixel coordinates (pixel i centred at i) of a world point.
+bool PixelCoordinates(const mcx::ProjectionGeometry& g, const double x[3], double pixel[2])
+{
+  double ab[2];
+  if (!mcx::ProjectToPlane(g, x, ab[0], ab[1]))
+  {
+    return false;
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    pixel[k] = (ab[k] - g.Origin[k]) / g.Spacing[k];
+  }
+  return true;
+}
+}
+
+TEST(CameraGeometry, PixelsOfWorldPointsAreVTKs)
+{
+  for (const View& view : Views())
+  {
+    mcx::ProjectionGeometry g;
+    const int size[2] = { view.Width, view.Height };
+    ASSERT_EQ("", mcx::GeometryFromCamera(view.Camera, size, 0.0, g)) << view.Name;
+    EXPECT_EQ(view.Width, g.Size[0]);
+    EXPECT_EQ(view.Height, g.Size[1]);
+    for (const auto& x : WorldPoints(view.Camera))
+    {
+      double ours[2], vtk[2];
+      ASSERT_TRUE(PixelCoordinates(g, x.data(), ours)) << view.Name;
+      ASSERT_TRUE(mcxtest::DisplayCoordinates(view.Camera, view.Width, view.Height, x.data(), vtk));
+      // VTK's pixel i covers [i, i + 1); ours is centred at i.
+      EXPECT_NEAR(vtk[0] - 0.5, ours[0], 1e-9 * view.Width) << view.Name;
+      EXPECT_NEAR(vtk[1] - 0.5, ours[1], 1e-9 * view.Height) << view.Name;
+    }
+  }
+}
+
+TEST(CameraGeometry, ProjectorPutsEachPointInVTKsPixel)
+{
+  // A cloud of single points, each far from a pixel border in VTK's
+  // projection: the projector's image must light exactly those pixels, with
+  // the weight of one sample over the pixel area (times the perspective
+  // factor D^2 s / z^3).
+  for (const View& view : Views())
+  {
+    vtkNew<vtkPoints> points;
+    std::vector<std::array<double, 2>> pixels;
+    for (const auto& x : WorldPoints(view.Camera))
+    {
+      double d[2];
+      ASSERT_TRUE(mcxtest::DisplayCoordinates(view.Camera, view.Width, view.Height, x.data(), d));
+      const bool inside = d[0] >= 0 && d[0] < view.Width && d[1] >= 0 && d[1] < view.Height;
+      const bool clear =
+        std::fabs(d[0] - std::round(d[0])) > 1e-3 && std::fabs(d[1] - std::round(d[1])) > 1e-3;
+      if (inside && clear)
+      {
+        points->InsertNextPoint(x.data());
+        pixels.push_back({ std::floor(d[0]), std::floor(d[1]) });
+      }
+    }
+    ASSERT_GT(pixels.size(), 10u) << view.Name;
+    vtkNew<vtkPolyData> cloud;
+    cloud->SetPoints(points);
+    vtkNew<vtkDoubleArray> weight;
+    weight->SetName(vtkMCXPointSampler::SampleWeightName());
+    weight->InsertNextValue(1.0);
+    cloud->GetFieldData()->AddArray(weight);
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputData(cloud);
+    projector->SetCamera(view.Camera);
+    projector->SetImageSize(view.Width, view.Height);
+    projector->Update();
+    vtkImageData* image = projector->GetOutput();
+    ASSERT_EQ(view.Width, image->GetDimensions()[0]) << view.Name;
+    ASSERT_EQ(view.Height, image->GetDimensions()[1]) << view.Name;
+    std::vector<double> expected(static_cast<std::size_t>(view.Width) * view.Height, 0.0);
+    const double area = image->GetSpacing()[0] * image->GetSpacing()[1];
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+    {
+      const std::size_t p = static_cast<std::size_t>(pixels[i][0] + view.Width * pixels[i][1]);
+      expected[p] += mcxtest::PerspectiveWeight(view.Camera, points->GetPoint(i)) / area;
+    }
+    vtkDataArray* values = mcxtest::LineIntegral(image);
+    for (std::size_t p = 0; p < expected.size(); ++p)
+    {
+      ASSERT_NEAR(expected[p], values->GetTuple1(p), 1e-6 * expected[p] + 1e-300)
+        << view.Name << " pixel (" << p % view.Width << ", " << p / view.Width << ")";
+    }
+  }
+}
+
+TEST(CameraGeometry, ReferenceFramesABoxAsVTKProjectsIt)
+{
+  // A uniform box seen along its z axis by a parallel camera of a
+  // non-square window: each pixel is the box's depth times the fraction of
+  // the pixel's S x S rays (at the centres of its subdivision) inside the
+  // box's outline, whose edges lie where VTK's projection puts them.
+  const int dims[3] = { 6, 5, 4 };
+  const double spacing[3] = { 2, 3, 2.5 };
+  const double origin[3] = { 1, -4, 2 };
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims, [](int, int, int) { return 1.0; }, spacing, origin);
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkCamera> camera;
+  camera->SetFocalPoint(6.17, 1.31, 0);
+  camera->SetPosition(6.17, 1.31, 100);
+  camera->SetViewUp(0, 1, 0);
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(13.3);
+  const int width = 50, height = 40;
+  vtkNew<vtkMCXReferenceProjector> reference;
+  reference->SetInputConnection(index->GetOutputPort());
+  reference->SetKernel(vtkMCXPointSampler::BOX);
+  reference->SetCamera(camera);
+  reference->SetImageSize(width, height);
+  reference->Update();
+  // The box kernel fills voxel centres +- half a spacing: x in [0, 12],
+  // y in [-5.5, 9.5], depth 4 * 2.5 = 10.
+  const double low[3] = { 0, -5.5, 2 }, high[3] = { 12, 9.5, 2 };
+  double a[2], b[2];
+  ASSERT_TRUE(mcxtest::DisplayCoordinates(camera, width, height, low, a));
+  ASSERT_TRUE(mcxtest::DisplayCoordinates(camera, width, height, high, b));
+  // The camera looks along -z with y up, so x runs to the right.
+  vtkDataArray* values = mcxtest::LineIntegral(reference->GetOutput());
+  const int rays =
+    static_cast<int>(mcxtest::FieldValue(reference->GetOutput(), "RaysPerPixelAxis"));
+  ASSERT_GE(rays, 3);
+  auto covered = [rays](double lo, double hi, int pixel)
+  {
+    int inside = 0;
+    for (int s = 0; s < rays; ++s)
+    {
+      const double x = pixel + (s + 0.5) / rays;
+      EXPECT_GT(std::min(std::fabs(x - lo), std::fabs(x - hi)), 1e-6) << "a ray on an edge";
+      inside += x > lo && x < hi ? 1 : 0;
+    }
+    return static_cast<double>(inside) / rays;
+  };
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const double expected = 10.0 * covered(a[0], b[0], i) * covered(a[1], b[1], j);
+      ASSERT_NEAR(expected, values->GetTuple1(i + width * j), 1e-9) << "pixel " << i << ", " << j;
+    }
+  }
+}
