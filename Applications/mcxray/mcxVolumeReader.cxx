@@ -91,9 +91,10 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
     image->SetDirectionMatrix(direction);
     image->SetOrigin(origin);
   }
+  // NIfTI-1: scl_slope 0 means no scaling at all (scl_inter ignored).
   const double slope = reader->GetRescaleSlope();
   const double intercept = reader->GetRescaleIntercept();
-  if ((slope != 0.0 && slope != 1.0) || intercept != 0.0)
+  if (slope != 0.0 && (slope != 1.0 || intercept != 0.0))
   {
     vtkDataArray* scalars = image->GetPointData()->GetScalars();
     vtkSmartPointer<vtkDataArray> rescaled =
@@ -102,7 +103,7 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
     rescaled->SetNumberOfTuples(scalars->GetNumberOfTuples());
     for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
     {
-      rescaled->SetTuple1(i, scalars->GetTuple1(i) * (slope == 0.0 ? 1.0 : slope) + intercept);
+      rescaled->SetTuple1(i, scalars->GetTuple1(i) * slope + intercept);
     }
     image->GetPointData()->SetScalars(rescaled);
   }
