@@ -7,12 +7,14 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
+#include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
+#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkStructuredPointsReader.h"
@@ -20,7 +22,10 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cstring>
+#include <vector>
 
 namespace mcxapp
 {
@@ -91,9 +96,10 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
     image->SetDirectionMatrix(direction);
     image->SetOrigin(origin);
   }
+  // NIfTI-1: scl_slope 0 means no scaling at all (scl_inter ignored).
   const double slope = reader->GetRescaleSlope();
   const double intercept = reader->GetRescaleIntercept();
-  if ((slope != 0.0 && slope != 1.0) || intercept != 0.0)
+  if (slope != 0.0 && (slope != 1.0 || intercept != 0.0))
   {
     vtkDataArray* scalars = image->GetPointData()->GetScalars();
     vtkSmartPointer<vtkDataArray> rescaled =
@@ -102,10 +108,98 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
     rescaled->SetNumberOfTuples(scalars->GetNumberOfTuples());
     for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
     {
-      rescaled->SetTuple1(i, scalars->GetTuple1(i) * (slope == 0.0 ? 1.0 : slope) + intercept);
+      rescaled->SetTuple1(i, scalars->GetTuple1(i) * slope + intercept);
     }
     image->GetPointData()->SetScalars(rescaled);
   }
+}
+
+// vtkDICOMImageReader with the order of its files in view (protected in VTK 9.1).
+class DicomSeriesReader : public vtkDICOMImageReader
+{
+public:
+  static DicomSeriesReader* New();
+  vtkTypeMacro(DicomSeriesReader, vtkDICOMImageReader);
+  using vtkDICOMImageReader::GetDICOMFileName;
+  using vtkDICOMImageReader::GetNumberOfDICOMFileNames;
+};
+vtkStandardNewMacro(DicomSeriesReader);
+
+// vtkDICOMImageReader stacks a series' files in descending order along the
+// slice normal and turns each slice's rows bottom-up, but leaves origin 0 and
+// the identity direction: the volume stood reversed in patient space. Put
+// slice k at the k-th ImagePositionPatient along the normal (row x column
+// direction), rows in the files' order, and the series' origin, slice
+// distance and direction (row direction, column direction, normal) on it.
+void ApplyDicomGeometry(DicomSeriesReader* reader, vtkImageData* image)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  const int files = reader->GetNumberOfDICOMFileNames();
+  if (files < 1 || files != dims[2])
+  {
+    return;
+  }
+  std::vector<std::array<double, 3>> positions(static_cast<std::size_t>(files));
+  double u[3] = { 1, 0, 0 }, v[3] = { 0, 1, 0 };
+  for (int f = 0; f < files; ++f)
+  {
+    vtkNew<vtkDICOMImageReader> header;
+    header->SetFileName(reader->GetDICOMFileName(f));
+    header->UpdateInformation();
+    const float* p = header->GetImagePositionPatient();
+    positions[static_cast<std::size_t>(f)] = { p[0], p[1], p[2] };
+    const float* o = header->GetImageOrientationPatient();
+    if (f == 0 && vtkMath::Norm(o) > 0 && vtkMath::Norm(o + 3) > 0)
+    {
+      std::copy(o, o + 3, u);
+      std::copy(o + 3, o + 6, v);
+      vtkMath::Normalize(u);
+      vtkMath::Normalize(v);
+    }
+  }
+  double n[3];
+  vtkMath::Cross(u, v, n);
+  std::vector<double> along(positions.size());
+  std::vector<int> order(positions.size());
+  for (std::size_t f = 0; f < positions.size(); ++f)
+  {
+    along[f] = vtkMath::Dot(positions[f].data(), n);
+    order[f] = static_cast<int>(f);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return along[a] < along[b]; });
+
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  vtkSmartPointer<vtkDataArray> sorted =
+    vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
+  sorted->SetName(scalars->GetName());
+  sorted->SetNumberOfComponents(scalars->GetNumberOfComponents());
+  sorted->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  const std::size_t row = static_cast<std::size_t>(dims[0]) * scalars->GetNumberOfComponents() *
+    scalars->GetDataTypeSize();
+  const auto* from = static_cast<const unsigned char*>(scalars->GetVoidPointer(0));
+  auto* to = static_cast<unsigned char*>(sorted->GetVoidPointer(0));
+  for (int k = 0; k < dims[2]; ++k)
+  {
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      const std::size_t source =
+        static_cast<std::size_t>(order[static_cast<std::size_t>(k)]) * dims[1] + (dims[1] - 1 - j);
+      std::memcpy(to + (static_cast<std::size_t>(k) * dims[1] + j) * row, from + source * row, row);
+    }
+  }
+  image->GetPointData()->SetScalars(sorted);
+
+  const std::array<double, 3>& first = positions[static_cast<std::size_t>(order.front())];
+  image->SetOrigin(first.data());
+  if (files > 1 && along[order.back()] > along[order.front()])
+  {
+    const double* spacing = image->GetSpacing();
+    image->SetSpacing(
+      spacing[0], spacing[1], (along[order.back()] - along[order.front()]) / (files - 1));
+  }
+  const double direction[9] = { u[0], v[0], n[0], u[1], v[1], n[1], u[2], v[2], n[2] };
+  image->SetDirectionMatrix(direction);
 }
 }
 
@@ -129,10 +223,12 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   }
   vtkSmartPointer<vtkAlgorithm> reader;
   vtkNIFTIImageReader* nifti = nullptr;
+  DicomSeriesReader* series = nullptr;
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    auto dicom = vtkSmartPointer<vtkDICOMImageReader>::New();
+    auto dicom = vtkSmartPointer<DicomSeriesReader>::New();
     dicom->SetDirectoryName(path.c_str());
+    series = dicom;
     reader = dicom;
   }
   else if (EndsWith(path, ".vti"))
@@ -195,6 +291,10 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   if (nifti)
   {
     ApplyNiftiHeader(nifti, volume);
+  }
+  if (series)
+  {
+    ApplyDicomGeometry(series, volume);
   }
   return volume;
 }

@@ -1,18 +1,24 @@
 // The mcxray command: real CT files from disk, the axis-view contract,
 // output formats, and clear errors without partial output.
+#include "mcxSharedData.h"
 #include "mcxTestHelpers.h"
 
 #include "vtkNew.h"
+#include "vtkPNGReader.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <sys/wait.h>
 
@@ -72,17 +78,42 @@ void ExpectOneLineError(const std::string& arguments, const std::string& output)
 
 std::string SharedData(const std::string& name)
 {
-  return std::string(MCXRAY_SHARED_DATA_DIR) + "/" + name;
+  return mcxtest::SharedDataPath(name);
+}
+
+void WriteVolume(vtkImageData* volume, const std::string& path)
+{
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(volume);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+}
+
+// A PFM read by the format's definition (not the writer's code): "Pf",
+// width, height, scale (negative: little endian), then float32 rows from
+// the bottom row up, left to right.
+bool ReadPFM(const std::string& path, int& width, int& height, std::vector<float>& values)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  double scale = 0;
+  in >> magic >> width >> height >> scale;
+  in.get(); // the single whitespace after the scale
+  if (magic != "Pf" || scale >= 0 || width <= 0 || height <= 0)
+  {
+    return false;
+  }
+  values.resize(static_cast<std::size_t>(width) * height);
+  in.read(reinterpret_cast<char*>(values.data()),
+    static_cast<std::streamsize>(values.size() * sizeof(float)));
+  return static_cast<bool>(in) && in.peek() == std::char_traits<char>::eof();
 }
 }
 
 TEST(CommandLine, RealCTFromDiskMatchesTheExactReference)
 {
   const std::string input = SharedData("ct_body_totalseg.nii.gz");
-  if (!vtksys::SystemTools::FileExists(input))
-  {
-    GTEST_SKIP() << "shared data not found: " << input;
-  }
+  MCXTEST_NEED_FILE(input);
   const std::string hybrid = Temporary("cli_body_hybrid.vti");
   const std::string exact = Temporary("cli_body_reference.vti");
   const std::string common = " --view +y --tf bone --size 64x64 --quiet --output ";
@@ -146,6 +177,27 @@ TEST(CommandLine, AxisViewsFollowTheContract)
       EXPECT_NEAR(world[second], centre[1], spacing[second] / 2) << view;
       // The plateau value is the voxel's value times its depth along the view axis.
       EXPECT_NEAR(200.0 * spacing[axis], values->GetTuple1(best), 1e-9) << view;
+      // Exactly: the box voxel's footprint is a rectangle whose sides (two of
+      // 2, 0.5, 1.5 mm) are whole numbers of 0.25 mm pixels, so the partly
+      // covered pixels at its two opposite edges add up to one whole pixel,
+      // centred. Hence the pixel-centre centroid is the voxel's centre and
+      // sum x pixel area the voxel's integral, 200 x 2 x 0.5 x 1.5.
+      double total = 0, moment[2] = { 0, 0 };
+      for (vtkIdType p = 0; p < values->GetNumberOfTuples(); ++p)
+      {
+        const double value = values->GetTuple1(p);
+        total += value;
+        moment[0] +=
+          value * (images[sign]->GetOrigin()[0] + (p % width) * images[sign]->GetSpacing()[0]);
+        moment[1] +=
+          value * (images[sign]->GetOrigin()[1] + (p / width) * images[sign]->GetSpacing()[1]);
+      }
+      ASSERT_GT(total, 0.0) << view;
+      EXPECT_NEAR(world[first], moment[0] / total, 1e-9) << view;
+      EXPECT_NEAR(world[second], moment[1] / total, 1e-9) << view;
+      EXPECT_NEAR(
+        300.0, total * images[sign]->GetSpacing()[0] * images[sign]->GetSpacing()[1], 1e-9 * 300)
+        << view;
     }
     vtkDataArray* plus = mcxtest::LineIntegral(images[0]);
     vtkDataArray* minus = mcxtest::LineIntegral(images[1]);
@@ -188,16 +240,104 @@ TEST(CommandLine, BundledCTAndEveryOutputFormat)
       vtksys::SystemTools::GetCurrentWorkingDirectory() + "/cli_default.pfm"));
 }
 
+TEST(CommandLine, PNGAndPFMHoldTheValuesOfTheVTI)
+{
+  // One render (deterministic: fixed seed, results independent of threads)
+  // written as .vti, .pfm and .png. Documented: PNG grey = (v - LO) x top /
+  // (HI - LO), clamped to [0, top] (top 255 or 65535 for --bits 16), window
+  // 0:maximum by default; PFM holds float32(v). Read back with vtkPNGReader
+  // (VTK's row order: row 0 the bottom row) and a PFM reader of the format's
+  // own definition, pixel (i, j) must match the .vti's pixel (i, j): a
+  // flipped row order, a wrong scale or window fails.
+  const std::string common = "render --samples 65535 --size 96x80 --quiet --output ";
+  const std::string vti = Temporary("cli_values.vti");
+  ASSERT_EQ(0, RunCLI(common + vti).Status);
+  auto image = Read(vti);
+  vtkDataArray* v = mcxtest::LineIntegral(image);
+  ASSERT_EQ(96 * 80, v->GetNumberOfTuples());
+  const double maximum = v->GetRange()[1];
+  ASSERT_GT(maximum, 0.0);
+  // The picture is not symmetric top to bottom, so a flip shows.
+  double asymmetry = 0;
+  for (int j = 0; j < 40; ++j)
+  {
+    for (int i = 0; i < 96; ++i)
+    {
+      asymmetry += std::abs(v->GetTuple1(j * 96 + i) - v->GetTuple1((79 - j) * 96 + i));
+    }
+  }
+  ASSERT_GT(asymmetry, 0.01 * maximum * 96 * 80);
+
+  int width = 0, height = 0;
+  std::vector<float> pfm;
+  const std::string pfmPath = Temporary("cli_values.pfm");
+  ASSERT_EQ(0, RunCLI(common + pfmPath).Status);
+  ASSERT_TRUE(ReadPFM(pfmPath, width, height, pfm));
+  ASSERT_EQ(96, width);
+  ASSERT_EQ(80, height);
+  for (vtkIdType p = 0; p < v->GetNumberOfTuples(); ++p)
+  {
+    ASSERT_EQ(static_cast<float>(v->GetTuple1(p)), pfm[static_cast<std::size_t>(p)]) << p;
+  }
+
+  // The window as the command parses it (std::to_string's six decimals).
+  const double low = std::stod(std::to_string(0.25 * maximum));
+  const double high = std::stod(std::to_string(0.75 * maximum));
+  struct Case
+  {
+    std::string Options;
+    double Low, High, Top;
+  };
+  const Case cases[] = {
+    { "", 0, maximum, 255 },
+    { "--bits 16 ", 0, maximum, 65535 },
+    // A window inside the range: both clamps are reached.
+    { "--bits 16 --window " + std::to_string(low) + ":" + std::to_string(high) + " ", low, high,
+      65535 },
+  };
+  for (const Case& c : cases)
+  {
+    const std::string png = Temporary("cli_values.png");
+    Result r =
+      RunCLI("render --samples 65535 --size 96x80 --quiet " + c.Options + "--output " + png);
+    ASSERT_EQ(0, r.Status) << r.Errors;
+    vtkNew<vtkPNGReader> reader;
+    reader->SetFileName(png.c_str());
+    reader->Update();
+    vtkImageData* grey = reader->GetOutput();
+    ASSERT_EQ(96, grey->GetDimensions()[0]) << c.Options;
+    ASSERT_EQ(80, grey->GetDimensions()[1]) << c.Options;
+    ASSERT_EQ(1, grey->GetNumberOfScalarComponents()) << c.Options;
+    ASSERT_EQ(c.Top == 255 ? VTK_UNSIGNED_CHAR : VTK_UNSIGNED_SHORT, grey->GetScalarType());
+    vtkDataArray* g = grey->GetPointData()->GetScalars();
+    int clamped[2] = { 0, 0 };
+    for (vtkIdType p = 0; p < v->GetNumberOfTuples(); ++p)
+    {
+      const double scaled =
+        std::min(c.Top, std::max(0.0, (v->GetTuple1(p) - c.Low) * c.Top / (c.High - c.Low)));
+      // vtkImageShiftScale truncates, after the clamp (its own product may
+      // differ in the last bit: within 1e-9 of a whole number either side).
+      const double grey = g->GetTuple1(p);
+      ASSERT_TRUE(grey >= std::floor(scaled - 1e-9) && grey <= std::floor(scaled + 1e-9))
+        << c.Options << " pixel " << p << ": " << grey << " for " << scaled;
+      clamped[0] += grey == 0 ? 1 : 0;
+      clamped[1] += grey == c.Top ? 1 : 0;
+    }
+    EXPECT_GT(clamped[1], 0) << c.Options;
+    if (c.High < maximum)
+    {
+      EXPECT_GT(clamped[0], 0) << c.Options;
+    }
+  }
+}
+
 TEST(CommandLine, OtherFormatsFromSharedData)
 {
   for (const char* name :
     { "ct_head_headsq_dicom", "mri_head_vtk_small.mhd", "ct_tooth.nrrd", "sci_ironprot.vtk" })
   {
     const std::string input = SharedData(name);
-    if (!vtksys::SystemTools::FileExists(input))
-    {
-      GTEST_SKIP() << "shared data not found: " << input;
-    }
+    MCXTEST_NEED_FILE(input);
     const std::string output = Temporary("cli_format.vti");
     Result r =
       RunCLI("render " + input + " --samples 65535 --size 32x32 --quiet --output " + output);
@@ -303,7 +443,14 @@ TEST(CommandLine, RadiographGeometryAndPhysics)
   EXPECT_GT(range[0], 0.0);
   EXPECT_LE(range[1], 100.0);
   EXPECT_LT(range[0], 100.0);
-  ASSERT_NE(nullptr, image->GetPointData()->GetArray("LineIntegral"));
+  vtkDataArray* lineIntegral = image->GetPointData()->GetArray("LineIntegral");
+  ASSERT_NE(nullptr, lineIntegral);
+  // Beer-Lambert per pixel, from the same run's line integral: I = I0 exp(-L).
+  for (vtkIdType p = 0; p < intensity->GetNumberOfTuples(); ++p)
+  {
+    ASSERT_NEAR(100.0 * std::exp(-lineIntegral->GetTuple1(p)), intensity->GetTuple1(p), 1e-12 * 100)
+      << p;
+  }
 
   // Noise and the negative log: seeded, so the same command gives the same file.
   const std::string noisy[2] = { Temporary("cli_noisy_a.vti"), Temporary("cli_noisy_b.vti") };
@@ -325,4 +472,91 @@ TEST(CommandLine, RadiographGeometryAndPhysics)
   {
     ASSERT_EQ(a->GetTuple1(p), b->GetTuple1(p)) << p;
   }
+}
+
+TEST(CommandLine, PhotonsGivePoissonCounts)
+{
+  // --photons N --i0 I0: I = I0 k / N, k ~ Poisson(lambda), lambda = N exp(-L)
+  // with L the run's own LineIntegral. So k is a whole number, and
+  // z = (k - lambda)^2 / lambda has mean 1 and variance 2 + 1 / lambda
+  // (Poisson: E(k - lambda)^4 = lambda + 3 lambda^2). The n pixels are
+  // independent, so their mean z lies within 5 sqrt(sum(2 + 1/lambda)) / n
+  // of 1. mu = 0.002 per mm keeps L below about 5, lambda above 6000.
+  const double photons = 1e6, i0 = 3;
+  const std::string output = Temporary("cli_photons.vti");
+  Result r = RunCLI("render --tf mu=0.002 --view +x --size 64x64 --samples 65535 --photons 1e6 "
+                    "--i0 3 --noise-seed 5 --quiet --output " +
+    output);
+  ASSERT_EQ(0, r.Status) << r.Errors;
+  auto image = Read(output);
+  vtkDataArray* intensity = image->GetPointData()->GetArray("Intensity");
+  vtkDataArray* lineIntegral = image->GetPointData()->GetArray("LineIntegral");
+  ASSERT_NE(nullptr, intensity);
+  ASSERT_NE(nullptr, lineIntegral);
+  const vtkIdType n = intensity->GetNumberOfTuples();
+  ASSERT_EQ(64 * 64, n);
+  ASSERT_GT(lineIntegral->GetRange()[1], 1.0); // the CT attenuates
+  double sum = 0, variance = 0;
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    const double k = intensity->GetTuple1(p) * photons / i0;
+    ASSERT_NEAR(std::round(k), k, 1e-6 * k) << "pixel " << p << ": counts are whole photons";
+    const double lambda = photons * std::exp(-lineIntegral->GetTuple1(p));
+    sum += (k - lambda) * (k - lambda) / lambda;
+    variance += 2 + 1 / lambda;
+  }
+  EXPECT_NEAR(1.0, sum / n, 5 * std::sqrt(variance) / n);
+}
+
+TEST(CommandLine, GantryTurnsTheSourceAboutZ)
+{
+  // A volume without symmetry about z, on a grid that a quarter turn about
+  // the z axis through its centre maps onto itself (9 x 9 voxels of 2 mm
+  // centred on x = y = 0). Gantry +90 degrees puts the source on +y (turned
+  // counterclockwise about +z from +x): the image of V then equals the
+  // gantry-0 image of V turned by -90 degrees, R(V)(x, y) = V(-y, x), i.e.
+  // voxel (i, j) of R(V) is voxel (8 - j, i) of V. Exact reference method.
+  const int dims[3] = { 9, 9, 5 };
+  const double spacing[3] = { 2, 2, 2 };
+  const double origin[3] = { -8, -8, -4 };
+  auto value = [](int i, int j, int k)
+  { return (i > 5 && j < 3 ? 400.0 : 0.0) + 40.0 * ((i + 2 * j + 3 * k) % 5); };
+  const std::string inputs[3] = { Temporary("cli_gantry_v.vti"), Temporary("cli_gantry_r.vti"),
+    Temporary("cli_gantry_w.vti") };
+  WriteVolume(mcxtest::MakeVolume(VTK_SHORT, dims, value, spacing, origin), inputs[0]);
+  WriteVolume(
+    mcxtest::MakeVolume(
+      VTK_SHORT, dims, [&](int i, int j, int k) { return value(8 - j, i, k); }, spacing, origin),
+    inputs[1]);
+  // Turned the wrong way (what a gantry turning clockwise would show).
+  WriteVolume(
+    mcxtest::MakeVolume(
+      VTK_SHORT, dims, [&](int i, int j, int k) { return value(j, 8 - i, k); }, spacing, origin),
+    inputs[2]);
+  auto render = [&](const std::string& input, int gantry, const std::string& name)
+  {
+    const std::string output = Temporary(name);
+    Result r = RunCLI("render " + input + " --sad 100 --sid 150 --detector 24x24 --pitch 1.5 " +
+      "--gantry " + std::to_string(gantry) + " --method reference --quiet --output " + output);
+    EXPECT_EQ(0, r.Status) << r.Errors;
+    return Read(output);
+  };
+  auto turned = render(inputs[0], 90, "cli_gantry_90.vti");
+  auto expected = render(inputs[1], 0, "cli_gantry_r0.vti");
+  auto straight = render(inputs[0], 0, "cli_gantry_0.vti");
+  auto wrongWay = render(inputs[2], 0, "cli_gantry_w0.vti");
+  vtkDataArray* a = mcxtest::LineIntegral(turned);
+  vtkDataArray* b = mcxtest::LineIntegral(expected);
+  ASSERT_EQ(24 * 24, a->GetNumberOfTuples());
+  ASSERT_EQ(24 * 24, b->GetNumberOfTuples());
+  const double peak = b->GetRange()[1];
+  ASSERT_GT(peak, 0.0);
+  for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)
+  {
+    ASSERT_NEAR(b->GetTuple1(p), a->GetTuple1(p), 1e-9 * peak) << "pixel " << p;
+  }
+  // The check has power: ignoring --gantry, or turning the other way,
+  // would give these images, far from the expected one.
+  EXPECT_GT(mcxtest::RelativeRMS(straight, expected), 0.1);
+  EXPECT_GT(mcxtest::RelativeRMS(wrongWay, expected), 0.1);
 }

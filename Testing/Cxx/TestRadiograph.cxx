@@ -1,6 +1,7 @@
 // X-ray physics on demand: the HU-to-mu transfer function, the radiograph
 // geometry, Beer-Lambert attenuation, Poisson noise and the negative log,
 // each against an analytic expectation; and a real CT against plastimatch.
+#include "mcxSharedData.h"
 #include "mcxTestHelpers.h"
 #include "vtkMCXAttenuationFunction.h"
 #include "vtkMCXDensityIndex.h"
@@ -273,10 +274,18 @@ TEST(Radiograph, NegativeLogGivesBackTheLineIntegral)
   EXPECT_NEAR(
     2.0 + 0.5 / lambda, mean, 5 * std::sqrt(1 / lambda / (256.0 * 256.0)) + 1 / (lambda * lambda));
   EXPECT_NEAR(1 / lambda, variance, 0.05 / lambda);
-  // No photons at all: half a photon, a finite value.
-  physics->SetPhotonsPerPixel(1e-9);
-  auto dark = Apply(physics, ConstantLineIntegral(4, 4, 50.0));
-  EXPECT_TRUE(std::isfinite(dark->GetPointData()->GetArray("Attenuation")->GetTuple1(0)));
+  // No photons at all: half a photon, -ln(0.5 / N) (the mean N exp(-50) is
+  // below 1e-19: every pixel counts none).
+  for (const double photons : { 1e-9, 100.0 })
+  {
+    physics->SetPhotonsPerPixel(photons);
+    auto dark = Apply(physics, ConstantLineIntegral(4, 4, 50.0));
+    vtkDataArray* values = dark->GetPointData()->GetArray("Attenuation");
+    for (vtkIdType p = 0; p < values->GetNumberOfTuples(); ++p)
+    {
+      EXPECT_DOUBLE_EQ(-std::log(0.5 / photons), values->GetTuple1(p)) << photons << ", " << p;
+    }
+  }
 }
 
 TEST(Radiograph, ConeBeamViewOfACubeHasTheExpectedLineIntegrals)
@@ -302,15 +311,58 @@ TEST(Radiograph, ConeBeamViewOfACubeHasTheExpectedLineIntegrals)
   { return values->GetTuple1(static_cast<vtkIdType>(row) * 101 + column); };
   // The central ray integrates the 41 voxels it crosses: mu_water x 41 mm.
   EXPECT_NEAR(MuWater * 41, at(centre[0], centre[1]), 1e-6 * MuWater * 41);
-  // Magnification: the support (+-21 mm) seen from 979 mm spans +-21 x 1500 / 979 = 32.2 mm on the
-  // detector, 40.2 pixels of 0.8 mm: a pixel from 40.5 on is empty, one at 36 is not.
+  // Magnification: the support (+-21 mm) seen from 979 mm (its front face)
+  // spans +-21 x 1500 / 979 = 32.18 mm on the detector, 40.22 pixels of
+  // 0.8 mm: pixel 40 (39.5 .. 40.5, its centre ray inside) is not empty, 41
+  // is. A parallel beam (the isocentre's magnification at every depth) puts
+  // the edge at 21 x 1.5 / 0.8 = 39.38 pixels, pixel 40 empty.
   for (int d : { -1, 1 })
   {
     EXPECT_EQ(0.0, at(centre[0] + d * 41, centre[1]));
+    EXPECT_GT(at(centre[0] + d * 40, centre[1]), 0.0);
     EXPECT_GT(at(centre[0] + d * 36, centre[1]), 0.0);
     EXPECT_EQ(0.0, at(centre[0], centre[1] + d * 41));
+    EXPECT_GT(at(centre[0], centre[1] + d * 40), 0.0);
     EXPECT_GT(at(centre[0], centre[1] + d * 36), 0.0);
   }
+
+  // Two cubes of 21 voxels (support +-11 mm) on the central ray at different
+  // depths, through the central detector row alone (a 101 x 1 image: the
+  // same pixels as row 50, checked first). Near the source (centre x = 307,
+  // front face 682 mm from it) the edge is at 11 x 1500 / 682 / 0.8 = 30.24
+  // pixels; far (x = -280, 1269 mm) at 16.25. A parallel beam would put both
+  // at 20.6.
+  vtkNew<vtkDoubleArray> full; // the 101 x 101 image, kept through the updates
+  full->DeepCopy(values);
+  values = full;
+  exact->SetImageSize(101, 1);
+  exact->Update();
+  vtkDataArray* row = mcxtest::LineIntegral(exact->GetOutput());
+  for (int column = 0; column < 101; ++column)
+  {
+    ASSERT_NEAR(at(column, centre[1]), row->GetTuple1(column), 1e-12) << column;
+  }
+  const struct
+  {
+    double X;
+    int Edge;
+  } depths[2] = { { 307, 30 }, { -280, 16 } };
+  for (const auto& depth : depths)
+  {
+    const int side[3] = { 21, 21, 21 };
+    const double unit[3] = { 1, 1, 1 };
+    const double corner[3] = { depth.X - 10, -10, -10 };
+    index->SetInputData(mcxtest::MakeVolume(
+      VTK_SHORT, side, [](int, int, int) { return 0.0; }, unit, corner));
+    exact->Update();
+    row = mcxtest::LineIntegral(exact->GetOutput());
+    for (int d : { -1, 1 })
+    {
+      EXPECT_GT(row->GetTuple1(centre[0] + d * depth.Edge), 0.0) << depth.X;
+      EXPECT_EQ(0.0, row->GetTuple1(centre[0] + d * (depth.Edge + 1))) << depth.X;
+    }
+  }
+  exact->SetImageSize(101, 101);
 
   // Orientation: a block at +y shows right of centre at gantry 0 (columns
   // along +y), a block at +z above (rows along +z).
@@ -346,12 +398,9 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   // traces one ray per pixel centre through constant voxels, we average the
   // trilinear field over each pixel, so the images differ by modelling;
   // the accuracy report measures 1.9 % at 256^2. Stated bound: 3 %.
-  const std::string path = MCXRAY_SHARED_DATA_DIR "/ct_body_totalseg.nii.gz";
-  if (!vtksys::SystemTools::FileExists(path) ||
-    std::system("plastimatch --version > /dev/null 2>&1") != 0)
-  {
-    GTEST_SKIP() << "needs " << path << " and plastimatch";
-  }
+  const std::string path = mcxtest::SharedDataPath("ct_body_totalseg.nii.gz");
+  MCXTEST_NEED_FILE(path);
+  MCXTEST_NEED(std::system("plastimatch --version > /dev/null 2>&1") == 0, "plastimatch");
   std::string error;
   vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
   ASSERT_TRUE(volume) << error;

@@ -1,0 +1,42 @@
+# cmake -DDIR=MCXRAY_DATA_DIR -DNAME=FILE -DREQUIRED=ON|OFF -P run_with_shared_data.cmake -- COMMAND...
+# Runs COMMAND, with @DATA@ in it replaced by the file's path, when the file
+# exists: NAME in $ENV{MCXRAY_DATA_DIR} if that is set (as the C++ tests
+# read it), else in DIR. Without it the test fails when the data are
+# required (REQUIRED, or CI=true or MCXRAY_DATA_DIR in the environment) and
+# prints MCXRAY_SKIPPED otherwise, which the test's SKIP_REGULAR_EXPRESSION
+# reports as skipped rather than passed.
+cmake_minimum_required(VERSION 3.16)
+set(command)
+set(after_separator FALSE)
+math(EXPR last "${CMAKE_ARGC} - 1")
+foreach (i RANGE 1 ${last})
+  if (after_separator)
+    list(APPEND command "${CMAKE_ARGV${i}}")
+  elseif ("${CMAKE_ARGV${i}}" STREQUAL "--")
+    set(after_separator TRUE)
+  endif ()
+endforeach ()
+set(DATA "${DIR}/${NAME}")
+if (DEFINED ENV{MCXRAY_DATA_DIR} AND NOT "$ENV{MCXRAY_DATA_DIR}" STREQUAL "")
+  set(DATA "$ENV{MCXRAY_DATA_DIR}/${NAME}")
+endif ()
+string(REPLACE "@DATA@" "${DATA}" command "${command}")
+if (NOT EXISTS "${DATA}")
+  set(why)
+  if ("$ENV{CI}" STREQUAL "true")
+    set(why "CI=true")
+  elseif (DEFINED ENV{MCXRAY_DATA_DIR} AND NOT "$ENV{MCXRAY_DATA_DIR}" STREQUAL "")
+    set(why "the environment sets MCXRAY_DATA_DIR")
+  elseif (REQUIRED)
+    set(why "the build requires it (MCXRAY_REQUIRE_DATA=ON)")
+  endif ()
+  if (why)
+    message(FATAL_ERROR "missing: ${DATA} (required: ${why}; see README.md, Testing)")
+  endif ()
+  message("MCXRAY_SKIPPED: missing ${DATA} (skipped here; it fails in CI or when MCXRAY_DATA_DIR is given)")
+  return ()
+endif ()
+execute_process(COMMAND ${command} RESULT_VARIABLE status)
+if (NOT status EQUAL 0)
+  message(FATAL_ERROR "exit status ${status}: ${command}")
+endif ()
