@@ -1,5 +1,6 @@
 """The Python package: import, pipelines on the bundled CT, NumPy values in
 physical units, and errors as exceptions or VTK errors, not crashes."""
+import math
 import os
 import unittest
 
@@ -18,6 +19,13 @@ def bundled_ct():
     reader.SetFileName(os.path.join(DATA, "ct_head_headsq.vti"))
     reader.Update()
     return reader.GetOutput()
+
+
+def pixels_by_vtk_index(image, name="LineIntegral"):
+    """Rows of pixel values read one by one through vtkImageData::ComputePointId."""
+    array = image.GetPointData().GetArray(name)
+    width, height = image.GetDimensions()[:2]
+    return [[array.GetTuple1(image.ComputePointId([i, j, 0])) for i in range(width)] for j in range(height)]
 
 
 class Package(unittest.TestCase):
@@ -61,11 +69,57 @@ class Pipeline(unittest.TestCase):
         integral = image.GetFieldData().GetArray("Integral").GetTuple1(0)
         spacing = image.GetSpacing()
         self.assertAlmostEqual(1.0, values.sum() * spacing[0] * spacing[1] / integral, places=9)
-        # Row j of the array is image row j (VTK order): compare one pixel.
-        scalars = image.GetPointData().GetArray("LineIntegral")
-        self.assertEqual(scalars.GetTuple1(5 * 64 + 7), values[5, 7])
+        # values[j, i] is pixel (i, j) of the VTK image (row j = VTK row j),
+        # for every pixel: ComputePointId is VTK's own layout, independent of
+        # the reshape. A transposed or flipped array fails, since the image
+        # is not symmetric under either flip (checked, so that this can fail).
+        self.assertEqual(values.tolist(), pixels_by_vtk_index(image))
+        self.assertGreater(values.max(), 0.0)
+        for flipped in (numpy.flipud(values), numpy.fliplr(values)):
+            self.assertFalse(numpy.array_equal(values, flipped))
         estimate = image.GetFieldData().GetArray("EstimatedRelativeError").GetTuple1(0)
         self.assertTrue(0 < estimate < 0.2)
+
+    def test_drr_is_within_the_monte_carlo_bound_of_the_exact_projector(self):
+        # Pure Monte Carlo: M independent samples, each of weight W = I / M,
+        # lands in pixel p with probability q_p, so the pixel value
+        # v_p = W n_p / A (A: pixel area) has n_p ~ Binomial(M, q_p) and
+        # E v_p = r_p, the exact pixel mean of vtkMCXReferenceProjector, and
+        # Var v_p = (W / A)^2 M q_p (1 - q_p) <= (W / A) r_p. Hence
+        # E sum_p (v_p - r_p)^2 <= B = (W / A) sum_p r_p; 2 B leaves many
+        # standard deviations for a sum over ~10^3 covered pixels (seeds 0-5
+        # measured 0.95 B - 1.13 B). The reference's own error e (its last
+        # relative RMS change) adds e ||r|| by the triangle inequality.
+        projector = mcxray.vtkMCXProjector()
+        projector.SetInputConnection(self.index.GetOutputPort())
+        projector.SetTransferFunction(self.tf)
+        projector.SetStrategy(mcxray.vtkMCXPointSampler.MONTE_CARLO)
+        projector.SetSeed(3)
+        projector.SetSampleExponent(20)
+        projector.SetImageSize(64, 48)
+        projector.Update()
+        reference = mcxray.vtkMCXReferenceProjector()
+        reference.SetInputConnection(self.index.GetOutputPort())
+        reference.SetTransferFunction(self.tf)
+        reference.SetImageSize(64, 48)
+        reference.SetMaximumSubdivision(9)
+        reference.Update()
+        mc_image, exact_image = projector.GetOutput(), reference.GetOutput()
+        self.assertEqual(mc_image.GetOrigin(), exact_image.GetOrigin())
+        self.assertEqual(mc_image.GetSpacing(), exact_image.GetSpacing())
+        values = numpy.array(pixels_by_vtk_index(mc_image))
+        exact = numpy.array(pixels_by_vtk_index(exact_image))
+        self.assertTrue((mcxray.image_to_numpy(exact_image) == exact).all())
+        spacing = mc_image.GetSpacing()
+        weight = mc_image.GetFieldData().GetArray("SampleWeight").GetTuple1(0)
+        bound = weight / (spacing[0] * spacing[1]) * exact.sum()
+        exact_error = exact_image.GetFieldData().GetArray("EstimatedRelativeError").GetTuple1(0)
+        self.assertLess(exact_error, 0.01)
+        allowed = (math.sqrt(2 * bound) + exact_error * numpy.linalg.norm(exact)) ** 2
+        self.assertLess(((values - exact) ** 2).sum(), allowed)
+        # The comparison has the power to see a mirrored or dimmed image.
+        for wrong in (numpy.flipud(exact), numpy.fliplr(exact), 0.8 * exact):
+            self.assertGreater(((values - wrong) ** 2).sum(), 4 * allowed)
 
     def test_tf_edit_resamples_without_reindexing(self):
         runs = {"index": 0, "sampler": 0}
