@@ -110,6 +110,54 @@ public:
     return true;
   }
 
+  /// Continuous pixel coordinates (pixel i covers [i, i + 1)) of a point,
+  /// its perspective weight f (1 in parallel views) and its inverse depth
+  /// 1 / z (0 in parallel views), whether or not it falls in the image;
+  /// false when it lies nearer than the near plane (perspective).
+  bool Locate(const double p[3], double& fx, double& fy, double& f, double& inverseDepth) const
+  {
+    const double* m = this->Rows;
+    if (!this->Perspective)
+    {
+      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->PixelOffset[0];
+      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->PixelOffset[1];
+      f = 1.0;
+      inverseDepth = 0.0;
+      return std::isfinite(fx) && std::isfinite(fy);
+    }
+    const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[0];
+    const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Offset[1];
+    const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Offset[2];
+    if (!(z >= this->Near))
+    {
+      return false;
+    }
+    inverseDepth = 1.0 / z;
+    fx = u * inverseDepth * this->PixelScale[0] + this->PixelOffset[0];
+    fy = v * inverseDepth * this->PixelScale[1] + this->PixelOffset[1];
+    const double s = std::sqrt(u * u + v * v + z * z);
+    f = this->FocalSquared * s * inverseDepth * inverseDepth * inverseDepth;
+    return std::isfinite(fx) && std::isfinite(fy);
+  }
+
+  /// The source frame's unit steps (voxel edges) in pixels on the detector:
+  /// exact in parallel views; in perspective views at depth 1, to be scaled
+  /// by 1 / z (the central direction's projection).
+  void PixelAxes(double axes[3][2]) const
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 2; ++a)
+      {
+        axes[k][a] = this->Rows[3 * a + k] * (this->Perspective ? this->PixelScale[a] : 1.0);
+      }
+    }
+  }
+
+  bool IsPerspective() const { return this->Perspective; }
+  int GetWidth() const { return this->Width; }
+  int GetHeight() const { return this->Height; }
+
   /// Distance of a point from the eye along the viewing direction W.
   double Depth(const double p[3]) const
   {

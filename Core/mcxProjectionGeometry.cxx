@@ -76,6 +76,26 @@ void ComputeSupportCorners(const int extent[6], const double origin[3], const do
   }
 }
 
+void SupportDepthRange(const ProjectionGeometry& g, const double corners[24], double range[2])
+{
+  range[0] = range[1] = 0.0;
+  if (!g.Perspective)
+  {
+    return;
+  }
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int c = 0; c < 8; ++c)
+  {
+    const double d[3] = { corners[3 * c] - g.Eye[0], corners[3 * c + 1] - g.Eye[1],
+      corners[3 * c + 2] - g.Eye[2] };
+    const double z = Dot(d, g.W);
+    lo = std::min(lo, z);
+    hi = std::max(hi, z);
+  }
+  range[0] = std::max(lo, g.NearDistance);
+  range[1] = std::max(hi, range[0]);
+}
+
 bool ProjectToPlane(const ProjectionGeometry& g, const double x[3], double& a, double& b)
 {
   if (!g.Perspective)

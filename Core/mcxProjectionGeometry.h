@@ -45,6 +45,12 @@ struct ProjectionGeometry
 void ComputeSupportCorners(const int extent[6], const double origin[3], const double spacing[3],
   const double direction[9], double kernelRadius, double corners[24]);
 
+/// The depths (along W, from the eye) of the corners' box as seen from the
+/// eye: [nearest, farthest], the nearest at least the near distance; both 0
+/// in a parallel view.
+void SupportDepthRange(
+  const ProjectionGeometry& geometry, const double corners[24], double range[2]);
+
 /// Plane coordinates of a world point; false when it is not in front of the
 /// eye (perspective) -- then (a, b) are left unchanged.
 bool ProjectToPlane(const ProjectionGeometry& geometry, const double x[3], double& a, double& b);

@@ -8,7 +8,8 @@
 // voxels share one weight, u picks the voxel by its rank. The sub-voxel offset
 // is drawn from the normalised reconstruction kernel: pseudo-randomly (Hybrid,
 // MonteCarlo) or from Halton bases 3, 5, 7 with a seeded random shift
-// (QuasiMonteCarlo). Everything about sample k depends on (seed, k) alone, so
+// (QuasiMonteCarlo), or left out for the footprint deposit (Centres).
+// Everything about sample k depends on (seed, k) alone, so
 // the result is the same for any split of the work among threads, and the
 // first 2^j - 1 Hybrid samples of a run are exactly a 2^j - 1 sample run.
 #ifndef mcxSampleGenerator_h
@@ -90,6 +91,9 @@ struct SampleSource
   Kernel Reconstruction = Kernel::Tent;
   std::uint64_t Seed = 0;
   unsigned Exponent = 0; // M = 2^Exponent - 1
+  /// Emit voxel centres, without the kernel offset (for the footprint
+  /// deposit, which spreads the kernel itself).
+  bool Centres = false;
 
   std::uint64_t NumberOfSamples() const { return SampleCount(this->Exponent); }
 
@@ -262,7 +266,14 @@ private:
     std::uint64_t voxel[3];
     this->Decoder.Decode(this->SortedIds[first + rank], voxel[0], voxel[1], voxel[2]);
     double p[3];
-    if (this->Method == Strategy::QuasiMonteCarlo)
+    if (this->Centres)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        p[a] = static_cast<double>(voxel[a]);
+      }
+    }
+    else if (this->Method == Strategy::QuasiMonteCarlo)
     {
       // Halton bases 3, 5, 7 with a Cranley-Patterson rotation from the seed.
       static const unsigned bases[3] = { 3, 5, 7 };

@@ -42,6 +42,11 @@ public:
     return *this;
   }
   friend PortableUInt128 operator+(PortableUInt128 a, const PortableUInt128& b) { return a += b; }
+  /// Modulo 2^128, as the built-in type.
+  friend PortableUInt128 operator-(const PortableUInt128& a, const PortableUInt128& b)
+  {
+    return PortableUInt128(a.High - b.High - (a.Low < b.Low ? 1 : 0), a.Low - b.Low);
+  }
 
   friend constexpr PortableUInt128 operator<<(const PortableUInt128& a, unsigned shift)
   {

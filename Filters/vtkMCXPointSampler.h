@@ -51,6 +51,13 @@ public:
     BOX = 1   ///< nearest-neighbour reconstruction
   };
 
+  /** How a projector spreads a sample over the image (see vtkMCXProjector::SetDeposit). */
+  enum DepositType
+  {
+    POINT = 0,    ///< one count where the kernel's random offset lands (the paper's)
+    FOOTPRINT = 1 ///< the voxel's kernel footprint over every pixel it reaches
+  };
+
   ///@{
   /**
    * The sample-count limits of every class of the module, as exponents m of

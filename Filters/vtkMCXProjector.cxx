@@ -126,7 +126,7 @@ public:
     Accumulator accumulator;
     double origin[3], matrix[9];
     this->View.SourceToWorld(origin, matrix);
-    accumulator.Reset(this->Geometry, origin, matrix);
+    accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), this->Settings());
     accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
     if (m > 0)
     {
@@ -141,8 +141,25 @@ public:
   mcx::Strategy Method = mcx::Strategy::Hybrid;
   mcx::Kernel Reconstruction = mcx::Kernel::Tent;
   std::uint64_t Seed = 0;
+  mcx::Deposit DepositMode = mcx::Deposit::Point;
+  double FootprintReach = 16.0;
 
 private:
+  // The deposit, with the support's depth range (perspective footprints).
+  mcx::DepositSettings Settings() const
+  {
+    mcx::DepositSettings settings;
+    settings.Mode = this->DepositMode;
+    settings.Reconstruction = this->Reconstruction;
+    settings.Seed = this->Seed;
+    settings.Reach = this->FootprintReach;
+    double corners[24];
+    mcx::ComputeSupportCorners(this->View.Extent, this->View.Origin, this->View.Spacing,
+      this->View.Direction, mcx::KernelRadius(this->Reconstruction), corners);
+    mcx::SupportDepthRange(this->Geometry, corners, settings.Depths);
+    return settings;
+  }
+
   template <typename IdType>
   bool Generate(
     unsigned m, Accumulator& accumulator, double progressBegin, double progressEnd) const
@@ -152,6 +169,7 @@ private:
     source.Reconstruction = this->Reconstruction;
     source.Seed = this->Seed;
     source.Exponent = m;
+    source.Centres = this->DepositMode == mcx::Deposit::Footprint;
     return mcx::BatchedFor(this->Self, source.NumberOfSamples(), progressBegin, progressEnd,
       [&](std::uint64_t b, std::uint64_t e)
       {
@@ -275,6 +293,8 @@ int vtkMCXProjector::RequestData(
     sampler.Method = static_cast<mcx::Strategy>(this->Strategy);
     sampler.Reconstruction = static_cast<mcx::Kernel>(this->Kernel);
     sampler.Seed = static_cast<std::uint64_t>(this->Seed);
+    sampler.DepositMode = static_cast<mcx::Deposit>(this->Deposit);
+    sampler.FootprintReach = this->FootprintReach;
     const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
     const bool targeted = this->TargetRelativeError > 0 || this->TargetQuantizationLevels > 0;
     projection = m > 0 && targeted
@@ -297,6 +317,8 @@ void vtkMCXProjector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleExponent: " << this->SampleExponent << "\n";
   os << indent << "Strategy: " << this->Strategy << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Deposit: " << this->Deposit << "\n";
+  os << indent << "FootprintReach: " << this->FootprintReach << "\n";
   os << indent << "TargetRelativeError: " << this->TargetRelativeError << "\n";
   os << indent << "TargetQuantizationLevels: " << this->TargetQuantizationLevels << "\n";
   os << indent << "MaximumSampleExponent: " << this->MaximumSampleExponent << "\n";

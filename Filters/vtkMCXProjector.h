@@ -16,6 +16,16 @@
  * the samples (for Hybrid, the coarser Halton run) and of the second half
  * (NaN below 3 samples).
  *
+ * Deposit (index input): with FOOTPRINT each sample adds its voxel's
+ * reconstruction kernel, integrated along the view and averaged over each
+ * pixel's area, to every pixel the kernel reaches (Core/mcxFootprint.h);
+ * nothing random is left in the offset, and the error falls about as M^-0.9
+ * instead of M^-1/2. A kernel reaching more than FootprintReach pixels along
+ * a projected voxel axis is split into a random coarse part and a deposited
+ * fine part, which bounds a sample's cost and keeps the estimate unbiased.
+ * POINT (the default) is the paper's estimator: one count where the sample's
+ * random offset lands. The estimand is the same.
+ *
  * Target-accuracy controls (index input): with TargetRelativeError or
  * TargetQuantizationLevels set, a pilot run (at least 2^16 - 1 samples, about
  * 4 per pixel) measures the image and the sample count is chosen to meet the
@@ -57,6 +67,19 @@ public:
   ///@}
 
   ///@{
+  /**
+   * vtkMCXPointSampler::POINT (default) or FOOTPRINT, and the footprint's
+   * reach in pixels per projected voxel axis (default 16, 0.5 to 32).
+   */
+  vtkSetClampMacro(Deposit, int, vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT);
+  vtkGetMacro(Deposit, int);
+  void SetDepositToPoint() { this->SetDeposit(vtkMCXPointSampler::POINT); }
+  void SetDepositToFootprint() { this->SetDeposit(vtkMCXPointSampler::FOOTPRINT); }
+  vtkSetClampMacro(FootprintReach, double, 0.5, 32.0);
+  vtkGetMacro(FootprintReach, double);
+  ///@}
+
+  ///@{
   /** Relative RMS error to reach (0, the default: use SampleExponent). */
   vtkSetClampMacro(TargetRelativeError, double, 0.0, 1.0);
   vtkGetMacro(TargetRelativeError, double);
@@ -85,6 +108,8 @@ protected:
   int SampleExponent = 24;
   int Strategy = 0;
   vtkTypeInt64 Seed = 0;
+  int Deposit = vtkMCXPointSampler::POINT;
+  double FootprintReach = 16.0;
   double TargetRelativeError = 0.0;
   int TargetQuantizationLevels = 0;
   int MaximumSampleExponent = 30;
