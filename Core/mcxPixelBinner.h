@@ -140,16 +140,19 @@ public:
     return std::isfinite(fx) && std::isfinite(fy);
   }
 
-  /// The source frame's unit steps (voxel edges) in pixels on the detector:
-  /// exact in parallel views; in perspective views at depth 1, to be scaled
-  /// by 1 / z (the central direction's projection).
-  void PixelAxes(double axes[3][2]) const
+  /// A voxel's edges (given in the source frame: row-major, column k is edge
+  /// k) in pixels on the detector: exact in parallel views; in perspective
+  /// views at depth 1, to be scaled by 1 / z (the central direction's
+  /// projection).
+  void PixelAxes(const double voxel[9], double axes[3][2]) const
   {
     for (int k = 0; k < 3; ++k)
     {
       for (int a = 0; a < 2; ++a)
       {
-        axes[k][a] = this->Rows[3 * a + k] * (this->Perspective ? this->PixelScale[a] : 1.0);
+        const double* row = this->Rows + 3 * a;
+        const double step = row[0] * voxel[k] + row[1] * voxel[3 + k] + row[2] * voxel[6 + k];
+        axes[k][a] = step * (this->Perspective ? this->PixelScale[a] : 1.0);
       }
     }
   }

@@ -30,10 +30,11 @@ class ProgressiveImage
 public:
   /// Starts over for a view: see SampleAccumulator::Reset.
   void Reset(const ProjectionGeometry& geometry, const double origin[3], const double matrix[9],
-    std::vector<double> depthLimits = std::vector<double>())
+    std::vector<double> depthLimits = std::vector<double>(),
+    const DepositSettings& settings = DepositSettings())
   {
     this->Geometry = geometry;
-    this->Accumulator.Reset(geometry, origin, matrix, std::move(depthLimits));
+    this->Accumulator.Reset(geometry, origin, matrix, std::move(depthLimits), settings);
     const std::size_t pixels = this->Accumulator.NumberOfPixels();
     this->Total.assign(pixels, 0);
     this->FirstHalf.assign(pixels, 0);

@@ -44,12 +44,17 @@ struct DepositSettings
   /// which the footprint is tabulated; samples nearer than Depths[0] are
   /// deposited as points.
   double Depths[2] = { 0.0, 0.0 };
+  /// A voxel's edge vectors in the source frame (row-major, column k is
+  /// edge k): the identity when samples come in voxel coordinates, the
+  /// voxel's world edges for a stored cloud of world points.
+  double VoxelMatrix[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
 
   bool operator==(const DepositSettings& o) const
   {
     return this->Mode == o.Mode && this->Reconstruction == o.Reconstruction &&
       this->Seed == o.Seed && this->Reach == o.Reach && this->Depths[0] == o.Depths[0] &&
-      this->Depths[1] == o.Depths[1];
+      this->Depths[1] == o.Depths[1] &&
+      std::equal(this->VoxelMatrix, this->VoxelMatrix + 9, o.VoxelMatrix);
   }
   bool operator!=(const DepositSettings& o) const { return !(*this == o); }
 };
@@ -67,7 +72,7 @@ public:
     this->Tables.clear();
     this->Perspective = binner.IsPerspective();
     double axes[3][2];
-    binner.PixelAxes(axes);
+    binner.PixelAxes(settings.VoxelMatrix, axes);
     const double reach = std::min(32.0, std::max(0.5, settings.Reach));
     if (!this->Perspective)
     {

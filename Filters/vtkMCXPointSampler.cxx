@@ -10,6 +10,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPoints.h"
@@ -17,6 +18,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cmath>
 
 vtkStandardNewMacro(vtkMCXPointSampler);
@@ -39,9 +41,11 @@ namespace
 {
 template <typename IdType, typename Real>
 bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::TransferTable& table,
-  mcx::Strategy strategy, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m, Real* points)
+  mcx::Strategy strategy, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m, bool centres,
+  Real* points)
 {
   mcx::SampleSource<IdType> source = view.MakeSource<IdType>(table);
+  source.Centres = centres;
   source.Method = strategy;
   source.Reconstruction = kernel;
   source.Seed = seed;
@@ -156,21 +160,22 @@ int vtkMCXPointSampler::RequestData(
   {
     const auto strategy = static_cast<mcx::Strategy>(this->Strategy);
     const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
+    const bool centres = this->Deposit == FOOTPRINT;
     void* raw = points->GetVoidPointer(0);
     const bool isDouble = this->OutputPointsPrecision == DOUBLE_PRECISION;
     if (view.WideIds)
     {
       completed = isDouble ? GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel,
-                               this->Seed, m, static_cast<double*>(raw))
+                               this->Seed, m, centres, static_cast<double*>(raw))
                            : GeneratePoints<std::uint64_t>(this, view, table, strategy, kernel,
-                               this->Seed, m, static_cast<float*>(raw));
+                               this->Seed, m, centres, static_cast<float*>(raw));
     }
     else
     {
       completed = isDouble ? GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel,
-                               this->Seed, m, static_cast<double*>(raw))
+                               this->Seed, m, centres, static_cast<double*>(raw))
                            : GeneratePoints<std::uint32_t>(this, view, table, strategy, kernel,
-                               this->Seed, m, static_cast<float*>(raw));
+                               this->Seed, m, centres, static_cast<float*>(raw));
     }
   }
   if (!completed)
@@ -185,6 +190,16 @@ int vtkMCXPointSampler::RequestData(
     fd, SampleWeightName(), count > 0 ? integral / static_cast<double>(count) : 0.0);
   mcx::AddFieldValue(fd, IntegralName(), integral);
   mcx::AddFieldValue(fd, SampleExponentName(), static_cast<long long>(m));
+  mcx::AddFieldValue(fd, DepositName(), static_cast<long long>(this->Deposit));
+  mcx::AddFieldValue(fd, KernelName(), static_cast<long long>(this->Kernel));
+  mcx::AddFieldValue(fd, SeedName(), static_cast<long long>(this->Seed));
+  double origin[3], axes[9];
+  view.SourceToWorld(origin, axes);
+  vtkNew<vtkDoubleArray> voxelAxes;
+  voxelAxes->SetName(VoxelAxesName());
+  voxelAxes->SetNumberOfValues(9);
+  std::copy(axes, axes + 9, voxelAxes->GetPointer(0));
+  fd->AddArray(voxelAxes);
   return 1;
 }
 
@@ -195,6 +210,7 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleExponent: " << this->SampleExponent << "\n";
   os << indent << "Strategy: " << this->Strategy << "\n";
   os << indent << "Kernel: " << this->Kernel << "\n";
+  os << indent << "Deposit: " << this->Deposit << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ReusePoints: " << this->ReusePoints << "\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";

@@ -80,6 +80,13 @@ public:
   static const char* SampleWeightName() { return "SampleWeight"; }
   static const char* IntegralName() { return "Integral"; }
   static const char* SampleExponentName() { return "SampleExponent"; }
+  /// How projectors deposit the points (POINT or FOOTPRINT), the kernel, the
+  /// seed of the footprint's random parts, and the world edge vectors of a
+  /// voxel (9 values, row-major: column k is edge k), which the footprint needs.
+  static const char* DepositName() { return "Deposit"; }
+  static const char* KernelName() { return "Kernel"; }
+  static const char* SeedName() { return "Seed"; }
+  static const char* VoxelAxesName() { return "VoxelAxes"; }
   ///@}
 
   ///@{
@@ -116,6 +123,21 @@ public:
   vtkGetMacro(Kernel, int);
   void SetKernelToTent() { this->SetKernel(TENT); }
   void SetKernelToBox() { this->SetKernel(BOX); }
+  ///@}
+
+  ///@{
+  /**
+   * POINT (default): each point is a sample's position, its voxel centre
+   * plus a random offset from the kernel, and projectors count it where it
+   * lands. FOOTPRINT: each point is the chosen voxel's centre, and projectors
+   * (vtkMCXProjector, vtkMCXXRayMapper) deposit the voxel's kernel footprint
+   * over the pixels it reaches (see vtkMCXProjector): the same memory per
+   * point, far less noise. The choice travels in the field data.
+   */
+  vtkSetClampMacro(Deposit, int, POINT, FOOTPRINT);
+  vtkGetMacro(Deposit, int);
+  void SetDepositToPoint() { this->SetDeposit(POINT); }
+  void SetDepositToFootprint() { this->SetDeposit(FOOTPRINT); }
   ///@}
 
   ///@{
@@ -167,6 +189,7 @@ protected:
   int SampleExponent = 20;
   int Strategy = HYBRID;
   int Kernel = TENT;
+  int Deposit = POINT;
   vtkTypeInt64 Seed = 0;
   bool ReusePoints = false;
   int OutputPointsPrecision = SINGLE_PRECISION;

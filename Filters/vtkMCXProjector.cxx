@@ -4,6 +4,7 @@
 #include "mcxFixedPoint.h"
 #include "mcxSampleAccumulator.h"
 #include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXCloudDepositPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
@@ -78,7 +79,8 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   Accumulator accumulator;
-  accumulator.Reset(geometry, origin, identity);
+  accumulator.Reset(geometry, origin, identity, std::vector<double>(),
+    mcx::CloudDepositSettings(cloud, geometry, origin, identity));
   accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
   auto deposit = [&](const auto* coordinates)
   {

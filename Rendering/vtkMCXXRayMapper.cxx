@@ -4,6 +4,7 @@
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
 #include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXCloudDepositPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXRadiograph.h"
@@ -302,7 +303,8 @@ struct vtkMCXXRayMapper::vtkInternals
     const double* m = view.Matrix;
     const double origin[3] = { m[3], m[7], m[11] };
     const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
-    this->Image.Reset(view.Geometry, origin, linear, std::move(limits));
+    this->Image.Reset(view.Geometry, origin, linear, std::move(limits),
+      mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear));
     this->HasImage = true;
     this->Cloud = cloud;
     this->CloudTime = cloud->GetMTime();

@@ -27,6 +27,19 @@ void CheckKernel(const std::string& kernel)
   }
 }
 
+void CheckDeposit(const std::string& deposit)
+{
+  if (deposit != "footprint" && deposit != "point")
+  {
+    Fail("unknown --deposit '" + deposit + "' (expected footprint or point)");
+  }
+}
+
+int DepositOf(const std::string& deposit)
+{
+  return deposit == "point" ? vtkMCXPointSampler::POINT : vtkMCXPointSampler::FOOTPRINT;
+}
+
 int KernelOf(const std::string& kernel)
 {
   return kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;

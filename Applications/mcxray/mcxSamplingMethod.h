@@ -1,4 +1,4 @@
-// The names of --method and --kernel, and the sampler's constants for them.
+// The names of --method, --kernel and --deposit, and the sampler's constants for them.
 #ifndef mcxSamplingMethod_h
 #define mcxSamplingMethod_h
 
@@ -15,6 +15,12 @@ int StrategyOf(const std::string& method);
 
 /// Fails unless kernel is tent or box.
 void CheckKernel(const std::string& kernel);
+
+/// Fails unless deposit is footprint or point.
+void CheckDeposit(const std::string& deposit);
+
+/// vtkMCXPointSampler's deposit for footprint or point.
+int DepositOf(const std::string& deposit);
 
 /// vtkMCXPointSampler's kernel for tent or box.
 int KernelOf(const std::string& kernel);

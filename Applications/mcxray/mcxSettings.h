@@ -18,6 +18,7 @@ struct Settings
   long long Samples = 0; // each command sets its default before parsing
   std::string Method = "hybrid";
   std::string Kernel = "tent";
+  std::string Deposit = "footprint";
   unsigned long long Seed = 0;
   int Threads = 0; // 0: all cores
   bool SizeGiven = false;

@@ -47,6 +47,7 @@ options:
   --samples N        points in the cloud, rounded up to 2^m - 1 (default 4194303)
   --method M         hybrid (default), mc or qmc
   --kernel K         tent (default) or box
+  --deposit D        footprint (default) or point (see mcxray render --help)
   --seed N           seed of the pseudo-random parts (default 0)
   --threads N        worker threads (default: all cores)
   --size WxH         window size (default 768x768)
@@ -75,6 +76,7 @@ void CheckCombinations(const Settings& settings)
     Fail("unknown --method '" + settings.Method + "' for view (expected hybrid, mc or qmc)");
   }
   CheckKernel(settings.Kernel);
+  CheckDeposit(settings.Deposit);
   if (settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
   {
     Fail("the viewer holds at most 2^30 - 1 points");
@@ -111,6 +113,7 @@ ViewerOptions MakeViewerOptions(const Settings& settings)
   viewer.SampleExponent = static_cast<int>(mcx::ExponentForSampleCount(settings.Samples));
   viewer.Strategy = StrategyOf(settings.Method);
   viewer.Kernel = KernelOf(settings.Kernel);
+  viewer.Deposit = DepositOf(settings.Deposit);
   viewer.OffScreen = !settings.Screenshot.empty();
   const int* size = settings.Radiograph.Geometry ? settings.Radiograph.Detector
     : settings.SizeGiven                         ? settings.Size

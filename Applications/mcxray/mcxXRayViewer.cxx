@@ -77,6 +77,7 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   this->Sampler->SetSampleExponent(options.SampleExponent);
   this->Sampler->SetStrategy(options.Strategy);
   this->Sampler->SetKernel(options.Kernel);
+  this->Sampler->SetDeposit(options.Deposit);
   this->Sampler->SetSeed(options.Seed);
   this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
   this->Volume->SetMapper(this->Mapper);

@@ -34,6 +34,7 @@ struct ViewerOptions
   int SampleExponent = 22; // 4 M points
   int Strategy = 0;        // vtkMCXPointSampler::HYBRID
   int Kernel = 0;          // vtkMCXPointSampler::TENT
+  int Deposit = 1;         // vtkMCXPointSampler::FOOTPRINT
   unsigned long long Seed = 0;
   int Size[2] = { 768, 768 };
   bool OffScreen = false;

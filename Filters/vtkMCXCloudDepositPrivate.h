@@ -1,0 +1,26 @@
+// How a stored cloud asks to be deposited, read from its field data: shared
+// by the off-line projector and the mapper so that both deposit a cloud alike.
+#ifndef vtkMCXCloudDepositPrivate_h
+#define vtkMCXCloudDepositPrivate_h
+
+#include "MonteCarloXRayFiltersModule.h" // for the export macro
+#include "mcxProjectionGeometry.h"
+#include "mcxSampleAccumulator.h"
+
+class vtkPolyData;
+
+namespace mcx
+{
+
+/// The deposit of a vtkMCXPointSampler cloud (field data Deposit, Kernel,
+/// Seed, VoxelAxes; a cloud without them is a point cloud of positions) for
+/// a view whose source frame takes cloud coordinates to world by origin and
+/// matrix (row-major 3x3): in perspective views the depth range is that of
+/// the points' bounds grown by the kernel's reach.
+/// (Exported: the Rendering module's mapper deposits clouds too.)
+MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* cloud,
+  const ProjectionGeometry& geometry, const double origin[3], const double matrix[9]);
+
+} // namespace mcx
+
+#endif
