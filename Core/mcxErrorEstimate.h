@@ -66,6 +66,20 @@ inline double EstimateRelativeError(const std::vector<FixedSum>& sums, std::uint
   return EstimateRelativeError(sums.data(), sums.data() + pixels, pixels, count);
 }
 
+/// The halves' estimate assumes an error falling as M^-1/2, as the point
+/// deposit's does. The footprint deposit's error falls about as M^-1 (its
+/// voxel choice is stratified and nothing else is random), so each half errs
+/// about twice as much as the whole and their difference overstates the
+/// whole's error by sqrt(2): this factor calibrates it (checked against the
+/// exact reference in TestFootprint).
+constexpr double FootprintErrorCalibration = 0.70710678118654752;
+
+/// The exponent a of error ~ M^-a by which the target controls extrapolate.
+inline double ErrorDecayExponent(bool footprint)
+{
+  return footprint ? 1.0 : 0.5;
+}
+
 /// The paper's equation 1: the sample count above which the average pixel
 /// deviation stays below one of `levels` grey levels for an image displayed
 /// from 0 to its maximum, (W H - 1) B^2 L^2, B = mean / maximum of the image

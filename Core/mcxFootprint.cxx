@@ -70,8 +70,6 @@ bool FootprintPlan::IsRandom() const
 
 void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions)
 {
-  this->Q = std::max(1, subdivisions);
-  const double h = 1.0 / this->Q;
   // The deposited part: the tent is two uniform segments along its axis, a
   // box (or sub-box) one.
   std::vector<std::array<double, 2>> segments;
@@ -95,6 +93,12 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
     this->Half[0] += 0.5 * std::fabs(s[0]);
     this->Half[1] += 0.5 * std::fabs(s[1]);
   }
+  // About `subdivisions` nodes across the footprint's longer side, 8 to 64
+  // per pixel: the grid's blur (about a quarter of a step) stays a small
+  // fraction of the footprint however small the voxel.
+  const double longer = 2.0 * std::max(this->Half[0], this->Half[1]);
+  this->Q = static_cast<int>(std::min(64.0, std::max(8.0, std::ceil(subdivisions / longer))));
+  const double h = 1.0 / this->Q;
   for (int a = 0; a < 2; ++a)
   {
     this->N[a] = static_cast<int>(std::ceil(this->Half[a] * this->Q)) + 1;
@@ -133,7 +137,7 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
   }
 }
 
-void FootprintTable::Build(const double axes[3][2], const FootprintPlan& plan)
+void FootprintTable::Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget)
 {
   this->SplitPlan = plan;
   FootprintDensity density;
@@ -145,6 +149,12 @@ void FootprintTable::Build(const double axes[3][2], const FootprintPlan& plan)
   }
   const int columns = this->Columns(), rows = this->Rows();
   const std::size_t size = static_cast<std::size_t>(columns) * rows;
+  this->PhaseCount = 64;
+  while (this->PhaseCount > 8 && size * this->PhaseCount * this->PhaseCount > budget)
+  {
+    this->PhaseCount /= 2;
+  }
+  const int Phases = this->PhaseCount;
   this->ShareValues.assign(size * Phases * Phases, 0.0);
   this->IncrementValues.assign(size * Phases * Phases, 0);
   for (int b = 0; b < Phases; ++b)

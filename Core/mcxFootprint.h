@@ -77,13 +77,16 @@ class FootprintTable
 public:
   /// axes[k]: voxel edge vector k (spacing times direction) projected on the
   /// detector, in pixels along image axes 0 and 1.
-  void Build(const double axes[3][2], const FootprintPlan& plan);
+  /// The phases are the most of 64, 32, 16 or 8 per pixel whose tables hold
+  /// at most `budget` values (at least 8): fine phases for small footprints,
+  /// whose shape changes fastest with the phase.
+  void Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget = 1 << 17);
 
   /// Pixels reached beyond the centre's pixel along image axis a.
   int Reach(int a) const { return this->PixelReach[a]; }
   int Columns() const { return 2 * this->PixelReach[0] + 1; }
   int Rows() const { return 2 * this->PixelReach[1] + 1; }
-  static constexpr int Phases = 16;
+  int Phases() const { return this->PhaseCount; }
 
   /// Shares and increments of phase (a, b), Rows() x Columns() row-major, for
   /// pixel offsets -Reach..Reach from the centre's pixel.
@@ -98,22 +101,24 @@ public:
 private:
   std::size_t Offset(int a, int b) const
   {
-    return static_cast<std::size_t>(b * Phases + a) * this->Columns() * this->Rows();
+    return static_cast<std::size_t>(b * this->PhaseCount + a) * this->Columns() * this->Rows();
   }
 
   FootprintPlan SplitPlan;
   int PixelReach[2] = { 0, 0 };
+  int PhaseCount = 16;
   std::vector<double> ShareValues;
   std::vector<std::uint64_t> IncrementValues;
 };
 
 /// G, the pixel-averaged footprint density (see above), on a grid of step
-/// 1 / Q pixel: built by successive convolutions of the unit square with
-/// the plan's segments, read by bilinear interpolation.
+/// 1 / Q pixel (about `subdivisions` steps across the footprint, 8 to 64 per
+/// pixel): built by successive convolutions of the unit square with the
+/// plan's segments, read by bilinear interpolation.
 class FootprintDensity
 {
 public:
-  void Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions = 8);
+  void Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions = 160);
 
   /// G at offset (dx, dy) pixels from the voxel centre, 0 outside.
   double Evaluate(double dx, double dy) const

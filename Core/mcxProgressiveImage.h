@@ -34,6 +34,7 @@ public:
     const DepositSettings& settings = DepositSettings())
   {
     this->Geometry = geometry;
+    this->Footprint = settings.Mode == Deposit::Footprint;
     this->Accumulator.Reset(geometry, origin, matrix, std::move(depthLimits), settings);
     const std::size_t pixels = this->Accumulator.NumberOfPixels();
     this->Total.assign(pixels, 0);
@@ -80,8 +81,9 @@ public:
     {
       return std::nan("");
     }
-    return mcx::EstimateRelativeError(
-      this->Total.data(), this->FirstHalf.data(), this->Total.size(), this->Counted);
+    return (this->Footprint ? FootprintErrorCalibration : 1.0) *
+      mcx::EstimateRelativeError(
+        this->Total.data(), this->FirstHalf.data(), this->Total.size(), this->Counted);
   }
 
   /// Pixel values in physical units: the line integral, each point carrying
@@ -95,6 +97,7 @@ public:
 
 private:
   ProjectionGeometry Geometry;
+  bool Footprint = false;
   SampleAccumulator<Executor> Accumulator;
   std::vector<FixedSum> Total;
   std::vector<FixedSum> FirstHalf;

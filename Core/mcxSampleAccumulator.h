@@ -95,7 +95,8 @@ public:
         scaled[k][1] = axes[k][1] * w;
       }
       this->Tables.emplace_back();
-      this->Tables.back().Build(scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach));
+      this->Tables.back().Build(
+        scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach), 1 << 15);
     }
   }
 
@@ -237,7 +238,7 @@ public:
         }
       }
       // The centre's pixel and phase, rounded at random to a tabulated phase.
-      const int phases = FootprintTable::Phases;
+      const int phases = table->Phases();
       std::int64_t cell[2];
       int phase[2];
       const double position[2] = { fx, fy };

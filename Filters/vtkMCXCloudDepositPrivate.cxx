@@ -43,7 +43,29 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
     settings.VoxelMatrix[i] =
       axes->GetComponent(i / axes->GetNumberOfComponents(), i % axes->GetNumberOfComponents());
   }
-  if (geometry.Perspective && cloud->GetNumberOfPoints() > 0)
+  vtkDataArray* support = fd->GetArray(vtkMCXPointSampler::SupportCornersName());
+  if (geometry.Perspective && support && support->GetNumberOfValues() == 24)
+  {
+    // The sampler's support: the same tables for every prefix of the cloud.
+    double corners[24];
+    for (int i = 0; i < 24; ++i)
+    {
+      const double p = support->GetComponent(
+        i / support->GetNumberOfComponents(), i % support->GetNumberOfComponents());
+      corners[i] = p;
+    }
+    double world[24];
+    for (int c = 0; c < 8; ++c)
+    {
+      for (int r = 0; r < 3; ++r)
+      {
+        world[3 * c + r] = origin[r] + matrix[3 * r] * corners[3 * c] +
+          matrix[3 * r + 1] * corners[3 * c + 1] + matrix[3 * r + 2] * corners[3 * c + 2];
+      }
+    }
+    SupportDepthRange(geometry, world, settings.Depths);
+  }
+  else if (geometry.Perspective && cloud->GetNumberOfPoints() > 0)
   {
     // The points' bounds, grown by the kernel's reach along each axis.
     double bounds[6];

@@ -16,7 +16,8 @@ namespace mcx
 /// Seed, VoxelAxes; a cloud without them is a point cloud of positions) for
 /// a view whose source frame takes cloud coordinates to world by origin and
 /// matrix (row-major 3x3): in perspective views the depth range is that of
-/// the points' bounds grown by the kernel's reach.
+/// the sampler's support (field SupportCorners), else of the points' bounds
+/// grown by the kernel's reach.
 /// (Exported: the Rendering module's mapper deposits clouds too.)
 MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* cloud,
   const ProjectionGeometry& geometry, const double origin[3], const double matrix[9]);

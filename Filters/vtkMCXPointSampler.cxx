@@ -1,5 +1,6 @@
 #include "vtkMCXPointSampler.h"
 
+#include "mcxProjectionGeometry.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 
@@ -200,6 +201,14 @@ int vtkMCXPointSampler::RequestData(
   voxelAxes->SetNumberOfValues(9);
   std::copy(axes, axes + 9, voxelAxes->GetPointer(0));
   fd->AddArray(voxelAxes);
+  double corners[24];
+  mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction,
+    mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners);
+  vtkNew<vtkDoubleArray> support;
+  support->SetName(SupportCornersName());
+  support->SetNumberOfValues(24);
+  std::copy(corners, corners + 24, support->GetPointer(0));
+  fd->AddArray(support);
   return 1;
 }
 

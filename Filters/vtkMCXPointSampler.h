@@ -87,6 +87,9 @@ public:
   static const char* KernelName() { return "Kernel"; }
   static const char* SeedName() { return "Seed"; }
   static const char* VoxelAxesName() { return "VoxelAxes"; }
+  /// The support's world corners (24 values, as SUPPORT_CORNERS), with which
+  /// perspective projectors tabulate footprints for any prefix alike.
+  static const char* SupportCornersName() { return "SupportCorners"; }
   ///@}
 
   ///@{

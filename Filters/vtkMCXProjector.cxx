@@ -41,6 +41,13 @@ struct Projection
   double SampleWeight = 0.0;
   double Integral = 0.0;
   bool Completed = true;
+  bool Footprint = false; // deposited as footprints: see mcx::FootprintErrorCalibration
+
+  double EstimatedError() const
+  {
+    return (this->Footprint ? mcx::FootprintErrorCalibration : 1.0) *
+      mcx::EstimateRelativeError(this->Sums, this->Count);
+  }
 };
 
 void CollectSums(Accumulator& accumulator, Projection& projection)
@@ -78,9 +85,11 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
 
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const mcx::DepositSettings settings =
+    mcx::CloudDepositSettings(cloud, geometry, origin, identity);
+  projection.Footprint = settings.Mode == mcx::Deposit::Footprint;
   Accumulator accumulator;
-  accumulator.Reset(geometry, origin, identity, std::vector<double>(),
-    mcx::CloudDepositSettings(cloud, geometry, origin, identity));
+  accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
   accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
   auto deposit = [&](const auto* coordinates)
   {
@@ -123,6 +132,7 @@ public:
     Projection projection;
     projection.Count = mcx::SampleCount(m);
     projection.Integral = this->Integral;
+    projection.Footprint = this->DepositMode == mcx::Deposit::Footprint;
     projection.SampleWeight =
       projection.Count > 0 ? this->Integral / static_cast<double>(projection.Count) : 0.0;
     Accumulator accumulator;
@@ -194,9 +204,10 @@ double SamplesNeeded(const Projection& projection, double targetError, int targe
   double needed = 0.0;
   if (targetError > 0)
   {
-    const double error = mcx::EstimateRelativeError(projection.Sums, projection.Count);
-    const double ratio = error / targetError;
-    needed = std::max(needed, static_cast<double>(projection.Count) * ratio * ratio);
+    const double ratio = projection.EstimatedError() / targetError;
+    needed = std::max(needed,
+      static_cast<double>(projection.Count) *
+        std::pow(ratio, 1.0 / mcx::ErrorDecayExponent(projection.Footprint)));
   }
   if (targetLevels > 0)
   {
@@ -245,8 +256,8 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
     fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));
   mcx::AddFieldValue(fd, vtkMCXPointSampler::SampleWeightName(), projection.SampleWeight);
   mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), projection.Integral);
-  mcx::AddFieldValue(fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(),
-    mcx::EstimateRelativeError(projection.Sums, projection.Count));
+  mcx::AddFieldValue(
+    fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(), projection.EstimatedError());
 }
 }
 

@@ -154,13 +154,13 @@ vtkIdType MisdrawnPixels(vtkImageData* grabbed, vtkDataArray* values, const int 
       const int i = x - origin[0], j = y - origin[1];
       const bool inside = i >= 0 && i < size[0] && j >= 0 && j < size[1];
       const double expected = inside
-        ? ExpectedGrey(values->GetTuple1(i + static_cast<vtkIdType>(size[0]) * j), window, level,
-            invert)
+        ? ExpectedGrey(
+            values->GetTuple1(i + static_cast<vtkIdType>(size[0]) * j), window, level, invert)
         : (invert ? 255.0 : 0.0);
       for (int c = 0; c < 3; ++c)
       {
-        if (std::fabs(rgb->GetValue(3 * (x + static_cast<vtkIdType>(dims[0]) * y) + c) -
-              expected) > 1.0)
+        if (std::fabs(rgb->GetValue(3 * (x + static_cast<vtkIdType>(dims[0]) * y) + c) - expected) >
+          1.0)
         {
           ++misdrawn;
           break;
@@ -171,8 +171,8 @@ vtkIdType MisdrawnPixels(vtkImageData* grabbed, vtkDataArray* values, const int 
   return misdrawn;
 }
 
-vtkIdType MisdrawnPixels(vtkImageData* grabbed, vtkDataArray* values, double window, double level,
-  bool invert = false)
+vtkIdType MisdrawnPixels(
+  vtkImageData* grabbed, vtkDataArray* values, double window, double level, bool invert = false)
 {
   const int origin[2] = { 0, 0 };
   const int size[2] = { grabbed->GetDimensions()[0], grabbed->GetDimensions()[1] };
@@ -381,6 +381,42 @@ TEST(Mapper, RefinesByHaltonPrefixesWithoutRestarting)
   EXPECT_EQ(2, scene.Mapper->GetNumberOfRestarts());
 }
 
+TEST(Mapper, FootprintCloudRefinesLikeTheOfflineProjector)
+{
+  // A cloud of voxel centres (the footprint deposit): every progressive
+  // prefix on screen is the off-line projector's image of that prefix, bit
+  // for bit, parallel and perspective, and its estimate is the same.
+  Scene scene(16);
+  scene.Sampler->SetDepositToFootprint();
+  scene.Mapper->AutomaticWindowLevelOff();
+  scene.Mapper->SetInitialSampleExponent(10);
+  scene.Window->SetDesiredUpdateRate(1e6); // one level per render
+  for (bool parallel : { true, false })
+  {
+    scene.Renderer->GetActiveCamera()->SetParallelProjection(parallel);
+    scene.Renderer->GetActiveCamera()->Azimuth(20);
+    scene.Renderer->ResetCameraClippingRange();
+    scene.Window->Render();
+    int steps = 0;
+    while (steps++ < 40)
+    {
+      const vtkTypeInt64 count = scene.Mapper->GetNumberOfAccumulatedSamples();
+      auto offline = scene.Offline(count);
+      auto onScreen = scene.OnScreen();
+      ASSERT_EQ(0, DifferingPixels(onScreen, offline)) << count << " points";
+      EXPECT_EQ(mcxtest::FieldValue(offline, "EstimatedRelativeError"),
+        mcxtest::FieldValue(onScreen, "EstimatedRelativeError"))
+        << count << " points";
+      if (scene.Mapper->IsRefinementComplete())
+      {
+        break;
+      }
+      scene.Window->Render();
+    }
+    EXPECT_EQ((1 << 16) - 1, scene.Mapper->GetNumberOfAccumulatedSamples());
+  }
+}
+
 TEST(Mapper, EachChangeRecomputesOnlyWhatItAffects)
 {
   Scene scene(16);
@@ -561,9 +597,9 @@ TEST(Mapper, OpaqueGeometryHidesTheSamplesBehindIt)
     // parallel view and z^2 (far - near) / (near far) 2^-24 in perspective;
     // four steps of slack.
     const double* range = camera->GetClippingRange();
-    const double step = parallel ? (range[1] - range[0]) * std::ldexp(1.0, -24)
-                                 : range[1] * range[1] * (range[1] - range[0]) /
-        (range[0] * range[1]) * std::ldexp(1.0, -24);
+    const double step = parallel
+      ? (range[1] - range[0]) * std::ldexp(1.0, -24)
+      : range[1] * range[1] * (range[1] - range[0]) / (range[0] * range[1]) * std::ldexp(1.0, -24);
     const double* eye = camera->GetPosition();
     const double* w = camera->GetDirectionOfProjection();
     vtkNew<vtkPoints> surely, maybe;
@@ -580,8 +616,8 @@ TEST(Mapper, OpaqueGeometryHidesTheSamplesBehindIt)
       }
       const int p = static_cast<int>(d[0]) + width * static_cast<int>(d[1]);
       const double depth = (x[0] - eye[0]) * w[0] + (x[1] - eye[1]) * w[1] + (x[2] - eye[2]) * w[2];
-      const bool onBorder = std::fabs(d[0] - std::round(d[0])) < 1e-6 ||
-        std::fabs(d[1] - std::round(d[1])) < 1e-6;
+      const bool onBorder =
+        std::fabs(d[0] - std::round(d[0])) < 1e-6 || std::fabs(d[1] - std::round(d[1])) < 1e-6;
       if (onOutline[p] || onBorder || std::fabs(depth - plateDepth[p]) < 4 * step)
       {
         maybe->InsertNextPoint(x);
@@ -620,10 +656,10 @@ TEST(Mapper, OpaqueGeometryHidesTheSamplesBehindIt)
     for (vtkIdType p = 0; p < m->GetNumberOfTuples(); ++p)
     {
       const double v = m->GetTuple1(p);
-      ASSERT_GE(v, a->GetTuple1(p) * (1 - 1e-12)) << (parallel ? "parallel" : "perspective")
-                                                  << " pixel " << p % width << ", " << p / width;
-      ASSERT_LE(v, b->GetTuple1(p) * (1 + 1e-12)) << (parallel ? "parallel" : "perspective")
-                                                  << " pixel " << p % width << ", " << p / width;
+      ASSERT_GE(v, a->GetTuple1(p) * (1 - 1e-12))
+        << (parallel ? "parallel" : "perspective") << " pixel " << p % width << ", " << p / width;
+      ASSERT_LE(v, b->GetTuple1(p) * (1 + 1e-12))
+        << (parallel ? "parallel" : "perspective") << " pixel " << p % width << ", " << p / width;
       hidden += v < mcxtest::LineIntegral(whole)->GetTuple1(p) ? 1 : 0;
     }
     EXPECT_GT(hidden, covered / 2) << "the plate hides part of the head";
@@ -821,8 +857,8 @@ TEST(Mapper, PutsEachPointInVTKsPixel)
       scene.Renderer->WorldToDisplay();
       const double* d = scene.Renderer->GetDisplayPoint();
       const bool inside = d[0] >= 0 && d[0] < 200 && d[1] >= 0 && d[1] < 160;
-      ASSERT_TRUE(std::fabs(d[0] - std::round(d[0])) > 1e-3 &&
-        std::fabs(d[1] - std::round(d[1])) > 1e-3)
+      ASSERT_TRUE(
+        std::fabs(d[0] - std::round(d[0])) > 1e-3 && std::fabs(d[1] - std::round(d[1])) > 1e-3)
         << "point " << k << " lies on a pixel border";
       if (inside)
       {
