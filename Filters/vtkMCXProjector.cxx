@@ -308,9 +308,10 @@ int vtkMCXProjector::RequestData(
     sampler.Seed = static_cast<std::uint64_t>(this->Seed);
     sampler.DepositMode = static_cast<mcx::Deposit>(this->Deposit);
     sampler.FootprintReach = this->FootprintReach;
+    // Under a target SampleExponent is ignored (0 included).
     const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
     const bool targeted = this->TargetRelativeError > 0 || this->TargetQuantizationLevels > 0;
-    projection = m > 0 && targeted
+    projection = !sampler.IsEmpty() && targeted
       ? ProjectToTarget(sampler, geometry, this->TargetRelativeError,
           this->TargetQuantizationLevels, static_cast<unsigned>(this->MaximumSampleExponent))
       : sampler.Project(m, 0.0, 1.0);

@@ -311,3 +311,31 @@ TEST(Footprint, StoredCloudHoldsVoxelCentresAndProjectsAlike)
     EXPECT_GT(stored, 0.8 * fused - 1e-4) << "view " << view;
   }
 }
+
+TEST(Footprint, TargetAccuracyIsMet)
+{
+  // The target control extrapolates the footprint's error as M^-1: the
+  // true error meets the target (2 % slack for the estimate) and the count
+  // is within a factor 4 of the smallest power of two that would do.
+  Scene scene(
+    "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
+  auto camera = scene.Camera(1);
+  auto reference = scene.Reference(camera, 128);
+  for (double target : { 0.02, 0.005 })
+  {
+    vtkNew<vtkMCXProjector> projector;
+    scene.Configure(projector.Get(), camera, 128);
+    projector->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    projector->SetTargetRelativeError(target);
+    projector->SetSampleExponent(0);
+    projector->Update();
+    const double samples = mcxtest::FieldValue(projector->GetOutput(), "SampleCount");
+    EXPECT_LT(mcxtest::RelativeRMS(projector->GetOutput(), reference), 1.02 * target) << target;
+    // Half the count must miss the target by the M^-1 law's margin: with
+    // error ~ M^-1, 1/4 of the samples would err 4 times as much.
+    const double smaller = mcxtest::RelativeRMS(
+      scene.Footprint(camera, 128, static_cast<int>(std::log2(samples + 1)) - 2), reference);
+    EXPECT_GT(smaller, target) << target << ": " << samples << " samples, 1/4 of them err "
+                               << smaller;
+  }
+}
