@@ -594,6 +594,47 @@ int main(int argc, char* argv[])
               << ",0," << Since(start) << ",0\n";
     }
   }
+  // Cost control of the footprint: the bundled CT in a lateral parallel view
+  // at 512^2 (a tent covers about 17 x 9 pixels), the full footprint against
+  // kernels split at smaller reaches and the point deposit, error against
+  // time (error x sqrt(seconds) compares them at equal time under M^-1/2).
+  {
+    std::ofstream reach(output + "/footprint-reach.csv");
+    reach << "deposit,reach,samples,seconds,true_error,error_x_sqrt_seconds\n";
+    std::string error;
+    vtkSmartPointer<vtkImageData> head =
+      mcxapp::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
+    double range[2] = { 0, 1 };
+    vtkSmartPointer<vtkPiecewiseFunction> tf =
+      mcxapp::MakeTransferFunction("1000:0,1500:1", range, error);
+    vtkNew<vtkMCXDensityIndex> index;
+    index->SetInputData(head);
+    index->Update();
+    vtkNew<vtkCamera> camera;
+    camera->SetFocalPoint(100.8, 100.8, 69);
+    camera->SetPosition(450, 100.8, 69);
+    camera->SetViewUp(0, 0, -1);
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(80);
+    const int pixels = quick ? 128 : 512;
+    double seconds = 0;
+    auto reference = Reference(index, tf, camera, pixels, quick ? 1e-2 : 3e-4, 27, seconds);
+    const int m = quick ? 16 : 20;
+    for (double r : { 0.0, 2.0, 4.0, 8.0, 16.0 })
+    {
+      auto projector = MakeProjector(index, tf, camera, pixels, r > 0 ? m : m + 4,
+        vtkMCXPointSampler::HYBRID, r > 0 ? vtkMCXPointSampler::FOOTPRINT : vtkMCXPointSampler::POINT);
+      projector->SetFootprintReach(r > 0 ? r : 16.0);
+      projector->Update(); // the tables once, then a timed run
+      projector->Modified();
+      const Clock::time_point start = Clock::now();
+      projector->Update();
+      const double t = Since(start);
+      const double e = RelativeRMS(Values(projector->GetOutput()), reference);
+      reach << (r > 0 ? "footprint," : "point,") << r << ',' << projector->GetNumberOfSamples()
+            << ',' << t << ',' << e << ',' << e * std::sqrt(t) << '\n';
+    }
+  }
   std::ofstream memory(output + "/memory.csv");
   memory << "peak_resident_megabytes\n" << PeakResidentMegabytes() << '\n';
   std::cout << "wrote " << output << std::endl;

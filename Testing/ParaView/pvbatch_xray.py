@@ -217,7 +217,7 @@ on_screen = line_integral_image(representation)
 check(on_screen.shape == (240, 300), "line-integral image shape %s" % (on_screen.shape,))
 check(accumulated_samples(representation) == 2**22 - 1,
       "the screenshot holds %d points, not 2^22 - 1" % accumulated_samples(representation))
-expected = offline_image(index, linear_points, camera, [300, 240], SampleExponent=22)
+expected = offline_image(index, linear_points, camera, [300, 240], SampleExponent=22, Deposit=1)
 check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
       "representation's line integrals differ from the off-line projector's in %d pixels"
       % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
@@ -269,6 +269,7 @@ opacity.Points = [value for node in nodes for value in node]
 display.XRaySampleExponent = 20
 display.XRaySeed = 5
 display.XRayKernel = 1
+display.XRayDeposit = 0
 display.XRayStrategy = 1
 display.XRayProgressive = 0
 Render(view)
@@ -312,9 +313,9 @@ on_screen = line_integral_image(representation)
 check(accumulated_samples(representation) == 2**20 - 1,
       "the representation drew %d points, not 2^20 - 1" % accumulated_samples(representation))
 expected = offline_image(index, opacity.Points, camera, [300, 240],
-                         SampleExponent=20, Seed=5, Kernel=1, Strategy=1)
+                         SampleExponent=20, Seed=5, Kernel=1, Strategy=1, Deposit=0)
 check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
-      "with midpoints, seed 5, box kernel, Monte Carlo, 2^20 - 1 points: %d pixels differ from the off-line image"
+      "with midpoints, seed 5, box kernel, Monte Carlo, point deposit, 2^20 - 1 points: %d pixels differ from the off-line image"
       % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
 
 if failures:

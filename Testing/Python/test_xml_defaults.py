@@ -18,6 +18,8 @@ CONSTANTS = {
     "Quasi-Monte Carlo": mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO,
     "Tent (trilinear)": mcxray.vtkMCXPointSampler.TENT,
     "Box (nearest)": mcxray.vtkMCXPointSampler.BOX,
+    "Point": mcxray.vtkMCXPointSampler.POINT,
+    "Footprint": mcxray.vtkMCXPointSampler.FOOTPRINT,
 }
 VECTOR_PROPERTIES = ("IntVectorProperty", "DoubleVectorProperty", "IdTypeVectorProperty")
 

@@ -27,6 +27,7 @@ vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
   // the cloud, so a TF edit may rewrite it in place.
   this->Sampler->SetSampleExponent(DefaultSampleExponent);
   this->Sampler->ReusePointsOn();
+  this->Sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT); // far less noise for the same points
   this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
   this->Volume->SetMapper(this->Mapper);
   this->Volume->SetVisibility(false);
@@ -150,6 +151,11 @@ void vtkMCXXRayRepresentation::SetStrategy(int strategy)
 void vtkMCXXRayRepresentation::SetKernel(int kernel)
 {
   this->Sampler->SetKernel(kernel);
+}
+
+void vtkMCXXRayRepresentation::SetDeposit(int deposit)
+{
+  this->Sampler->SetDeposit(deposit);
 }
 
 void vtkMCXXRayRepresentation::SetSeed(vtkTypeInt64 seed)

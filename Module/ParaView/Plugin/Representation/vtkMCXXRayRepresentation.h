@@ -49,6 +49,7 @@ public:
   void SetSampleExponent(int exponent);
   void SetStrategy(int strategy);
   void SetKernel(int kernel);
+  void SetDeposit(int deposit);
   void SetSeed(vtkTypeInt64 seed);
   ///@}
 
