@@ -121,6 +121,34 @@ class Pipeline(unittest.TestCase):
         for wrong in (numpy.flipud(exact), numpy.fliplr(exact), 0.8 * exact):
             self.assertGreater(((values - wrong) ** 2).sum(), 4 * allowed)
 
+    def test_footprint_deposit_is_far_below_the_monte_carlo_bound(self):
+        # The same B as above (plain Monte Carlo's expected squared error for
+        # the same M): the footprint deposit of 2^20 - 1 Hybrid samples stays
+        # below 0.4^2 B (0.4 of its RMS error), the reference's error added.
+        reference = mcxray.vtkMCXReferenceProjector()
+        reference.SetInputConnection(self.index.GetOutputPort())
+        reference.SetTransferFunction(self.tf)
+        reference.SetImageSize(64, 48)
+        reference.SetRelativeTolerance(1e-4)
+        reference.Update()
+        exact = mcxray.image_to_numpy(reference.GetOutput())
+        exact_error = reference.GetOutput().GetFieldData().GetArray("EstimatedRelativeError").GetTuple1(0)
+        projector = mcxray.vtkMCXProjector()
+        projector.SetInputConnection(self.index.GetOutputPort())
+        projector.SetTransferFunction(self.tf)
+        projector.SetDepositToFootprint()
+        projector.SetSampleExponent(20)
+        projector.SetImageSize(64, 48)
+        projector.Update()
+        image = projector.GetOutput()
+        values = mcxray.image_to_numpy(image)
+        spacing = image.GetSpacing()
+        weight = image.GetFieldData().GetArray("SampleWeight").GetTuple1(0)
+        bound = weight / (spacing[0] * spacing[1]) * exact.sum()
+        allowed = (0.4 * math.sqrt(bound) + exact_error * numpy.linalg.norm(exact)) ** 2
+        self.assertLess(((values - exact) ** 2).sum(), allowed)
+        self.assertEqual(mcxray.vtkMCXPointSampler.FOOTPRINT, projector.GetDeposit())
+
     def test_tf_edit_resamples_without_reindexing(self):
         runs = {"index": 0, "sampler": 0}
 
