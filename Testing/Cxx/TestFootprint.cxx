@@ -122,15 +122,9 @@ struct Scene
     {
       return mcxtest::ExpectedRelativeRMS(reference, integral, area, samples);
     }
-    vtkNew<vtkMCXPointSampler> sampler;
-    sampler->SetInputConnection(this->Index->GetOutputPort());
-    sampler->SetTransferFunction(this->TF);
-    sampler->SetStrategy(vtkMCXPointSampler::MONTE_CARLO);
-    sampler->SetSampleExponent(20);
-    sampler->Update();
     const int* dims = reference->GetDimensions();
-    const mcxtest::WeightMoments moments =
-      mcxtest::MeasureWeights(sampler->GetOutput()->GetPoints(), camera, dims[0], dims[1]);
+    const mcxtest::WeightMoments moments = mcxtest::MeasureSampledWeights(
+      this->Index->GetOutputPort(), this->TF, camera, dims[0], dims[1], 20);
     return mcxtest::ExpectedRelativeRMSOfWeights(
       reference, integral, area, samples, moments.MeanSquare);
   }

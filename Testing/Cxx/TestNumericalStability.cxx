@@ -148,15 +148,8 @@ void ExpectAgreement(
   }
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(index->GetOutputPort());
-  sampler->SetTransferFunction(tf);
-  sampler->SetStrategy(vtkMCXPointSampler::MONTE_CARLO);
-  sampler->SetSampleExponent(20);
-  sampler->SetSeed(5);
-  sampler->Update();
   const mcxtest::WeightMoments moments =
-    mcxtest::MeasureWeights(sampler->GetOutput()->GetPoints(), camera, 24, 24);
+    mcxtest::MeasureSampledWeights(index->GetOutputPort(), tf, camera, 24, 24, 20);
   const double bound = mcxtest::ExpectedRelativeRMSOfWeights(
     exact.Image, integral, PixelArea(exact.Image), samples, moments.MeanSquare);
   // The squared error sums n effective pixels: relative spread sqrt(2 / n).

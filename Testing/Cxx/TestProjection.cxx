@@ -249,15 +249,8 @@ TEST(Projection, PerspectiveViewConvergesWithinItsBound)
   auto reference = scene.Reference(camera, size);
   const double integral = mcxtest::FieldValue(reference, "Integral");
   const double area = PixelArea(reference);
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(scene.Index->GetOutputPort());
-  sampler->SetTransferFunction(scene.TF);
-  sampler->SetStrategy(vtkMCXPointSampler::MONTE_CARLO);
-  sampler->SetSampleExponent(21);
-  sampler->SetSeed(11);
-  sampler->Update();
   const mcxtest::WeightMoments moments =
-    mcxtest::MeasureWeights(sampler->GetOutput()->GetPoints(), camera, size, size);
+    mcxtest::MeasureSampledWeights(scene.Index->GetOutputPort(), scene.TF, camera, size, size);
   const int exponent = 22;
   const double m = std::ldexp(1.0, exponent) - 1;
   const double bound =
@@ -437,15 +430,8 @@ TEST(Projection, PerspectiveErrorEstimateTracksTheTrueError)
   auto camera = PerspectiveCamera();
   const int size = 80;
   auto reference = scene.Reference(camera, size);
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(scene.Index->GetOutputPort());
-  sampler->SetTransferFunction(scene.TF);
-  sampler->SetStrategy(vtkMCXPointSampler::MONTE_CARLO);
-  sampler->SetSampleExponent(21);
-  sampler->SetSeed(11);
-  sampler->Update();
   const mcxtest::WeightMoments moments =
-    mcxtest::MeasureWeights(sampler->GetOutput()->GetPoints(), camera, size, size);
+    mcxtest::MeasureSampledWeights(scene.Index->GetOutputPort(), scene.TF, camera, size, size);
   const double window =
     std::exp(4.5 / std::sqrt(mcxtest::EffectivePixelCount(moments.PixelMeanSquare)));
   EXPECT_LT(window * window, std::sqrt(2.0));

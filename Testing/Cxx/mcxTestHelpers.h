@@ -3,16 +3,20 @@
 #define mcxTestHelpers_h
 
 #include "vtkAlgorithm.h"
+#include "vtkAlgorithmOutput.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMCXPointSampler.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
@@ -197,6 +201,21 @@ inline WeightMoments MeasureWeights(vtkPoints* points, vtkCamera* camera, int wi
       static_cast<std::size_t>(display[0])] += f * f / n;
   }
   return moments;
+}
+
+/// MeasureWeights on a plain Monte Carlo cloud of 2^exponent - 1 samples of
+/// an index under a TF: the sampling distribution of every strategy.
+inline WeightMoments MeasureSampledWeights(vtkAlgorithmOutput* index, vtkPiecewiseFunction* tf,
+  vtkCamera* camera, int width, int height, int exponent = 21)
+{
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(index);
+  sampler->SetTransferFunction(tf);
+  sampler->SetStrategy(vtkMCXPointSampler::MONTE_CARLO);
+  sampler->SetSampleExponent(exponent);
+  sampler->SetSeed(11);
+  sampler->Update();
+  return MeasureWeights(sampler->GetOutput()->GetPoints(), camera, width, height);
 }
 
 /// The expected relative RMS error of an image of M samples whose weights
