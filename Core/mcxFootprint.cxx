@@ -93,11 +93,11 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
     this->Half[0] += 0.5 * std::fabs(s[0]);
     this->Half[1] += 0.5 * std::fabs(s[1]);
   }
-  // About `subdivisions` nodes across the footprint's longer side, 8 to 64
+  // About `subdivisions` nodes across the footprint's longer side, 4 to 64
   // per pixel: the grid's blur (about a quarter of a step) stays a small
   // fraction of the footprint however small the voxel.
   const double longer = 2.0 * std::max(this->Half[0], this->Half[1]);
-  this->Q = static_cast<int>(std::min(64.0, std::max(8.0, std::ceil(subdivisions / longer))));
+  this->Q = static_cast<int>(std::min(64.0, std::max(4.0, std::ceil(subdivisions / longer))));
   const double h = 1.0 / this->Q;
   for (int a = 0; a < 2; ++a)
   {
@@ -137,11 +137,12 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
   }
 }
 
-void FootprintTable::Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget)
+void FootprintTable::Build(
+  const double axes[3][2], const FootprintPlan& plan, std::size_t budget, int subdivisions)
 {
   this->SplitPlan = plan;
   FootprintDensity density;
-  density.Build(axes, plan);
+  density.Build(axes, plan, subdivisions);
   for (int a = 0; a < 2; ++a)
   {
     // Pixel i's centre lies (i - c) + 1/2 - phase from a centre in pixel c.
@@ -190,7 +191,9 @@ void FootprintTable::Build(const double axes[3][2], const FootprintPlan& plan, s
         given += increments[n];
         largest = shares[n] > shares[largest] ? n : largest;
       }
-      increments[largest] += one - given; // modulo 2^64: exact either way
+      // Unsigned arithmetic: a remainder of either sign lands exactly, since
+      // the rounding errors (at most 1/2 each) sum to far less than 2^32.
+      increments[largest] += one - given;
     }
   }
 }

@@ -3,7 +3,8 @@
 // pixel the kernel reaches, instead of one count where a random offset from
 // the kernel lands. The voxel choice is unchanged; the random offset, which
 // dominates the point deposit's variance, is gone (or, for voxels much
-// larger than a pixel, reduced to a coarse part: see FootprintPlan).
+// larger than a pixel, reduced to a coarse part: see FootprintPlan); only
+// the sub-pixel phase (and in perspective the scale) is rounded at random.
 //
 // In pixel units (pixel i covering [i, i + 1)), the expected contribution of
 // a point deposit of a voxel centred at c to the pixel centred at x is
@@ -21,7 +22,7 @@
 // the Monte Carlo error of any affordable sample count). In perspective
 // views the footprint is the central direction's scaled by D / z (tables on
 // a ladder of scales, chosen at random between the two nearest so that the
-// mean scale is exact); the change of the footprint's shape with the ray's
+// mean is linear in log scale); the change of the footprint's shape with the ray's
 // angle is neglected (bias stated and tested there too).
 #ifndef mcxFootprint_h
 #define mcxFootprint_h
@@ -79,8 +80,10 @@ public:
   /// detector, in pixels along image axes 0 and 1.
   /// The phases are the most of 64, 32, 16 or 8 per pixel whose tables hold
   /// at most `budget` values (at least 8): fine phases for small footprints,
-  /// whose shape changes fastest with the phase.
-  void Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget = 1 << 17);
+  /// whose shape changes fastest with the phase. `subdivisions`: the density
+  /// grid's steps across the footprint (FootprintDensity::Build).
+  void Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget = 1 << 17,
+    int subdivisions = 160);
 
   /// Pixels reached beyond the centre's pixel along image axis a.
   int Reach(int a) const { return this->PixelReach[a]; }
@@ -112,7 +115,7 @@ private:
 };
 
 /// G, the pixel-averaged footprint density (see above), on a grid of step
-/// 1 / Q pixel (about `subdivisions` steps across the footprint, 8 to 64 per
+/// 1 / Q pixel (about `subdivisions` steps across the footprint, 4 to 64 per
 /// pixel): built by successive convolutions of the unit square with the
 /// plan's segments, read by bilinear interpolation.
 class FootprintDensity

@@ -34,7 +34,6 @@ public:
     const DepositSettings& settings = DepositSettings())
   {
     this->Geometry = geometry;
-    this->Footprint = settings.Mode == Deposit::Footprint;
     this->Accumulator.Reset(geometry, origin, matrix, std::move(depthLimits), settings);
     const std::size_t pixels = this->Accumulator.NumberOfPixels();
     this->Total.assign(pixels, 0);
@@ -81,7 +80,7 @@ public:
     {
       return std::nan("");
     }
-    return (this->Footprint ? FootprintErrorCalibration : 1.0) *
+    return (this->Accumulator.ErrorFallsAsInverseM() ? FootprintErrorCalibration : 1.0) *
       mcx::EstimateRelativeError(
         this->Total.data(), this->FirstHalf.data(), this->Total.size(), this->Counted);
   }
@@ -97,7 +96,6 @@ public:
 
 private:
   ProjectionGeometry Geometry;
-  bool Footprint = false;
   SampleAccumulator<Executor> Accumulator;
   std::vector<FixedSum> Total;
   std::vector<FixedSum> FirstHalf;

@@ -6,8 +6,8 @@
 // behind the pixel's depth limit, where opaque geometry hides it); its
 // fixed-point increment goes into the calling thread's image. With the
 // footprint deposit (mcxFootprint.h) p is the voxel's centre and the sample
-// adds its kernel's footprint, renormalised so that its increments add up
-// to exactly the point deposit's one. Each pixel
+// adds its kernel's footprint, whose increments add up to exactly the point
+// deposit's one count in parallel views (to rounding in perspective views). Each pixel
 // holds two sums side by side, in one cache line: all samples, and those
 // with k below the split (the first Halton half, which the error estimate
 // compares with the rest). Collect() adds the threads' images up; integer
@@ -37,8 +37,9 @@ struct DepositSettings
   Deposit Mode = Deposit::Point;
   Kernel Reconstruction = Kernel::Tent;
   std::uint64_t Seed = 0; ///< of the footprint's random parts (its own stream)
-  /// Pixels a deposited part may reach along each projected voxel axis; a
-  /// larger kernel is split (FootprintPlan), which bounds the cost of a sample.
+  /// Pixels a deposited part may reach along each projected voxel axis
+  /// (clamped to 0.5..32); a larger kernel is split (FootprintPlan), which
+  /// bounds the cost of a sample.
   double Reach = 16.0;
   /// Perspective views: the depths (along the view, from the eye) between
   /// which the footprint is tabulated; samples nearer than Depths[0] are
@@ -48,13 +49,17 @@ struct DepositSettings
   /// edge k): the identity when samples come in voxel coordinates, the
   /// voxel's world edges for a stored cloud of world points.
   double VoxelMatrix[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  /// Whether the voxel choice is stratified (Hybrid, QuasiMonteCarlo): only
+  /// then does the footprint's error fall as about M^-1.
+  bool Stratified = true;
 
   bool operator==(const DepositSettings& o) const
   {
     return this->Mode == o.Mode && this->Reconstruction == o.Reconstruction &&
       this->Seed == o.Seed && this->Reach == o.Reach && this->Depths[0] == o.Depths[0] &&
       this->Depths[1] == o.Depths[1] &&
-      std::equal(this->VoxelMatrix, this->VoxelMatrix + 9, o.VoxelMatrix);
+      std::equal(this->VoxelMatrix, this->VoxelMatrix + 9, o.VoxelMatrix) &&
+      this->Stratified == o.Stratified;
   }
   bool operator!=(const DepositSettings& o) const { return !(*this == o); }
 };
@@ -65,14 +70,35 @@ class FootprintLadder
 {
 public:
   static constexpr double Ratio = 1.0905077326652577; // 2^(1/8)
-  static constexpr int MaximumTables = 96;
+  /// At most a depth ratio of 2^6 is tabulated; nearer samples (an eye in
+  /// or next to the volume) are deposited as points.
+  static constexpr int MaximumTables = 48;
 
-  void Build(const PixelBinner& binner, const DepositSettings& settings)
+  /// Builds the tables on `executor`, unless they are those of the same axes
+  /// and settings (a TF edit or a refinement changes neither: tables are
+  /// built once per view). The seed does not enter the tables. Non-finite
+  /// axes or depths leave no table: every sample is then a point deposit.
+  template <typename Executor>
+  void Build(const Executor& executor, const PixelBinner& binner, const DepositSettings& settings)
   {
-    this->Tables.clear();
-    this->Perspective = binner.IsPerspective();
     double axes[3][2];
     binner.PixelAxes(settings.VoxelMatrix, axes);
+    DepositSettings key = settings;
+    key.Seed = 0;
+    if (this->Built && this->Perspective == binner.IsPerspective() && key == this->BuiltFor &&
+      std::equal(&axes[0][0], &axes[0][0] + 6, &this->BuiltAxes[0][0]))
+    {
+      return;
+    }
+    this->Built = true;
+    this->BuiltFor = key;
+    std::copy(&axes[0][0], &axes[0][0] + 6, &this->BuiltAxes[0][0]);
+    this->Tables.clear();
+    this->Perspective = binner.IsPerspective();
+    if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double a) { return std::isfinite(a); }))
+    {
+      return;
+    }
     const double reach = std::min(32.0, std::max(0.5, settings.Reach));
     if (!this->Perspective)
     {
@@ -80,24 +106,40 @@ public:
       this->Tables.back().Build(axes, FootprintPlan::For(settings.Reconstruction, axes, reach));
       return;
     }
-    const double nearest = std::max(settings.Depths[0], 1e-300);
+    const double nearest = settings.Depths[0];
     const double farthest = std::max(settings.Depths[1], nearest);
+    if (!(nearest > 0) || !std::isfinite(farthest))
+    {
+      return;
+    }
+    // From the farthest depth towards the eye.
     this->First = 1.0 / farthest;
     const int count = std::min(MaximumTables,
       2 + static_cast<int>(std::ceil(std::log(farthest / nearest) / std::log(Ratio))));
-    for (int j = 0; j < count; ++j)
-    {
-      const double w = this->First * std::pow(Ratio, j);
-      double scaled[3][2];
-      for (int k = 0; k < 3; ++k)
+    this->Tables.resize(static_cast<std::size_t>(count));
+    executor.For(0, count, 1,
+      [&](std::int64_t begin, std::int64_t end)
       {
-        scaled[k][0] = axes[k][0] * w;
-        scaled[k][1] = axes[k][1] * w;
-      }
-      this->Tables.emplace_back();
-      this->Tables.back().Build(
-        scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach), 1 << 15);
-    }
+        for (std::int64_t j = begin; j < end; ++j)
+        {
+          const double w = this->First * std::pow(Ratio, static_cast<double>(j));
+          double scaled[3][2];
+          for (int k = 0; k < 3; ++k)
+          {
+            scaled[k][0] = axes[k][0] * w;
+            scaled[k][1] = axes[k][1] * w;
+          }
+          this->Tables[static_cast<std::size_t>(j)].Build(
+            scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach), 1 << 15, 64);
+        }
+      });
+  }
+
+  /// True when some table splits its kernel into a random coarse part.
+  bool AnyRandomSplit() const
+  {
+    return std::any_of(this->Tables.begin(), this->Tables.end(),
+      [](const FootprintTable& t) { return t.Plan().IsRandom(); });
   }
 
   /// The table for inverse depth w (0 in parallel views), `u` in [0, 1)
@@ -105,6 +147,10 @@ public:
   /// log w; null beyond the ladder.
   const FootprintTable* Select(double w, double u) const
   {
+    if (this->Tables.empty())
+    {
+      return nullptr;
+    }
     if (!this->Perspective)
     {
       return &this->Tables.front();
@@ -122,6 +168,9 @@ public:
   bool IsEmpty() const { return this->Tables.empty(); }
 
 private:
+  bool Built = false;
+  DepositSettings BuiltFor;
+  double BuiltAxes[3][2] = { { 0, 0 }, { 0, 0 }, { 0, 0 } };
   bool Perspective = false;
   double First = 0.0;
   std::vector<FootprintTable> Tables;
@@ -142,11 +191,17 @@ public:
     this->Binner.reset(new PixelBinner(geometry, origin, matrix));
     this->Settings = settings;
     this->FootprintKey = SeedKey(settings.Seed ^ 0x6A09E667F3BCC909ull);
-    this->Ladder.reset();
     if (settings.Mode == Deposit::Footprint)
     {
-      this->Ladder.reset(new FootprintLadder);
-      this->Ladder->Build(*this->Binner, settings);
+      if (!this->Ladder)
+      {
+        this->Ladder.reset(new FootprintLadder);
+      }
+      this->Ladder->Build(Executor(), *this->Binner, settings);
+    }
+    else
+    {
+      this->Ladder.reset();
     }
     this->Pixels = static_cast<std::size_t>(geometry.Size[0]) * geometry.Size[1];
     this->DepthLimits = std::move(depthLimits);
@@ -159,6 +214,15 @@ public:
         image.clear();
       }
     }
+  }
+
+  /// True when the image's error falls about as M^-1 (footprints of whole
+  /// kernels with a stratified voxel choice), so that the halves' error
+  /// estimate needs mcx::FootprintErrorCalibration; false for M^-1/2.
+  bool ErrorFallsAsInverseM() const
+  {
+    return this->Ladder && this->Settings.Stratified && !this->Ladder->IsEmpty() &&
+      !this->Ladder->AnyRandomSplit();
   }
 
   /// Samples with k < split count in the second sum as well.
@@ -228,14 +292,17 @@ public:
           pair[1] = 1.0 - random.NextOpenClosed();
         }
         table->Plan().RandomOffset(uniform, offset);
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] += offset[a];
-        }
+        this->Offset(offset, p);
         if (!this->Binner->Locate(p, fx, fy, f, w))
         {
           return;
         }
+      }
+      const int rx = table->Reach(0), ry = table->Reach(1);
+      const int width = this->Binner->GetWidth(), height = this->Binner->GetHeight();
+      if (!(fx > -rx - 1.0 && fy > -ry - 1.0 && fx < width + rx + 1.0 && fy < height + ry + 1.0))
+      {
+        return; // the footprint misses the image (also keeps the casts below defined)
       }
       // The centre's pixel and phase, rounded at random to a tabulated phase.
       const int phases = table->Phases();
@@ -251,8 +318,6 @@ public:
         cell[a] = q >= 0 ? q / phases : -((-q + phases - 1) / phases);
         phase[a] = static_cast<int>(q - cell[a] * phases);
       }
-      const int rx = table->Reach(0), ry = table->Reach(1);
-      const int width = this->Binner->GetWidth(), height = this->Binner->GetHeight();
       if (cell[0] + rx < 0 || cell[1] + ry < 0 || cell[0] - rx >= width || cell[1] - ry >= height)
       {
         return;
@@ -272,7 +337,7 @@ public:
         for (std::int64_t x = x0; x <= x1; ++x)
         {
           const std::int64_t n = row + x;
-          if (increments[n] == 0)
+          if (perspective ? !(shares[n] > 0) : increments[n] == 0)
           {
             continue;
           }
@@ -288,6 +353,17 @@ public:
 
   private:
     friend class SampleAccumulator;
+    // p += the voxel matrix times an offset in voxels (the source frame is
+    // voxel coordinates for the fused projector, world for a stored cloud).
+    void Offset(const double offset[3], double p[3]) const
+    {
+      for (int r = 0; r < 3; ++r)
+      {
+        const double* row = this->VoxelMatrix + 3 * r;
+        p[r] += row[0] * offset[0] + row[1] * offset[1] + row[2] * offset[2];
+      }
+    }
+
     void Add(std::uint64_t k, std::int64_t pixel, FixedSum increment) const
     {
       FixedSum* sums = this->Sums + 2 * pixel;
@@ -302,6 +378,7 @@ public:
     std::uint64_t Split;
     std::uint64_t FootprintKey;
     Kernel Reconstruction;
+    const double* VoxelMatrix;
   };
 
   ThreadImage Local()
@@ -317,6 +394,7 @@ public:
     local.Ladder = this->Ladder.get();
     local.FootprintKey = this->FootprintKey;
     local.Reconstruction = this->Settings.Reconstruction;
+    local.VoxelMatrix = this->Settings.VoxelMatrix;
     local.DepthLimits = this->DepthLimits.empty() ? nullptr : this->DepthLimits.data();
     local.Split = this->Split;
     return local;

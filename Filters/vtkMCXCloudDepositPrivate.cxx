@@ -38,10 +38,16 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
     Field(fd, vtkMCXPointSampler::KernelName(), 0) == vtkMCXPointSampler::BOX ? Kernel::Box
                                                                               : Kernel::Tent;
   settings.Seed = static_cast<std::uint64_t>(Field(fd, vtkMCXPointSampler::SeedName(), 0));
+  settings.Stratified = Field(fd, vtkMCXPointSampler::StrategyName(), vtkMCXPointSampler::HYBRID) !=
+    vtkMCXPointSampler::MONTE_CARLO;
   for (int i = 0; i < 9; ++i)
   {
     settings.VoxelMatrix[i] =
       axes->GetComponent(i / axes->GetNumberOfComponents(), i % axes->GetNumberOfComponents());
+    if (!std::isfinite(settings.VoxelMatrix[i]))
+    {
+      return DepositSettings(); // not a sampler's cloud: deposit its points as points
+    }
   }
   vtkDataArray* support = fd->GetArray(vtkMCXPointSampler::SupportCornersName());
   if (geometry.Perspective && support && support->GetNumberOfValues() == 24)

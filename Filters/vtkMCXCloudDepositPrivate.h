@@ -13,11 +13,11 @@ namespace mcx
 {
 
 /// The deposit of a vtkMCXPointSampler cloud (field data Deposit, Kernel,
-/// Seed, VoxelAxes; a cloud without them is a point cloud of positions) for
+/// Seed, Strategy, VoxelAxes; a cloud without them is a point cloud of positions) for
 /// a view whose source frame takes cloud coordinates to world by origin and
 /// matrix (row-major 3x3): in perspective views the depth range is that of
 /// the sampler's support (field SupportCorners), else of the points' bounds
-/// grown by the kernel's reach.
+/// grown by the kernel's reach. The footprint's reach is the default (16).
 /// (Exported: the Rendering module's mapper deposits clouds too.)
 MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* cloud,
   const ProjectionGeometry& geometry, const double origin[3], const double matrix[9]);

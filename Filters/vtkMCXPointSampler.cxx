@@ -193,6 +193,7 @@ int vtkMCXPointSampler::RequestData(
   mcx::AddFieldValue(fd, SampleExponentName(), static_cast<long long>(m));
   mcx::AddFieldValue(fd, DepositName(), static_cast<long long>(this->Deposit));
   mcx::AddFieldValue(fd, KernelName(), static_cast<long long>(this->Kernel));
+  mcx::AddFieldValue(fd, StrategyName(), static_cast<long long>(this->Strategy));
   mcx::AddFieldValue(fd, SeedName(), static_cast<long long>(this->Seed));
   double origin[3], axes[9];
   view.SourceToWorld(origin, axes);

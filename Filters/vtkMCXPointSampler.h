@@ -85,6 +85,7 @@ public:
   /// voxel (9 values, row-major: column k is edge k), which the footprint needs.
   static const char* DepositName() { return "Deposit"; }
   static const char* KernelName() { return "Kernel"; }
+  static const char* StrategyName() { return "Strategy"; }
   static const char* SeedName() { return "Seed"; }
   static const char* VoxelAxesName() { return "VoxelAxes"; }
   /// The support's world corners (24 values, as SUPPORT_CORNERS), with which

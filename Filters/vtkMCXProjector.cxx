@@ -41,11 +41,11 @@ struct Projection
   double SampleWeight = 0.0;
   double Integral = 0.0;
   bool Completed = true;
-  bool Footprint = false; // deposited as footprints: see mcx::FootprintErrorCalibration
+  bool FallsAsInverseM = false; // see mcx::FootprintErrorCalibration
 
   double EstimatedError() const
   {
-    return (this->Footprint ? mcx::FootprintErrorCalibration : 1.0) *
+    return (this->FallsAsInverseM ? mcx::FootprintErrorCalibration : 1.0) *
       mcx::EstimateRelativeError(this->Sums, this->Count);
   }
 };
@@ -87,9 +87,9 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   const mcx::DepositSettings settings =
     mcx::CloudDepositSettings(cloud, geometry, origin, identity);
-  projection.Footprint = settings.Mode == mcx::Deposit::Footprint;
   Accumulator accumulator;
   accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
+  projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
   accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
   auto deposit = [&](const auto* coordinates)
   {
@@ -132,13 +132,13 @@ public:
     Projection projection;
     projection.Count = mcx::SampleCount(m);
     projection.Integral = this->Integral;
-    projection.Footprint = this->DepositMode == mcx::Deposit::Footprint;
     projection.SampleWeight =
       projection.Count > 0 ? this->Integral / static_cast<double>(projection.Count) : 0.0;
     Accumulator accumulator;
     double origin[3], matrix[9];
     this->View.SourceToWorld(origin, matrix);
     accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), this->Settings());
+    projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
     accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
     if (m > 0)
     {
@@ -165,6 +165,7 @@ private:
     settings.Reconstruction = this->Reconstruction;
     settings.Seed = this->Seed;
     settings.Reach = this->FootprintReach;
+    settings.Stratified = this->Method != mcx::Strategy::MonteCarlo;
     double corners[24];
     mcx::ComputeSupportCorners(this->View.Extent, this->View.Origin, this->View.Spacing,
       this->View.Direction, mcx::KernelRadius(this->Reconstruction), corners);
@@ -207,7 +208,7 @@ double SamplesNeeded(const Projection& projection, double targetError, int targe
     const double ratio = projection.EstimatedError() / targetError;
     needed = std::max(needed,
       static_cast<double>(projection.Count) *
-        std::pow(ratio, 1.0 / mcx::ErrorDecayExponent(projection.Footprint)));
+        std::pow(ratio, 1.0 / mcx::ErrorDecayExponent(projection.FallsAsInverseM)));
   }
   if (targetLevels > 0)
   {

@@ -19,12 +19,12 @@
  * Deposit (index input): with FOOTPRINT each sample adds its voxel's
  * reconstruction kernel, integrated along the view and averaged over each
  * pixel's area, to every pixel the kernel reaches (Core/mcxFootprint.h);
- * nothing random is left in the offset, and the error falls about as M^-0.9
- * instead of M^-1/2. A kernel reaching more than FootprintReach pixels along
- * a projected voxel axis is split into a random coarse part and a deposited
- * fine part, which bounds a sample's cost and keeps the estimate unbiased.
- * POINT (the default) is the paper's estimator: one count where the sample's
- * random offset lands. The estimand is the same.
+ * no random kernel offset is left (only the sub-pixel phase is rounded at
+ * random), and with a stratified voxel choice (HYBRID, QUASI_MONTE_CARLO)
+ * the error falls about as M^-1 instead of M^-1/2. A kernel reaching more than FootprintReach
+ * pixels along a projected voxel axis is split into a random coarse part and a deposited fine part,
+ * which bounds a sample's cost and keeps the estimate unbiased. POINT (the default) is the paper's
+ * estimator: one count where the sample's random offset lands. The estimand is the same.
  *
  * Target-accuracy controls (index input): with TargetRelativeError or
  * TargetQuantizationLevels set, a pilot run (at least 2^16 - 1 samples, about

@@ -28,7 +28,11 @@
  *   renders.
  *
  * When the renderer also holds visible opaque geometry, samples behind it in
- * the depth buffer do not count; without any, no depth work is done.
+ * the depth buffer do not count; without any, no depth work is done. A
+ * cloud of voxel centres (vtkMCXPointSampler::FOOTPRINT) is deposited as
+ * footprints, as vtkMCXProjector deposits it (the same image for the same
+ * camera); behind opaque geometry a footprint is tested pixel by pixel at
+ * its voxel centre's depth.
  *
  * Display: the image is mapped by a window and level (in line-integral units;
  * automatic by default: 0 to the 99.5th percentile of the 4 x 4 block means
