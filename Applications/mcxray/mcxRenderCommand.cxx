@@ -64,7 +64,7 @@ options:
   --method M            hybrid (default), mc, qmc, or reference (exact, slow)
   --kernel K            tent (trilinear, default) or box (nearest neighbour)
   --deposit D           footprint (default: each sample adds its voxel's kernel
-                        integrated over every pixel it reaches; about 10 to 50
+                        integrated over every pixel it reaches; about 4 to 50
                         times less error per sample) or point (the paper's: one
                         count where a random offset lands)
   --seed N              seed of the pseudo-random parts (default 0)
