@@ -73,39 +73,13 @@ public:
   /// misses the image or lies nearer than the near plane (perspective).
   bool Bin(const double p[3], std::int64_t& pixel, FixedSum& increment) const
   {
-    const double* m = this->Rows;
-    double fx, fy;
-    if (!this->Perspective)
-    {
-      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->PixelOffset[0];
-      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->PixelOffset[1];
-      increment = FixedOneInteger;
-    }
-    else
-    {
-      const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[0];
-      const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Offset[1];
-      const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Offset[2];
-      if (!(z >= this->Near))
-      {
-        return false;
-      }
-      const double inverseZ = 1.0 / z;
-      fx = u * inverseZ * this->PixelScale[0] + this->PixelOffset[0];
-      fy = v * inverseZ * this->PixelScale[1] + this->PixelOffset[1];
-      if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
-      {
-        return false;
-      }
-      // U, V, W are orthonormal, so the distance from the eye is |(u, v, z)|.
-      const double s = std::sqrt(u * u + v * v + z * z);
-      const double f = this->FocalSquared * s * inverseZ * inverseZ * inverseZ;
-      increment = FixedIncrement(f);
-    }
-    if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
+    double fx, fy, f, inverseDepth;
+    if (!this->Locate(p, fx, fy, f, inverseDepth) ||
+      !(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
     {
       return false;
     }
+    increment = this->Perspective ? FixedIncrement(f) : FixedOneInteger;
     pixel = static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * this->Width;
     return true;
   }
@@ -135,6 +109,7 @@ public:
     inverseDepth = 1.0 / z;
     fx = u * inverseDepth * this->PixelScale[0] + this->PixelOffset[0];
     fy = v * inverseDepth * this->PixelScale[1] + this->PixelOffset[1];
+    // U, V, W are orthonormal, so the distance from the eye is |(u, v, z)|.
     const double s = std::sqrt(u * u + v * v + z * z);
     f = this->FocalSquared * s * inverseDepth * inverseDepth * inverseDepth;
     return std::isfinite(fx) && std::isfinite(fy);

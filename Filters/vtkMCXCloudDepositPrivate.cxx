@@ -49,31 +49,25 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
       return DepositSettings(); // not a sampler's cloud: deposit its points as points
     }
   }
-  vtkDataArray* support = fd->GetArray(vtkMCXPointSampler::SupportCornersName());
-  if (geometry.Perspective && support && support->GetNumberOfValues() == 24)
+  if (!geometry.Perspective)
   {
-    // The sampler's support: the same tables for every prefix of the cloud.
-    double corners[24];
+    return settings;
+  }
+  // The support's corners in cloud coordinates: the sampler's (the same
+  // tables for every prefix of the cloud), else the points' bounds grown by
+  // the kernel's reach along each axis.
+  double corners[24];
+  vtkDataArray* support = fd->GetArray(vtkMCXPointSampler::SupportCornersName());
+  if (support && support->GetNumberOfValues() == 24)
+  {
     for (int i = 0; i < 24; ++i)
     {
-      const double p = support->GetComponent(
+      corners[i] = support->GetComponent(
         i / support->GetNumberOfComponents(), i % support->GetNumberOfComponents());
-      corners[i] = p;
     }
-    double world[24];
-    for (int c = 0; c < 8; ++c)
-    {
-      for (int r = 0; r < 3; ++r)
-      {
-        world[3 * c + r] = origin[r] + matrix[3 * r] * corners[3 * c] +
-          matrix[3 * r + 1] * corners[3 * c + 1] + matrix[3 * r + 2] * corners[3 * c + 2];
-      }
-    }
-    SupportDepthRange(geometry, world, settings.Depths);
   }
-  else if (geometry.Perspective && cloud->GetNumberOfPoints() > 0)
+  else if (cloud->GetNumberOfPoints() > 0)
   {
-    // The points' bounds, grown by the kernel's reach along each axis.
     double bounds[6];
     cloud->GetBounds(bounds);
     const double radius = KernelRadius(settings.Reconstruction);
@@ -84,18 +78,29 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
       bounds[2 * r] -= grow;
       bounds[2 * r + 1] += grow;
     }
-    double corners[24];
     for (int c = 0; c < 8; ++c)
     {
-      const double p[3] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)], bounds[4 + ((c >> 2) & 1)] };
-      for (int r = 0; r < 3; ++r)
+      for (int a = 0; a < 3; ++a)
       {
-        corners[3 * c + r] =
-          origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2];
+        corners[3 * c + a] = bounds[2 * a + ((c >> a) & 1)];
       }
     }
-    SupportDepthRange(geometry, corners, settings.Depths);
   }
+  else
+  {
+    return settings;
+  }
+  double world[24];
+  for (int c = 0; c < 8; ++c)
+  {
+    const double* p = corners + 3 * c;
+    for (int r = 0; r < 3; ++r)
+    {
+      world[3 * c + r] =
+        origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2];
+    }
+  }
+  SupportDepthRange(geometry, world, settings.Depths);
   return settings;
 }
 
