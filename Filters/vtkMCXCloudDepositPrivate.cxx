@@ -21,7 +21,7 @@ double Field(vtkFieldData* fd, const char* name, double fallback)
 }
 
 DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometry& geometry,
-  const double origin[3], const double matrix[9])
+  const double origin[3], const double matrix[9], double footprintReach)
 {
   DepositSettings settings;
   vtkFieldData* fd = cloud->GetFieldData();
@@ -34,6 +34,7 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
     return settings;
   }
   settings.Mode = Deposit::Footprint;
+  settings.Reach = footprintReach;
   settings.Reconstruction =
     Field(fd, vtkMCXPointSampler::KernelName(), 0) == vtkMCXPointSampler::BOX ? Kernel::Box
                                                                               : Kernel::Tent;

@@ -17,10 +17,13 @@ namespace mcx
 /// a view whose source frame takes cloud coordinates to world by origin and
 /// matrix (row-major 3x3): in perspective views the depth range is that of
 /// the sampler's support (field SupportCorners), else of the points' bounds
-/// grown by the kernel's reach. The footprint's reach is the default (16).
-/// (Exported: the Rendering module's mapper deposits clouds too.)
+/// grown by the kernel's reach. footprintReach is the projecting class's
+/// FootprintReach (see vtkMCXProjector::SetFootprintReach): the split of a
+/// large kernel is made when the cloud is deposited, so a cloud's reach is
+/// its consumer's. (Exported: the Rendering module's mapper deposits clouds too.)
 MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* cloud,
-  const ProjectionGeometry& geometry, const double origin[3], const double matrix[9]);
+  const ProjectionGeometry& geometry, const double origin[3], const double matrix[9],
+  double footprintReach);
 
 } // namespace mcx
 

@@ -65,7 +65,7 @@ double FieldValue(vtkFieldData* fd, const char* name, double fallback)
 
 // Stage 1a: a stored point cloud, points in Halton order.
 bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionGeometry& geometry,
-  Projection& projection)
+  double footprintReach, Projection& projection)
 {
   vtkFieldData* fd = cloud->GetFieldData();
   if (!fd || !fd->GetArray(vtkMCXPointSampler::SampleWeightName()))
@@ -86,7 +86,7 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   const mcx::DepositSettings settings =
-    mcx::CloudDepositSettings(cloud, geometry, origin, identity);
+    mcx::CloudDepositSettings(cloud, geometry, origin, identity, footprintReach);
   Accumulator accumulator;
   accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
   projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
@@ -292,7 +292,7 @@ int vtkMCXProjector::RequestData(
   Projection projection;
   if (auto* cloud = vtkPolyData::SafeDownCast(input))
   {
-    if (!ProjectCloud(this, cloud, geometry, projection))
+    if (!ProjectCloud(this, cloud, geometry, this->FootprintReach, projection))
     {
       return 0;
     }

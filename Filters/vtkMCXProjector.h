@@ -16,7 +16,8 @@
  * the samples (for Hybrid, the coarser Halton run) and of the second half
  * (NaN below 3 samples).
  *
- * Deposit (index input): with FOOTPRINT each sample adds its voxel's
+ * Deposit (index input; a footprint cloud from vtkMCXPointSampler brings its
+ * own, and FootprintReach applies to it too): with FOOTPRINT each sample adds its voxel's
  * reconstruction kernel, integrated along the view and averaged over each
  * pixel's area, to every pixel the kernel reaches (Core/mcxFootprint.h);
  * no random kernel offset is left (only the sub-pixel phase is rounded at

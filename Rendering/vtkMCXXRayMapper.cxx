@@ -184,6 +184,7 @@ struct vtkMCXXRayMapper::vtkInternals
   // What the image on screen was made from.
   vtkPolyData* Cloud = nullptr; // compared only, never dereferenced
   vtkMTimeType CloudTime = 0;
+  double FootprintReach = 0.0; // of the image on screen
   mcx::ProjectionGeometry Geometry;
   double Matrix[16] = { 0 };
   std::vector<float> Depth;
@@ -281,7 +282,8 @@ struct vtkMCXXRayMapper::vtkInternals
   {
     const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime;
     if (this->HasImage && !newInput && SameGeometry(view.Geometry, this->Geometry) &&
-      std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth)
+      std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth &&
+      self->GetFootprintReach() == this->FootprintReach)
     {
       return false;
     }
@@ -304,10 +306,11 @@ struct vtkMCXXRayMapper::vtkInternals
     const double origin[3] = { m[3], m[7], m[11] };
     const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
     this->Image.Reset(view.Geometry, origin, linear, std::move(limits),
-      mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear));
+      mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear, self->GetFootprintReach()));
     this->HasImage = true;
     this->Cloud = cloud;
     this->CloudTime = cloud->GetMTime();
+    this->FootprintReach = self->GetFootprintReach();
     this->Geometry = view.Geometry;
     std::copy(m, m + 16, this->Matrix);
     this->Depth = std::move(view.Depth);
@@ -617,6 +620,7 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NegativeLog: " << this->NegativeLog << "\n";
   os << indent << "ProgressiveRefinement: " << this->ProgressiveRefinement << "\n";
   os << indent << "InitialSampleExponent: " << this->InitialSampleExponent << "\n";
+  os << indent << "FootprintReach: " << this->FootprintReach << "\n";
   os << indent << "NumberOfAccumulatedSamples: " << this->GetNumberOfAccumulatedSamples() << "\n";
   os << indent << "NumberOfRestarts: " << this->NumberOfRestarts << "\n";
   os << indent << "NumberOfRefinements: " << this->NumberOfRefinements << "\n";

@@ -135,6 +135,17 @@ public:
   vtkGetMacro(InitialSampleExponent, int);
   ///@}
 
+  ///@{
+  /**
+   * For a footprint cloud (vtkMCXPointSampler::SetDepositToFootprint): a
+   * kernel reaching more than this many pixels along a projected voxel axis
+   * is split into a random coarse part and a deposited fine part (default 16,
+   * 0.5 to 32; see vtkMCXProjector::SetFootprintReach).
+   */
+  vtkSetClampMacro(FootprintReach, double, 0.5, 32.0);
+  vtkGetMacro(FootprintReach, double);
+  ///@}
+
   /** Number of points in the image on screen. */
   vtkTypeInt64 GetNumberOfAccumulatedSamples();
 
@@ -193,6 +204,7 @@ protected:
   bool NegativeLog = false;
   bool ProgressiveRefinement = true;
   int InitialSampleExponent = 14;
+  double FootprintReach = 16.0;
   vtkTypeInt64 NumberOfRestarts = 0;
   vtkTypeInt64 NumberOfRefinements = 0;
   vtkTypeInt64 NumberOfUploads = 0;

@@ -1,106 +1,55 @@
 // What accuracy costs in time: convergence of each method against the exact
-// reference (the paper's Figure 4), accuracy against wall time next to
-// plastimatch's DRRs, the paper's Table 1, TF-edit latency, scaling with
-// voxels and samples, memory, and how well the error estimate and the
-// target-accuracy control keep their promise. Writes CSV files into the
-// output folder; Testing/Benchmarks/accuracy-report turns them into plots and
-// a Markdown report.
+// reference (the paper's Figure 4), accuracy against wall time, the paper's
+// Table 1, TF-edit latency, scaling with voxels and samples, memory, and how
+// well the error estimate and the target-accuracy control keep their promise.
+// (The peers, plastimatch and VTK's ray cast, are BenchmarkPeers'.) Writes CSV
+// files into the output folder; Testing/Benchmarks/accuracy-report turns them
+// into plots and a Markdown report.
 //
 // Usage: BenchmarkAccuracy [--quick] [--output DIR] [--data DIR]
+#include "mcxAccuracyMeasures.h"
 #include "mcxTransferFunctionSpec.h"
 #include "mcxVolumeReader.h"
 
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
-#include "vtkMCXReferenceProjector.h"
 
 #include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageResize.h"
-#include "vtkMath.h"
-#include "vtkMetaImageWriter.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
-#include "vtkPointData.h"
-#include "vtkPolyData.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include <sys/resource.h>
-
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double Since(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double Median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
-double FieldValue(vtkDataObject* data, const char* name)
-{
-  return data->GetFieldData()->GetArray(name)->GetTuple1(0);
-}
-
-double RelativeRMS(const std::vector<double>& estimate, vtkImageData* reference)
-{
-  vtkDataArray* b = reference->GetPointData()->GetArray("LineIntegral");
-  double difference = 0, norm = 0;
-  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
-  {
-    const double d = estimate[static_cast<std::size_t>(i)] - b->GetTuple1(i);
-    difference += d * d;
-    norm += b->GetTuple1(i) * b->GetTuple1(i);
-  }
-  return std::sqrt(difference / norm);
-}
-
-std::vector<double> Values(vtkImageData* image)
-{
-  vtkDataArray* a = image->GetPointData()->GetArray("LineIntegral");
-  std::vector<double> values(static_cast<std::size_t>(a->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-  {
-    values[static_cast<std::size_t>(i)] = a->GetTuple1(i);
-  }
-  return values;
-}
+using mcxbench::Clock;
+using mcxbench::FieldValue;
+using mcxbench::MakeProjector;
+using mcxbench::Median;
+using mcxbench::Reference;
+using mcxbench::RelativeRMS;
+using mcxbench::Since;
+using mcxbench::Values;
 
 struct Case
 {
   std::string Name; // short label
   std::string File; // in the data folder
   std::string TF;   // mcxray --tf spec
-  bool Hounsfield;  // calibrated CT: compared with plastimatch
   double PaperVoxels;
   double PaperIndexSeconds;
   double PaperOfflineSeconds;
@@ -144,151 +93,6 @@ std::vector<View> Views(vtkImageData* volume)
   return views;
 }
 
-vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
-  vtkCamera* camera, int size, double tolerance, int maximumSubdivision, double& seconds)
-{
-  vtkNew<vtkMCXReferenceProjector> reference;
-  reference->SetInputConnection(index->GetOutputPort());
-  reference->SetTransferFunction(tf);
-  reference->SetCamera(camera);
-  reference->SetImageSize(size, size);
-  reference->SetRelativeTolerance(tolerance);
-  reference->SetMaximumSubdivision(maximumSubdivision);
-  const Clock::time_point start = Clock::now();
-  reference->Update();
-  seconds = Since(start);
-  return reference->GetOutput();
-}
-
-// A Monte Carlo projector on an index, configured for one view.
-vtkSmartPointer<vtkMCXProjector> MakeProjector(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
-  vtkCamera* camera, int size, int exponent, int strategy = vtkMCXPointSampler::HYBRID,
-  int deposit = vtkMCXPointSampler::POINT)
-{
-  auto projector = vtkSmartPointer<vtkMCXProjector>::New();
-  projector->SetDeposit(deposit);
-  projector->SetInputConnection(index->GetOutputPort());
-  projector->SetTransferFunction(tf);
-  projector->SetCamera(camera);
-  projector->SetImageSize(size, size);
-  projector->SetSampleExponent(exponent);
-  projector->SetStrategy(strategy);
-  return projector;
-}
-
-// Reads a plastimatch PFM (top row first) into VTK's row order (bottom row first).
-bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& values)
-{
-  std::ifstream in(path, std::ios::binary);
-  std::string magic;
-  int width = 0, height = 0;
-  double scale = 0;
-  in >> magic >> width >> height >> scale;
-  in.get();
-  if (!in || magic != "Pf" || width != size || height != size)
-  {
-    return false;
-  }
-  std::vector<float> raw(static_cast<std::size_t>(width) * height);
-  in.read(
-    reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size() * sizeof(float)));
-  if (!in)
-  {
-    return false;
-  }
-  values.resize(raw.size());
-  for (int r = 0; r < height; ++r)
-  {
-    for (int c = 0; c < width; ++c)
-    {
-      values[static_cast<std::size_t>(height - 1 - r) * width + c] =
-        raw[static_cast<std::size_t>(r) * width + c];
-    }
-  }
-  return true;
-}
-
-// VTK's GPU ray-cast mapper in additive blend mode (software GL under Xvfb
-// here): an 8-bit, clamped sum of the opacity along each ray. The opacity TF
-// is our TF scaled down until nothing saturates; one least-squares gain then
-// maps the grey levels to line integrals. Returns false without a display.
-bool RenderWithVTK(vtkImageData* volume, vtkPiecewiseFunction* tf, vtkCamera* camera, int size,
-  vtkImageData* reference, double& seconds, double& error)
-{
-  if (!std::getenv("DISPLAY"))
-  {
-    return false;
-  }
-  vtkDataArray* exact = reference->GetPointData()->GetArray("LineIntegral");
-  double scale = 1.0;
-  for (int attempt = 0; attempt < 12; ++attempt, scale /= 4)
-  {
-    vtkNew<vtkPiecewiseFunction> opacity;
-    for (int n = 0; n < tf->GetSize(); ++n)
-    {
-      double node[4];
-      tf->GetNodeValue(n, node);
-      opacity->AddPoint(node[0], std::min(1.0, node[1] * scale));
-    }
-    vtkNew<vtkColorTransferFunction> white;
-    white->AddRGBPoint(tf->GetRange()[0], 1, 1, 1);
-    white->AddRGBPoint(tf->GetRange()[1], 1, 1, 1);
-    vtkNew<vtkVolumeProperty> property;
-    property->SetScalarOpacity(opacity);
-    property->SetColor(white);
-    property->SetInterpolationTypeToLinear();
-    vtkNew<vtkGPUVolumeRayCastMapper> mapper;
-    mapper->SetInputData(volume);
-    mapper->SetBlendModeToAdditive();
-    vtkNew<vtkVolume> prop;
-    prop->SetMapper(mapper);
-    prop->SetProperty(property);
-    vtkNew<vtkRenderer> renderer;
-    renderer->AddVolume(prop);
-    renderer->SetActiveCamera(camera);
-    renderer->ResetCameraClippingRange();
-    vtkNew<vtkRenderWindow> window;
-    window->SetOffScreenRendering(1);
-    window->AddRenderer(renderer);
-    window->SetSize(size, size);
-    window->Render(); // compiles shaders, uploads the volume
-    const Clock::time_point start = Clock::now();
-    window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    seconds = Since(start);
-    vtkDataArray* grey = grab->GetOutput()->GetPointData()->GetScalars();
-    if (grey->GetRange(0)[1] >= 255)
-    {
-      continue; // saturated: scale the opacity down
-    }
-    double product = 0, squares = 0;
-    for (vtkIdType i = 0; i < grey->GetNumberOfTuples(); ++i)
-    {
-      product += grey->GetComponent(i, 0) * exact->GetTuple1(i);
-      squares += grey->GetComponent(i, 0) * grey->GetComponent(i, 0);
-    }
-    const double gain = squares > 0 ? product / squares : 0.0;
-    std::vector<double> values(static_cast<std::size_t>(grey->GetNumberOfTuples()));
-    for (vtkIdType i = 0; i < grey->GetNumberOfTuples(); ++i)
-    {
-      values[static_cast<std::size_t>(i)] = gain * grey->GetComponent(i, 0);
-    }
-    error = RelativeRMS(values, reference);
-    return true;
-  }
-  return false;
-}
-
-long PeakResidentMegabytes()
-{
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024;
-}
 }
 
 int main(int argc, char* argv[])
@@ -315,14 +119,13 @@ int main(int argc, char* argv[])
   const double tolerance = quick ? 1e-2 : 1e-3;
   std::vector<int> exponents =
     quick ? std::vector<int>{ 14, 16 } : std::vector<int>{ 16, 18, 20, 22, 24, 26 };
-  const bool havePlastimatch = std::system("plastimatch --version > /dev/null 2>&1") == 0;
 
   std::vector<Case> cases = {
     { "CT head (headsq)", std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti",
-      "1000:0,1500:1", false, 10420224, 3.29, 4.71 },
-    { "CT body (TotalSegmentator)", data + "/ct_body_totalseg.nii.gz", AttenuationTF, true, 7829520,
+      "1000:0,1500:1", 10420224, 3.29, 4.71 },
+    { "CT body (TotalSegmentator)", data + "/ct_body_totalseg.nii.gz", AttenuationTF, 7829520,
       3.87, 5.04 },
-    { "angiography (aneurism)", data + "/angio_aneurism.vti", "60:0,255:1", false, 8126464, 3.36,
+    { "angiography (aneurism)", data + "/angio_aneurism.vti", "60:0,255:1", 8126464, 3.36,
       4.61 },
   };
 
@@ -330,8 +133,6 @@ int main(int argc, char* argv[])
   convergence << "volume,view,method,samples,seconds,true_error,estimated_error\n";
   std::ofstream references(output + "/reference.csv");
   references << "volume,view,size,seconds,estimated_error,rays_per_axis\n";
-  std::ofstream peers(output + "/peers.csv");
-  peers << "volume,view,tool,algorithm,size,seconds,error\n";
   std::ofstream table1(output + "/table1.csv");
   table1 << "volume,voxels,index_seconds,offline_seconds_16M,tf_edit_seconds_4M,paper_voxels,paper_"
             "index_seconds,paper_offline_seconds_16M\n";
@@ -470,76 +271,6 @@ int main(int argc, char* argv[])
       }
     }
 
-    // plastimatch drr with the same cone-beam geometry and HU map: gantry 0
-    // puts the source at +x of the isocentre, the detector beyond it, columns
-    // along +y and the top row towards +z.
-    if (c.Hounsfield && havePlastimatch)
-    {
-      double bounds[6];
-      volume->GetBounds(bounds);
-      const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
-        (bounds[4] + bounds[5]) / 2 };
-      const double sad = 1000, sid = 1500, detector = 600;
-      const std::string mha = output + "/plastimatch_input.mha";
-      vtkNew<vtkMetaImageWriter> writer;
-      writer->SetInputData(volume);
-      writer->SetFileName(mha.c_str());
-      writer->SetCompression(false);
-      writer->Write();
-      vtkNew<vtkCamera> camera;
-      camera->SetFocalPoint(iso);
-      camera->SetPosition(iso[0] + sad, iso[1], iso[2]);
-      camera->SetViewUp(0, 0, 1);
-      camera->SetViewAngle(2 * vtkMath::DegreesFromRadians(std::atan(detector / 2 / sid)));
-      camera->SetClippingRange(1.0, 10 * sad);
-      for (int pixels : quick ? std::vector<int>{ 64 } : std::vector<int>{ 256, 512 })
-      {
-        double referenceSeconds = 0;
-        auto reference = Reference(index, tf, camera, pixels, tolerance, 9, referenceSeconds);
-        peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,reference," << pixels << ','
-              << referenceSeconds << ',' << FieldValue(reference, "EstimatedRelativeError") << '\n';
-        for (const char* algorithm : { "exact", "uniform" })
-        {
-          std::ostringstream command;
-          const std::string prefix =
-            output + "/plastimatch_" + algorithm + "_" + std::to_string(pixels) + "_";
-          command << "plastimatch drr -I " << mha << " -O " << prefix << " -t pfm -i " << algorithm
-                  << " -r \"" << pixels << " " << pixels << "\" -z \"" << detector << " "
-                  << detector << "\" --sad " << sad << " --sid " << sid << " -o \"" << iso[0] << " "
-                  << iso[1] << " " << iso[2] << "\" > /dev/null 2>&1";
-          const Clock::time_point start = Clock::now();
-          const int status = std::system(command.str().c_str());
-          const double seconds = Since(start);
-          std::vector<double> values;
-          const bool read = status == 0 && ReadPlastimatchPFM(prefix + "0000.pfm", pixels, values);
-          std::remove((prefix + "0000.pfm").c_str());
-          std::remove((prefix + "0000.txt").c_str());
-          if (!read)
-          {
-            std::cerr << "plastimatch " << algorithm << " failed" << std::endl;
-            continue;
-          }
-          peers << '"' << c.Name << "\",cone-beam,plastimatch," << algorithm << ',' << pixels << ','
-                << seconds << ',' << RelativeRMS(values, reference) << '\n';
-        }
-        double vtkSeconds = 0, vtkError = 0;
-        if (RenderWithVTK(volume, tf, camera, pixels, reference, vtkSeconds, vtkError))
-        {
-          peers << '"' << c.Name << "\",cone-beam,VTK GPU ray cast (additive; software GL),8-bit,"
-                << pixels << ',' << vtkSeconds << ',' << vtkError << '\n';
-        }
-        for (int m : quick ? std::vector<int>{ 16 } : std::vector<int>{ 20, 22, 24, 26 })
-        {
-          auto projector = MakeProjector(index, tf, camera, pixels, m);
-          const Clock::time_point start = Clock::now();
-          projector->Update();
-          peers << '"' << c.Name << "\",cone-beam,MonteCarloXRay,hybrid 2^" << m << "-1," << pixels
-                << ',' << Since(start) << ','
-                << RelativeRMS(Values(projector->GetOutput()), reference) << '\n';
-        }
-      }
-      std::remove(mha.c_str());
-    }
   }
 
   // Scaling: time against voxel count at fixed M (resampled head), and against M.
@@ -636,7 +367,7 @@ int main(int argc, char* argv[])
     }
   }
   std::ofstream memory(output + "/memory.csv");
-  memory << "peak_resident_megabytes\n" << PeakResidentMegabytes() << '\n';
+  memory << "peak_resident_megabytes\n" << mcxbench::PeakResidentMegabytes() << '\n';
   std::cout << "wrote " << output << std::endl;
   if (nonsense > 0)
   {

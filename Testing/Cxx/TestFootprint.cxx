@@ -371,3 +371,41 @@ TEST(Footprint, SplitKernelsAreTheSameForStoredCloudsAndFusedSamples)
   EXPECT_LT(stored, 1.3 * fused) << "stored " << stored << ", fused " << fused;
   EXPECT_GT(stored, fused / 1.3) << "stored " << stored << ", fused " << fused;
 }
+
+TEST(Footprint, StoredCloudsTakeTheProjectorsReach)
+{
+  // The projector's FootprintReach applies to a stored cloud as to fused
+  // samples: the CT head at 128^2 (a tent reaches about 1.5 pixels), reach 0.5
+  // splits every kernel. The cloud's error with reach 0.5 is the fused
+  // projector's with reach 0.5 (both well above the whole footprint's).
+  Scene scene(
+    "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
+  auto camera = scene.Camera(1);
+  auto reference = scene.Reference(camera, 128);
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(scene.Index->GetOutputPort());
+  sampler->SetTransferFunction(scene.TF);
+  sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+  sampler->SetSampleExponent(18);
+  auto project = [&](double reach)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputConnection(sampler->GetOutputPort());
+    projector->SetCamera(camera);
+    projector->SetImageSize(128, 128);
+    projector->SetFootprintReach(reach);
+    projector->Update();
+    return mcxtest::RelativeRMS(projector->GetOutput(), reference);
+  };
+  const double whole = project(16.0), split = project(0.5);
+  vtkNew<vtkMCXProjector> fused;
+  scene.Configure(fused.Get(), camera, 128);
+  fused->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+  fused->SetSampleExponent(18);
+  fused->SetFootprintReach(0.5);
+  fused->Update();
+  const double fusedSplit = mcxtest::RelativeRMS(fused->GetOutput(), reference);
+  EXPECT_GT(split, 1.5 * whole) << "reach 0.5: " << split << ", reach 16: " << whole;
+  EXPECT_LT(split, 1.3 * fusedSplit) << "stored " << split << ", fused " << fusedSplit;
+  EXPECT_GT(split, fusedSplit / 1.3) << "stored " << split << ", fused " << fusedSplit;
+}

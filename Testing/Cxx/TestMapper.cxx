@@ -417,6 +417,29 @@ TEST(Mapper, FootprintCloudRefinesLikeTheOfflineProjector)
   }
 }
 
+TEST(Mapper, FootprintReachSplitsTheCloudsKernelsAsTheProjectorDoes)
+{
+  // At 160 x 128 a tent reaches about 2 pixels: reach 1 splits every
+  // kernel. The mapper's image with reach 1 is the off-line projector's
+  // with reach 1, bit for bit, and not the image of the default reach.
+  Scene scene(16);
+  scene.Sampler->SetDepositToFootprint();
+  scene.Mapper->ProgressiveRefinementOff();
+  scene.Window->Render();
+  auto whole = scene.OnScreen();
+  scene.Mapper->SetFootprintReach(1.0);
+  scene.Window->Render();
+  auto split = scene.OnScreen();
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(scene.Sampler->GetOutputPort());
+  projector->SetCamera(scene.Renderer->GetActiveCamera());
+  projector->SetImageSize(160, 128);
+  projector->SetFootprintReach(1.0);
+  projector->Update();
+  EXPECT_EQ(0, DifferingPixels(split, projector->GetOutput()));
+  EXPECT_GT(DifferingPixels(split, whole), 1000);
+}
+
 TEST(Mapper, EachChangeRecomputesOnlyWhatItAffects)
 {
   Scene scene(16);

@@ -163,6 +163,11 @@ void vtkMCXXRayRepresentation::SetSeed(vtkTypeInt64 seed)
   this->Sampler->SetSeed(seed);
 }
 
+void vtkMCXXRayRepresentation::SetFootprintReach(double reach)
+{
+  this->Mapper->SetFootprintReach(reach);
+}
+
 void vtkMCXXRayRepresentation::SetInvertDisplay(bool invert)
 {
   this->Mapper->SetInvertDisplay(invert);

@@ -60,6 +60,7 @@ public:
   void SetColorWindow(double window);
   void SetColorLevel(double level);
   void SetProgressiveRefinement(bool progressive);
+  void SetFootprintReach(double reach);
   ///@}
 
   /** The mapper, for tests and scripts. */
