@@ -2,6 +2,7 @@
 
 #include "mcxCountingSort.h"
 #include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkCellData.h"
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <new>
 #include <type_traits>
 #include <vector>
 
@@ -304,22 +306,39 @@ int vtkMCXDensityIndex::RequestData(
   this->UpdateProgress(0.0);
   IndexResult result;
   const bool wide = this->AlwaysUseWideIds || vtkMCXDensityIndex::NeedsWideIds(n);
-  switch (scalars->GetDataType())
+  // The sorted ids, the sort's copy of them and a level per voxel.
+  const double bytesPerVoxel = 2.0 * (wide ? 8 : 4) + 4;
+  if (!mcx::CheckMemory(this, bytesPerVoxel * static_cast<double>(n),
+        "An index of " + std::to_string(n) + " voxels"))
   {
-    vtkTemplateMacro({
-      const VTK_TT* values = static_cast<const VTK_TT*>(scalars->GetVoidPointer(0));
-      if (wide)
-      {
-        BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, result);
-      }
-      else
-      {
-        BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, result);
-      }
-    });
-    default:
-      vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
-      return 0;
+    output->Initialize();
+    return 0;
+  }
+  try
+  {
+    switch (scalars->GetDataType())
+    {
+      vtkTemplateMacro({
+        const VTK_TT* values = static_cast<const VTK_TT*>(scalars->GetVoidPointer(0));
+        if (wide)
+        {
+          BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, result);
+        }
+        else
+        {
+          BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, result);
+        }
+      });
+      default:
+        vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
+        return 0;
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory indexing " << n << " voxels.");
+    output->Initialize();
+    return 0;
   }
   this->UpdateProgress(0.9);
 

@@ -3,6 +3,7 @@
 #include "mcxProjectionGeometry.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -143,6 +144,12 @@ int vtkMCXPointSampler::RequestData(
   const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
   const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
   const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
+  if (!mcx::CheckMemory(this, 3.0 * (pointType == VTK_DOUBLE ? 8 : 4) * static_cast<double>(count),
+        "A cloud of " + std::to_string(count) + " points"))
+  {
+    output->Initialize();
+    return 0;
+  }
   vtkSmartPointer<vtkPoints> points = output->GetPoints();
   if (this->ReusePoints && points && points->GetDataType() == pointType &&
     points->GetNumberOfPoints() == count)
@@ -154,6 +161,12 @@ int vtkMCXPointSampler::RequestData(
     points = vtkSmartPointer<vtkPoints>::New();
     points->SetDataType(pointType);
     points->SetNumberOfPoints(count);
+    if (points->GetNumberOfPoints() != count)
+    {
+      vtkErrorMacro("Cannot allocate a cloud of " << count << " points.");
+      output->Initialize();
+      return 0;
+    }
   }
 
   bool completed = true;

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXProjector);
@@ -245,6 +246,36 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
   return projection;
 }
 
+// Stage 1: the input's samples, projected (false, reported, when there is
+// no image to make).
+bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input,
+  const mcx::ProjectionGeometry& geometry, Projection& projection)
+{
+  if (auto* cloud = vtkPolyData::SafeDownCast(input))
+  {
+    return ProjectCloud(self, cloud, geometry, self->GetFootprintReach(), projection);
+  }
+  IndexProjection sampler(self, geometry);
+  if (!sampler.Prepare(vtkImageData::SafeDownCast(input), self->GetTransferFunction()))
+  {
+    return false;
+  }
+  sampler.Method = static_cast<mcx::Strategy>(self->GetStrategy());
+  sampler.Reconstruction = static_cast<mcx::Kernel>(self->GetKernel());
+  sampler.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  sampler.DepositMode = static_cast<mcx::Deposit>(self->GetDeposit());
+  sampler.FootprintReach = self->GetFootprintReach();
+  // Under a target SampleExponent is ignored (0 included).
+  const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(self->GetSampleExponent());
+  const bool targeted =
+    self->GetTargetRelativeError() > 0 || self->GetTargetQuantizationLevels() > 0;
+  projection = !sampler.IsEmpty() && targeted
+    ? ProjectToTarget(sampler, geometry, self->GetTargetRelativeError(),
+        self->GetTargetQuantizationLevels(), static_cast<unsigned>(self->GetMaximumSampleExponent()))
+    : sampler.Project(m, 0.0, 1.0);
+  return true;
+}
+
 // Stage 3: line integrals and the field data that tells how they were made.
 void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geometry,
   vtkDoubleArray* values, vtkFieldData* fd)
@@ -290,32 +321,20 @@ int vtkMCXProjector::RequestData(
   const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
 
   Projection projection;
-  if (auto* cloud = vtkPolyData::SafeDownCast(input))
+  try
   {
-    if (!ProjectCloud(this, cloud, geometry, this->FootprintReach, projection))
+    if (!ProjectInput(this, input, geometry, projection))
     {
+      output->Initialize();
       return 0;
     }
   }
-  else
+  catch (const std::bad_alloc&)
   {
-    IndexProjection sampler(this, geometry);
-    if (!sampler.Prepare(vtkImageData::SafeDownCast(input), this->TransferFunction))
-    {
-      return 0;
-    }
-    sampler.Method = static_cast<mcx::Strategy>(this->Strategy);
-    sampler.Reconstruction = static_cast<mcx::Kernel>(this->Kernel);
-    sampler.Seed = static_cast<std::uint64_t>(this->Seed);
-    sampler.DepositMode = static_cast<mcx::Deposit>(this->Deposit);
-    sampler.FootprintReach = this->FootprintReach;
-    // Under a target SampleExponent is ignored (0 included).
-    const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
-    const bool targeted = this->TargetRelativeError > 0 || this->TargetQuantizationLevels > 0;
-    projection = !sampler.IsEmpty() && targeted
-      ? ProjectToTarget(sampler, geometry, this->TargetRelativeError,
-          this->TargetQuantizationLevels, static_cast<unsigned>(this->MaximumSampleExponent))
-      : sampler.Project(m, 0.0, 1.0);
+    vtkErrorMacro("Out of memory projecting into " << geometry.Size[0] << " x " << geometry.Size[1]
+                                                   << " pixels.");
+    output->Initialize();
+    return 0;
   }
   if (!projection.Completed)
   {

@@ -4,6 +4,7 @@
 #include "mcxSampleGenerator.h"
 #include "vtkMCXCameraGeometryPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
 
@@ -115,6 +116,13 @@ int vtkMCXProjectorBase::RequestInformation(
   if (!problem.empty())
   {
     vtkErrorMacro("Invalid projection: " << problem << ".");
+    return 0;
+  }
+  if (!mcx::CheckMemory(this,
+        static_cast<double>(g.Size[0]) * g.Size[1] * mcx::ProjectionBytesPerPixel(),
+        "An image of " + std::to_string(g.Size[0]) + " x " + std::to_string(g.Size[1]) +
+          " pixels"))
+  {
     return 0;
   }
   this->Internals->Geometry = g;

@@ -4,6 +4,7 @@
 #include "mcxRayIntegrator.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
 
@@ -19,6 +20,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXReferenceProjector);
@@ -134,8 +136,27 @@ int vtkMCXReferenceProjector::RequestData(
     return 0;
   }
 
-  std::vector<double> g(
-    static_cast<std::size_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2], 0.0);
+  // g at every voxel and two images (this subdivision's and the last).
+  const double voxels =
+    static_cast<double>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2];
+  const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
+  if (!mcx::CheckMemory(this, 8.0 * voxels + 16.0 * geometry.Size[0] * geometry.Size[1],
+        "The exact projection of " + std::to_string(static_cast<long long>(voxels)) + " voxels"))
+  {
+    output->Initialize();
+    return 0;
+  }
+  std::vector<double> g;
+  try
+  {
+    g.assign(static_cast<std::size_t>(voxels), 0.0);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory: the exact projection needs 8 bytes per voxel.");
+    output->Initialize();
+    return 0;
+  }
   const std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
   const bool validIds = view.WideIds ? ScatterLevelWeights<std::uint64_t>(view, weights, g)
                                      : ScatterLevelWeights<std::uint32_t>(view, weights, g);
@@ -146,7 +167,6 @@ int vtkMCXReferenceProjector::RequestData(
   }
   const mcx::Kernel kernel = static_cast<mcx::Kernel>(this->Kernel);
   const mcx::RayIntegrator integrator(g.data(), view.Dimensions, kernel);
-  const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
   const RayFactory rays(geometry, view);
   const int width = geometry.Size[0];
   const int height = geometry.Size[1];

@@ -40,13 +40,23 @@ vtkSmartPointer<vtkCallbackCommand> MakeCommand(
 }
 }
 
+namespace
+{
+const char* const LogCallbackId = "mcxray-error-capture";
+}
+
 ErrorCapture::ErrorCapture()
 {
   this->Window = vtkSmartPointer<SilentOutputWindow>::New();
   vtkOutputWindow::SetInstance(this->Window);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  vtkLogger::AddCallback(LogCallbackId, &ErrorCapture::OnLog, this, vtkLogger::VERBOSITY_ERROR);
 }
 
-ErrorCapture::~ErrorCapture() = default;
+ErrorCapture::~ErrorCapture()
+{
+  vtkLogger::RemoveCallback(LogCallbackId);
+}
 
 // The commands are made with the first watch, not before: each VTK object
 // made advances the global modification clock, whose values VTK's failure
@@ -77,6 +87,10 @@ void ErrorCapture::FailOnAnyError() const
   {
     Fail(Clean(this->Window->First.c_str()));
   }
+  if (!this->LoggedError.empty())
+  {
+    Fail(this->LoggedError);
+  }
 }
 
 std::string ErrorCapture::Clean(const char* text)
@@ -100,6 +114,15 @@ void ErrorCapture::OnError(vtkObject*, unsigned long, void* self, void* text)
   if (capture->Error.empty())
   {
     capture->Error = Clean(static_cast<const char*>(text));
+  }
+}
+
+void ErrorCapture::OnLog(void* self, const vtkLogger::Message& message)
+{
+  auto* capture = static_cast<ErrorCapture*>(self);
+  if (capture->LoggedError.empty() && message.verbosity <= vtkLogger::VERBOSITY_ERROR)
+  {
+    capture->LoggedError = Clean(message.message);
   }
 }
 

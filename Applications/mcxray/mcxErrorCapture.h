@@ -2,10 +2,12 @@
 // one line, "mcxray: error: ...", instead of VTK's multi-line reports.
 // Watched algorithms report through observers; everything else VTK prints
 // (an executive's "returned failure", say) is kept by a silent output
-// window instead of being printed.
+// window instead of being printed, and vtkLogger, which writes to stderr on
+// its own, is turned off there and heard through a callback.
 #ifndef mcxErrorCapture_h
 #define mcxErrorCapture_h
 
+#include "vtkLogger.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -50,8 +52,10 @@ public:
 private:
   static void OnError(vtkObject*, unsigned long, void* self, void* text);
   static void OnWarning(vtkObject*, unsigned long, void* self, void* text);
+  static void OnLog(void* self, const vtkLogger::Message& message);
 
   std::string Error;
+  std::string LoggedError; // the first error vtkLogger reported
   std::vector<std::string> WarningLines;
   vtkSmartPointer<vtkCallbackCommand> ErrorCommand;
   vtkSmartPointer<vtkCallbackCommand> WarningCommand;

@@ -1,5 +1,7 @@
 #include "mcxImageOutput.h"
 
+#include "mcxPartialFileGuard.h"
+
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
@@ -12,7 +14,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <vector>
 
@@ -94,10 +98,17 @@ bool WriteAtomically(const std::string& path, const Write& write, std::string& e
   const std::string ext = Extension(path);
   const std::string temporary =
     path + ".part-" + std::to_string(vtksys::SystemInformation().GetProcessId()) + ext;
+  const PartialFileGuard guard(temporary);
+  errno = 0;
   if (!write(temporary) || std::rename(temporary.c_str(), path.c_str()) != 0)
   {
+    // Only the causes a write itself has (a stale errno of some other call
+    // would mislead).
+    const int cause = errno;
+    const bool known = cause == ENOSPC || cause == EFBIG || cause == EDQUOT || cause == EIO ||
+      cause == EACCES || cause == EROFS;
     std::remove(temporary.c_str());
-    error = "cannot write '" + path + "'";
+    error = "cannot write '" + path + "'" + (known ? ": " + std::string(std::strerror(cause)) : "");
     return false;
   }
   return true;

@@ -33,6 +33,10 @@ struct Option
   void (*Apply)(Settings& settings, const Argument& argument);
 };
 
+// More threads than any machine has cores is a typing error (TBB would try
+// to start them all).
+const long long MaximumThreads = 4096;
+
 // A distance of the radiograph geometry: giving one selects the geometry.
 void SetGeometryDistance(Settings& settings, double& distance, const Argument& argument)
 {
@@ -63,7 +67,7 @@ const Option Options[] = {
     { s.TargetError = ParseOpenUnitFraction(a.Value, a.Name); } },
   { "--quantization-levels", Render, true,
     [](Settings& s, const Argument& a)
-    { s.QuantizationLevels = static_cast<int>(ParseInteger(a.Value, a.Name, 2)); } },
+    { s.QuantizationLevels = static_cast<int>(ParseInteger(a.Value, a.Name, 2, INT_MAX)); } },
   { "--method", Both, true, [](Settings& s, const Argument& a) { s.Method = a.Value; } },
   { "--kernel", Both, true, [](Settings& s, const Argument& a) { s.Kernel = a.Value; } },
   { "--deposit", Both, true, [](Settings& s, const Argument& a) { s.Deposit = a.Value; } },
@@ -72,7 +76,11 @@ const Option Options[] = {
     { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },
   { "--threads", Both, true,
     [](Settings& s, const Argument& a)
-    { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1)); } },
+    { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1, MaximumThreads)); } },
+  { "--memory-limit", Both, true,
+    [](Settings& s, const Argument& a) { s.MemoryLimit = ParseByteSize(a.Value, a.Name); } },
+  { "--read-timeout", Both, true,
+    [](Settings& s, const Argument& a) { s.ReadTimeout = ParsePositive(a.Value, a.Name); } },
   { "--view", Render, true,
     [](Settings& s, const Argument& a)
     {
@@ -145,11 +153,12 @@ const Option Options[] = {
   { "--bits", Render, true,
     [](Settings& s, const Argument& a)
     {
-      s.Window.Bits = static_cast<int>(ParseInteger(a.Value, a.Name, 8));
-      if (s.Window.Bits != 8 && s.Window.Bits != 16)
+      const long long bits = ParseInteger(a.Value, a.Name, 8);
+      if (bits != 8 && bits != 16)
       {
         Fail("--bits must be 8 or 16");
       }
+      s.Window.Bits = static_cast<int>(bits);
     } },
   { "--tolerance", Render, true,
     [](Settings& s, const Argument& a) { s.Tolerance = ParseOpenUnitFraction(a.Value, a.Name); } },

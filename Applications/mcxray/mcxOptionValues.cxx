@@ -2,6 +2,7 @@
 
 #include "mcxFail.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -41,17 +42,40 @@ double ParseOpenUnitFraction(const std::string& text, const std::string& option)
   return value;
 }
 
-long long ParseInteger(const std::string& text, const std::string& option, long long minimum)
+long long ParseInteger(
+  const std::string& text, const std::string& option, long long minimum, long long maximum)
 {
   char* end = nullptr;
   errno = 0;
   const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno != 0 || value < minimum)
+  if (text.empty() || *end != '\0' || errno != 0 || value < minimum || value > maximum)
   {
-    Fail("bad value '" + text + "' for " + option +
-      " (expected an integer >= " + std::to_string(minimum) + ")");
+    Fail("bad value '" + text + "' for " + option + " (expected an integer " +
+      (maximum == LLONG_MAX ? ">= " + std::to_string(minimum)
+                            : "from " + std::to_string(minimum) + " to " + std::to_string(maximum)) +
+      ")");
   }
   return value;
+}
+
+double ParseByteSize(const std::string& text, const std::string& option)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  const std::string suffix = end ? std::string(end) : std::string();
+  const std::string units = "KMGT";
+  const std::size_t unit = suffix.size() == 1 ? units.find(std::toupper(suffix[0])) : std::string::npos;
+  if (text.empty() || end == text.c_str() || !std::isfinite(value) || !(value > 0) ||
+    (!suffix.empty() && unit == std::string::npos))
+  {
+    Fail("bad value '" + text + "' for " + option + " (expected bytes, e.g. 512M or 8G)");
+  }
+  const double bytes = value * std::pow(1024.0, suffix.empty() ? 0.0 : static_cast<double>(unit + 1));
+  if (bytes > std::ldexp(1.0, 60))
+  {
+    Fail(option + " is limited to 2^60 bytes");
+  }
+  return bytes;
 }
 
 std::vector<std::string> Split(const std::string& text, char separator)
@@ -76,11 +100,12 @@ void ParseSize(const std::string& text, int smallest, int largest, int size[2])
   }
   for (int k = 0; k < 2; ++k)
   {
-    size[k] = static_cast<int>(ParseInteger(parts[k], "--size", smallest));
-    if (size[k] > largest)
+    const long long side = ParseInteger(parts[k], "--size", smallest);
+    if (side > largest)
     {
       Fail("--size is limited to " + std::to_string(largest) + " pixels per side");
     }
+    size[k] = static_cast<int>(side);
   }
 }
 

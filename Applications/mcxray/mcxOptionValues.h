@@ -4,6 +4,7 @@
 #ifndef mcxOptionValues_h
 #define mcxOptionValues_h
 
+#include <climits>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,14 @@ double ParsePositive(const std::string& text, const std::string& option);
 /// A number in (0, 1) (else "OPTION must lie in (0, 1)").
 double ParseOpenUnitFraction(const std::string& text, const std::string& option);
 
-/// A decimal integer >= minimum.
-long long ParseInteger(const std::string& text, const std::string& option, long long minimum);
+/// A decimal integer in [minimum, maximum]: out of range (including what a
+/// long long cannot hold) is an error, never wrapped or clamped.
+long long ParseInteger(const std::string& text, const std::string& option, long long minimum,
+  long long maximum = LLONG_MAX);
+
+/// A byte count: a positive number with an optional binary suffix K, M, G
+/// or T ("512M", "8G"), at most 2^60.
+double ParseByteSize(const std::string& text, const std::string& option);
 
 /// "WxH" with each side in [smallest, largest].
 void ParseSize(const std::string& text, int smallest, int largest, int size[2]);

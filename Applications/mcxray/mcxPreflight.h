@@ -12,6 +12,12 @@ namespace mcxapp
 /// writable.
 void CheckOutputDirectory(const std::string& path);
 
+/// Fails if output names the input or one of its files (a DICOM series'
+/// files, the data file of a .mhd or .nhdr header), by any path or link:
+/// writing it would destroy the data being read.
+void CheckOutputIsNotInput(
+  const std::string& output, const std::string& input, const std::string& option);
+
 /// Fails if spec is no transfer function, whatever the data.
 void CheckTransferFunction(const std::string& spec);
 

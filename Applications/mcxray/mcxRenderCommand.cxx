@@ -1,6 +1,7 @@
 #include "mcxRenderCommand.h"
 
 #include "mcxCameraSpec.h"
+#include "mcxContainedReader.h"
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
 #include "mcxImageOutput.h"
@@ -11,6 +12,7 @@
 #include "mcxSettings.h"
 #include "mcxTransferFunctionSpec.h"
 #include "mcxVolumeReader.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
@@ -69,6 +71,12 @@ options:
                         count where a random offset lands)
   --seed N              seed of the pseudo-random parts (default 0)
   --threads N           worker threads (default: all cores); results do not depend on it
+  --memory-limit SIZE   memory budget (e.g. 8G; default: the machine's memory):
+                        volumes, indices, images and clouds that need more are
+                        refused up front, naming the size
+  --read-timeout S      stop a reader that takes longer than S seconds (default
+                        300; the volume is read in a child process, so a corrupt
+                        file cannot crash or hang mcxray)
   --view AXIS           parallel view along +x, -x, +y, -y, +z or -z (default +z).
                         Image axis 0 runs along the first remaining world axis in
                         x, y, z order, axis 1 along the second; never mirrored.
@@ -193,7 +201,7 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
   const std::string input = settings.Input.empty() ? BundledVolumePath() : settings.Input;
   const auto start = std::chrono::steady_clock::now();
   std::string error;
-  vtkSmartPointer<vtkImageData> volume = ReadVolume(input, error);
+  vtkSmartPointer<vtkImageData> volume = ReadVolumeContained(input, ReadLimitsOf(settings), error);
   if (!volume)
   {
     Fail(error);
@@ -465,7 +473,10 @@ int RunRender(int argc, char* argv[])
   {
     vtkSMPTools::Initialize(settings.Threads);
   }
+  mcx::SetMemoryBudget(settings.MemoryLimit);
   CheckOutputDirectory(settings.Output);
+  CheckOutputIsNotInput(
+    settings.Output, settings.Input.empty() ? BundledVolumePath() : settings.Input, "--output");
   CheckTransferFunction(settings.TF);
   const ViewChoice view = ChooseView(settings);
   vtkSmartPointer<vtkImageData> volume = ReadInput(settings);

@@ -3,8 +3,10 @@
 #ifndef mcxSettings_h
 #define mcxSettings_h
 
+#include "mcxContainedReader.h"
 #include "mcxImageOutput.h"
 #include "mcxRadiographSettings.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 
 #include <string>
 
@@ -21,6 +23,8 @@ struct Settings
   std::string Deposit = "footprint";
   unsigned long long Seed = 0;
   int Threads = 0; // 0: all cores
+  double MemoryLimit = 0.0;  // bytes; 0: the machine's physical memory
+  double ReadTimeout = 300.0; // seconds the volume reader may take
   bool SizeGiven = false;
   int Size[2] = { 0, 0 };
   RadiographSettings Radiograph;
@@ -41,6 +45,17 @@ struct Settings
   // view only
   std::string Screenshot;
 };
+
+/// The reader's limits the options set: --read-timeout and --memory-limit
+/// (else the machine's physical memory).
+inline ReadLimits ReadLimitsOf(const Settings& settings)
+{
+  ReadLimits limits;
+  limits.Seconds = settings.ReadTimeout;
+  limits.MemoryBytes = static_cast<unsigned long long>(
+    settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget());
+  return limits;
+}
 
 } // namespace mcxapp
 

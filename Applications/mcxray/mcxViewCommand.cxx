@@ -1,5 +1,6 @@
 #include "mcxViewCommand.h"
 
+#include "mcxContainedReader.h"
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
 #include "mcxHalton.h"
@@ -10,6 +11,7 @@
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxVolumeReader.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 #include "mcxXRayViewer.h"
 
 #include "vtkCamera.h"
@@ -50,6 +52,8 @@ options:
   --deposit D        footprint (default) or point (see mcxray render --help)
   --seed N           seed of the pseudo-random parts (default 0)
   --threads N        worker threads (default: all cores)
+  --memory-limit S   memory budget (e.g. 8G; default: the machine's memory)
+  --read-timeout S   stop a reader that takes longer than S seconds (default 300)
   --size WxH         window size (default 768x768)
   --sad, --sid, --detector, --pitch, --gantry, --isocenter
                      a cone-beam radiograph view as for mcxray render (the
@@ -192,10 +196,15 @@ int RunView(int argc, char* argv[])
   {
     Fail("no display (DISPLAY is not set): use --screenshot FILE, or run under xvfb-run");
   }
+  const std::string input = settings.Input.empty() ? BundledVolumePath() : settings.Input;
+  if (!settings.Screenshot.empty())
+  {
+    CheckOutputIsNotInput(settings.Screenshot, input, "--screenshot");
+  }
   ErrorCapture capture; // outlives the view, whose pipeline reports to it
   std::string error;
-  vtkSmartPointer<vtkImageData> volume =
-    ReadVolume(settings.Input.empty() ? BundledVolumePath() : settings.Input, error);
+  mcx::SetMemoryBudget(settings.MemoryLimit);
+  vtkSmartPointer<vtkImageData> volume = ReadVolumeContained(input, ReadLimitsOf(settings), error);
   if (!volume)
   {
     Fail(error);

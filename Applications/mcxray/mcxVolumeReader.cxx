@@ -1,5 +1,8 @@
 #include "mcxVolumeReader.h"
 
+#include "mcxByteSize.h"
+#include "mcxHeaderCheck.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -214,11 +217,26 @@ std::string BundledVolumePath()
   return std::string(MCXRAY_SOURCE_DATA_DIR) + "/ct_head_headsq.vti";
 }
 
-vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)
+vtkSmartPointer<vtkImageData> ReadVolume(
+  const std::string& path, std::string& error, unsigned long long memoryBudget)
 {
   if (!vtksys::SystemTools::FileExists(path))
   {
     error = "cannot read '" + path + "': no such file or directory";
+    return nullptr;
+  }
+  unsigned long long claimed = 0;
+  std::string problem;
+  if (!CheckVolumeHeader(path, claimed, problem))
+  {
+    error = "cannot read '" + path + "': " + problem;
+    return nullptr;
+  }
+  if (memoryBudget > 0 && claimed > memoryBudget)
+  {
+    error = "cannot read '" + path + "': its voxels need " + mcx::DescribeBytes(double(claimed)) +
+      ", more than the memory budget of " + mcx::DescribeBytes(double(memoryBudget)) +
+      " (--memory-limit)";
     return nullptr;
   }
   vtkSmartPointer<vtkAlgorithm> reader;

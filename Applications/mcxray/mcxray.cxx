@@ -2,6 +2,7 @@
 // volume rendering, from the command line. Each command lives in its own
 // file (mcxRenderCommand, mcxViewCommand); this only picks one.
 #include "mcxFail.h"
+#include "mcxPartialFileGuard.h"
 #include "mcxRenderCommand.h"
 #include "mcxViewCommand.h"
 
@@ -9,6 +10,7 @@
 
 int main(int argc, char* argv[])
 {
+  mcxapp::InstallInterruptHandlers();
   const std::string command = argc >= 2 ? argv[1] : "";
   if (command == "render")
   {

@@ -1,5 +1,6 @@
 // The mcxray command: real CT files from disk, the axis-view contract,
 // output formats, and clear errors without partial output.
+#include "mcxCommandLineRunner.h"
 #include "mcxSharedData.h"
 #include "mcxTestHelpers.h"
 
@@ -22,60 +23,15 @@
 
 #include <sys/wait.h>
 
+using mcxtest::ExpectOneLineError;
+using mcxtest::Read;
+using mcxtest::Result;
+using mcxtest::RunCLI;
+using mcxtest::Slurp;
+using mcxtest::Temporary;
+
 namespace
 {
-struct Result
-{
-  int Status;
-  std::string Output; // stdout
-  std::string Errors; // stderr
-};
-
-std::string Slurp(const std::string& path)
-{
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-Result RunCLI(const std::string& arguments, const std::string& environment = "")
-{
-  // One log per test: ctest may run the tests of this file in parallel.
-  const std::string log = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/mcxray-" +
-    ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::string command = environment + std::string(MCXRAY_CLI) + " " + arguments + " > " +
-    log + ".out 2> " + log + ".err";
-  const int raw = std::system(command.c_str());
-  return { WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, Slurp(log + ".out"), Slurp(log + ".err") };
-}
-
-vtkSmartPointer<vtkImageData> Read(const std::string& path)
-{
-  vtkNew<vtkXMLImageDataReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  return reader->GetOutput();
-}
-
-std::string Temporary(const std::string& name)
-{
-  const std::string path = vtksys::SystemTools::GetCurrentWorkingDirectory() + "/" + name;
-  vtksys::SystemTools::RemoveFile(path);
-  return path;
-}
-
-// Exit status 2, one line on stderr, nothing on stdout, no output file.
-void ExpectOneLineError(const std::string& arguments, const std::string& output)
-{
-  Result r = RunCLI(arguments);
-  EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
-  EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
-  EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
-  EXPECT_EQ("", r.Output) << arguments;
-  EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
-}
-
 std::string SharedData(const std::string& name)
 {
   return mcxtest::SharedDataPath(name);

@@ -1,0 +1,334 @@
+#include "mcxContainedReader.h"
+
+#include "mcxByteSize.h"
+#include "mcxHeaderCheck.h"
+#include "mcxVolumeReader.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkPointData.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <new>
+#include <thread>
+
+#include <csignal>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace mcxapp
+{
+
+namespace
+{
+// What the child hands back, at the start of the shared file: a message on
+// failure, else the scalars (name, then data at DataOffset) and geometry.
+struct Handover
+{
+  char Magic[8] = { 'M', 'C', 'X', 'V', 'O', 'L', '1', 0 };
+  std::int32_t Failed = 1;
+  std::int32_t ScalarType = 0;
+  std::int32_t Components = 0;
+  std::int32_t Dimensions[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+  double Origin[3] = { 0, 0, 0 };
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  std::uint64_t MessageBytes = 0;
+  std::uint64_t NameBytes = 0;
+  std::uint64_t DataOffset = 0;
+  std::uint64_t DataBytes = 0;
+};
+
+// Address space a reader may map besides its data (stacks, small buffers).
+const unsigned long long AddressSpaceAllowance = 1ULL << 30;
+
+// This process's address space now (/proc/self/statm, in pages).
+unsigned long long MappedBytes()
+{
+  unsigned long long pages = 0;
+  if (FILE* statm = std::fopen("/proc/self/statm", "r"))
+  {
+    if (std::fscanf(statm, "%llu", &pages) != 1)
+    {
+      pages = 0;
+    }
+    std::fclose(statm);
+  }
+  return pages * static_cast<unsigned long long>(::sysconf(_SC_PAGESIZE));
+}
+
+bool WriteAll(int fd, const void* data, std::uint64_t bytes)
+{
+  const auto* p = static_cast<const char*>(data);
+  while (bytes > 0)
+  {
+    const ssize_t n = ::write(fd, p, static_cast<std::size_t>(std::min<std::uint64_t>(bytes, 1 << 30)));
+    if (n < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (n <= 0)
+    {
+      return false;
+    }
+    p += n;
+    bytes -= static_cast<std::uint64_t>(n);
+  }
+  return true;
+}
+
+void HandOverFailure(int fd, const std::string& message)
+{
+  Handover header;
+  header.MessageBytes = message.size();
+  WriteAll(fd, &header, sizeof(header));
+  WriteAll(fd, message.data(), message.size());
+}
+
+// False (errno set) when the volume could not be written whole.
+bool HandOverVolume(int fd, vtkImageData* volume)
+{
+  vtkDataArray* scalars = volume->GetPointData()->GetScalars();
+  Handover header;
+  header.Failed = 0;
+  header.ScalarType = scalars->GetDataType();
+  header.Components = scalars->GetNumberOfComponents();
+  volume->GetDimensions(header.Dimensions);
+  volume->GetSpacing(header.Spacing);
+  volume->GetOrigin(header.Origin);
+  std::copy(volume->GetDirectionMatrix()->GetData(), volume->GetDirectionMatrix()->GetData() + 9,
+    header.Direction);
+  const std::string name = scalars->GetName() ? scalars->GetName() : "";
+  header.NameBytes = name.size();
+  header.DataOffset = sizeof(header) + name.size();
+  header.DataBytes = static_cast<std::uint64_t>(scalars->GetNumberOfValues()) *
+    static_cast<std::uint64_t>(scalars->GetDataTypeSize());
+  return WriteAll(fd, &header, sizeof(header)) && WriteAll(fd, name.data(), name.size()) &&
+    WriteAll(fd, scalars->GetVoidPointer(0), header.DataBytes);
+}
+
+// The child: silent (stderr to /dev/null), under the memory limit, killed
+// with its parent; it reads, hands over and ends without running any
+// destructor (a reader fault may have left the heap in any state).
+[[noreturn]] void ReadInChild(const std::string& path, const ReadLimits& limits, int fd)
+{
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  const int quiet = ::open("/dev/null", O_WRONLY);
+  if (quiet >= 0)
+  {
+    ::dup2(quiet, STDERR_FILENO);
+    ::dup2(quiet, STDOUT_FILENO);
+  }
+  if (limits.MemoryBytes > 0)
+  {
+    // The budget is for data: what is mapped already (libraries, and a
+    // sanitizer's shadow memory) and an allowance for stacks come on top.
+    const rlim_t space = MappedBytes() + limits.MemoryBytes + AddressSpaceAllowance;
+    const rlimit memory = { space, space };
+    ::setrlimit(RLIMIT_AS, &memory);
+  }
+  std::string error;
+  try
+  {
+    vtkSmartPointer<vtkImageData> volume = ReadVolume(path, error, limits.MemoryBytes);
+    if (volume && HandOverVolume(fd, volume))
+    {
+      ::_exit(0);
+    }
+    if (volume)
+    {
+      // A file-size limit (ulimit -f) holds for shared memory files too.
+      error = "cannot read '" + path + "': the volume cannot be handed over from the reader (" +
+        std::strerror(errno) + ")";
+      ::ftruncate(fd, 0);
+      ::lseek(fd, 0, SEEK_SET);
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "cannot read '" + path + "': out of memory while reading";
+  }
+  HandOverFailure(fd, error);
+  ::_exit(0);
+}
+
+std::string SignalName(int signal)
+{
+  switch (signal)
+  {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGABRT: return "SIGABRT";
+    case SIGILL: return "SIGILL";
+    case SIGKILL: return "SIGKILL";
+    default: return "signal " + std::to_string(signal);
+  }
+}
+
+// Waits for the child at most `seconds`; false (child killed) past it.
+bool WaitFor(pid_t child, double seconds, int& status)
+{
+  const auto deadline =
+    std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  std::chrono::milliseconds pause(1);
+  for (;;)
+  {
+    const pid_t done = ::waitpid(child, &status, WNOHANG);
+    if (done == child || (done < 0 && errno != EINTR))
+    {
+      return true;
+    }
+    if (std::chrono::steady_clock::now() >= deadline)
+    {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+      return false;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::milliseconds(20));
+  }
+}
+
+// The volume from the shared file, its sizes checked against each other.
+vtkSmartPointer<vtkImageData> TakeOver(
+  int fd, const std::string& path, const ReadLimits& limits, std::string& error)
+{
+  struct stat info;
+  if (::fstat(fd, &info) != 0 || static_cast<std::uint64_t>(info.st_size) < sizeof(Handover))
+  {
+    error = "cannot read '" + path + "': the reader ended without a result";
+    return nullptr;
+  }
+  const std::uint64_t size = static_cast<std::uint64_t>(info.st_size);
+  void* mapped = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+  if (mapped == MAP_FAILED)
+  {
+    error = "cannot read '" + path + "': cannot map the volume (" + mcx::DescribeBytes(double(size)) + ")";
+    return nullptr;
+  }
+  const auto* bytes = static_cast<const char*>(mapped);
+  Handover header;
+  std::memcpy(&header, bytes, sizeof(header));
+  vtkSmartPointer<vtkImageData> volume;
+  const std::uint64_t voxels = static_cast<std::uint64_t>(std::max(header.Dimensions[0], 0)) *
+    static_cast<std::uint64_t>(std::max(header.Dimensions[1], 0)) *
+    static_cast<std::uint64_t>(std::max(header.Dimensions[2], 0));
+  if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 ||
+    header.MessageBytes > size - sizeof(header))
+  {
+    error = "cannot read '" + path + "': the reader ended without a result";
+  }
+  else if (header.Failed)
+  {
+    error.assign(bytes + sizeof(header), static_cast<std::size_t>(header.MessageBytes));
+    error = error.substr(0, error.find('\n'));
+    if (error.empty())
+    {
+      error = "cannot read '" + path + "'";
+    }
+  }
+  else if (header.NameBytes > size || header.DataOffset > size ||
+    header.DataBytes > size - header.DataOffset || header.Components < 1 || voxels == 0)
+  {
+    error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
+  }
+  else
+  {
+    auto scalars = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
+    const std::uint64_t values = voxels * static_cast<std::uint64_t>(header.Components);
+    if (!scalars || values * static_cast<std::uint64_t>(scalars->GetDataTypeSize()) != header.DataBytes)
+    {
+      error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
+    }
+    else if (limits.MemoryBytes > 0 && header.DataBytes > limits.MemoryBytes)
+    {
+      error = "cannot read '" + path + "': the volume needs " + mcx::DescribeBytes(double(header.DataBytes)) +
+        ", more than the memory budget of " + mcx::DescribeBytes(double(limits.MemoryBytes)) +
+        " (--memory-limit)";
+    }
+    else
+    {
+      scalars->SetNumberOfComponents(header.Components);
+      if (!scalars->Allocate(static_cast<vtkIdType>(values)))
+      {
+        error = "cannot read '" + path + "': cannot allocate " + mcx::DescribeBytes(double(header.DataBytes));
+      }
+      else
+      {
+        scalars->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
+        std::memcpy(scalars->GetVoidPointer(0), bytes + header.DataOffset,
+          static_cast<std::size_t>(header.DataBytes));
+        scalars->SetName(std::string(bytes + sizeof(header) + header.MessageBytes,
+          static_cast<std::size_t>(header.NameBytes)).c_str());
+        volume = vtkSmartPointer<vtkImageData>::New();
+        volume->SetDimensions(header.Dimensions);
+        volume->SetSpacing(header.Spacing);
+        volume->SetOrigin(header.Origin);
+        volume->SetDirectionMatrix(header.Direction);
+        volume->GetPointData()->SetScalars(scalars);
+      }
+    }
+  }
+  ::munmap(mapped, size);
+  return volume;
+}
+}
+
+vtkSmartPointer<vtkImageData> ReadVolumeContained(
+  const std::string& path, const ReadLimits& limits, std::string& error)
+{
+  const int fd = ::memfd_create("mcxray-volume", MFD_CLOEXEC);
+  if (fd < 0)
+  {
+    return ReadVolume(path, error); // no shared memory: read in this process
+  }
+  const pid_t child = ::fork();
+  if (child < 0)
+  {
+    ::close(fd);
+    return ReadVolume(path, error);
+  }
+  if (child == 0)
+  {
+    ReadInChild(path, limits, fd);
+  }
+  int status = 0;
+  vtkSmartPointer<vtkImageData> volume;
+  if (!WaitFor(child, limits.Seconds, status))
+  {
+    error = "cannot read '" + path + "': the reader did not finish within " +
+      std::to_string(static_cast<long long>(limits.Seconds)) +
+      " s (a corrupt file? --read-timeout sets the limit)";
+  }
+  else if (WIFSIGNALED(status))
+  {
+    error = "cannot read '" + path + "': the reader crashed (" + SignalName(WTERMSIG(status)) +
+      "): the file is corrupt, does not match its header, or needs more memory than the budget" +
+      (limits.MemoryBytes > 0 ? " of " + mcx::DescribeBytes(double(limits.MemoryBytes)) : std::string());
+  }
+  else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  {
+    error = "cannot read '" + path + "': the reader failed (exit status " +
+      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
+  }
+  else
+  {
+    volume = TakeOver(fd, path, limits, error);
+  }
+  ::close(fd);
+  return volume;
+}
+
+} // namespace mcxapp

@@ -1,0 +1,33 @@
+// Reads a volume in a child process, so that a reader fault that slips past
+// every header check (VTK 9.1's readers trust their headers) cannot take the
+// tool down or hang it: the child reads under a memory limit, hands the
+// volume back through shared memory and ends; a crash, a hang past the time
+// limit or an allocation beyond the budget becomes one line of error.
+#ifndef mcxContainedReader_h
+#define mcxContainedReader_h
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+
+class vtkImageData;
+
+namespace mcxapp
+{
+
+struct ReadLimits
+{
+  double Seconds = 300.0;             // the reader is stopped after this long
+  unsigned long long MemoryBytes = 0; // the child's address-space limit; 0: none
+};
+
+/// ReadVolume (checked headers first, then the VTK reader) in a child
+/// process within limits: the scalars with their geometry (spacing, origin,
+/// direction), or null with error set to one line that says what went wrong
+/// (the reader's own message, its signal, or the time limit).
+vtkSmartPointer<vtkImageData> ReadVolumeContained(
+  const std::string& path, const ReadLimits& limits, std::string& error);
+
+} // namespace mcxapp
+
+#endif

@@ -1,0 +1,869 @@
+#include "mcxHeaderCheck.h"
+
+#include "mcxByteSize.h"
+
+#include "vtk_zlib.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace mcxapp
+{
+
+namespace
+{
+using Bytes = unsigned long long;
+
+// Headers are text of bounded length: a line or header longer than these is
+// not one of ours.
+const std::size_t LargestHeader = 1 << 20;
+const long long LargestSide = 1LL << 31;      // voxels along one axis
+const long long LargestPatternFiles = 100000; // files a name pattern or list may name
+
+std::string Lower(std::string text)
+{
+  std::transform(
+    text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+std::string Trim(const std::string& text)
+{
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  const std::size_t last = text.find_last_not_of(" \t\r\n");
+  return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix)
+{
+  const std::string lower = Lower(text);
+  return lower.size() >= suffix.size() &&
+    lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+Bytes FileSize(const std::string& path)
+{
+  return static_cast<Bytes>(vtksys::SystemTools::FileLength(path));
+}
+
+std::string Dimensions(const std::vector<long long>& dims)
+{
+  std::string text;
+  for (std::size_t a = 0; a < dims.size(); ++a)
+  {
+    text += (a ? "x" : "") + std::to_string(dims[a]);
+  }
+  return text;
+}
+
+// dims' product times elementBytes, without overflow; false (error set)
+// for a side below 1 or above LargestSide, or a product beyond 2^63.
+bool Product(const std::vector<long long>& dims, Bytes elementBytes, Bytes& bytes, std::string& error)
+{
+  if (dims.empty())
+  {
+    error = "the header gives no dimensions";
+    return false;
+  }
+  double product = static_cast<double>(elementBytes);
+  bytes = elementBytes;
+  for (long long side : dims)
+  {
+    if (side < 1 || side > LargestSide)
+    {
+      error = "the header's dimensions " + Dimensions(dims) + " are not all between 1 and 2^31";
+      return false;
+    }
+    product *= static_cast<double>(side);
+    bytes *= static_cast<Bytes>(side);
+  }
+  if (elementBytes == 0 || product >= 9.2e18)
+  {
+    error = "the header's dimensions " + Dimensions(dims) + " overflow";
+    return false;
+  }
+  return true;
+}
+
+// Raw data must be all there; compressed data within deflate's ratio.
+bool CheckAvailable(Bytes claimed, Bytes available, bool compressed, const std::vector<long long>& dims,
+  std::string& error)
+{
+  if (!compressed && available < claimed)
+  {
+    error = "truncated: the header claims " + Dimensions(dims) + " voxels (" +
+      mcx::DescribeBytes(static_cast<double>(claimed)) + "), the file holds " +
+      mcx::DescribeBytes(static_cast<double>(available)) + " of data";
+    return false;
+  }
+  if (compressed && static_cast<double>(claimed) > LargestCompressionRatio * (available + 64.0))
+  {
+    error = "the header claims " + Dimensions(dims) + " voxels (" +
+      mcx::DescribeBytes(static_cast<double>(claimed)) + ") from " +
+      mcx::DescribeBytes(static_cast<double>(available)) +
+      " of compressed data, more than deflate can hold";
+    return false;
+  }
+  return true;
+}
+
+bool ParseIntegers(const std::string& text, std::vector<long long>& values)
+{
+  std::istringstream in(text);
+  long long v = 0;
+  values.clear();
+  while (in >> v)
+  {
+    values.push_back(v);
+  }
+  return in.eof() && !values.empty();
+}
+
+// ---- NIfTI-1 and NIfTI-2 ----
+
+template <typename T>
+T Field(const unsigned char* header, std::size_t offset, bool swap)
+{
+  unsigned char raw[sizeof(T)];
+  std::memcpy(raw, header + offset, sizeof(T));
+  if (swap)
+  {
+    std::reverse(raw, raw + sizeof(T));
+  }
+  T value;
+  std::memcpy(&value, raw, sizeof(T));
+  return value;
+}
+
+Bytes NiftiElementBytes(int datatype)
+{
+  switch (datatype)
+  {
+    case 2: case 256: return 1;                    // uint8, int8
+    case 4: case 512: return 2;                    // int16, uint16
+    case 8: case 16: case 768: return 4;           // int32, float32, uint32
+    case 64: case 1024: case 1280: return 8;       // float64, int64, uint64
+    case 128: return 3;                            // RGB24
+    case 2304: return 4;                           // RGBA32
+    case 32: return 8;                             // complex64
+    case 1792: return 16;                          // complex128
+    default: return 0;
+  }
+}
+
+// The uncompressed size of a gzip stream, counted up to limit + 1 bytes.
+Bytes GzipLength(const std::string& path, Bytes limit)
+{
+  gzFile in = gzopen(path.c_str(), "rb");
+  if (!in)
+  {
+    return 0;
+  }
+  std::vector<char> buffer(1 << 20);
+  Bytes total = 0;
+  int n = 0;
+  while (total <= limit && (n = gzread(in, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
+  {
+    total += static_cast<Bytes>(n);
+  }
+  gzclose(in);
+  return total;
+}
+
+bool CheckNifti(const std::string& path, Bytes& claimed, std::string& error)
+{
+  const bool compressed = EndsWith(path, ".gz");
+  unsigned char header[540] = { 0 };
+  int got = 0;
+  if (compressed)
+  {
+    gzFile in = gzopen(path.c_str(), "rb");
+    got = in ? gzread(in, header, sizeof(header)) : -1;
+    if (in)
+    {
+      gzclose(in);
+    }
+  }
+  else
+  {
+    std::ifstream in(path, std::ios::binary);
+    in.read(reinterpret_cast<char*>(header), sizeof(header));
+    got = static_cast<int>(in.gcount());
+  }
+  if (got < 348)
+  {
+    error = "not a NIfTI file (shorter than its 348-byte header)";
+    return false;
+  }
+  const int size = Field<std::int32_t>(header, 0, false);
+  const bool swap = size != 348 && size != 540;
+  const int version = Field<std::int32_t>(header, 0, swap) == 348 ? 1 : 2;
+  if (Field<std::int32_t>(header, 0, swap) != (version == 1 ? 348 : 540) || (version == 2 && got < 540))
+  {
+    error = "not a NIfTI file (sizeof_hdr is neither 348 nor 540)";
+    return false;
+  }
+  std::vector<long long> dims;
+  long long rank = 0;
+  int datatype = 0;
+  double offset = 0;
+  if (version == 1)
+  {
+    rank = Field<std::int16_t>(header, 40, swap);
+    for (long long a = 1; a <= std::min<long long>(rank, 7); ++a)
+    {
+      dims.push_back(Field<std::int16_t>(header, 40 + 2 * static_cast<std::size_t>(a), swap));
+    }
+    datatype = Field<std::int16_t>(header, 70, swap);
+    offset = Field<float>(header, 108, swap);
+  }
+  else
+  {
+    rank = Field<std::int64_t>(header, 16, swap);
+    for (long long a = 1; a <= std::min<long long>(rank, 7); ++a)
+    {
+      dims.push_back(Field<std::int64_t>(header, 16 + 8 * static_cast<std::size_t>(a), swap));
+    }
+    datatype = Field<std::int16_t>(header, 12, swap);
+    offset = static_cast<double>(Field<std::int64_t>(header, 168, swap));
+  }
+  if (rank < 1 || rank > 7)
+  {
+    error = "the NIfTI header's dim[0] is " + std::to_string(rank) + " (expected 1 to 7)";
+    return false;
+  }
+  const Bytes element = NiftiElementBytes(datatype);
+  if (element == 0)
+  {
+    error = "the NIfTI header's datatype " + std::to_string(datatype) + " is unknown";
+    return false;
+  }
+  if (!Product(dims, element, claimed, error))
+  {
+    return false;
+  }
+  if (!(offset >= (version == 1 ? 348 : 540)) || !std::isfinite(offset) || offset > 1e15)
+  {
+    error = "the NIfTI header's vox_offset is not past the header";
+    return false;
+  }
+  const Bytes start = static_cast<Bytes>(offset);
+  if (!compressed)
+  {
+    const Bytes file = FileSize(path);
+    return CheckAvailable(claimed, file > start ? file - start : 0, false, dims, error);
+  }
+  if (!CheckAvailable(claimed, FileSize(path), true, dims, error))
+  {
+    return false;
+  }
+  const Bytes length = GzipLength(path, start + claimed);
+  return CheckAvailable(claimed, length > start ? length - start : 0, false, dims, error);
+}
+
+// ---- "key = value" (MetaImage) and "key: value" (NRRD) headers ----
+
+struct TextHeader
+{
+  std::map<std::string, std::string> Fields; // keys in lower case
+  Bytes End = 0;                              // where the data of an attached header begin
+};
+
+// MetaImage: lines up to and including ElementDataFile; NRRD: lines up to
+// the first blank line (comments '#' skipped, the magic line first).
+bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool first = true;
+  while (std::getline(in, line))
+  {
+    header.End += line.size() + 1;
+    if (header.End > LargestHeader)
+    {
+      error = "the header is longer than 1 MiB";
+      return false;
+    }
+    if (!line.empty() && line.back() == '\r')
+    {
+      line.pop_back();
+    }
+    if (nrrd && first)
+    {
+      first = false;
+      if (line.compare(0, 4, "NRRD") != 0)
+      {
+        error = "not a NRRD file (no NRRD magic)";
+        return false;
+      }
+      continue;
+    }
+    if (nrrd && line.empty())
+    {
+      return true;
+    }
+    if (nrrd && line[0] == '#')
+    {
+      continue;
+    }
+    const std::size_t separator = line.find(nrrd ? ":" : "=");
+    if (separator == std::string::npos)
+    {
+      continue;
+    }
+    std::string key = Lower(Trim(line.substr(0, separator)));
+    std::string value = line.substr(separator + 1);
+    if (nrrd && !value.empty() && value[0] == '=')
+    {
+      continue; // a key/value pair ("key:=value"), not a field
+    }
+    header.Fields[key] = Trim(value);
+    if (!nrrd && key == "elementdatafile")
+    {
+      return true;
+    }
+  }
+  if (nrrd)
+  {
+    return true; // a detached header may end without a blank line
+  }
+  error = "the MetaImage header has no ElementDataFile";
+  return false;
+}
+
+// A data file named relative to its header's folder.
+std::string Beside(const std::string& header, const std::string& name)
+{
+  return vtksys::SystemTools::CollapseFullPath(
+    name, vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(header)));
+}
+
+// The total size of a printf pattern's files ("name%03d.raw first last
+// step"), at most LargestPatternFiles of them, each of which must exist.
+bool PatternFiles(const std::string& header, const std::string& spec, Bytes& total, std::string& error)
+{
+  std::istringstream in(spec);
+  std::string pattern;
+  long long first = 0, last = 0, step = 1;
+  in >> pattern >> first >> last;
+  if (!(in >> step))
+  {
+    step = 1;
+  }
+  const long long count = step != 0 ? (last - first) / step + 1 : 0;
+  if (step == 0 || count < 1 || count > LargestPatternFiles ||
+    std::count(pattern.begin(), pattern.end(), '%') != 1 ||
+    pattern.find_first_of("sn*", pattern.find('%')) != std::string::npos)
+  {
+    error = "the file-name pattern '" + spec + "' is not a bounded list of numbered files";
+    return false;
+  }
+  total = 0;
+  for (long long i = 0; i < count; ++i)
+  {
+    char name[4096];
+    std::snprintf(name, sizeof(name), pattern.c_str(), static_cast<int>(first + i * step));
+    const std::string file = Beside(header, name);
+    if (!vtksys::SystemTools::FileExists(file, true))
+    {
+      error = "the data file '" + file + "' is missing";
+      return false;
+    }
+    total += FileSize(file);
+  }
+  return true;
+}
+
+Bytes MetaElementBytes(const std::string& type)
+{
+  static const std::map<std::string, Bytes> sizes = { { "met_uchar", 1 }, { "met_char", 1 },
+    { "met_ushort", 2 }, { "met_short", 2 }, { "met_uint", 4 }, { "met_int", 4 },
+    { "met_ulong", 8 }, { "met_long", 8 }, { "met_ulong_long", 8 }, { "met_long_long", 8 },
+    { "met_float", 4 }, { "met_double", 8 } };
+  const auto found = sizes.find(Lower(type));
+  return found == sizes.end() ? 0 : found->second;
+}
+
+bool CheckMetaImage(const std::string& path, Bytes& claimed, std::string& error)
+{
+  TextHeader header;
+  if (!ReadTextHeader(path, false, header, error))
+  {
+    return false;
+  }
+  std::map<std::string, std::string>& f = header.Fields;
+  std::vector<long long> dims, channels, rank;
+  if (!ParseIntegers(f["ndims"], rank) || rank.size() != 1 || rank[0] < 1 || rank[0] > 4)
+  {
+    error = "the MetaImage header's NDims is not 1 to 4";
+    return false;
+  }
+  if (!ParseIntegers(f["dimsize"], dims) || static_cast<long long>(dims.size()) != rank[0])
+  {
+    error = "the MetaImage header's DimSize does not give NDims sizes";
+    return false;
+  }
+  const Bytes element = MetaElementBytes(f["elementtype"]);
+  if (element == 0)
+  {
+    error = "the MetaImage header's ElementType '" + f["elementtype"] + "' is unknown";
+    return false;
+  }
+  if (f.count("elementnumberofchannels") &&
+    (!ParseIntegers(f["elementnumberofchannels"], channels) || channels.size() != 1 ||
+      channels[0] < 1 || channels[0] > 64))
+  {
+    error = "the MetaImage header's ElementNumberOfChannels is not 1 to 64";
+    return false;
+  }
+  if (!Product(dims, element * static_cast<Bytes>(channels.empty() ? 1 : channels[0]), claimed, error))
+  {
+    return false;
+  }
+  const bool compressed = Lower(f["compresseddata"]) == "true";
+  const std::string data = f["elementdatafile"];
+  Bytes available = 0;
+  if (Lower(data) == "local")
+  {
+    const Bytes file = FileSize(path);
+    available = file > header.End ? file - header.End : 0;
+  }
+  else if (Lower(data).compare(0, 4, "list") == 0)
+  {
+    error = "MetaImage file lists (ElementDataFile = LIST) are not supported";
+    return false;
+  }
+  else if (data.find('%') != std::string::npos)
+  {
+    if (!PatternFiles(path, data, available, error))
+    {
+      return false;
+    }
+  }
+  else
+  {
+    const std::string file = Beside(path, data);
+    if (data.empty() || !vtksys::SystemTools::FileExists(file, true))
+    {
+      error = "the data file '" + file + "' is missing";
+      return false;
+    }
+    available = FileSize(file);
+    std::vector<long long> skip;
+    if (ParseIntegers(f["headersize"], skip) && skip.size() == 1 && skip[0] > 0)
+    {
+      available = available > static_cast<Bytes>(skip[0]) ? available - skip[0] : 0;
+    }
+  }
+  return CheckAvailable(claimed, available, compressed, dims, error);
+}
+
+Bytes NrrdElementBytes(const std::string& type)
+{
+  static const std::map<std::string, Bytes> sizes = { { "signed char", 1 }, { "int8", 1 },
+    { "int8_t", 1 }, { "uchar", 1 }, { "unsigned char", 1 }, { "uint8", 1 }, { "uint8_t", 1 },
+    { "short", 2 }, { "short int", 2 }, { "signed short", 2 }, { "signed short int", 2 },
+    { "int16", 2 }, { "int16_t", 2 }, { "ushort", 2 }, { "unsigned short", 2 },
+    { "unsigned short int", 2 }, { "uint16", 2 }, { "uint16_t", 2 }, { "int", 4 },
+    { "signed int", 4 }, { "int32", 4 }, { "int32_t", 4 }, { "uint", 4 }, { "unsigned int", 4 },
+    { "uint32", 4 }, { "uint32_t", 4 }, { "longlong", 8 }, { "long long", 8 },
+    { "long long int", 8 }, { "signed long long", 8 }, { "signed long long int", 8 },
+    { "int64", 8 }, { "int64_t", 8 }, { "ulonglong", 8 }, { "unsigned long long", 8 },
+    { "unsigned long long int", 8 }, { "uint64", 8 }, { "uint64_t", 8 }, { "float", 4 },
+    { "double", 8 } };
+  const auto found = sizes.find(Lower(type));
+  return found == sizes.end() ? 0 : found->second;
+}
+
+bool CheckNrrd(const std::string& path, Bytes& claimed, std::string& error)
+{
+  TextHeader header;
+  if (!ReadTextHeader(path, true, header, error))
+  {
+    return false;
+  }
+  std::map<std::string, std::string>& f = header.Fields;
+  std::vector<long long> dims, rank;
+  if (!ParseIntegers(f["dimension"], rank) || rank.size() != 1 || rank[0] < 1 || rank[0] > 4)
+  {
+    error = "the NRRD header's dimension is not 1 to 4";
+    return false;
+  }
+  if (!ParseIntegers(f["sizes"], dims) || static_cast<long long>(dims.size()) != rank[0])
+  {
+    error = "the NRRD header's sizes do not give dimension sizes";
+    return false;
+  }
+  const Bytes element = NrrdElementBytes(f["type"]);
+  if (element == 0)
+  {
+    error = "the NRRD header's type '" + f["type"] + "' is unknown";
+    return false;
+  }
+  if (!Product(dims, element, claimed, error))
+  {
+    return false;
+  }
+  const std::string encoding = Lower(f["encoding"]);
+  const bool compressed = encoding == "gzip" || encoding == "gz" || encoding == "bzip2" ||
+    encoding == "bz2";
+  const bool text = encoding == "ascii" || encoding == "text" || encoding == "txt";
+  if (!compressed && !text && encoding != "raw")
+  {
+    error = "the NRRD encoding '" + f["encoding"] + "' is not supported (raw, ascii or gzip)";
+    return false;
+  }
+  const std::string data = f.count("data file") ? f["data file"] : f["datafile"];
+  Bytes available = 0;
+  if (data.empty())
+  {
+    const Bytes file = FileSize(path);
+    available = file > header.End ? file - header.End : 0;
+  }
+  else if (data.find('%') != std::string::npos)
+  {
+    if (!PatternFiles(path, data, available, error))
+    {
+      return false;
+    }
+  }
+  else if (Lower(data).compare(0, 4, "list") == 0)
+  {
+    error = "NRRD data file lists (data file: LIST) are not supported";
+    return false;
+  }
+  else
+  {
+    const std::string file = Beside(path, data);
+    if (!vtksys::SystemTools::FileExists(file, true))
+    {
+      error = "the data file '" + file + "' is missing";
+      return false;
+    }
+    available = FileSize(file);
+  }
+  std::vector<long long> skip;
+  if (ParseIntegers(f["byte skip"], skip) && skip.size() == 1 && skip[0] > 0)
+  {
+    available = available > static_cast<Bytes>(skip[0]) ? available - skip[0] : 0;
+  }
+  // Text: at least one digit and one separator per value (the last one
+  // needs none).
+  const Bytes needed = text ? claimed / element * 2 - 1 : claimed;
+  if (text && available < needed)
+  {
+    error = "truncated: the header claims " + Dimensions(dims) + " voxels as text, the file holds " +
+      mcx::DescribeBytes(static_cast<double>(available));
+    return false;
+  }
+  return text || CheckAvailable(claimed, available, compressed, dims, error);
+}
+
+// ---- legacy VTK (structured points) ----
+
+Bytes LegacyElementBytes(const std::string& type)
+{
+  static const std::map<std::string, Bytes> sizes = { { "bit", 1 }, { "unsigned_char", 1 },
+    { "char", 1 }, { "signed_char", 1 }, { "unsigned_short", 2 }, { "short", 2 },
+    { "unsigned_int", 4 }, { "int", 4 }, { "unsigned_long", 8 }, { "long", 8 },
+    { "vtktypeint64", 8 }, { "vtktypeuint64", 8 }, { "float", 4 }, { "double", 8 } };
+  const auto found = sizes.find(Lower(type));
+  return found == sizes.end() ? 0 : found->second;
+}
+
+bool CheckLegacy(const std::string& path, Bytes& claimed, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::vector<std::string> lines;
+  Bytes consumed = 0;
+  while (lines.size() < 3 && std::getline(in, line))
+  {
+    consumed += line.size() + 1;
+    lines.push_back(line);
+  }
+  if (lines.size() < 3 || lines[0].find("vtk DataFile") == std::string::npos)
+  {
+    error = "not a legacy VTK file (no '# vtk DataFile' line)";
+    return false;
+  }
+  const bool binary = Lower(Trim(lines[2])) == "binary";
+  std::vector<long long> dims;
+  long long points = -1, components = 1;
+  Bytes element = 0;
+  std::string keyword;
+  while (consumed < LargestHeader && in >> keyword)
+  {
+    const std::string key = Lower(keyword);
+    if (key == "dataset")
+    {
+      std::string type;
+      in >> type;
+      if (Lower(type) != "structured_points")
+      {
+        error = "a legacy VTK " + type + " dataset is not a volume (expected STRUCTURED_POINTS)";
+        return false;
+      }
+    }
+    else if (key == "dimensions")
+    {
+      dims.assign(3, 0);
+      in >> dims[0] >> dims[1] >> dims[2];
+    }
+    else if (key == "point_data")
+    {
+      in >> points;
+    }
+    else if (key == "scalars")
+    {
+      std::string name, type;
+      in >> name >> type;
+      element = LegacyElementBytes(type);
+      std::getline(in, line);
+      std::vector<long long> n;
+      if (ParseIntegers(line, n) && n.size() == 1)
+      {
+        components = n[0];
+      }
+    }
+    else if (key == "lookup_table")
+    {
+      std::getline(in, line);
+      break; // the data follow
+    }
+    else if (key == "vectors" || key == "normals" || key == "tensors" || key == "field" ||
+      key == "color_scalars" || key == "texture_coordinates" || key == "cell_data")
+    {
+      // Other data come first: the scalars' place is not known without
+      // reading those; check the dimensions alone.
+      const bool valid = dims.size() == 3 && Product(dims, 1, claimed, error);
+      claimed = 0;
+      if (valid && points == dims[0] * dims[1] * dims[2])
+      {
+        return true;
+      }
+      break;
+    }
+    else
+    {
+      std::getline(in, line); // SPACING, ORIGIN, ASPECT_RATIO, ...
+    }
+    if (!in)
+    {
+      error = "the legacy VTK header is cut short";
+      return false;
+    }
+  }
+  if (dims.size() != 3 || element == 0 || components < 1 || components > 4)
+  {
+    error = "the legacy VTK header gives no DIMENSIONS, no known SCALARS type, or 1 to 4 components";
+    return false;
+  }
+  if (!Product(dims, element * static_cast<Bytes>(components), claimed, error))
+  {
+    return false;
+  }
+  if (points != dims[0] * dims[1] * dims[2])
+  {
+    error = "the legacy VTK header's POINT_DATA " + std::to_string(points) +
+      " is not the product of its DIMENSIONS " + Dimensions(dims);
+    return false;
+  }
+  const std::streamoff at = in.tellg();
+  const Bytes file = FileSize(path);
+  const Bytes available = at > 0 && file > static_cast<Bytes>(at) ? file - at : 0;
+  if (!binary)
+  {
+    const Bytes values = claimed / element;
+    if (available < values * 2 - 1)
+    {
+      error = "truncated: the header claims " + Dimensions(dims) +
+        " voxels as text, the file holds " + mcx::DescribeBytes(static_cast<double>(available));
+      return false;
+    }
+    return true;
+  }
+  return CheckAvailable(claimed, available, false, dims, error);
+}
+
+// ---- SLC ----
+
+bool CheckSLC(const std::string& path, Bytes& claimed, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  long long magic = 0, bits = 0;
+  std::vector<long long> dims(3, 0);
+  in >> magic >> dims[0] >> dims[1] >> dims[2] >> bits;
+  if (!in || magic != 11111)
+  {
+    error = "not an SLC file (no magic number 11111)";
+    return false;
+  }
+  if (bits != 8)
+  {
+    error = "the SLC header's " + std::to_string(bits) + " bits per voxel are not supported (8)";
+    return false;
+  }
+  if (!Product(dims, 1, claimed, error))
+  {
+    return false;
+  }
+  // Slices may be run-length encoded (at most 127 voxels from 2 bytes).
+  return CheckAvailable(claimed, FileSize(path) * 64, false, dims, error);
+}
+
+// ---- VTK XML image data ----
+
+std::string Attribute(const std::string& tag, const std::string& name)
+{
+  const std::size_t at = tag.find(" " + name + "=\"");
+  if (at == std::string::npos)
+  {
+    return std::string();
+  }
+  const std::size_t begin = at + name.size() + 3;
+  const std::size_t end = tag.find('"', begin);
+  return end == std::string::npos ? std::string() : tag.substr(begin, end - begin);
+}
+
+Bytes XMLElementBytes(const std::string& type)
+{
+  static const std::map<std::string, Bytes> sizes = { { "Int8", 1 }, { "UInt8", 1 },
+    { "Int16", 2 }, { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 },
+    { "UInt64", 8 }, { "Float32", 4 }, { "Float64", 8 } };
+  const auto found = sizes.find(type);
+  return found == sizes.end() ? 0 : found->second;
+}
+
+bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::size_t image = head.find("<ImageData");
+  const std::size_t array = head.find("<DataArray", image == std::string::npos ? 0 : image);
+  if (head.find("<VTKFile") == std::string::npos || image == std::string::npos)
+  {
+    error = "not a VTK XML image (no <VTKFile> with <ImageData>)";
+    return false;
+  }
+  std::vector<long long> extent;
+  const std::string whole = Attribute(head.substr(image, head.find('>', image) - image), "WholeExtent");
+  if (!ParseIntegers(whole, extent) || extent.size() != 6)
+  {
+    error = "the image's WholeExtent '" + whole + "' is not six integers";
+    return false;
+  }
+  std::vector<long long> dims(3);
+  for (int a = 0; a < 3; ++a)
+  {
+    dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+    if (extent[2 * a] < -LargestSide || extent[2 * a + 1] > LargestSide)
+    {
+      error = "the image's WholeExtent '" + whole + "' is out of range";
+      return false;
+    }
+  }
+  Bytes element = 1;
+  std::vector<long long> components;
+  if (array != std::string::npos)
+  {
+    const std::string tag = head.substr(array, head.find('>', array) - array);
+    element = XMLElementBytes(Attribute(tag, "type"));
+    if (element == 0)
+    {
+      error = "the image's data type '" + Attribute(tag, "type") + "' is unknown";
+      return false;
+    }
+    if (ParseIntegers(Attribute(tag, "NumberOfComponents"), components) &&
+      (components.size() != 1 || components[0] < 1 || components[0] > 64))
+    {
+      error = "the image's NumberOfComponents is not 1 to 64";
+      return false;
+    }
+  }
+  if (!Product(dims, element * static_cast<Bytes>(components.empty() ? 1 : components[0]), claimed,
+        error))
+  {
+    return false;
+  }
+  // Raw appended data must all be there; base64, text and compression make
+  // the data larger or smaller: bound those by what deflate can hold.
+  const std::string file = head.substr(0, head.find('>'));
+  const bool raw = Attribute(file, "compressor").empty() &&
+    head.find("encoding=\"raw\"") != std::string::npos &&
+    head.find("format=\"ascii\"") == std::string::npos &&
+    head.find("format=\"binary\"") == std::string::npos;
+  return CheckAvailable(claimed, FileSize(path), !raw, dims, error);
+}
+}
+
+std::string DetachedDataFile(const std::string& header)
+{
+  const bool nrrd = EndsWith(header, ".nhdr");
+  if (!nrrd && !EndsWith(header, ".mhd"))
+  {
+    return std::string();
+  }
+  TextHeader fields;
+  std::string ignored;
+  if (!ReadTextHeader(header, nrrd, fields, ignored))
+  {
+    return std::string();
+  }
+  std::map<std::string, std::string>& f = fields.Fields;
+  const std::string name =
+    nrrd ? (f.count("data file") ? f["data file"] : f["datafile"]) : f["elementdatafile"];
+  if (name.empty() || Lower(name) == "local" || name.find_first_of(" %") != std::string::npos)
+  {
+    return std::string(); // in the header itself, or a list or pattern
+  }
+  return Beside(header, name);
+}
+
+bool CheckVolumeHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error)
+{
+  claimedBytes = 0;
+  if (vtksys::SystemTools::FileIsDirectory(path))
+  {
+    return true;
+  }
+  if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
+  {
+    return CheckNifti(path, claimedBytes, error);
+  }
+  if (EndsWith(path, ".mha") || EndsWith(path, ".mhd"))
+  {
+    return CheckMetaImage(path, claimedBytes, error);
+  }
+  if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
+  {
+    return CheckNrrd(path, claimedBytes, error);
+  }
+  if (EndsWith(path, ".vtk"))
+  {
+    return CheckLegacy(path, claimedBytes, error);
+  }
+  if (EndsWith(path, ".slc"))
+  {
+    return CheckSLC(path, claimedBytes, error);
+  }
+  if (EndsWith(path, ".vti"))
+  {
+    return CheckVTI(path, claimedBytes, error);
+  }
+  return true; // an unknown format is the reader's to refuse
+}
+
+} // namespace mcxapp

@@ -1,0 +1,59 @@
+#include "vtkMCXMemoryCheckPrivate.h"
+
+#include "mcxByteSize.h"
+
+#include "vtkObject.h"
+#include "vtkSMPTools.h"
+#include "vtksys/SystemInformation.hxx"
+
+#include <atomic>
+
+namespace mcx
+{
+
+namespace
+{
+std::atomic<double> Budget{ 0.0 };
+
+double PhysicalMemory()
+{
+  vtksys::SystemInformation system;
+  return static_cast<double>(system.GetHostMemoryTotal()) * 1024.0; // KiB
+}
+}
+
+double MemoryBudget()
+{
+  const double set = Budget.load();
+  if (set > 0)
+  {
+    return set;
+  }
+  const double physical = PhysicalMemory();
+  return physical > 0 ? physical : 1.0e300; // unknown: no budget
+}
+
+void SetMemoryBudget(double bytes)
+{
+  Budget.store(bytes > 0 ? bytes : 0.0);
+}
+
+bool CheckMemory(vtkObject* self, double bytes, const std::string& what)
+{
+  const double budget = MemoryBudget();
+  if (bytes <= budget)
+  {
+    return true;
+  }
+  vtkErrorWithObjectMacro(self, << what << " needs " << DescribeBytes(bytes)
+                                << ", more than the memory budget of "
+                                << DescribeBytes(budget) << ".");
+  return false;
+}
+
+double ProjectionBytesPerPixel()
+{
+  return 32.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 48.0;
+}
+
+} // namespace mcx

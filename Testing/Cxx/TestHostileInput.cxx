@@ -1,0 +1,304 @@
+// The mcxray command against hostile input: lying and truncated headers, a
+// reader that never returns, an output that names the input, option values
+// that would wrap, absurd sizes, interruption and a file-size limit. Every
+// failure is one line on stderr, exit status 2, nothing written, the input
+// intact.
+#include "mcxCommandLineRunner.h"
+#include "mcxTestHelpers.h"
+
+#include "vtkNew.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtksys/Directory.hxx"
+#include "vtksys/SystemTools.hxx"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using mcxtest::ExpectOneLineError;
+using mcxtest::Result;
+using mcxtest::RunCLI;
+using mcxtest::Slurp;
+using mcxtest::Temporary;
+
+namespace
+{
+const std::string Bundled = MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti";
+
+void WriteBytes(const std::string& path, const std::string& bytes)
+{
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// A NIfTI-1 header (348 bytes) of the given dimensions and datatype, data at
+// 352, followed by dataBytes zero bytes.
+std::string Nifti(const std::vector<std::int16_t>& dims, std::int16_t datatype,
+  std::int16_t bitpix, std::size_t dataBytes)
+{
+  std::string header(352, '\0');
+  auto put = [&](std::size_t offset, const void* value, std::size_t size)
+  { std::memcpy(&header[offset], value, size); };
+  const std::int32_t size = 348;
+  put(0, &size, 4);
+  const std::int16_t rank = static_cast<std::int16_t>(dims.size());
+  put(40, &rank, 2);
+  for (std::size_t a = 0; a < dims.size(); ++a)
+  {
+    put(42 + 2 * a, &dims[a], 2);
+  }
+  put(70, &datatype, 2);
+  put(72, &bitpix, 2);
+  const float pixdim[4] = { 1, 1, 1, 1 };
+  put(76, pixdim, 16);
+  const float offset = 352;
+  put(108, &offset, 4);
+  put(344, "n+1", 4);
+  return header + std::string(dataBytes, '\0');
+}
+
+// Exit status 2, exactly one line naming what is wrong (needle).
+void ExpectRefused(const std::string& arguments, const std::string& needle)
+{
+  const std::string output = Temporary("hostile_never.png");
+  Result r = RunCLI(arguments + " --output " + output);
+  EXPECT_EQ(2, r.Status) << arguments << "\n" << r.Errors;
+  EXPECT_EQ(0u, r.Errors.find("mcxray: error: ")) << arguments << "\n" << r.Errors;
+  EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << arguments << "\n" << r.Errors;
+  EXPECT_NE(std::string::npos, r.Errors.find(needle)) << arguments << "\n" << r.Errors;
+  EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << arguments;
+}
+
+bool SameBytes(const std::string& a, const std::string& b)
+{
+  return Slurp(a) == Slurp(b) && !Slurp(a).empty();
+}
+
+// Files of a folder whose names contain part (leftover temporaries).
+int CountFiles(const std::string& folder, const std::string& part)
+{
+  vtksys::Directory directory;
+  directory.Load(folder);
+  int count = 0;
+  for (unsigned long f = 0; f < directory.GetNumberOfFiles(); ++f)
+  {
+    count += std::string(directory.GetFile(f)).find(part) != std::string::npos ? 1 : 0;
+  }
+  return count;
+}
+}
+
+TEST(HostileInput, OutputThatNamesTheInputIsRefusedByAnyPath)
+{
+  const std::string folder = Temporary("hostile_same_file");
+  vtksys::SystemTools::MakeDirectory(folder);
+  const std::string input = folder + "/head.vti";
+  vtksys::SystemTools::CopyAFile(Bundled, input);
+  const std::string symbolic = folder + "/link.vti";
+  const std::string hard = folder + "/hard.vti";
+  ASSERT_EQ(0, ::symlink(input.c_str(), symbolic.c_str()));
+  ASSERT_EQ(0, ::link(input.c_str(), hard.c_str()));
+  for (const std::string& output :
+    { input, folder + "/./head.vti", folder + "/../hostile_same_file/head.vti", symbolic, hard })
+  {
+    Result r = RunCLI("render " + input + " --samples 1023 --output " + output);
+    EXPECT_EQ(2, r.Status) << output;
+    EXPECT_EQ(0u, r.Errors.find("mcxray: error: the output")) << r.Errors;
+    EXPECT_NE(std::string::npos, r.Errors.find("refusing to overwrite")) << r.Errors;
+    EXPECT_TRUE(SameBytes(Bundled, input)) << output << " changed the input";
+  }
+  // The data file of a detached header, written as the output's format.
+  const std::string header = folder + "/volume.mhd";
+  const std::string data = folder + "/volume.pfm";
+  WriteBytes(header,
+    "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = volume.pfm\n");
+  WriteBytes(data, std::string(64, '\1'));
+  Result r = RunCLI("render " + header + " --samples 1023 --output " + data);
+  EXPECT_EQ(2, r.Status);
+  EXPECT_NE(std::string::npos, r.Errors.find("volume's file")) << r.Errors;
+  EXPECT_EQ(std::string(64, '\1'), Slurp(data));
+  // The viewer's screenshot too.
+  Result view = RunCLI("view " + input + " --samples 1023 --screenshot " + symbolic);
+  EXPECT_EQ(2, view.Status);
+  EXPECT_TRUE(SameBytes(Bundled, input));
+}
+
+TEST(HostileInput, LyingAndTruncatedHeadersGiveOneLine)
+{
+  const std::string folder = Temporary("hostile_headers");
+  vtksys::SystemTools::MakeDirectory(folder);
+  struct Case
+  {
+    std::string Name;
+    std::string Bytes;
+    std::string Needle;
+  };
+  const std::vector<Case> cases = {
+    { "huge.nii", Nifti({ 32767, 32767, 32767 }, 4, 16, 100), "truncated" },
+    { "short.nii", Nifti({ 64, 64, 64 }, 2, 8, 1000), "truncated" },
+    { "negative.nii", Nifti({ 64, -3, 64 }, 2, 8, 4096), "dimensions" },
+    { "rank.nii", Nifti({}, 2, 8, 10), "dim[0]" },
+    { "type.nii", Nifti({ 4, 4, 4 }, 3, 8, 64), "datatype" },
+    { "tiny.nii", std::string(100, 'x'), "348-byte header" },
+    { "missing.mhd", "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = gone.raw\n",
+      "missing" },
+    { "dims.mhd", "NDims = 3\nDimSize = 4 4\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n",
+      "DimSize" },
+    { "local.mha",
+      "NDims = 3\nDimSize = 100 100 100\nElementType = MET_SHORT\nElementDataFile = LOCAL\n" +
+        std::string(1000, '\0'),
+      "truncated" },
+    { "packed.mha",
+      "NDims = 3\nDimSize = 3000 3000 3000\nElementType = MET_SHORT\nCompressedData = True\n"
+      "ElementDataFile = LOCAL\n" +
+        std::string(1000, '\0'),
+      "more than deflate" },
+    { "pattern.mhd",
+      "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = s%d.raw 1 999999999\n",
+      "pattern" },
+    { "short.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\nencoding: raw\n\n" +
+        std::string(100, '\0'),
+      "truncated" },
+    { "sizes.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64\nencoding: raw\n\n",
+      "sizes" },
+    { "type.nrrd", "NRRD0004\ntype: quaternion\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n",
+      "type" },
+    { "short.vtk",
+      "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET STRUCTURED_POINTS\nDIMENSIONS 64 64 64\n"
+      "SPACING 1 1 1\nORIGIN 0 0 0\nPOINT_DATA 262144\nSCALARS s unsigned_char\nLOOKUP_TABLE default\n" +
+        std::string(10, '\0'),
+      "truncated" },
+    { "points.vtk",
+      "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET STRUCTURED_POINTS\nDIMENSIONS 4 4 4\n"
+      "POINT_DATA 7\nSCALARS s unsigned_char\nLOOKUP_TABLE default\n" +
+        std::string(64, '\0'),
+      "POINT_DATA" },
+    { "grid.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n",
+      "not a volume" },
+    { "extent.vti",
+      "<VTKFile type=\"ImageData\" version=\"0.1\">\n<ImageData WholeExtent=\"0 99999 0 99999 0 "
+      "99999\" Origin=\"0 0 0\" Spacing=\"1 1 1\">\n<Piece Extent=\"0 99999 0 99999 0 99999\">\n"
+      "<PointData><DataArray type=\"Float64\" Name=\"a\" format=\"ascii\">0 1 2</DataArray>"
+      "</PointData></Piece></ImageData></VTKFile>\n",
+      "more than deflate" },
+    { "magic.slc", "22222\n4 4 4 8\n", "SLC" },
+  };
+  for (const Case& c : cases)
+  {
+    const std::string path = folder + "/" + c.Name;
+    WriteBytes(path, c.Bytes);
+    ExpectRefused("render " + path + " --samples 1023", c.Needle);
+  }
+}
+
+TEST(HostileInput, AReaderThatNeverReturnsIsStopped)
+{
+  // A named pipe nobody writes: opening it blocks forever. The reader runs
+  // in a child process, which the time limit ends.
+  const std::string fifo = Temporary("hostile_fifo.nii");
+  ASSERT_EQ(0, ::mkfifo(fifo.c_str(), 0600));
+  const auto start = std::chrono::steady_clock::now();
+  ExpectRefused("render " + fifo + " --read-timeout 2 --samples 1023", "did not finish within 2 s");
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 30.0);
+  vtksys::SystemTools::RemoveFile(fifo);
+}
+
+TEST(HostileInput, OptionValuesNeverWrap)
+{
+  for (const char* arguments : { "render --threads 2147483648", "render --threads 4294967297",
+         "render --threads 1000000000", "render --threads 0", "render --quantization-levels 4294967298",
+         "render --size 4294967297x64", "render --size 64x-1", "render --bits 4294967304",
+         "render --seed 18446744073709551616", "render --noise-seed 99999999999999999999",
+         "render --memory-limit 12Q", "render --memory-limit 0", "render --memory-limit 2000000T",
+         "render --read-timeout 0", "view --threads 4294967297" })
+  {
+    const std::string output = Temporary("hostile_option.png");
+    const std::string flag = std::string(arguments).rfind("view", 0) == 0 ? " --screenshot "
+                                                                          : " --output ";
+    ExpectOneLineError(std::string(arguments) + flag + output, output);
+  }
+}
+
+TEST(HostileInput, AbsurdSizesAreRefusedUpFrontNamingTheSize)
+{
+  // Within the budget nothing is allocated that the budget cannot hold: the
+  // error names the size needed.
+  ExpectRefused("render --size 65536x65536 --memory-limit 8G --samples 1023", "65536 x 65536");
+  ExpectRefused("render --pixel-spacing 1e-6 --memory-limit 8G --samples 1023", "needs");
+  ExpectRefused("render --memory-limit 1M --samples 1023", "memory budget of 1 MiB");
+  ExpectRefused("render --stored-points --samples 1073741823 --memory-limit 1G", "points");
+  ExpectRefused("render --method reference --memory-limit 2M", "memory budget");
+}
+
+TEST(HostileInput, InterruptedRunsLeaveNoFile)
+{
+  // SIGINT and SIGTERM during a long render: one line, nothing written,
+  // no temporary left behind.
+  for (int signal : { SIGINT, SIGTERM })
+  {
+    const std::string folder = Temporary("hostile_interrupt_" + std::to_string(signal));
+    vtksys::SystemTools::MakeDirectory(folder);
+    const std::string output = folder + "/long.vti";
+    const std::string errors = folder + "/stderr.txt";
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0)
+    {
+      const int fd = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+      ::dup2(fd, STDERR_FILENO);
+      ::execl(MCXRAY_CLI, MCXRAY_CLI, "render", "--samples", "68719476735", "--quiet", "--output",
+        output.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ::kill(child, signal);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << status;
+    const std::string text = Slurp(errors);
+    EXPECT_NE(std::string::npos, text.find("mcxray: error: interrupted by SIG")) << text;
+    EXPECT_EQ(1, std::count(text.begin(), text.end(), '\n') - (text[0] == '\n' ? 1 : 0)) << text;
+    EXPECT_FALSE(vtksys::SystemTools::FileExists(output));
+    EXPECT_EQ(0, CountFiles(folder, ".part-"));
+  }
+}
+
+TEST(HostileInput, AFileSizeLimitFailsTheWriteAndLeavesNothing)
+{
+  // ulimit -f 64 (64 blocks of 512 bytes) holds a 16^3 volume but not the
+  // .vti of its 512^2 image: the write fails with EFBIG instead of the
+  // process dying of SIGXFSZ, and its temporary is removed.
+  const std::string folder = Temporary("hostile_file_size");
+  vtksys::SystemTools::MakeDirectory(folder);
+  const std::string input = folder + "/small.vti";
+  const int dims[3] = { 16, 16, 16 };
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims, [](int i, int j, int k) { return (i * 7 + j * 3 + k) % 200; });
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(volume);
+  writer->SetFileName(input.c_str());
+  writer->Write();
+  const std::string output = folder + "/big.vti";
+  Result r = RunCLI("render " + input + " --samples 65535 --size 512x512 --quiet --output " + output,
+    "ulimit -f 64; ");
+  EXPECT_EQ(2, r.Status) << r.Errors;
+  EXPECT_EQ(0u, r.Errors.find("mcxray: error: cannot write")) << r.Errors;
+  EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << r.Errors;
+  EXPECT_FALSE(vtksys::SystemTools::FileExists(output));
+  EXPECT_EQ(0, CountFiles(folder, ".part-"));
+}
