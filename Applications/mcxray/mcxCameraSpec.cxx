@@ -76,9 +76,20 @@ vtkSmartPointer<vtkCamera> ParseCamera(const std::string& text)
   camera->SetFocalPoint(focal);
   camera->SetViewUp(up);
   const double distance = std::sqrt(vtkMath::Distance2BetweenPoints(position, focal));
+  if (!std::isfinite(distance))
+  {
+    Fail("--camera position and focal point are too far apart (their distance overflows)");
+  }
   if (!(distance > 0))
   {
     Fail("--camera position and focal point coincide");
+  }
+  double direction[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] },
+         side[3];
+  vtkMath::Cross(direction, up, side);
+  if (!(vtkMath::Norm(side) > 1e-12 * distance * vtkMath::Norm(up)) || !std::isfinite(vtkMath::Norm(side)))
+  {
+    Fail("--camera view-up is zero or along the direction of view");
   }
   const std::string& kind = parts[3];
   if (kind.rfind("parallel=", 0) == 0)

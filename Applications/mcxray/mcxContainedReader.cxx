@@ -233,7 +233,6 @@ vtkSmartPointer<vtkImageData> TakeOver(
   else if (header.Failed)
   {
     error.assign(bytes + sizeof(header), static_cast<std::size_t>(header.MessageBytes));
-    error = error.substr(0, error.find('\n'));
     if (error.empty())
     {
       error = "cannot read '" + path + "'";

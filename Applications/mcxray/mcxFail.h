@@ -8,8 +8,14 @@
 namespace mcxapp
 {
 
-/// Prints "mcxray: error: message" and exits with status 2.
+/// Prints "mcxray: error: message" and exits with status 2 (or, with a
+/// handler set, calls it; a handler must not return).
 [[noreturn]] void Fail(const std::string& message);
+
+/// What Fail does instead of exiting: the fuzz targets throw, so that one
+/// process can try many inputs. Null (the default) restores the exit.
+using FailHandler = void (*)(const std::string& message);
+void SetFailHandler(FailHandler handler);
 
 } // namespace mcxapp
 

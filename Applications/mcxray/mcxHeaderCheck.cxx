@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -298,6 +299,12 @@ bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std:
     {
       line.pop_back();
     }
+    if (line.find('\0') != std::string::npos)
+    {
+      // VTK's NRRD reader loops forever on one (what fuzzing found).
+      error = "the header holds a NUL byte";
+      return false;
+    }
     if (nrrd && first)
     {
       first = false;
@@ -348,6 +355,28 @@ std::string Beside(const std::string& header, const std::string& name)
     name, vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(header)));
 }
 
+// A printf pattern with exactly one integer conversion: %d, %Nd or %0Nd
+// (N at most two digits) and no other '%'.
+bool IsNumberPattern(const std::string& pattern)
+{
+  const std::size_t at = pattern.find('%');
+  if (at == std::string::npos || pattern.find('%', at + 1) != std::string::npos)
+  {
+    return false;
+  }
+  std::size_t i = at + 1;
+  if (i < pattern.size() && pattern[i] == '0')
+  {
+    ++i;
+  }
+  const std::size_t digits = i;
+  while (i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])) && i - digits < 2)
+  {
+    ++i;
+  }
+  return i < pattern.size() && pattern[i] == 'd';
+}
+
 // The total size of a printf pattern's files ("name%03d.raw first last
 // step"), at most LargestPatternFiles of them, each of which must exist.
 bool PatternFiles(const std::string& header, const std::string& spec, Bytes& total, std::string& error)
@@ -360,10 +389,11 @@ bool PatternFiles(const std::string& header, const std::string& spec, Bytes& tot
   {
     step = 1;
   }
-  const long long count = step != 0 ? (last - first) / step + 1 : 0;
-  if (step == 0 || count < 1 || count > LargestPatternFiles ||
-    std::count(pattern.begin(), pattern.end(), '%') != 1 ||
-    pattern.find_first_of("sn*", pattern.find('%')) != std::string::npos)
+  // Numbers within int (what %d prints), so that the count cannot overflow.
+  const bool small = first >= INT_MIN && first <= INT_MAX && last >= INT_MIN && last <= INT_MAX &&
+    step >= INT_MIN && step <= INT_MAX;
+  const long long count = small && step != 0 ? (last - first) / step + 1 : 0;
+  if (count < 1 || count > LargestPatternFiles || !IsNumberPattern(pattern))
   {
     error = "the file-name pattern '" + spec + "' is not a bounded list of numbered files";
     return false;
@@ -587,10 +617,15 @@ bool CheckLegacy(const std::string& path, Bytes& claimed, std::string& error)
   std::string line;
   std::vector<std::string> lines;
   Bytes consumed = 0;
-  while (lines.size() < 3 && std::getline(in, line))
+  // The version line, the title, then (after any blank lines, as VTK's
+  // reader allows) ASCII or BINARY.
+  while (lines.size() < 3 && consumed < LargestHeader && std::getline(in, line))
   {
     consumed += line.size() + 1;
-    lines.push_back(line);
+    if (lines.size() < 2 || !Trim(line).empty())
+    {
+      lines.push_back(line);
+    }
   }
   if (lines.size() < 3 || lines[0].find("vtk DataFile") == std::string::npos)
   {
@@ -745,6 +780,110 @@ Bytes XMLElementBytes(const std::string& type)
   return found == sizes.end() ? 0 : found->second;
 }
 
+// One header word of raw appended data (UInt32 or UInt64, in the file's
+// byte order); false past the end of the file.
+bool ReadWord(std::ifstream& in, Bytes at, int size, bool bigEndian, Bytes& word)
+{
+  unsigned char raw[8] = { 0 };
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(at));
+  in.read(reinterpret_cast<char*>(raw), size);
+  if (in.gcount() != size)
+  {
+    return false;
+  }
+  word = 0;
+  for (int b = 0; b < size; ++b)
+  {
+    word |= static_cast<Bytes>(raw[bigEndian ? size - 1 - b : b]) << (8 * b);
+  }
+  return true;
+}
+
+// The first array's raw appended data: its size word (uncompressed) or its
+// block table (compressed: block count, block size, last block size, then
+// each block's compressed size) must describe exactly the claimed bytes and
+// fit in the file; a lying table sends VTK's reader into a loop over
+// billions of blocks or past its buffers.
+bool CheckAppendedData(const std::string& path, const std::string& head, const std::string& tag,
+  Bytes claimed, std::string& error)
+{
+  const std::size_t appended = head.find("<AppendedData");
+  std::vector<long long> offset;
+  if (Attribute(tag, "format") != "appended" || appended == std::string::npos ||
+    Attribute(head.substr(appended, head.find('>', appended) - appended), "encoding") != "raw" ||
+    !ParseIntegers(Attribute(tag, "offset"), offset) || offset.size() != 1 || offset[0] < 0)
+  {
+    return true; // base64 or inline data: bounded by the ratio check alone
+  }
+  const std::size_t underscore = head.find('_', head.find('>', appended));
+  if (underscore == std::string::npos)
+  {
+    error = "the image's appended data have no '_' marker";
+    return false;
+  }
+  const std::string file = head.substr(0, head.find('>'));
+  const int word = Attribute(file, "header_type") == "UInt64" ? 8 : 4;
+  const bool bigEndian = Attribute(file, "byte_order") == "BigEndian";
+  const bool compressed = !Attribute(file, "compressor").empty();
+  const Bytes size = FileSize(path);
+  const Bytes start = underscore + 1 + static_cast<Bytes>(offset[0]);
+  std::ifstream in(path, std::ios::binary);
+  Bytes first = 0;
+  if (!ReadWord(in, start, word, bigEndian, first))
+  {
+    error = "truncated: the image's appended data end before their header";
+    return false;
+  }
+  if (!compressed)
+  {
+    if (first != claimed || size - std::min(size, start + word) < claimed)
+    {
+      error = "the image's appended data hold " + mcx::DescribeBytes(double(first)) +
+        " (the file " + mcx::DescribeBytes(double(size - std::min(size, start + word))) +
+        ") where its extent needs " + mcx::DescribeBytes(double(claimed));
+      return false;
+    }
+    return true;
+  }
+  Bytes blockSize = 0, lastSize = 0;
+  const Bytes blocks = first;
+  if (!ReadWord(in, start + word, word, bigEndian, blockSize) ||
+    !ReadWord(in, start + 2 * word, word, bigEndian, lastSize) || blocks > size / word)
+  {
+    error = "truncated: the image's compressed data end inside their block table";
+    return false;
+  }
+  const double total = blocks == 0
+    ? 0.0
+    : static_cast<double>(blocks - 1) * blockSize + static_cast<double>(lastSize ? lastSize : blockSize);
+  if (total != static_cast<double>(claimed))
+  {
+    error = "the image's compressed blocks hold " + mcx::DescribeBytes(total) +
+      " where its extent needs " + mcx::DescribeBytes(double(claimed));
+    return false;
+  }
+  Bytes compressedTotal = 0;
+  for (Bytes b = 0; b < blocks; ++b)
+  {
+    Bytes block = 0;
+    if (!ReadWord(in, start + (3 + b) * word, word, bigEndian, block) || block > size)
+    {
+      error = "truncated: the image's compressed data end inside their block table";
+      return false;
+    }
+    compressedTotal += block;
+  }
+  if (compressedTotal > size - std::min(size, start + (3 + blocks) * word))
+  {
+    error = "truncated: the image's compressed blocks need " +
+      mcx::DescribeBytes(double(compressedTotal)) + ", the file holds " +
+      mcx::DescribeBytes(double(size - std::min(size, start + (3 + blocks) * word)));
+    return false;
+  }
+  return true;
+}
+
 bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
 {
   std::ifstream in(path, std::ios::binary);
@@ -777,9 +916,10 @@ bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
   }
   Bytes element = 1;
   std::vector<long long> components;
+  std::string tag;
   if (array != std::string::npos)
   {
-    const std::string tag = head.substr(array, head.find('>', array) - array);
+    tag = head.substr(array, head.find('>', array) - array);
     element = XMLElementBytes(Attribute(tag, "type"));
     if (element == 0)
     {
@@ -805,7 +945,8 @@ bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
     head.find("encoding=\"raw\"") != std::string::npos &&
     head.find("format=\"ascii\"") == std::string::npos &&
     head.find("format=\"binary\"") == std::string::npos;
-  return CheckAvailable(claimed, FileSize(path), !raw, dims, error);
+  return CheckAvailable(claimed, FileSize(path), !raw, dims, error) &&
+    (tag.empty() || CheckAppendedData(path, head, tag, claimed, error));
 }
 }
 
