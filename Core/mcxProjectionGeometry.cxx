@@ -19,19 +19,25 @@ std::string ProjectionGeometry::Validate() const
 {
   const double tolerance = 1e-9;
   const double* axes[3] = { this->U, this->V, this->W };
+  // Comparisons written so that NaN fails them.
   for (int a = 0; a < 3; ++a)
   {
-    if (std::fabs(Dot(axes[a], axes[a]) - 1.0) > tolerance)
+    if (!(std::fabs(Dot(axes[a], axes[a]) - 1.0) <= tolerance))
     {
-      return "detector axes must be unit vectors";
+      return "detector axes must be finite unit vectors";
     }
     for (int b = a + 1; b < 3; ++b)
     {
-      if (std::fabs(Dot(axes[a], axes[b])) > tolerance)
+      if (!(std::fabs(Dot(axes[a], axes[b])) <= tolerance))
       {
         return "detector axes must be orthogonal";
       }
     }
+  }
+  if (!std::isfinite(this->Origin[0]) || !std::isfinite(this->Origin[1]) ||
+    !std::isfinite(this->Eye[0]) || !std::isfinite(this->Eye[1]) || !std::isfinite(this->Eye[2]))
+  {
+    return "the image origin and the eye must be finite";
   }
   if (this->Size[0] < 1 || this->Size[1] < 1)
   {

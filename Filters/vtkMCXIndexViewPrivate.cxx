@@ -17,8 +17,11 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt64Array.h"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace mcx
 {
@@ -236,7 +239,7 @@ std::string IndexView::MakeTransferTable(
     this->EvaluateTransferFunction(tf).data(), this->LevelOffsets, this->NumberOfLevels);
   warning = DescribeTransferTableProblems(table);
   integral = table.WeightSum() * this->VoxelVolume();
-  if (table.InfiniteLevels > 0)
+  if (table.InfiniteLevels > 0 || table.NaNLevels > 0)
   {
     std::string error = warning;
     warning.clear();
@@ -255,30 +258,39 @@ std::string IndexView::MakeTransferTable(
 
 std::string DescribeTransferTableProblems(const TransferTable& table)
 {
-  std::ostringstream out;
-  if (table.NegativeLevels > 0)
-  {
-    out << "the transfer function is negative at " << table.NegativeLevels
-        << " density levels; those were clamped to 0. ";
-  }
+  // Errors (NaN, infinite) first: a caller that fails keeps the first sentence.
+  std::vector<std::string> sentences;
   if (table.NaNLevels > 0)
   {
-    out << "the transfer function is NaN at " << table.NaNLevels
-        << " density levels; those were treated as 0. ";
+    sentences.push_back("the transfer function is NaN at " + std::to_string(table.NaNLevels) +
+      " density levels (a NaN point?); no image is defined.");
   }
   if (table.InfiniteLevels > 0)
   {
-    out << "the transfer function is infinite at " << table.InfiniteLevels
-        << " density levels; no finite image exists. ";
+    sentences.push_back("the transfer function is infinite at " +
+      std::to_string(table.InfiniteLevels) + " density levels; no finite image exists.");
   }
-  else if (table.IsEmpty())
+  if (table.NegativeLevels > 0)
   {
-    out << "the transfer function is zero over the whole volume; the image is empty. ";
+    sentences.push_back("the transfer function is negative at " +
+      std::to_string(table.NegativeLevels) + " density levels; those were clamped to 0.");
   }
-  std::string text = out.str();
-  if (!text.empty())
+  if (table.InfiniteLevels == 0 && table.NaNLevels == 0 && table.IsEmpty())
   {
-    text.pop_back();
+    sentences.push_back("the transfer function is zero over the whole volume; the image is empty.");
+  }
+  // Sentences after the first start with a capital; the first keeps its
+  // case, as it follows the caller's "Cannot ...: ".
+  std::string text;
+  for (std::size_t s = 0; s < sentences.size(); ++s)
+  {
+    std::string sentence = sentences[s];
+    if (s > 0)
+    {
+      sentence[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(sentence[0])));
+      text += ' ';
+    }
+    text += sentence;
   }
   return text;
 }

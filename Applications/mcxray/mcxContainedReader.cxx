@@ -319,8 +319,11 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(
   }
   else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
   {
-    error = "cannot read '" + path + "': the reader failed (exit status " +
-      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")";
+    // The child ends with 0 on its own; anything else is a fault's (a
+    // sanitizer's report, say).
+    error = "cannot read '" + path + "': the reader crashed (exit status " +
+      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+      "): the file is corrupt or does not match its header";
   }
   else
   {

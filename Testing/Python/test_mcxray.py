@@ -8,6 +8,7 @@ import numpy
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+from vtkmodules.util.vtkConstants import VTK_STRING
 
 import mcxray
 
@@ -182,6 +183,45 @@ class Pipeline(unittest.TestCase):
         projector.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda caller, event: errors.append(event))
         projector.Update()
         self.assertTrue(errors)
+
+    def run_projector(self, setup):
+        """Messages of a projector configured by setup, and its output's point count."""
+        projector = mcxray.vtkMCXProjector()
+        projector.SetInputConnection(self.index.GetOutputPort())
+        projector.SetTransferFunction(self.tf)
+        projector.SetSampleExponent(12)
+        setup(projector)
+        messages = []
+
+        def keep(caller, event, text=None):
+            messages.append(str(text))
+        keep.CallDataType = VTK_STRING  # the message comes along
+        projector.AddObserver(vtkCommand.ErrorEvent, keep)
+        projector.Update()
+        return messages, projector.GetOutput().GetNumberOfPoints()
+
+    def test_hostile_calls_are_errors_not_crashes(self):
+        """Calls that once killed the interpreter or gave a NaN image: each is
+        one VTK error naming the problem and an empty output."""
+        self.assertFalse(mcxray.vtkMCXRadiographGeometry().ConfigureCamera(None))
+        nan_tf = vtkPiecewiseFunction()
+        nan_tf.AddPoint(400, float("nan"))
+        nan_tf.AddPoint(3926, 1)
+        cases = [
+            (lambda p: p.SetImageSize(100000, 100000), "100000 x 100000 pixels needs"),
+            (lambda p: p.SetPixelSpacing(1e-9), "memory budget"),
+            (lambda p: p.SetDetectorAxisU(float("nan"), 0, 0), "finite unit vectors"),
+            (lambda p: p.SetTransferFunction(nan_tf), "NaN"),
+        ]
+        for setup, needle in cases:
+            messages, points = self.run_projector(setup)
+            self.assertEqual(0, points, needle)
+            self.assertTrue(any(needle in m for m in messages), (needle, messages))
+        sampler = mcxray.vtkMCXPointSampler()
+        sampler.SetInputConnection(self.index.GetOutputPort())
+        sampler.SetTransferFunction(nan_tf)
+        sampler.Update()
+        self.assertEqual(0, sampler.GetOutput().GetNumberOfPoints())
 
 
 if __name__ == "__main__":
