@@ -121,7 +121,8 @@ bool HandOverVolume(int fd, vtkImageData* volume)
 // The child: silent (stderr to /dev/null), under the memory limit, killed
 // with its parent; it reads, hands over and ends without running any
 // destructor (a reader fault may have left the heap in any state).
-[[noreturn]] void ReadInChild(const std::string& path, const ReadLimits& limits, int fd)
+[[noreturn]] void ReadInChild(
+  const std::string& path, VolumeReadOptions options, const ReadLimits& limits, int fd)
 {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   const int quiet = ::open("/dev/null", O_WRONLY);
@@ -141,7 +142,8 @@ bool HandOverVolume(int fd, vtkImageData* volume)
   std::string error;
   try
   {
-    vtkSmartPointer<vtkImageData> volume = ReadVolume(path, error, limits.MemoryBytes);
+    options.MemoryBudget = limits.MemoryBytes;
+    vtkSmartPointer<vtkImageData> volume = ReadVolume(path, options, error);
     if (volume && HandOverVolume(fd, volume))
     {
       ::_exit(0);
@@ -285,23 +287,23 @@ vtkSmartPointer<vtkImageData> TakeOver(
 }
 }
 
-vtkSmartPointer<vtkImageData> ReadVolumeContained(
-  const std::string& path, const ReadLimits& limits, std::string& error)
+vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
+  const VolumeReadOptions& options, const ReadLimits& limits, std::string& error)
 {
   const int fd = ::memfd_create("mcxray-volume", MFD_CLOEXEC);
   if (fd < 0)
   {
-    return ReadVolume(path, error); // no shared memory: read in this process
+    return ReadVolume(path, options, error); // no shared memory: read in this process
   }
   const pid_t child = ::fork();
   if (child < 0)
   {
     ::close(fd);
-    return ReadVolume(path, error);
+    return ReadVolume(path, options, error);
   }
   if (child == 0)
   {
-    ReadInChild(path, limits, fd);
+    ReadInChild(path, options, limits, fd);
   }
   int status = 0;
   vtkSmartPointer<vtkImageData> volume;

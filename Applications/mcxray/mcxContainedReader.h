@@ -6,6 +6,7 @@
 #ifndef mcxContainedReader_h
 #define mcxContainedReader_h
 
+#include "mcxVolumeReader.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -22,11 +23,12 @@ struct ReadLimits
 };
 
 /// ReadVolume (checked headers first, then the VTK reader) in a child
-/// process within limits: the scalars with their geometry (spacing, origin,
-/// direction), or null with error set to one line that says what went wrong
-/// (the reader's own message, its signal, or the time limit).
-vtkSmartPointer<vtkImageData> ReadVolumeContained(
-  const std::string& path, const ReadLimits& limits, std::string& error);
+/// process within limits (options.MemoryBudget is limits.MemoryBytes): the
+/// scalars with their geometry (spacing, origin, direction), or null with
+/// error set to one line that says what went wrong (the reader's own
+/// message, its signal, or the time limit).
+vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
+  const VolumeReadOptions& options, const ReadLimits& limits, std::string& error);
 
 } // namespace mcxapp
 

@@ -79,6 +79,9 @@ const Option Options[] = {
     { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1, MaximumThreads)); } },
   { "--memory-limit", Both, true,
     [](Settings& s, const Argument& a) { s.MemoryLimit = ParseByteSize(a.Value, a.Name); } },
+  { "--series", Both, true,
+    [](Settings& s, const Argument& a)
+    { s.DicomSeries = static_cast<int>(ParseInteger(a.Value, a.Name, 1, 1000000)); } },
   { "--read-timeout", Both, true,
     [](Settings& s, const Argument& a) { s.ReadTimeout = ParsePositive(a.Value, a.Name); } },
   { "--view", Render, true,

@@ -50,7 +50,9 @@ area of the line integral of g = TF(density), reconstructed with the chosen
 kernel, in TF units times world length (mm for medical data).
 
 INPUT   a volume: .vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a
-        DICOM series directory. Default: the bundled CT head (VTK's headsq).
+        DICOM series directory (read with vtk-dicom: sorted by position, in
+        patient space, rescaled to HU). Default: the bundled CT head (VTK's
+        headsq).
 
 options:
   --tf SPEC             transfer function: value:weight,value:weight,... in data
@@ -74,6 +76,8 @@ options:
   --memory-limit SIZE   memory budget (e.g. 8G; default: the machine's memory):
                         volumes, indices, images and clouds that need more are
                         refused up front, naming the size
+  --series N            the N-th series of a DICOM folder that holds several (an
+                        error lists them when N is missing)
   --read-timeout S      stop a reader that takes longer than S seconds (default
                         300; the volume is read in a child process, so a corrupt
                         file cannot crash or hang mcxray)
@@ -201,7 +205,8 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
   const std::string input = settings.Input.empty() ? BundledVolumePath() : settings.Input;
   const auto start = std::chrono::steady_clock::now();
   std::string error;
-  vtkSmartPointer<vtkImageData> volume = ReadVolumeContained(input, ReadLimitsOf(settings), error);
+  vtkSmartPointer<vtkImageData> volume =
+    ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
   if (!volume)
   {
     Fail(error);

@@ -25,6 +25,7 @@ struct Settings
   int Threads = 0; // 0: all cores
   double MemoryLimit = 0.0;  // bytes; 0: the machine's physical memory
   double ReadTimeout = 300.0; // seconds the volume reader may take
+  int DicomSeries = 0;        // --series: a DICOM folder's series (1, 2, ...); 0: its only one
   bool SizeGiven = false;
   int Size[2] = { 0, 0 };
   RadiographSettings Radiograph;
@@ -55,6 +56,14 @@ inline ReadLimits ReadLimitsOf(const Settings& settings)
   limits.MemoryBytes = static_cast<unsigned long long>(
     settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget());
   return limits;
+}
+
+/// How the options ask the input to be read (--series).
+inline VolumeReadOptions ReadOptionsOf(const Settings& settings)
+{
+  VolumeReadOptions options;
+  options.DicomSeries = settings.DicomSeries;
+  return options;
 }
 
 } // namespace mcxapp

@@ -53,6 +53,7 @@ options:
   --seed N           seed of the pseudo-random parts (default 0)
   --threads N        worker threads (default: all cores)
   --memory-limit S   memory budget (e.g. 8G; default: the machine's memory)
+  --series N         the N-th series of a DICOM folder that holds several
   --read-timeout S   stop a reader that takes longer than S seconds (default 300)
   --size WxH         window size (default 768x768)
   --sad, --sid, --detector, --pitch, --gantry, --isocenter
@@ -204,7 +205,8 @@ int RunView(int argc, char* argv[])
   ErrorCapture capture; // outlives the view, whose pipeline reports to it
   std::string error;
   mcx::SetMemoryBudget(settings.MemoryLimit);
-  vtkSmartPointer<vtkImageData> volume = ReadVolumeContained(input, ReadLimitsOf(settings), error);
+  vtkSmartPointer<vtkImageData> volume =
+    ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
   if (!volume)
   {
     Fail(error);

@@ -1,23 +1,20 @@
 #include "mcxVolumeReader.h"
 
 #include "mcxByteSize.h"
+#include "mcxDicomSeries.h"
 #include "mcxHeaderCheck.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
-#include "vtkDICOMImageReader.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
-#include "vtkMath.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
-#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkStructuredPointsReader.h"
@@ -25,10 +22,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
-#include <array>
 #include <cctype>
-#include <cstring>
-#include <vector>
 
 namespace mcxapp
 {
@@ -117,93 +111,6 @@ void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
   }
 }
 
-// vtkDICOMImageReader with the order of its files in view (protected in VTK 9.1).
-class DicomSeriesReader : public vtkDICOMImageReader
-{
-public:
-  static DicomSeriesReader* New();
-  vtkTypeMacro(DicomSeriesReader, vtkDICOMImageReader);
-  using vtkDICOMImageReader::GetDICOMFileName;
-  using vtkDICOMImageReader::GetNumberOfDICOMFileNames;
-};
-vtkStandardNewMacro(DicomSeriesReader);
-
-// vtkDICOMImageReader stacks a series' files in descending order along the
-// slice normal and turns each slice's rows bottom-up, but leaves origin 0 and
-// the identity direction: the volume stood reversed in patient space. Put
-// slice k at the k-th ImagePositionPatient along the normal (row x column
-// direction), rows in the files' order, and the series' origin, slice
-// distance and direction (row direction, column direction, normal) on it.
-void ApplyDicomGeometry(DicomSeriesReader* reader, vtkImageData* image)
-{
-  int dims[3];
-  image->GetDimensions(dims);
-  const int files = reader->GetNumberOfDICOMFileNames();
-  if (files < 1 || files != dims[2])
-  {
-    return;
-  }
-  std::vector<std::array<double, 3>> positions(static_cast<std::size_t>(files));
-  double u[3] = { 1, 0, 0 }, v[3] = { 0, 1, 0 };
-  for (int f = 0; f < files; ++f)
-  {
-    vtkNew<vtkDICOMImageReader> header;
-    header->SetFileName(reader->GetDICOMFileName(f));
-    header->UpdateInformation();
-    const float* p = header->GetImagePositionPatient();
-    positions[static_cast<std::size_t>(f)] = { p[0], p[1], p[2] };
-    const float* o = header->GetImageOrientationPatient();
-    if (f == 0 && vtkMath::Norm(o) > 0 && vtkMath::Norm(o + 3) > 0)
-    {
-      std::copy(o, o + 3, u);
-      std::copy(o + 3, o + 6, v);
-      vtkMath::Normalize(u);
-      vtkMath::Normalize(v);
-    }
-  }
-  double n[3];
-  vtkMath::Cross(u, v, n);
-  std::vector<double> along(positions.size());
-  std::vector<int> order(positions.size());
-  for (std::size_t f = 0; f < positions.size(); ++f)
-  {
-    along[f] = vtkMath::Dot(positions[f].data(), n);
-    order[f] = static_cast<int>(f);
-  }
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return along[a] < along[b]; });
-
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  vtkSmartPointer<vtkDataArray> sorted =
-    vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
-  sorted->SetName(scalars->GetName());
-  sorted->SetNumberOfComponents(scalars->GetNumberOfComponents());
-  sorted->SetNumberOfTuples(scalars->GetNumberOfTuples());
-  const std::size_t row = static_cast<std::size_t>(dims[0]) * scalars->GetNumberOfComponents() *
-    scalars->GetDataTypeSize();
-  const auto* from = static_cast<const unsigned char*>(scalars->GetVoidPointer(0));
-  auto* to = static_cast<unsigned char*>(sorted->GetVoidPointer(0));
-  for (int k = 0; k < dims[2]; ++k)
-  {
-    for (int j = 0; j < dims[1]; ++j)
-    {
-      const std::size_t source =
-        static_cast<std::size_t>(order[static_cast<std::size_t>(k)]) * dims[1] + (dims[1] - 1 - j);
-      std::memcpy(to + (static_cast<std::size_t>(k) * dims[1] + j) * row, from + source * row, row);
-    }
-  }
-  image->GetPointData()->SetScalars(sorted);
-
-  const std::array<double, 3>& first = positions[static_cast<std::size_t>(order.front())];
-  image->SetOrigin(first.data());
-  if (files > 1 && along[order.back()] > along[order.front()])
-  {
-    const double* spacing = image->GetSpacing();
-    image->SetSpacing(
-      spacing[0], spacing[1], (along[order.back()] - along[order.front()]) / (files - 1));
-  }
-  const double direction[9] = { u[0], v[0], n[0], u[1], v[1], n[1], u[2], v[2], n[2] };
-  image->SetDirectionMatrix(direction);
-}
 }
 
 std::string BundledVolumePath()
@@ -217,9 +124,15 @@ std::string BundledVolumePath()
   return std::string(MCXRAY_SOURCE_DATA_DIR) + "/ct_head_headsq.vti";
 }
 
-vtkSmartPointer<vtkImageData> ReadVolume(
-  const std::string& path, std::string& error, unsigned long long memoryBudget)
+vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)
 {
+  return ReadVolume(path, VolumeReadOptions(), error);
+}
+
+vtkSmartPointer<vtkImageData> ReadVolume(
+  const std::string& path, const VolumeReadOptions& options, std::string& error)
+{
+  const unsigned long long memoryBudget = options.MemoryBudget;
   if (!vtksys::SystemTools::FileExists(path))
   {
     error = "cannot read '" + path + "': no such file or directory";
@@ -239,17 +152,13 @@ vtkSmartPointer<vtkImageData> ReadVolume(
       " (--memory-limit)";
     return nullptr;
   }
-  vtkSmartPointer<vtkAlgorithm> reader;
-  vtkNIFTIImageReader* nifti = nullptr;
-  DicomSeriesReader* series = nullptr;
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    auto dicom = vtkSmartPointer<DicomSeriesReader>::New();
-    dicom->SetDirectoryName(path.c_str());
-    series = dicom;
-    reader = dicom;
+    return ReadDicomSeries(path, options.DicomSeries, error);
   }
-  else if (EndsWith(path, ".vti"))
+  vtkSmartPointer<vtkAlgorithm> reader;
+  vtkNIFTIImageReader* nifti = nullptr;
+  if (EndsWith(path, ".vti"))
   {
     auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
     xml->SetFileName(path.c_str());
@@ -309,10 +218,6 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   if (nifti)
   {
     ApplyNiftiHeader(nifti, volume);
-  }
-  if (series)
-  {
-    ApplyDicomGeometry(series, volume);
   }
   return volume;
 }

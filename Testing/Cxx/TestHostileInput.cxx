@@ -461,3 +461,61 @@ TEST(HostileInput, RegressionFilesGiveOneLine)
   ExpectRefused(std::string("render --tf '1:0\n,2:x' --samples 1023"), "\\x0a");
   vtksys::SystemTools::RemoveFile(odd);
 }
+
+TEST(HostileInput, DicomFoldersAsHospitalsExportThem)
+{
+  // Two series in one folder (the second a copy with another
+  // SeriesInstanceUID, in a subfolder), a missing slice, a duplicated
+  // image, a truncated slice: each is one line that says so; --series picks.
+  const std::string series = mcxtest::SharedDataPath("ct_head_headsq_dicom");
+  MCXTEST_NEED(vtksys::SystemTools::FileIsDirectory(series), series);
+  const std::string folder = Temporary("hostile_dicom");
+  vtksys::SystemTools::RemoveADirectory(folder);
+  vtksys::SystemTools::MakeDirectory(folder);
+  auto copy = [&](const std::string& name)
+  {
+    vtksys::SystemTools::CopyADirectory(series, folder + "/" + name);
+    return folder + "/" + name;
+  };
+  const std::string two = folder + "/two";
+  vtksys::SystemTools::MakeDirectory(two);
+  vtksys::SystemTools::CopyADirectory(series, two + "/first");
+  vtksys::SystemTools::CopyADirectory(series, two + "/second");
+  vtksys::Directory second;
+  second.Load(two + "/second");
+  for (unsigned long f = 0; f < second.GetNumberOfFiles(); ++f)
+  {
+    const std::string file = two + "/second/" + second.GetFile(f);
+    std::string bytes = Slurp(file);
+    const std::size_t uid = bytes.find(std::string("\x20\x00\x0e\x00UI", 6));
+    if (uid == std::string::npos)
+    {
+      continue;
+    }
+    const std::size_t length = static_cast<unsigned char>(bytes[uid + 6]);
+    char& digit = bytes[uid + 8 + length - 2]; // a digit before the padding
+    digit = digit == '7' ? '8' : '7';
+    WriteBytes(file, bytes);
+  }
+  ExpectRefused("render " + two + " --samples 1023", "holds 2 DICOM series; choose one with --series N");
+  const std::string output = Temporary("hostile_dicom.vti");
+  Result picked = RunCLI("render " + two + " --series 2 --samples 1023 --size 32x32 --quiet --output " + output);
+  EXPECT_EQ(0, picked.Status) << picked.Errors;
+  EXPECT_TRUE(vtksys::SystemTools::FileExists(output));
+  ExpectRefused("render " + two + " --series 3 --samples 1023", "holds 2 DICOM series");
+
+  const std::string missing = copy("missing");
+  vtksys::SystemTools::RemoveFile(missing + "/CTHead50.dcm");
+  ExpectRefused("render " + missing + " --samples 1023", "a gap of 3 mm where the slices are 1.5 mm apart");
+
+  const std::string duplicated = copy("duplicated");
+  vtksys::SystemTools::CopyAFile(duplicated + "/CTHead50.dcm", duplicated + "/extra.dcm");
+  ExpectRefused("render " + duplicated + " --samples 1023", "duplicated images");
+
+  const std::string truncated = copy("truncated");
+  WriteBytes(truncated + "/CTHead40.dcm", Slurp(truncated + "/CTHead40.dcm").substr(0, 5000));
+  ExpectRefused("render " + truncated + " --samples 1023", "Premature end of file while reading PixelData");
+
+  vtksys::SystemTools::MakeDirectory(folder + "/empty");
+  ExpectRefused("render " + folder + "/empty --samples 1023", "no DICOM series");
+}

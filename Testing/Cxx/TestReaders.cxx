@@ -25,6 +25,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -580,4 +581,58 @@ TEST(Readers, DicomSeriesIsStackedAlongTheSliceNormal)
       }
     }
   }
+}
+
+namespace
+{
+// A copy of the headsq series with one DS element of every file (2 bytes,
+// as the files store "0 " and "1 ") replaced: tag bytes, then the value.
+void CopySeriesWithElement(
+  const std::string& from, const std::string& to, const std::string& tag, const std::string& value)
+{
+  vtksys::SystemTools::RemoveADirectory(to);
+  vtksys::SystemTools::MakeDirectory(to);
+  vtksys::Directory listing;
+  listing.Load(from);
+  for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
+  {
+    const std::string file = listing.GetFile(f);
+    if (file == "." || file == "..")
+    {
+      continue;
+    }
+    std::ifstream in(from + "/" + file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = bytes.find(tag + "DS\x02\x00", 0);
+    ASSERT_NE(std::string::npos, at) << file;
+    bytes.replace(at + tag.size() + 4, 2, value);
+    std::ofstream out(to + "/" + file, std::ios::binary);
+    out << bytes;
+  }
+}
+}
+
+TEST(Readers, DicomRescaleSlopeAndInterceptGiveHounsfieldUnits)
+{
+  // RescaleSlope 2 and RescaleIntercept -9 in every file of the series: each
+  // voxel is 2 x stored - 9 (the stored values: the series as exported).
+  const std::string directory = mcxtest::SharedDataPath("ct_head_headsq_dicom");
+  MCXTEST_NEED(vtksys::SystemTools::FileIsDirectory(directory), directory);
+  const std::string work = vtksys::SystemTools::GetCurrentWorkingDirectory();
+  CopySeriesWithElement(directory, work + "/rescale-slope", std::string("\x28\x00\x53\x10", 4), "2 ");
+  CopySeriesWithElement(
+    work + "/rescale-slope", work + "/rescale-both", std::string("\x28\x00\x52\x10", 4), "-9");
+  auto stored = ReadOurs(directory);
+  auto rescaled = ReadOurs(work + "/rescale-both");
+  ASSERT_TRUE(stored && rescaled);
+  vtkDataArray* a = stored->GetPointData()->GetScalars();
+  vtkDataArray* b = rescaled->GetPointData()->GetScalars();
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+  vtkIdType wrong = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    wrong += b->GetTuple1(i) == 2 * a->GetTuple1(i) - 9 ? 0 : 1;
+  }
+  EXPECT_EQ(0, wrong);
+  EXPECT_EQ(-9.0, b->GetRange()[0]);
 }
