@@ -31,7 +31,9 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <iomanip>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -124,6 +126,30 @@ const long long DefaultSamples = 16777215;
 double Seconds(std::chrono::steady_clock::time_point since)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
+
+// An absurd but valid sample count is announced with its cost before the
+// work: more than about a minute at the projection rate of a 2-core machine
+// (about 100 M samples/s per 2 threads, Performance in the README; the
+// footprint deposit costs about 4 times as much per sample).
+void WarnOfLongRuns(const Settings& settings)
+{
+  if (settings.Quiet || settings.Method == "reference" || settings.TargetError > 0 ||
+    settings.QuantizationLevels > 0)
+  {
+    return;
+  }
+  const int threads = settings.Threads > 0 ? settings.Threads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  const double rate = 5.0e7 * std::max(1, threads) / (settings.Deposit == "footprint" ? 4.0 : 1.0);
+  const double seconds = static_cast<double>(settings.Samples) / rate;
+  if (seconds > 60.0)
+  {
+    std::ostringstream line;
+    line << "mcxray: warning: " << settings.Samples << " samples take about "
+         << std::setprecision(3) << (seconds > 7200 ? seconds / 3600 : seconds / 60) << (seconds > 7200 ? " hours" : " minutes")
+         << " on " << threads << " threads; Ctrl-C stops the run and writes nothing";
+    std::cerr << line.str() << std::endl;
+  }
 }
 
 // What one option allows depends on another: checked once all are read.
@@ -484,6 +510,7 @@ int RunRender(int argc, char* argv[])
     settings.Output, settings.Input.empty() ? BundledVolumePath() : settings.Input, "--output");
   CheckTransferFunction(settings.TF);
   const ViewChoice view = ChooseView(settings);
+  WarnOfLongRuns(settings);
   vtkSmartPointer<vtkImageData> volume = ReadInput(settings);
   RenderPipeline pipeline(settings, capture, view);
   return pipeline.Run(volume);

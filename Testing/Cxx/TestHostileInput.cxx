@@ -250,6 +250,53 @@ TEST(HostileInput, AbsurdSizesAreRefusedUpFrontNamingTheSize)
   ExpectRefused("render --method reference --memory-limit 2M", "memory budget");
 }
 
+namespace
+{
+// mcxray render with arguments (after "render"), sent signal after 1.5 s:
+// its exit status, and its stderr in errors.
+int RenderAndSignal(const std::vector<std::string>& arguments, int signal, const std::string& errors)
+{
+  const pid_t child = ::fork();
+  if (child == 0)
+  {
+    const int fd = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ::dup2(fd, STDERR_FILENO);
+    const int quiet = ::open("/dev/null", O_WRONLY);
+    ::dup2(quiet, STDOUT_FILENO);
+    std::vector<char*> argv = { const_cast<char*>(MCXRAY_CLI), const_cast<char*>("render") };
+    for (const std::string& argument : arguments)
+    {
+      argv.push_back(const_cast<char*>(argument.c_str()));
+    }
+    argv.push_back(nullptr);
+    ::execv(MCXRAY_CLI, argv.data());
+    ::_exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ::kill(child, signal);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return status;
+}
+}
+
+TEST(HostileInput, AbsurdSampleCountsAreAnnouncedWithTheirCost)
+{
+  // 2^40 - 1 samples: a warning with the estimated time before any work
+  // (then Ctrl-C stops the run).
+  const std::string folder = Temporary("hostile_long");
+  vtksys::SystemTools::MakeDirectory(folder);
+  const std::string errors = folder + "/stderr.txt";
+  RenderAndSignal({ "--samples", "1099511627775", "--deposit", "point", "--threads", "2",
+                    "--output", folder + "/long.png" },
+    SIGINT, errors);
+  const std::string text = Slurp(errors);
+  EXPECT_EQ(0u, text.find("mcxray: warning: 1099511627775 samples take about 3.05 hours on 2 threads"))
+    << text;
+  EXPECT_NE(std::string::npos, text.find("mcxray: error: interrupted by SIGINT")) << text;
+  EXPECT_FALSE(vtksys::SystemTools::FileExists(folder + "/long.png"));
+}
+
 TEST(HostileInput, InterruptedRunsLeaveNoFile)
 {
   // SIGINT and SIGTERM during a long render: one line, nothing written,
@@ -260,20 +307,8 @@ TEST(HostileInput, InterruptedRunsLeaveNoFile)
     vtksys::SystemTools::MakeDirectory(folder);
     const std::string output = folder + "/long.vti";
     const std::string errors = folder + "/stderr.txt";
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0)
-    {
-      const int fd = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-      ::dup2(fd, STDERR_FILENO);
-      ::execl(MCXRAY_CLI, MCXRAY_CLI, "render", "--samples", "68719476735", "--quiet", "--output",
-        output.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-    ::kill(child, signal);
-    int status = 0;
-    ::waitpid(child, &status, 0);
+    const int status = RenderAndSignal(
+      { "--samples", "68719476735", "--quiet", "--output", output }, signal, errors);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << status;
     const std::string text = Slurp(errors);
     EXPECT_NE(std::string::npos, text.find("mcxray: error: interrupted by SIG")) << text;
