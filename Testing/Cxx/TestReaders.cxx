@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -635,4 +636,53 @@ TEST(Readers, DicomRescaleSlopeAndInterceptGiveHounsfieldUnits)
   }
   EXPECT_EQ(0, wrong);
   EXPECT_EQ(-9.0, b->GetRange()[0]);
+}
+
+TEST(Readers, DicomCompressedTransferSyntaxesGiveTheSameVolume)
+{
+  // The series converted by GDCM's gdcmconv to lossless JPEG, JPEG 2000,
+  // JPEG-LS and RLE: vtk-dicom (with GDCM) must give the same voxels as the
+  // uncompressed files, value for value.
+  const std::string directory = mcxtest::SharedDataPath("ct_head_headsq_dicom");
+  MCXTEST_NEED(vtksys::SystemTools::FileIsDirectory(directory), directory);
+  const bool haveConverter = std::system("gdcmconv --version > /dev/null 2>&1") == 0;
+  MCXTEST_NEED(haveConverter, std::string("gdcmconv (Debian's libgdcm-tools)"));
+  auto plain = ReadOurs(directory);
+  ASSERT_TRUE(plain);
+  vtksys::Directory listing;
+  ASSERT_TRUE(listing.Load(directory));
+  const std::string work = vtksys::SystemTools::GetCurrentWorkingDirectory();
+  for (const char* syntax : { "jpeg", "j2k", "jpegls", "rle" })
+  {
+    const std::string converted = work + "/series-" + syntax;
+    vtksys::SystemTools::RemoveADirectory(converted);
+    vtksys::SystemTools::MakeDirectory(converted);
+    for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
+    {
+      const std::string file = listing.GetFile(f);
+      if (file == "." || file == "..")
+      {
+        continue;
+      }
+      const std::string command = std::string("gdcmconv --") + syntax + " '" + directory + "/" +
+        file + "' '" + converted + "/" + file + "'";
+      ASSERT_EQ(0, std::system(command.c_str())) << command;
+    }
+    auto volume = ReadOurs(converted);
+    ASSERT_TRUE(volume) << syntax;
+    vtkDataArray* a = plain->GetPointData()->GetScalars();
+    vtkDataArray* b = volume->GetPointData()->GetScalars();
+    ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples()) << syntax;
+    vtkIdType differing = 0;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      differing += a->GetTuple1(i) == b->GetTuple1(i) ? 0 : 1;
+    }
+    EXPECT_EQ(0, differing) << syntax;
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_EQ(plain->GetOrigin()[k], volume->GetOrigin()[k]) << syntax;
+      EXPECT_EQ(plain->GetSpacing()[k], volume->GetSpacing()[k]) << syntax;
+    }
+  }
 }
