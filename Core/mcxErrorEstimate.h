@@ -30,10 +30,15 @@ inline std::uint64_t FirstHalfSize(std::uint64_t count)
 /// estimated from the image of its first FirstHalfSize(count) samples
 /// (`firstHalf`) and that of the rest. With x_A, x_B the half images per
 /// sample and x the full one, Var(x) = E[(x_A - x_B)^2] / (M (1/|A| + 1/|B|)).
-/// NaN below 3 samples; 0 for an empty image.
+/// 0 for an empty image (no samples, or all outside it: exactly known);
+/// NaN for 1 or 2 samples (no halves to compare).
 inline double EstimateRelativeError(
   const FixedSum* whole, const FixedSum* firstHalf, std::size_t pixels, std::uint64_t count)
 {
+  if (count == 0)
+  {
+    return 0.0;
+  }
   const std::uint64_t first = FirstHalfSize(count);
   if (first == 0)
   {

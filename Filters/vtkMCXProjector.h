@@ -14,7 +14,7 @@
  * "EstimatedRelativeError": the relative RMS error of the image estimated
  * from the samples themselves, by comparing the images of the first half of
  * the samples (for Hybrid, the coarser Halton run) and of the second half
- * (NaN below 3 samples).
+ * (0 for an empty image, NaN for 1 or 2 samples).
  *
  * Deposit (index input; a footprint cloud from vtkMCXPointSampler brings its
  * own, and FootprintReach applies to it too): with FOOTPRINT each sample adds its voxel's

@@ -186,6 +186,8 @@ TEST(TransferFunctions, ZeroEverywhereGivesAnEmptyImageAndAWarning)
     EXPECT_NE(std::string::npos, run.Warnings.find("zero over the whole volume")) << run.Warnings;
     EXPECT_EQ(0.0, mcxtest::LineIntegral(run.Image)->GetRange()[1]);
     EXPECT_EQ(0.0, mcxtest::LineIntegral(run.Image)->GetRange()[0]);
+    // An empty image is exactly known: its error is 0, not NaN.
+    EXPECT_EQ(0.0, mcxtest::FieldValue(run.Image, "EstimatedRelativeError"));
   }
 }
 
