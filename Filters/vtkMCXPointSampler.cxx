@@ -199,7 +199,11 @@ int vtkMCXPointSampler::RequestData(
   }
 
   output->SetPoints(points);
+  // Only what the cloud's consumers read: not the index's arrays (the
+  // pipeline passes the input's field data on; SortedVoxelIds alone is 4
+  // bytes per voxel).
   vtkFieldData* fd = output->GetFieldData();
+  fd->Initialize();
   mcx::AddFieldValue(
     fd, SampleWeightName(), count > 0 ? integral / static_cast<double>(count) : 0.0);
   mcx::AddFieldValue(fd, IntegralName(), integral);

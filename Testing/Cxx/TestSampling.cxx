@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <string>
 
 namespace
 {
@@ -53,6 +55,17 @@ TEST(PointSampler, WeightIsTheIntegralOverM)
   EXPECT_DOUBLE_EQ(integral, mcxtest::FieldValue(cloud, "Integral"));
   EXPECT_DOUBLE_EQ(integral / 1023, mcxtest::FieldValue(cloud, "SampleWeight"));
   EXPECT_EQ(1023, cloud->GetNumberOfPoints());
+  // The cloud carries its own fields, not the index's (SortedVoxelIds alone
+  // is 4 bytes per voxel): exactly these.
+  vtkFieldData* fd = cloud->GetFieldData();
+  std::set<std::string> names;
+  for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+  {
+    names.insert(fd->GetArrayName(a));
+  }
+  const std::set<std::string> expected = { "SampleWeight", "Integral", "SampleExponent", "Deposit",
+    "Kernel", "Strategy", "Seed", "VoxelAxes", "SupportCorners" };
+  EXPECT_EQ(expected, names);
 }
 
 TEST(PointSampler, PointsLieInTheKernelSupportOfTheirVoxelInWorldSpace)
