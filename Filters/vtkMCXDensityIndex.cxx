@@ -283,6 +283,7 @@ int vtkMCXDensityIndex::RequestData(
     vtkErrorMacro("Missing input or output image data.");
     return 0;
   }
+  output->Initialize(); // a failure below leaves no stale index of an earlier input
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
   if (!scalars)
   {
@@ -311,7 +312,6 @@ int vtkMCXDensityIndex::RequestData(
   if (!mcx::CheckMemory(this, bytesPerVoxel * static_cast<double>(n),
         "An index of " + std::to_string(n) + " voxels"))
   {
-    output->Initialize();
     return 0;
   }
   try
@@ -337,7 +337,6 @@ int vtkMCXDensityIndex::RequestData(
   catch (const std::bad_alloc&)
   {
     vtkErrorMacro("Out of memory indexing " << n << " voxels.");
-    output->Initialize();
     return 0;
   }
   this->UpdateProgress(0.9);

@@ -138,6 +138,7 @@ int vtkMCXPointSampler::RequestData(
   double integral = 0.0;
   if (!mcx::PrepareSampling(this, "sample", input, this->TransferFunction, view, table, integral))
   {
+    output->Initialize(); // no stale cloud of an earlier request
     return 0;
   }
 

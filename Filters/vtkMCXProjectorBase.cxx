@@ -113,9 +113,12 @@ int vtkMCXProjectorBase::RequestInformation(
   {
     problem = g.Validate();
   }
+  // A failed request leaves no stale image of an earlier one behind.
+  vtkImageData* output = vtkImageData::GetData(outputVector);
   if (!problem.empty())
   {
     vtkErrorMacro("Invalid projection: " << problem << ".");
+    output->Initialize();
     return 0;
   }
   if (!mcx::CheckMemory(this,
@@ -123,6 +126,7 @@ int vtkMCXProjectorBase::RequestInformation(
         "An image of " + std::to_string(g.Size[0]) + " x " + std::to_string(g.Size[1]) +
           " pixels"))
   {
+    output->Initialize();
     return 0;
   }
   this->Internals->Geometry = g;

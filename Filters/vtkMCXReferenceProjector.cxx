@@ -133,6 +133,7 @@ int vtkMCXReferenceProjector::RequestData(
   if (!mcx::PrepareSampling(this, "project", vtkImageData::GetData(inputVector[0]),
         this->TransferFunction, view, table, integral))
   {
+    output->Initialize();
     return 0;
   }
 
@@ -163,6 +164,7 @@ int vtkMCXReferenceProjector::RequestData(
   if (!validIds)
   {
     vtkErrorMacro("Cannot project: the index holds voxel ids outside the volume.");
+    output->Initialize();
     return 0;
   }
   const mcx::Kernel kernel = static_cast<mcx::Kernel>(this->Kernel);

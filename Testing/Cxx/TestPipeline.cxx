@@ -6,6 +6,10 @@
 #include "vtkMCXProjector.h"
 
 #include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkXMLImageDataReader.h"
@@ -13,6 +17,8 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
 {
@@ -108,4 +114,52 @@ TEST(Pipeline, TheIndexTravelsThroughAVTKFile)
   {
     ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i));
   }
+}
+
+TEST(Pipeline, AFailedRequestLeavesNoStaleOutput)
+{
+  // After a good run, a request that fails (an invalid view, a NaN TF, an
+  // input the index cannot take) leaves an empty output, never the image,
+  // cloud or index of the earlier request; the next good request works.
+  vtkObject::GlobalWarningDisplayOff(); // the errors are expected
+  const int dims[3] = { 8, 8, 8 };
+  auto volume = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int, int) { return i; });
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkPiecewiseFunction> tf;
+  tf->AddPoint(0, 0);
+  tf->AddPoint(7, 1);
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetTransferFunction(tf);
+  projector->SetSampleExponent(10);
+  projector->Update();
+  ASSERT_GT(projector->GetOutput()->GetNumberOfPoints(), 0);
+  projector->SetDetectorAxisV(1, 0, 0); // along U: no view
+  projector->Update();
+  EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints());
+  projector->SetDetectorAxisV(0, 1, 0);
+  projector->Update();
+  EXPECT_GT(projector->GetOutput()->GetNumberOfPoints(), 0);
+
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(index->GetOutputPort());
+  sampler->SetTransferFunction(tf);
+  sampler->SetSampleExponent(10);
+  sampler->Update();
+  ASSERT_EQ(1023, sampler->GetOutput()->GetNumberOfPoints());
+  tf->AddPoint(3, std::nan(""));
+  sampler->Update();
+  EXPECT_EQ(0, sampler->GetOutput()->GetNumberOfPoints());
+  tf->RemovePoint(3);
+
+  index->Update();
+  ASSERT_GT(index->GetOutput()->GetNumberOfPoints(), 0);
+  auto vectors = mcxtest::MakeVolume(VTK_UNSIGNED_CHAR, dims, [](int i, int, int) { return i; });
+  vectors->GetPointData()->GetScalars()->SetNumberOfComponents(2);
+  vectors->GetPointData()->GetScalars()->SetNumberOfTuples(256);
+  index->SetInputData(vectors);
+  index->Update();
+  EXPECT_EQ(0, index->GetOutput()->GetNumberOfPoints());
+  vtkObject::GlobalWarningDisplayOn();
 }
