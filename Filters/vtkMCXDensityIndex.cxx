@@ -236,6 +236,7 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
 
 vtkMCXDensityIndex::vtkMCXDensityIndex()
 {
+  this->SetProgressText("X-Ray Density Index"); // what progress bars show (ParaView's label)
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }

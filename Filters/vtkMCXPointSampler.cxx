@@ -69,7 +69,10 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
 }
 }
 
-vtkMCXPointSampler::vtkMCXPointSampler() = default;
+vtkMCXPointSampler::vtkMCXPointSampler()
+{
+  this->SetProgressText("X-Ray Point Sampler"); // what progress bars show (ParaView's label)
+}
 
 vtkMCXPointSampler::~vtkMCXPointSampler()
 {

@@ -293,7 +293,10 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
 }
 }
 
-vtkMCXProjector::vtkMCXProjector() = default;
+vtkMCXProjector::vtkMCXProjector()
+{
+  this->SetProgressText("X-Ray Projector"); // what progress bars show (ParaView's label)
+}
 
 void vtkMCXProjector::SetNumberOfSamples(vtkTypeInt64 n)
 {

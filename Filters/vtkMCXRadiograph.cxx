@@ -15,6 +15,11 @@
 
 vtkStandardNewMacro(vtkMCXRadiograph);
 
+vtkMCXRadiograph::vtkMCXRadiograph()
+{
+  this->SetProgressText("X-Ray Radiograph"); // what progress bars show (ParaView's label)
+}
+
 namespace
 {
 // The properties in the core's terms (the getters are not const in VTK 9.1).

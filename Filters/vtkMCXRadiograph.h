@@ -77,7 +77,7 @@ public:
   bool HasEffects();
 
 protected:
-  vtkMCXRadiograph() = default;
+  vtkMCXRadiograph();
   ~vtkMCXRadiograph() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;

@@ -115,7 +115,10 @@ private:
 };
 }
 
-vtkMCXReferenceProjector::vtkMCXReferenceProjector() = default;
+vtkMCXReferenceProjector::vtkMCXReferenceProjector()
+{
+  this->SetProgressText("X-Ray Reference Projector"); // what progress bars show
+}
 
 int vtkMCXReferenceProjector::FillInputPortInformation(int, vtkInformation* info)
 {

@@ -38,6 +38,15 @@ class Package(unittest.TestCase):
         self.assertRegex(mcxray.__version__, r"^\d+\.\d+\.\d+$")
         self.assertIn("SampleExponent", str(mcxray.vtkMCXPointSampler()))  # PrintSelf
 
+    def test_progress_carries_the_names_users_see(self):
+        """Progress bars (ParaView's among them) show ProgressText: the menu labels."""
+        for name, label in (("vtkMCXDensityIndex", "X-Ray Density Index"),
+                            ("vtkMCXPointSampler", "X-Ray Point Sampler"),
+                            ("vtkMCXProjector", "X-Ray Projector"),
+                            ("vtkMCXReferenceProjector", "X-Ray Reference Projector"),
+                            ("vtkMCXRadiograph", "X-Ray Radiograph")):
+            self.assertEqual(label, getattr(mcxray, name)().GetProgressText())
+
     def test_constants_are_wrapped(self):
         sampler = mcxray.vtkMCXPointSampler()
         sampler.SetStrategy(mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO)
