@@ -154,11 +154,14 @@ void BuildIndex(XRayViewer& view, const ErrorCapture& capture, ProgressBar& prog
   capture.FailOnWatchedError();
 }
 
-// Off screen: refine until every point counts, save the window.
+// Off screen: refine until every point counts, save the window with the
+// X-ray alone (no overlay text, no sliders).
 void SaveScreenshot(XRayViewer& view, const ErrorCapture& capture, const std::string& screenshot)
 {
   const int renders = view.RefineUntilComplete();
   capture.FailOnWatchedError();
+  view.ShowControls(false);
+  view.GetRenderWindow()->Render();
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(view.GetRenderWindow());
   grab->ReadFrontBufferOff();

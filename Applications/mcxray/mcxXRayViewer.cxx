@@ -116,8 +116,10 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   // Density-axis sliders span the data range; the width may reach all of it.
   const double span =
     this->DataRange[1] > this->DataRange[0] ? this->DataRange[1] - this->DataRange[0] : 1.0;
-  this->AddSlider(this->CentreSlider, "TF centre", this->DataRange[0], this->DataRange[1], 0.17);
-  this->AddSlider(this->WidthSlider, "TF width", span / 1000.0, 2.0 * span, 0.07);
+  // Each slider's value sits above its track and its title below: 0.13 of
+  // the window apart, the upper title stays clear of the lower value.
+  this->AddSlider(this->CentreSlider, "TF centre", this->DataRange[0], this->DataRange[1], 0.19);
+  this->AddSlider(this->WidthSlider, "TF width", span / 1000.0, 2.0 * span, 0.06);
   this->UpdateSlidersFromTransferFunction();
 
   // Our key handler runs before the style's and swallows the keys it uses
@@ -320,6 +322,13 @@ void XRayViewer::Start()
   this->Interactor->CreateRepeatingTimer(15);
   this->Window->Render();
   this->Interactor->Start();
+}
+
+void XRayViewer::ShowControls(bool show)
+{
+  this->Overlay->SetVisibility(show);
+  this->CentreSlider->SetEnabled(show);
+  this->WidthSlider->SetEnabled(show);
 }
 
 int XRayViewer::RefineUntilComplete()

@@ -58,6 +58,10 @@ public:
   /// Renders until every point counts (batch use); returns the number of renders.
   int RefineUntilComplete();
 
+  /// Shows or hides the controls drawn over the X-ray (the overlay text and
+  /// the TF sliders); a screenshot is the X-ray alone.
+  void ShowControls(bool show);
+
   /// TF window on the density axis: 0 below centre - width / 2, rising
   /// linearly to 1 at centre + width / 2 and above (what the sliders set).
   void SetTransferFunctionWindow(double centre, double width);
