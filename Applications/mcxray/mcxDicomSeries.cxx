@@ -1,7 +1,7 @@
 #include "mcxDicomSeries.h"
 
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
+#include "mcxReaderError.h"
+
 #include "vtkDICOMDictHash.h"
 #include "vtkDICOMDirectory.h"
 #include "vtkDICOMItem.h"
@@ -25,33 +25,6 @@ namespace mcxapp
 
 namespace
 {
-// The first error an algorithm reports, kept instead of printed.
-struct FirstError
-{
-  std::string Message;
-  vtkNew<vtkCallbackCommand> Command;
-
-  explicit FirstError(vtkAlgorithm* algorithm)
-  {
-    this->Command->SetClientData(&this->Message);
-    this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* data, void* text)
-      {
-        auto* message = static_cast<std::string*>(data);
-        if (message->empty() && text)
-        {
-          // vtk-dicom nests its parser's report in the reader's: the
-          // innermost "vtkClass (0x...): message" says what happened.
-          std::string line = static_cast<const char*>(text);
-          const std::size_t colon = line.rfind("): ");
-          line = colon == std::string::npos ? line : line.substr(colon + 3);
-          *message = line.substr(0, line.find('\n'));
-        }
-      });
-    algorithm->AddObserver(vtkCommand::ErrorEvent, this->Command);
-  }
-};
-
 // "1: CT 'HEAD' (93 images)", one entry of the folder's list.
 std::string DescribeSeries(vtkDICOMDirectory* directory, int s)
 {
@@ -157,7 +130,7 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
   vtkNew<vtkDICOMDirectory> directory;
   directory->SetDirectoryName(folder.c_str());
   directory->SetScanDepth(4); // series in subfolders too, as exports nest them
-  FirstError scan(directory);
+  ReaderError scan(directory);
   directory->Update();
   const int count = directory->GetNumberOfSeries();
   if (count == 0)
@@ -187,7 +160,7 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
   reader->SetFileNames(directory->GetFileNamesForSeries(std::max(series, 1) - 1));
   reader->SetMemoryRowOrderToFileNative();
   reader->AutoRescaleOn(); // CT values in HU
-  FirstError read(reader);
+  ReaderError read(reader);
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   if (!read.Message.empty() || !image || image->GetNumberOfPoints() == 0 ||

@@ -3,10 +3,9 @@
 #include "mcxByteSize.h"
 #include "mcxDicomSeries.h"
 #include "mcxHeaderCheck.h"
+#include "mcxReaderError.h"
 
 #include "vtkAlgorithm.h"
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
@@ -35,41 +34,6 @@ bool EndsWith(std::string text, const std::string& suffix)
     text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
   return text.size() >= suffix.size() &&
     text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// Captures a reader's error messages instead of letting VTK print them.
-struct ErrorCapture
-{
-  std::string Message;
-  vtkNew<vtkCallbackCommand> Command;
-
-  explicit ErrorCapture(vtkAlgorithm* algorithm)
-  {
-    this->Command->SetClientData(&this->Message);
-    this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* data, void* text)
-      {
-        auto* message = static_cast<std::string*>(data);
-        if (message->empty() && text)
-        {
-          *message = static_cast<const char*>(text);
-        }
-      });
-    algorithm->AddObserver(vtkCommand::ErrorEvent, this->Command);
-  }
-};
-
-std::string FirstLine(const std::string& text)
-{
-  std::string line = text.substr(0, text.find('\n'));
-  // VTK prefixes "ERROR: In file, line N\nclass (address): " -- keep the message.
-  const std::size_t colon = text.find("): ");
-  if (colon != std::string::npos)
-  {
-    line = text.substr(colon + 3);
-    line = line.substr(0, line.find('\n'));
-  }
-  return line;
 }
 
 // NIfTI: world = (s|q)form * (spacing * index); apply it as origin and
@@ -202,15 +166,14 @@ vtkSmartPointer<vtkImageData> ReadVolume(
       "DICOM directory)";
     return nullptr;
   }
-  ErrorCapture capture(reader);
+  ReaderError capture(reader);
   reader->Update();
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   if (!capture.Message.empty() || !image || image->GetNumberOfPoints() == 0 ||
     !image->GetPointData()->GetScalars())
   {
     error = "cannot read '" + path + "'" +
-      (capture.Message.empty() ? std::string(": no volume data")
-                               : ": " + FirstLine(capture.Message));
+      (capture.Message.empty() ? std::string(": no volume data") : ": " + capture.Message);
     return nullptr;
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();

@@ -97,24 +97,14 @@ std::vector<View> Views(vtkImageData* volume)
 
 int main(int argc, char* argv[])
 {
-  bool quick = false;
-  std::string output = "benchmark-results";
-  std::string data = MCXRAY_SHARED_DATA_DIR;
-  for (int i = 1; i < argc; ++i)
+  mcxbench::BenchmarkArguments arguments;
+  if (!mcxbench::ParseArguments(argc, argv, "BenchmarkAccuracy", MCXRAY_SHARED_DATA_DIR, arguments))
   {
-    if (std::strcmp(argv[i], "--quick") == 0)
-      quick = true;
-    else if (std::strcmp(argv[i], "--output") == 0 && i + 1 < argc)
-      output = argv[++i];
-    else if (std::strcmp(argv[i], "--data") == 0 && i + 1 < argc)
-      data = argv[++i];
-    else
-    {
-      std::cerr << "usage: BenchmarkAccuracy [--quick] [--output DIR] [--data DIR]" << std::endl;
-      return 2;
-    }
+    return 2;
   }
-  vtksys::SystemTools::MakeDirectory(output);
+  const bool quick = arguments.Quick;
+  const std::string& output = arguments.Output;
+  const std::string& data = arguments.Data;
   const int size = quick ? 64 : 256;
   const double tolerance = quick ? 1e-2 : 1e-3;
   std::vector<int> exponents =
@@ -153,15 +143,12 @@ int main(int argc, char* argv[])
     { "mc footprint", vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::FOOTPRINT } };
   for (const Case& c : cases)
   {
-    std::string error;
-    vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(c.File, error);
+    vtkSmartPointer<vtkImageData> volume = mcxbench::ReadInStoredFrame(c.File, c.Name);
     if (!volume)
     {
-      std::cerr << "skipping " << c.Name << ": " << error << std::endl;
       continue;
     }
-    // Plastimatch reads the array in its stored frame: compare in that frame.
-    volume->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+    std::string error;
     double range[2] = { 0, 1 };
     vtkSmartPointer<vtkPiecewiseFunction> tf = mcxapp::MakeTransferFunction(c.TF, range, error);
     std::cout << c.Name << std::endl;

@@ -379,24 +379,14 @@ std::string Quoted(const std::string& text)
 
 int main(int argc, char* argv[])
 {
-  bool quick = false;
-  std::string output = "benchmark-results";
-  std::string data = MCXRAY_SHARED_DATA_DIR;
-  for (int i = 1; i < argc; ++i)
+  mcxbench::BenchmarkArguments arguments;
+  if (!mcxbench::ParseArguments(argc, argv, "BenchmarkPeers", MCXRAY_SHARED_DATA_DIR, arguments))
   {
-    if (std::strcmp(argv[i], "--quick") == 0)
-      quick = true;
-    else if (std::strcmp(argv[i], "--output") == 0 && i + 1 < argc)
-      output = argv[++i];
-    else if (std::strcmp(argv[i], "--data") == 0 && i + 1 < argc)
-      data = argv[++i];
-    else
-    {
-      std::cerr << "usage: BenchmarkPeers [--quick] [--output DIR] [--data DIR]" << std::endl;
-      return 2;
-    }
+    return 2;
   }
-  vtksys::SystemTools::MakeDirectory(output);
+  const bool quick = arguments.Quick;
+  const std::string& output = arguments.Output;
+  const std::string& data = arguments.Data;
   const bool havePlastimatch = std::system("plastimatch --version > /dev/null 2>&1") == 0;
   if (!havePlastimatch)
   {
@@ -430,15 +420,12 @@ int main(int argc, char* argv[])
   int nonsense = 0; // failed peers, non-finite errors: the run must fail loudly
   for (const VolumeCase& c : cases)
   {
-    std::string error;
-    vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(c.File, error);
+    vtkSmartPointer<vtkImageData> volume = mcxbench::ReadInStoredFrame(c.File, c.Name);
     if (!volume)
     {
-      std::cerr << "skipping " << c.Name << ": " << error << std::endl;
       continue;
     }
-    // plastimatch reads the array in its stored frame: compare in that frame.
-    volume->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+    std::string error;
     if (c.LeastVoxels > 0)
     {
       volume = Upsample(volume, c.LeastVoxels);

@@ -1,5 +1,7 @@
 #include "mcxAccuracyMeasures.h"
 
+#include "mcxVolumeReader.h"
+
 #include "vtkMCXReferenceProjector.h"
 
 #include "vtkCamera.h"
@@ -9,10 +11,13 @@
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <iostream>
 
 #include <sys/resource.h>
 
@@ -122,6 +127,41 @@ bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& 
     }
   }
   return true;
+}
+
+bool ParseArguments(int argc, char* argv[], const char* program, const std::string& sharedData,
+  BenchmarkArguments& arguments)
+{
+  arguments.Data = sharedData;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--quick") == 0)
+      arguments.Quick = true;
+    else if (std::strcmp(argv[i], "--output") == 0 && i + 1 < argc)
+      arguments.Output = argv[++i];
+    else if (std::strcmp(argv[i], "--data") == 0 && i + 1 < argc)
+      arguments.Data = argv[++i];
+    else
+    {
+      std::cerr << "usage: " << program << " [--quick] [--output DIR] [--data DIR]" << std::endl;
+      return false;
+    }
+  }
+  vtksys::SystemTools::MakeDirectory(arguments.Output);
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> ReadInStoredFrame(const std::string& path, const std::string& name)
+{
+  std::string error;
+  vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
+  if (!volume)
+  {
+    std::cerr << "skipping " << name << ": " << error << std::endl;
+    return nullptr;
+  }
+  volume->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+  return volume;
 }
 
 long PeakResidentMegabytes()

@@ -50,8 +50,26 @@ vtkSmartPointer<vtkMCXProjector> MakeProjector(vtkAlgorithm* index, vtkPiecewise
 /// first); false when it is not a size x size PFM.
 bool ReadPlastimatchPFM(const std::string& path, int size, std::vector<double>& values);
 
+/// A volume for comparing with plastimatch, which reads the array in its
+/// stored frame: read by mcxray's reader with the direction made identity;
+/// null (the reason printed, naming the case) when it cannot be read.
+vtkSmartPointer<vtkImageData> ReadInStoredFrame(const std::string& path, const std::string& name);
+
 /// Peak resident memory of this process.
 long PeakResidentMegabytes();
+
+/// The accuracy benchmarks' command line: [--quick] [--output DIR] [--data DIR].
+struct BenchmarkArguments
+{
+  bool Quick = false;
+  std::string Output = "benchmark-results";
+  std::string Data; // the shared volumes
+};
+
+/// Parses argv into arguments (Data defaulting to sharedData) and makes the
+/// output folder; false, with the usage printed, on anything else.
+bool ParseArguments(int argc, char* argv[], const char* program, const std::string& sharedData,
+  BenchmarkArguments& arguments);
 }
 
 #endif
