@@ -15,7 +15,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <iomanip>
 #include <new>
+#include <sstream>
 #include <thread>
 
 #include <csignal>
@@ -37,10 +39,10 @@ namespace
 struct Handover
 {
   char Magic[8] = { 'M', 'C', 'X', 'V', 'O', 'L', '1', 0 };
-  std::int32_t Failed = 1;
+  std::int32_t Failed = 1; // 0: the volume follows; NotHandedOver: read it in the parent
   std::int32_t ScalarType = 0;
   std::int32_t Components = 0;
-  std::int32_t Dimensions[3] = { 0, 0, 0 };
+  std::int32_t Extent[6] = { 0, -1, 0, -1, 0, -1 }; // not only the size: the start places the volume
   double Spacing[3] = { 1, 1, 1 };
   double Origin[3] = { 0, 0, 0 };
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
@@ -68,6 +70,11 @@ unsigned long long MappedBytes()
   return pages * static_cast<unsigned long long>(::sysconf(_SC_PAGESIZE));
 }
 
+// The child read the volume but a file-size limit (ulimit -f, which holds
+// for shared memory files too) kept it from handing it over: the parent
+// reads it itself, its headers checked again.
+const std::int32_t NotHandedOver = 2;
+
 bool WriteAll(int fd, const void* data, std::uint64_t bytes)
 {
   const auto* p = static_cast<const char*>(data);
@@ -88,9 +95,10 @@ bool WriteAll(int fd, const void* data, std::uint64_t bytes)
   return true;
 }
 
-void HandOverFailure(int fd, const std::string& message)
+void HandOverFailure(int fd, const std::string& message, std::int32_t failure = 1)
 {
   Handover header;
+  header.Failed = failure;
   header.MessageBytes = message.size();
   WriteAll(fd, &header, sizeof(header));
   WriteAll(fd, message.data(), message.size());
@@ -104,7 +112,7 @@ bool HandOverVolume(int fd, vtkImageData* volume)
   header.Failed = 0;
   header.ScalarType = scalars->GetDataType();
   header.Components = scalars->GetNumberOfComponents();
-  volume->GetDimensions(header.Dimensions);
+  volume->GetExtent(header.Extent);
   volume->GetSpacing(header.Spacing);
   volume->GetOrigin(header.Origin);
   std::copy(volume->GetDirectionMatrix()->GetData(), volume->GetDirectionMatrix()->GetData() + 9,
@@ -121,10 +129,14 @@ bool HandOverVolume(int fd, vtkImageData* volume)
 // The child: silent (stderr to /dev/null), under the memory limit, killed
 // with its parent; it reads, hands over and ends without running any
 // destructor (a reader fault may have left the heap in any state).
-[[noreturn]] void ReadInChild(
-  const std::string& path, VolumeReadOptions options, const ReadLimits& limits, int fd)
+[[noreturn]] void ReadInChild(const std::string& path, VolumeReadOptions options,
+  const ReadLimits& limits, int fd, pid_t parent)
 {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent)
+  {
+    ::_exit(1); // the parent ended before the request took hold
+  }
   const int quiet = ::open("/dev/null", O_WRONLY);
   if (quiet >= 0)
   {
@@ -150,11 +162,13 @@ bool HandOverVolume(int fd, vtkImageData* volume)
     }
     if (volume)
     {
-      // A file-size limit (ulimit -f) holds for shared memory files too.
+      const bool fileSizeLimit = errno == EFBIG;
       error = "cannot read '" + path + "': the volume cannot be handed over from the reader (" +
         std::strerror(errno) + ")";
       ::ftruncate(fd, 0);
       ::lseek(fd, 0, SEEK_SET);
+      HandOverFailure(fd, error, fileSizeLimit ? NotHandedOver : 1);
+      ::_exit(0);
     }
   }
   catch (const std::bad_alloc&)
@@ -204,9 +218,10 @@ bool WaitFor(pid_t child, double seconds, int& status)
 }
 
 // The volume from the shared file, its sizes checked against each other.
-vtkSmartPointer<vtkImageData> TakeOver(
-  int fd, const std::string& path, const ReadLimits& limits, std::string& error)
+vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const ReadLimits& limits,
+  bool& readHere, std::string& error)
 {
+  readHere = false;
   struct stat info;
   if (::fstat(fd, &info) != 0 || static_cast<std::uint64_t>(info.st_size) < sizeof(Handover))
   {
@@ -224,13 +239,21 @@ vtkSmartPointer<vtkImageData> TakeOver(
   Handover header;
   std::memcpy(&header, bytes, sizeof(header));
   vtkSmartPointer<vtkImageData> volume;
-  const std::uint64_t voxels = static_cast<std::uint64_t>(std::max(header.Dimensions[0], 0)) *
-    static_cast<std::uint64_t>(std::max(header.Dimensions[1], 0)) *
-    static_cast<std::uint64_t>(std::max(header.Dimensions[2], 0));
+  std::uint64_t voxels = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::int64_t side =
+      static_cast<std::int64_t>(header.Extent[2 * a + 1]) - header.Extent[2 * a] + 1;
+    voxels *= static_cast<std::uint64_t>(std::max<std::int64_t>(side, 0));
+  }
   if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 ||
     header.MessageBytes > size - sizeof(header))
   {
     error = "cannot read '" + path + "': the reader ended without a result";
+  }
+  else if (header.Failed == NotHandedOver)
+  {
+    readHere = true;
   }
   else if (header.Failed)
   {
@@ -274,7 +297,7 @@ vtkSmartPointer<vtkImageData> TakeOver(
         scalars->SetName(std::string(bytes + sizeof(header) + header.MessageBytes,
           static_cast<std::size_t>(header.NameBytes)).c_str());
         volume = vtkSmartPointer<vtkImageData>::New();
-        volume->SetDimensions(header.Dimensions);
+        volume->SetExtent(header.Extent);
         volume->SetSpacing(header.Spacing);
         volume->SetOrigin(header.Origin);
         volume->SetDirectionMatrix(header.Direction);
@@ -290,27 +313,47 @@ vtkSmartPointer<vtkImageData> TakeOver(
 vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   const VolumeReadOptions& options, const ReadLimits& limits, std::string& error)
 {
-  const int fd = ::memfd_create("mcxray-volume", MFD_CLOEXEC);
+  int fd = ::memfd_create("mcxray-volume", MFD_CLOEXEC);
+  if (fd >= 0 && fd <= STDERR_FILENO)
+  {
+    // stdin, stdout or stderr was closed: the child's redirections would
+    // close the shared file.
+    const int moved = ::fcntl(fd, F_DUPFD_CLOEXEC, STDERR_FILENO + 1);
+    ::close(fd);
+    fd = moved;
+  }
   if (fd < 0)
   {
     return ReadVolume(path, options, error); // no shared memory: read in this process
   }
+  // The child's status is needed: a launcher that ignores SIGCHLD would
+  // make the system reap it unseen.
+  struct sigaction defaultChild, previousChild;
+  std::memset(&defaultChild, 0, sizeof(defaultChild));
+  defaultChild.sa_handler = SIG_DFL;
+  sigemptyset(&defaultChild.sa_mask);
+  ::sigaction(SIGCHLD, &defaultChild, &previousChild);
+  const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0)
   {
+    ::sigaction(SIGCHLD, &previousChild, nullptr);
     ::close(fd);
     return ReadVolume(path, options, error);
   }
   if (child == 0)
   {
-    ReadInChild(path, options, limits, fd);
+    ReadInChild(path, options, limits, fd, parent);
   }
   int status = 0;
   vtkSmartPointer<vtkImageData> volume;
-  if (!WaitFor(child, limits.Seconds, status))
+  const bool finished = WaitFor(child, limits.Seconds, status);
+  ::sigaction(SIGCHLD, &previousChild, nullptr);
+  if (!finished)
   {
-    error = "cannot read '" + path + "': the reader did not finish within " +
-      std::to_string(static_cast<long long>(limits.Seconds)) +
+    std::ostringstream seconds;
+    seconds << std::setprecision(3) << limits.Seconds;
+    error = "cannot read '" + path + "': the reader did not finish within " + seconds.str() +
       " s (a corrupt file? --read-timeout sets the limit)";
   }
   else if (WIFSIGNALED(status))
@@ -329,7 +372,14 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   }
   else
   {
-    volume = TakeOver(fd, path, limits, error);
+    bool readHere = false;
+    volume = TakeOver(fd, path, limits, readHere, error);
+    if (readHere)
+    {
+      VolumeReadOptions here = options;
+      here.MemoryBudget = limits.MemoryBytes;
+      volume = ReadVolume(path, here, error);
+    }
   }
   ::close(fd);
   return volume;

@@ -65,13 +65,15 @@ std::string SplitSeries(vtkDICOMDirectory* directory)
 std::vector<double> SlicePositions(vtkDICOMReader* reader, const double normal[3])
 {
   vtkIntArray* files = reader->GetFileIndexArray();
+  vtkIntArray* frames = reader->GetFrameIndexArray(); // enhanced multi-frame files
   vtkDICOMMetaData* meta = reader->GetMetaData();
   std::vector<double> along(static_cast<std::size_t>(files->GetNumberOfTuples()));
   for (vtkIdType k = 0; k < files->GetNumberOfTuples(); ++k)
   {
     double p[3] = { 0, 0, 0 };
-    const vtkDICOMValue& position =
-      meta->Get(files->GetComponent(k, 0), DC::ImagePositionPatient);
+    const int file = static_cast<int>(files->GetComponent(k, 0));
+    const int frame = frames ? static_cast<int>(frames->GetComponent(k, 0)) : 0;
+    const vtkDICOMValue& position = meta->Get(file, frame, DC::ImagePositionPatient);
     if (position.GetNumberOfValues() == 3)
     {
       position.GetValues(p, 3);
@@ -101,8 +103,10 @@ std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
     steps.push_back(std::fabs(along[k] - along[k - 1]));
   }
   std::vector<double> sorted = steps;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double median = sorted[sorted.size() / 2];
+  // The lower median: with 2 steps, the smaller (a gap is the larger one).
+  const std::size_t middle = (sorted.size() - 1) / 2;
+  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
+  const double median = sorted[middle];
   for (std::size_t k = 0; k < steps.size(); ++k)
   {
     std::ostringstream where;
@@ -152,8 +156,9 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
     {
       list += (s ? "; " : "") + DescribeSeries(directory, s);
     }
-    error = "'" + folder + "' holds " + std::to_string(count) + " DICOM series; choose one with " +
-      "--series N: " + list;
+    error = "'" + folder + "' holds " + std::to_string(count) + " DICOM series" +
+      (series > count ? "; there is no series " + std::to_string(series) : std::string()) +
+      "; choose one with --series N: " + list;
     return nullptr;
   }
   vtkNew<vtkDICOMReader> reader;

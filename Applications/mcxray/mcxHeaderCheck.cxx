@@ -18,6 +18,8 @@
 #include <sstream>
 #include <vector>
 
+#include <sys/stat.h>
+
 namespace mcxapp
 {
 
@@ -284,7 +286,18 @@ struct TextHeader
 // the first blank line (comments '#' skipped, the magic line first).
 bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std::string& error)
 {
-  std::ifstream in(path, std::ios::binary);
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode))
+  {
+    error = "not a regular file"; // a FIFO, say, would block the reading
+    return false;
+  }
+  // At most LargestHeader bytes, whatever the lines (one huge line included).
+  std::ifstream file(path, std::ios::binary);
+  std::string text(static_cast<std::size_t>(std::min<Bytes>(FileSize(path), LargestHeader + 1)), '\0');
+  file.read(&text[0], static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(file.gcount()));
+  std::istringstream in(text);
   std::string line;
   bool first = true;
   while (std::getline(in, line))
@@ -611,6 +624,53 @@ Bytes LegacyElementBytes(const std::string& type)
   return found == sizes.end() ? 0 : found->second;
 }
 
+// Skips a FIELD block ("FIELD name n", then n arrays "name components
+// tuples type" each followed by its values); false when it is malformed or
+// longer than the file.
+bool SkipFieldData(std::istream& in, bool binary, Bytes fileSize)
+{
+  std::string name;
+  long long arrays = 0;
+  if (!(in >> name >> arrays) || arrays < 0 || arrays > 10000)
+  {
+    return false;
+  }
+  for (long long a = 0; a < arrays; ++a)
+  {
+    std::string type;
+    long long components = 0, tuples = 0;
+    if (!(in >> name >> components >> tuples >> type) || components < 1 || components > 1024 ||
+      tuples < 0)
+    {
+      return false;
+    }
+    const Bytes element = Lower(type) == "string" ? 1 : LegacyElementBytes(type);
+    const double values = static_cast<double>(components) * static_cast<double>(tuples);
+    if (element == 0 || values * static_cast<double>(element) > static_cast<double>(fileSize))
+    {
+      return false;
+    }
+    if (binary)
+    {
+      std::string rest;
+      std::getline(in, rest); // the end of the array's line
+      in.seekg(static_cast<std::streamoff>(values) * static_cast<std::streamoff>(element), std::ios::cur);
+    }
+    else
+    {
+      std::string value;
+      for (double v = 0; v < values && in >> value; ++v)
+      {
+      }
+    }
+    if (!in)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool CheckLegacy(const std::string& path, Bytes& claimed, std::string& error)
 {
   std::ifstream in(path, std::ios::binary);
@@ -676,18 +736,29 @@ bool CheckLegacy(const std::string& path, Bytes& claimed, std::string& error)
       std::getline(in, line);
       break; // the data follow
     }
+    else if (key == "field" && dims.empty())
+    {
+      // VTK's writer puts field data (TimeValue, say) before DIMENSIONS.
+      if (!SkipFieldData(in, binary, FileSize(path)))
+      {
+        error = "the legacy VTK file's FIELD data are malformed or longer than the file";
+        return false;
+      }
+    }
     else if (key == "vectors" || key == "normals" || key == "tensors" || key == "field" ||
       key == "color_scalars" || key == "texture_coordinates" || key == "cell_data")
     {
-      // Other data come first: the scalars' place is not known without
-      // reading those; check the dimensions alone.
-      const bool valid = dims.size() == 3 && Product(dims, 1, claimed, error);
-      claimed = 0;
-      if (valid && points == dims[0] * dims[1] * dims[2])
+      // Other data come first (VTK's writer puts FIELD and CELL_DATA before
+      // POINT_DATA): the scalars' place is not known without reading
+      // those; check the dimensions alone.
+      if (dims.size() != 3)
       {
-        return true;
+        error = "the legacy VTK header gives no DIMENSIONS before its data";
+        return false;
       }
-      break;
+      const bool valid = Product(dims, 1, claimed, error);
+      claimed = 0;
+      return valid;
     }
     else
     {
@@ -701,7 +772,8 @@ bool CheckLegacy(const std::string& path, Bytes& claimed, std::string& error)
   }
   if (dims.size() != 3 || element == 0 || components < 1 || components > 4)
   {
-    error = "the legacy VTK header gives no DIMENSIONS, no known SCALARS type, or 1 to 4 components";
+    error = "the legacy VTK header gives no DIMENSIONS, no known SCALARS type, or not 1 to 4 "
+            "components";
     return false;
   }
   if (!Product(dims, element * static_cast<Bytes>(components), claimed, error))
@@ -816,10 +888,12 @@ bool CheckAppendedData(const std::string& path, const std::string& head, const s
   {
     return true; // base64 or inline data: bounded by the ratio check alone
   }
-  const std::size_t underscore = head.find('_', head.find('>', appended));
+  // As VTK reads it: after the tag, whitespace, then one marker character
+  // (normally '_'), whatever it is.
+  const std::size_t underscore = head.find_first_not_of(" \t\r\n", head.find('>', appended) + 1);
   if (underscore == std::string::npos)
   {
-    error = "the image's appended data have no '_' marker";
+    error = "the image's appended data have no marker";
     return false;
   }
   const std::string file = head.substr(0, head.find('>'));
@@ -884,42 +958,84 @@ bool CheckAppendedData(const std::string& path, const std::string& head, const s
   return true;
 }
 
+// An extent attribute's six integers, each side from -2^31 to 2^31.
+bool ParseExtent(const std::string& text, std::vector<long long>& extent)
+{
+  if (!ParseIntegers(text, extent) || extent.size() != 6)
+  {
+    return false;
+  }
+  for (long long e : extent)
+  {
+    if (e < -LargestSide || e > LargestSide)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
 {
   std::ifstream in(path, std::ios::binary);
   std::string head(65536, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
+  auto tagAt = [&](std::size_t at)
+  { return at == std::string::npos ? std::string() : head.substr(at, head.find('>', at) - at); };
   const std::size_t image = head.find("<ImageData");
-  const std::size_t array = head.find("<DataArray", image == std::string::npos ? 0 : image);
   if (head.find("<VTKFile") == std::string::npos || image == std::string::npos)
   {
     error = "not a VTK XML image (no <VTKFile> with <ImageData>)";
     return false;
   }
-  std::vector<long long> extent;
-  const std::string whole = Attribute(head.substr(image, head.find('>', image) - image), "WholeExtent");
-  if (!ParseIntegers(whole, extent) || extent.size() != 6)
+  std::vector<long long> whole, piece;
+  const std::string wholeText = Attribute(tagAt(image), "WholeExtent");
+  if (!ParseExtent(wholeText, whole))
   {
-    error = "the image's WholeExtent '" + whole + "' is not six integers";
+    error = "the image's WholeExtent '" + wholeText + "' is not six integers within 2^31";
     return false;
   }
-  std::vector<long long> dims(3);
+  std::vector<long long> dims(3), pieceDims(3);
   for (int a = 0; a < 3; ++a)
   {
-    dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
-    if (extent[2 * a] < -LargestSide || extent[2 * a + 1] > LargestSide)
+    dims[a] = whole[2 * a + 1] - whole[2 * a] + 1;
+  }
+  // The first piece's extent lies in the whole extent; its point data's
+  // first array is what the header checks size (field data may come first).
+  const std::size_t pieceAt = head.find("<Piece", image);
+  const std::string pieceText = Attribute(tagAt(pieceAt), "Extent");
+  if (pieceAt != std::string::npos && !pieceText.empty())
+  {
+    bool inside = ParseExtent(pieceText, piece);
+    for (int a = 0; inside && a < 3; ++a)
     {
-      error = "the image's WholeExtent '" + whole + "' is out of range";
+      pieceDims[a] = piece[2 * a + 1] - piece[2 * a] + 1;
+      inside = piece[2 * a] >= whole[2 * a] && piece[2 * a + 1] <= whole[2 * a + 1] &&
+        pieceDims[a] >= 0;
+    }
+    if (!inside)
+    {
+      error = "the piece extent '" + pieceText + "' does not lie in the WholeExtent '" + wholeText + "'";
       return false;
     }
   }
+  else
+  {
+    pieceDims = dims;
+  }
+  const std::size_t pointData = head.find("<PointData", pieceAt == std::string::npos ? image : pieceAt);
+  const std::size_t pointDataEnd = head.find("</PointData", pointData == std::string::npos ? 0 : pointData);
+  std::size_t array = pointData == std::string::npos ? std::string::npos : head.find("<DataArray", pointData);
+  if (array != std::string::npos && pointDataEnd != std::string::npos && array > pointDataEnd)
+  {
+    array = std::string::npos;
+  }
   Bytes element = 1;
   std::vector<long long> components;
-  std::string tag;
-  if (array != std::string::npos)
+  const std::string tag = tagAt(array);
+  if (!tag.empty())
   {
-    tag = head.substr(array, head.find('>', array) - array);
     element = XMLElementBytes(Attribute(tag, "type"));
     if (element == 0)
     {
@@ -933,8 +1049,8 @@ bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
       return false;
     }
   }
-  if (!Product(dims, element * static_cast<Bytes>(components.empty() ? 1 : components[0]), claimed,
-        error))
+  const Bytes value = element * static_cast<Bytes>(components.empty() ? 1 : components[0]);
+  if (!Product(dims, value, claimed, error))
   {
     return false;
   }
@@ -945,32 +1061,61 @@ bool CheckVTI(const std::string& path, Bytes& claimed, std::string& error)
     head.find("encoding=\"raw\"") != std::string::npos &&
     head.find("format=\"ascii\"") == std::string::npos &&
     head.find("format=\"binary\"") == std::string::npos;
+  Bytes pieceBytes = 0;
+  const bool emptyPiece = pieceDims[0] < 1 || pieceDims[1] < 1 || pieceDims[2] < 1;
   return CheckAvailable(claimed, FileSize(path), !raw, dims, error) &&
-    (tag.empty() || CheckAppendedData(path, head, tag, claimed, error));
+    (tag.empty() || emptyPiece || (Product(pieceDims, value, pieceBytes, error) &&
+      CheckAppendedData(path, head, tag, pieceBytes, error)));
 }
 }
 
-std::string DetachedDataFile(const std::string& header)
+std::vector<std::string> DataFiles(const std::string& header)
 {
-  const bool nrrd = EndsWith(header, ".nhdr");
-  if (!nrrd && !EndsWith(header, ".mhd"))
+  const bool nrrd = EndsWith(header, ".nhdr") || EndsWith(header, ".nrrd");
+  if (!nrrd && !EndsWith(header, ".mhd") && !EndsWith(header, ".mha"))
   {
-    return std::string();
+    return {};
   }
   TextHeader fields;
   std::string ignored;
   if (!ReadTextHeader(header, nrrd, fields, ignored))
   {
-    return std::string();
+    return {};
   }
   std::map<std::string, std::string>& f = fields.Fields;
   const std::string name =
     nrrd ? (f.count("data file") ? f["data file"] : f["datafile"]) : f["elementdatafile"];
-  if (name.empty() || Lower(name) == "local" || name.find_first_of(" %") != std::string::npos)
+  if (name.empty() || Lower(name) == "local" || Lower(name).compare(0, 4, "list") == 0)
   {
-    return std::string(); // in the header itself, or a list or pattern
+    return {}; // in the header itself, or a list (refused by the checks)
   }
-  return Beside(header, name);
+  if (name.find('%') == std::string::npos)
+  {
+    return { Beside(header, name) };
+  }
+  // A numbered pattern: its files, when it is a bounded one.
+  std::istringstream spec(name);
+  std::string pattern;
+  long long first = 0, last = 0, step = 1;
+  spec >> pattern >> first >> last;
+  if (!(spec >> step))
+  {
+    step = 1;
+  }
+  std::vector<std::string> files;
+  Bytes total = 0;
+  std::string error;
+  if (!PatternFiles(header, name, total, error))
+  {
+    return {};
+  }
+  for (long long i = 0; i <= (last - first) / step; ++i)
+  {
+    char file[4096];
+    std::snprintf(file, sizeof(file), pattern.c_str(), static_cast<int>(first + i * step));
+    files.push_back(Beside(header, file));
+  }
+  return files;
 }
 
 bool CheckVolumeHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error)

@@ -9,14 +9,15 @@
 #define mcxHeaderCheck_h
 
 #include <string>
+#include <vector>
 
 namespace mcxapp
 {
 
-/// The one data file a detached header names (.mhd: ElementDataFile, .nhdr:
-/// data file), as a full path; empty for other files, data in the header
-/// itself, lists and patterns.
-std::string DetachedDataFile(const std::string& header);
+/// The data files a header names (.mha/.mhd: ElementDataFile, .nrrd/.nhdr:
+/// data file; each file of a bounded numbered pattern), as full paths;
+/// none for other formats and for data in the header itself.
+std::vector<std::string> DataFiles(const std::string& header);
 
 /// Deflate never compresses by more than this (zlib's technical note).
 constexpr double LargestCompressionRatio = 1032.0;

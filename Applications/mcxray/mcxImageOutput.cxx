@@ -20,6 +20,9 @@
 #include <fstream>
 #include <vector>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 namespace mcxapp
 {
 
@@ -53,7 +56,35 @@ bool WritePFM(vtkImageData* image, const std::string& path)
     out.write(reinterpret_cast<const char*>(row.data()),
       static_cast<std::streamsize>(row.size() * sizeof(float)));
   }
+  out.close(); // the last buffer's write can fail too (a full disk, a file-size limit)
   return static_cast<bool>(out);
+}
+
+// libpng reports a failed write on stderr by itself ("libpng error: Write
+// Error"); the writer's error code is what the caller reports, in one line.
+bool WritePNGQuietly(vtkPNGWriter* writer)
+{
+  std::fflush(stderr);
+  const int saved = ::dup(STDERR_FILENO);
+  const int quiet = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (saved >= 0 && quiet >= 0)
+  {
+    ::dup2(quiet, STDERR_FILENO);
+  }
+  writer->Write();
+  std::fflush(stderr);
+  if (saved >= 0 && quiet >= 0)
+  {
+    ::dup2(saved, STDERR_FILENO);
+  }
+  for (int fd : { saved, quiet })
+  {
+    if (fd >= 0)
+    {
+      ::close(fd);
+    }
+  }
+  return writer->GetErrorCode() == 0;
 }
 
 bool WritePNG(vtkImageData* image, const std::string& path, const PngWindow& window)
@@ -76,8 +107,7 @@ bool WritePNG(vtkImageData* image, const std::string& path, const PngWindow& win
   vtkNew<vtkPNGWriter> writer;
   writer->SetInputConnection(scale->GetOutputPort());
   writer->SetFileName(path.c_str());
-  writer->Write();
-  return writer->GetErrorCode() == 0;
+  return WritePNGQuietly(writer);
 }
 }
 
@@ -156,8 +186,7 @@ bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& 
       vtkNew<vtkPNGWriter> writer;
       writer->SetInputData(image);
       writer->SetFileName(temporary.c_str());
-      writer->Write();
-      return writer->GetErrorCode() == 0;
+      return WritePNGQuietly(writer);
     },
     error);
 }

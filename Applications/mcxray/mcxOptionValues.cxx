@@ -66,26 +66,33 @@ double ParseByteSize(const std::string& text, const std::string& option)
   const std::string units = "KMGT";
   const std::size_t unit = suffix.size() == 1 ? units.find(std::toupper(suffix[0])) : std::string::npos;
   if (text.empty() || end == text.c_str() || !std::isfinite(value) || !(value > 0) ||
-    (!suffix.empty() && unit == std::string::npos))
+    (!suffix.empty() && unit == std::string::npos) ||
+    text.find_first_of("xXpP") != std::string::npos) // decimal only, no hexadecimal
   {
     Fail("bad value '" + text + "' for " + option + " (expected bytes, e.g. 512M or 8G)");
   }
   const double bytes = value * std::pow(1024.0, suffix.empty() ? 0.0 : static_cast<double>(unit + 1));
-  if (bytes > std::ldexp(1.0, 60))
+  if (bytes > std::ldexp(1.0, 60) || bytes < 1024.0 * 1024.0)
   {
-    Fail(option + " is limited to 2^60 bytes");
+    Fail(option + " must lie between 1M and 2^60 bytes");
   }
   return bytes;
 }
 
 std::vector<std::string> Split(const std::string& text, char separator)
 {
-  std::vector<std::string> parts;
-  std::stringstream stream(text);
-  std::string part;
-  while (std::getline(stream, part, separator))
+  // Every part, empty ones too ("16x16x" has three parts, the last empty).
+  std::vector<std::string> parts(1);
+  for (const char c : text)
   {
-    parts.push_back(part);
+    if (c == separator)
+    {
+      parts.emplace_back();
+    }
+    else
+    {
+      parts.back() += c;
+    }
   }
   return parts;
 }

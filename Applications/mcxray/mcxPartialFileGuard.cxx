@@ -14,6 +14,7 @@ namespace
 // Only async-signal-safe work in the handler: a fixed buffer and unlink().
 char PartialPath[4096];
 volatile std::sig_atomic_t HasPartial = 0;
+bool TerminalStderr = false; // set before the handlers, read only by them
 
 void Say(const char* text)
 {
@@ -27,9 +28,10 @@ extern "C" void OnInterrupt(int signal)
   {
     ::unlink(PartialPath);
   }
-  Say("\nmcxray: error: interrupted by ");
+  // On a terminal the progress bar's line may be open: start a new one.
+  Say(TerminalStderr ? "\nmcxray: error: interrupted by " : "mcxray: error: interrupted by ");
   Say(signal == SIGINT ? "SIGINT" : (signal == SIGTERM ? "SIGTERM" : "SIGHUP"));
-  Say("; no output written\n");
+  Say(HasPartial ? "; the unfinished output was removed\n" : "\n");
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
@@ -37,6 +39,7 @@ extern "C" void OnInterrupt(int signal)
 
 void InstallInterruptHandlers()
 {
+  TerminalStderr = ::isatty(STDERR_FILENO) == 1;
   for (int signal : { SIGINT, SIGTERM, SIGHUP })
   {
     struct sigaction action;

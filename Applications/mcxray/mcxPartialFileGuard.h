@@ -11,9 +11,9 @@ namespace mcxapp
 {
 
 /// Installs the signal handlers (once per process): an interrupted run
-/// prints one line, "mcxray: error: interrupted by SIGINT; no output
-/// written", removes the file being written, if any, and ends as the
-/// signal would have ended it.
+/// prints one line, "mcxray: error: interrupted by SIGINT", removes the
+/// file being written, if any (and says so), and ends as the signal would
+/// have ended it.
 void InstallInterruptHandlers();
 
 /// Registers path as the file being written for the guard's lifetime.

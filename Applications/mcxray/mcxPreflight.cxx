@@ -8,6 +8,7 @@
 #include "vtksys/Directory.hxx"
 #include "vtksys/SystemTools.hxx"
 
+#include <fstream>
 #include <vector>
 
 #include <sys/stat.h>
@@ -17,6 +18,52 @@ namespace mcxapp
 
 namespace
 {
+// A DICOM file: "DICM" after the 128-byte preamble, or named .dcm.
+bool IsDicomFile(const std::string& path)
+{
+  if (vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) == ".dcm")
+  {
+    return true;
+  }
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode))
+  {
+    return false; // a FIFO would block the reading
+  }
+  std::ifstream in(path, std::ios::binary);
+  char magic[132] = { 0 };
+  in.read(magic, sizeof(magic));
+  return in.gcount() == sizeof(magic) && std::string(magic + 128, 4) == "DICM";
+}
+
+// The DICOM files of folder and its subfolders, depth levels down (the
+// series reader's scan depth): what a DICOM input is made of.
+void AddDicomFiles(const std::string& folder, int depth, std::vector<std::string>& files)
+{
+  vtksys::Directory listing;
+  if (depth < 1 || !listing.Load(folder))
+  {
+    return;
+  }
+  for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
+  {
+    const std::string name = listing.GetFile(f);
+    const std::string path = folder + "/" + name;
+    if (name == "." || name == "..")
+    {
+      continue;
+    }
+    if (vtksys::SystemTools::FileIsDirectory(path))
+    {
+      AddDicomFiles(path, depth - 1, files);
+    }
+    else if (IsDicomFile(path))
+    {
+      files.push_back(path);
+    }
+  }
+}
+
 bool SameFile(const struct stat& a, const std::string& path)
 {
   struct stat b;
@@ -35,15 +82,9 @@ void CheckOutputIsNotInput(
   std::vector<std::string> inputs = { input };
   if (vtksys::SystemTools::FileIsDirectory(input))
   {
-    vtksys::Directory folder;
-    folder.Load(input);
-    for (unsigned long f = 0; f < folder.GetNumberOfFiles(); ++f)
-    {
-      inputs.push_back(input + "/" + folder.GetFile(f));
-    }
+    AddDicomFiles(input, 4, inputs);
   }
-  const std::string data = DetachedDataFile(input);
-  if (!data.empty())
+  for (const std::string& data : DataFiles(input))
   {
     inputs.push_back(data);
   }

@@ -8,6 +8,8 @@
 #include "mcxRadiographSettings.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace mcxapp
@@ -53,8 +55,9 @@ inline ReadLimits ReadLimitsOf(const Settings& settings)
 {
   ReadLimits limits;
   limits.Seconds = settings.ReadTimeout;
-  limits.MemoryBytes = static_cast<unsigned long long>(
-    settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget());
+  // At most 2^62 bytes (an unknown physical memory reads as 1e300).
+  limits.MemoryBytes = static_cast<unsigned long long>(std::min(
+    settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget(), std::ldexp(1.0, 62)));
   return limits;
 }
 

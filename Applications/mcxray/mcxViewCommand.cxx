@@ -196,9 +196,11 @@ int RunView(int argc, char* argv[])
   {
     vtkSMPTools::Initialize(settings.Threads);
   }
-  if (settings.Screenshot.empty() && !vtksys::SystemTools::GetEnv("DISPLAY"))
+  if (!vtksys::SystemTools::GetEnv("DISPLAY"))
   {
-    Fail("no display (DISPLAY is not set): use --screenshot FILE, or run under xvfb-run");
+    // VTK's off-screen windows here are X windows too (no EGL, no OSMesa).
+    Fail("no display (DISPLAY is not set): run under an X server, e.g. xvfb-run, also for "
+         "--screenshot");
   }
   const std::string input = settings.Input.empty() ? BundledVolumePath() : settings.Input;
   if (!settings.Screenshot.empty())

@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     __builtin_trap(); // a refusal must say why (Fail makes it one line)
   }
-  mcxapp::DetachedDataFile(path);
+  mcxapp::DataFiles(path);
   std::remove(path.c_str());
   return 0;
 }
