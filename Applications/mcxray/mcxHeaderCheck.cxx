@@ -390,9 +390,10 @@ bool IsNumberPattern(const std::string& pattern)
   return i < pattern.size() && pattern[i] == 'd';
 }
 
-// The total size of a printf pattern's files ("name%03d.raw first last
-// step"), at most LargestPatternFiles of them, each of which must exist.
-bool PatternFiles(const std::string& header, const std::string& spec, Bytes& total, std::string& error)
+// The files of a printf pattern ("name%03d.raw first last step"), at most
+// LargestPatternFiles of them, each of which must exist.
+bool PatternFiles(const std::string& header, const std::string& spec,
+  std::vector<std::string>& files, std::string& error)
 {
   std::istringstream in(spec);
   std::string pattern;
@@ -411,19 +412,72 @@ bool PatternFiles(const std::string& header, const std::string& spec, Bytes& tot
     error = "the file-name pattern '" + spec + "' is not a bounded list of numbered files";
     return false;
   }
-  total = 0;
+  files.clear();
   for (long long i = 0; i < count; ++i)
   {
     char name[4096];
     std::snprintf(name, sizeof(name), pattern.c_str(), static_cast<int>(first + i * step));
-    const std::string file = Beside(header, name);
-    if (!vtksys::SystemTools::FileExists(file, true))
+    files.push_back(Beside(header, name));
+    if (!vtksys::SystemTools::FileExists(files.back(), true))
     {
-      error = "the data file '" + file + "' is missing";
+      error = "the data file '" + files.back() + "' is missing";
       return false;
     }
+  }
+  return true;
+}
+
+// The sizes of a pattern's files added up (PatternFiles), or false.
+bool PatternSize(const std::string& header, const std::string& spec, Bytes& total, std::string& error)
+{
+  std::vector<std::string> files;
+  if (!PatternFiles(header, spec, files, error))
+  {
+    return false;
+  }
+  total = 0;
+  for (const std::string& file : files)
+  {
     total += FileSize(file);
   }
+  return true;
+}
+
+// The data file field of a header's fields: NRRD spells it two ways.
+std::string DataFileField(std::map<std::string, std::string>& fields, bool nrrd)
+{
+  return nrrd ? (fields.count("data file") ? fields["data file"] : fields["datafile"])
+              : fields["elementdatafile"];
+}
+
+// The bytes of voxel data a text header's data field gives: after the
+// header itself (data empty), in the files of a pattern, or in one data
+// file beside the header; a list is refused with listRefusal.
+bool AvailableData(const std::string& path, const TextHeader& header, const std::string& data,
+  const char* listRefusal, Bytes& available, std::string& error)
+{
+  if (data.empty())
+  {
+    const Bytes file = FileSize(path);
+    available = file > header.End ? file - header.End : 0;
+    return true;
+  }
+  if (Lower(data).compare(0, 4, "list") == 0)
+  {
+    error = listRefusal;
+    return false;
+  }
+  if (data.find('%') != std::string::npos)
+  {
+    return PatternSize(path, data, available, error);
+  }
+  const std::string file = Beside(path, data);
+  if (!vtksys::SystemTools::FileExists(file, true))
+  {
+    error = "the data file '" + file + "' is missing";
+    return false;
+  }
+  available = FileSize(file);
   return true;
 }
 
@@ -474,39 +528,24 @@ bool CheckMetaImage(const std::string& path, Bytes& claimed, std::string& error)
     return false;
   }
   const bool compressed = Lower(f["compresseddata"]) == "true";
-  const std::string data = f["elementdatafile"];
-  Bytes available = 0;
-  if (Lower(data) == "local")
+  const std::string data = DataFileField(f, false);
+  if (data.empty())
   {
-    const Bytes file = FileSize(path);
-    available = file > header.End ? file - header.End : 0;
-  }
-  else if (Lower(data).compare(0, 4, "list") == 0)
-  {
-    error = "MetaImage file lists (ElementDataFile = LIST) are not supported";
+    error = "the MetaImage header's ElementDataFile is empty";
     return false;
   }
-  else if (data.find('%') != std::string::npos)
+  const bool local = Lower(data) == "local";
+  Bytes available = 0;
+  if (!AvailableData(path, header, local ? std::string() : data,
+        "MetaImage file lists (ElementDataFile = LIST) are not supported", available, error))
   {
-    if (!PatternFiles(path, data, available, error))
-    {
-      return false;
-    }
+    return false;
   }
-  else
+  std::vector<long long> skip;
+  if (!local && data.find('%') == std::string::npos && ParseIntegers(f["headersize"], skip) &&
+    skip.size() == 1 && skip[0] > 0)
   {
-    const std::string file = Beside(path, data);
-    if (data.empty() || !vtksys::SystemTools::FileExists(file, true))
-    {
-      error = "the data file '" + file + "' is missing";
-      return false;
-    }
-    available = FileSize(file);
-    std::vector<long long> skip;
-    if (ParseIntegers(f["headersize"], skip) && skip.size() == 1 && skip[0] > 0)
-    {
-      available = available > static_cast<Bytes>(skip[0]) ? available - skip[0] : 0;
-    }
+    available = available > static_cast<Bytes>(skip[0]) ? available - skip[0] : 0;
   }
   return CheckAvailable(claimed, available, compressed, dims, error);
 }
@@ -566,34 +605,11 @@ bool CheckNrrd(const std::string& path, Bytes& claimed, std::string& error)
     error = "the NRRD encoding '" + f["encoding"] + "' is not supported (raw, ascii or gzip)";
     return false;
   }
-  const std::string data = f.count("data file") ? f["data file"] : f["datafile"];
   Bytes available = 0;
-  if (data.empty())
+  if (!AvailableData(path, header, DataFileField(f, true),
+        "NRRD data file lists (data file: LIST) are not supported", available, error))
   {
-    const Bytes file = FileSize(path);
-    available = file > header.End ? file - header.End : 0;
-  }
-  else if (data.find('%') != std::string::npos)
-  {
-    if (!PatternFiles(path, data, available, error))
-    {
-      return false;
-    }
-  }
-  else if (Lower(data).compare(0, 4, "list") == 0)
-  {
-    error = "NRRD data file lists (data file: LIST) are not supported";
     return false;
-  }
-  else
-  {
-    const std::string file = Beside(path, data);
-    if (!vtksys::SystemTools::FileExists(file, true))
-    {
-      error = "the data file '" + file + "' is missing";
-      return false;
-    }
-    available = FileSize(file);
   }
   std::vector<long long> skip;
   if (ParseIntegers(f["byte skip"], skip) && skip.size() == 1 && skip[0] > 0)
@@ -1083,8 +1099,7 @@ std::vector<std::string> DataFiles(const std::string& header)
     return {};
   }
   std::map<std::string, std::string>& f = fields.Fields;
-  const std::string name =
-    nrrd ? (f.count("data file") ? f["data file"] : f["datafile"]) : f["elementdatafile"];
+  const std::string name = DataFileField(f, nrrd);
   if (name.empty() || Lower(name) == "local" || Lower(name).compare(0, 4, "list") == 0)
   {
     return {}; // in the header itself, or a list (refused by the checks)
@@ -1094,28 +1109,9 @@ std::vector<std::string> DataFiles(const std::string& header)
     return { Beside(header, name) };
   }
   // A numbered pattern: its files, when it is a bounded one.
-  std::istringstream spec(name);
-  std::string pattern;
-  long long first = 0, last = 0, step = 1;
-  spec >> pattern >> first >> last;
-  if (!(spec >> step))
-  {
-    step = 1;
-  }
   std::vector<std::string> files;
-  Bytes total = 0;
   std::string error;
-  if (!PatternFiles(header, name, total, error))
-  {
-    return {};
-  }
-  for (long long i = 0; i <= (last - first) / step; ++i)
-  {
-    char file[4096];
-    std::snprintf(file, sizeof(file), pattern.c_str(), static_cast<int>(first + i * step));
-    files.push_back(Beside(header, file));
-  }
-  return files;
+  return PatternFiles(header, name, files, error) ? files : std::vector<std::string>();
 }
 
 bool CheckVolumeHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error)
