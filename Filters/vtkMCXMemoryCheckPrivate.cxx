@@ -7,6 +7,7 @@
 #include "vtksys/SystemInformation.hxx"
 
 #include <atomic>
+#include <cmath>
 
 namespace mcx
 {
@@ -30,7 +31,7 @@ double MemoryBudget()
     return set;
   }
   const double physical = PhysicalMemory();
-  return physical > 0 ? physical : 1.0e300; // unknown: no budget
+  return physical > 0 ? physical : std::ldexp(1.0, 62); // unknown: in effect none
 }
 
 void SetMemoryBudget(double bytes)

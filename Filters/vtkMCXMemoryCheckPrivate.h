@@ -16,7 +16,8 @@ class vtkObject;
 namespace mcx
 {
 
-/// The budget in bytes: what SetMemoryBudget set, else the physical memory.
+/// The budget in bytes: what SetMemoryBudget set, else the physical memory
+/// (2^62 where that is unknown).
 MONTECARLOXRAYFILTERS_EXPORT double MemoryBudget();
 
 /// Sets the budget for this process; 0 goes back to the physical memory.

@@ -8,8 +8,6 @@
 #include "mcxRadiographSettings.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
-#include <algorithm>
-#include <cmath>
 #include <string>
 
 namespace mcxapp
@@ -55,9 +53,9 @@ inline ReadLimits ReadLimitsOf(const Settings& settings)
 {
   ReadLimits limits;
   limits.Seconds = settings.ReadTimeout;
-  // At most 2^62 bytes (an unknown physical memory reads as 1e300).
-  limits.MemoryBytes = static_cast<unsigned long long>(std::min(
-    settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget(), std::ldexp(1.0, 62)));
+  // Both at most 2^62 bytes (--memory-limit 2^60), so the cast is exact.
+  limits.MemoryBytes = static_cast<unsigned long long>(
+    settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget());
   return limits;
 }
 
