@@ -1,5 +1,5 @@
-# The Python package `mcxray`: the classes of both modules (Filters and
-# Rendering) wrapped by VTK's wrapper,
+# The Python package `mcxray`: the classes of the three modules (Filters,
+# Rendering and IO) wrapped by VTK's wrapper,
 # plus NumPy helpers in __init__.py. Importable by Debian's /usr/bin/python3
 # (with python3-vtk9) from the build tree (PYTHONPATH=<build>/${MCXRAY_PYTHON_DESTINATION})
 # and after `cmake --install` to a prefix whose dist-packages Python searches.
@@ -31,6 +31,6 @@ install(FILES "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.
 # The extension modules find the libraries relative to themselves once installed.
 file(RELATIVE_PATH mcxray_python_to_lib "/prefix/${MCXRAY_PYTHON_DESTINATION}/mcxray"
   "/prefix/${CMAKE_INSTALL_LIBDIR}")
-foreach (library IN ITEMS MonteCarloXRayFiltersPython MonteCarloXRayRenderingPython)
+foreach (library IN ITEMS MonteCarloXRayFiltersPython MonteCarloXRayRenderingPython MonteCarloXRayIOPython)
   set_target_properties(${library} PROPERTIES INSTALL_RPATH "$ORIGIN/${mcxray_python_to_lib}")
 endforeach ()

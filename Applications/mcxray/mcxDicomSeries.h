@@ -1,9 +1,5 @@
-// A DICOM series read with vtk-dicom (dgobbi's vtkDICOMReader, as hospitals
-// export series): the folder's series found by vtkDICOMDirectory, one
-// chosen, its slices sorted by position along the slice normal, rescale
-// slope and intercept applied (CT in HU), and the volume placed in patient
-// space by the patient matrix. VTK's own vtkDICOMImageReader trusts its
-// headers and passes truncated slices silently.
+// A DICOM series for the command line: vtkMCXDICOMSeriesReader (IO/, with
+// vtk-dicom) with the series numbered as --series numbers them.
 #ifndef mcxDicomSeries_h
 #define mcxDicomSeries_h
 

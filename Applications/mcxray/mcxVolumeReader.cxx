@@ -3,12 +3,13 @@
 #include "mcxByteSize.h"
 #include "mcxDicomSeries.h"
 #include "mcxHeaderCheck.h"
-#include "mcxReaderError.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
+#include "vtkMCXFirstErrorObserver.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
@@ -166,14 +167,16 @@ vtkSmartPointer<vtkImageData> ReadVolume(
       "DICOM directory)";
     return nullptr;
   }
-  ReaderError capture(reader);
+  vtkNew<vtkMCXFirstErrorObserver> capture; // the reader's report, said once below
+  reader->AddObserver(vtkCommand::ErrorEvent, capture);
   reader->Update();
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (!capture.Message.empty() || !image || image->GetNumberOfPoints() == 0 ||
+  const std::string& message = capture->GetMessage();
+  if (!message.empty() || !image || image->GetNumberOfPoints() == 0 ||
     !image->GetPointData()->GetScalars())
   {
     error = "cannot read '" + path + "'" +
-      (capture.Message.empty() ? std::string(": no volume data") : ": " + capture.Message);
+      (message.empty() ? std::string(": no volume data") : ": " + message);
     return nullptr;
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();

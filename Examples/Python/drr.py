@@ -3,7 +3,8 @@
 
     python3 drr.py [VOLUME] [--output PREFIX] [--samples N] [--size N]
 
-VOLUME is a .vti or .nii/.nii.gz CT (default: the bundled CT head). Writes
+VOLUME is a .vti or .nii/.nii.gz CT, or a folder with one DICOM series
+(read with vtk-dicom, in Hounsfield units; default: the bundled CT head). Writes
 PREFIX.png (windowed 0..maximum) and PREFIX.npy (float64 line integrals of
 the TF, in TF units times mm, row 0 at the bottom), and prints what it made.
 """
@@ -19,17 +20,37 @@ from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 
 import mcxray
+from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand
 
 BUNDLED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "Data", "ct_head_headsq.vti")
 
 
+def read_dicom_series(folder):
+    reader = mcxray.vtkMCXDICOMSeriesReader()
+    reader.SetDirectoryName(folder)
+    errors = []
+
+    def keep(caller, event, report=None):
+        errors.append(mcxray.vtkMCXFirstErrorObserver.MessageOf(report))
+    keep.CallDataType = VTK_STRING  # VTK hands the report over
+    reader.AddObserver(vtkCommand.ErrorEvent, keep)  # kept instead of printed
+    reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda caller, event: None)
+    reader.Update()
+    if errors:
+        sys.exit("drr.py: error: %s" % errors[0])
+    return reader.GetOutput()
+
+
 def read_volume(path):
+    if os.path.isdir(path):
+        return read_dicom_series(path)
     if path.endswith(".vti"):
         reader = vtkXMLImageDataReader()
     elif path.endswith(".nii") or path.endswith(".nii.gz"):
         reader = vtkNIFTIImageReader()
     else:
-        sys.exit("drr.py: error: expected a .vti or .nii/.nii.gz volume, not %r" % path)
+        sys.exit("drr.py: error: expected a .vti or .nii/.nii.gz volume or a DICOM folder, not %r" % path)
     if not os.path.isfile(path):
         sys.exit("drr.py: error: no such file %r" % path)
     reader.SetFileName(path)

@@ -36,11 +36,12 @@ foreach (binary IN ITEMS "${WORK_DIR}/consumer/consumer" "${prefix}/lib/libMonte
     message(FATAL_ERROR "${binary} loads OpenGL:\n${libraries}")
   endif ()
 endforeach ()
-# The package still gives both components, and the whole.
+# The package still gives the three components, and the whole.
 file(WRITE "${WORK_DIR}/components/CMakeLists.txt" "cmake_minimum_required(VERSION 3.16)
 project(Components LANGUAGES C CXX)
-find_package(MonteCarloXRay REQUIRED COMPONENTS Filters Rendering)
-foreach (target IN ITEMS MonteCarloXRay::Filters MonteCarloXRay::Rendering MonteCarloXRay::MonteCarloXRay)
+find_package(MonteCarloXRay REQUIRED COMPONENTS Filters Rendering IO)
+foreach (target IN ITEMS MonteCarloXRay::Filters MonteCarloXRay::Rendering MonteCarloXRay::IO
+    MonteCarloXRay::MonteCarloXRay)
   if (NOT TARGET \${target})
     message(FATAL_ERROR \"missing \${target}\")
   endif ()

@@ -26,3 +26,6 @@ assert values.shape == (8, 8), values.shape
 assert abs(integral - 64) < 1e-9, integral
 assert abs(values.sum() * output.GetSpacing()[0] * output.GetSpacing()[1] / integral - 1) < 1e-9
 print("installed mcxray imports and renders:", mcxray.__file__)
+# The readers' module is installed too (its extension finds libMonteCarloXRayIO).
+reader = mcxray.vtkMCXDICOMSeriesReader()
+assert reader.GetSeriesIndex() == -1

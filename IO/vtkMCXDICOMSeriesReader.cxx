@@ -1,0 +1,365 @@
+#include "vtkMCXDICOMSeriesReader.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDICOMDictHash.h"
+#include "vtkDICOMDirectory.h"
+#include "vtkDICOMItem.h"
+#include "vtkDICOMMetaData.h"
+#include "vtkDICOMReader.h"
+#include "vtkDICOMValue.h"
+#include "vtkDataObject.h"
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMCXFirstErrorObserver.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXDICOMSeriesReader);
+
+namespace
+{
+// The first error an algorithm of vtk-dicom reports, while in scope.
+class FirstError
+{
+public:
+  explicit FirstError(vtkAlgorithm* algorithm)
+    : Algorithm(algorithm)
+    , Tag(algorithm->AddObserver(vtkCommand::ErrorEvent, this->Observer))
+  {
+  }
+  ~FirstError() { this->Algorithm->RemoveObserver(this->Tag); }
+  FirstError(const FirstError&) = delete;
+  FirstError& operator=(const FirstError&) = delete;
+
+  const std::string& Message() const { return this->Observer->GetMessage(); }
+
+private:
+  vtkNew<vtkMCXFirstErrorObserver> Observer;
+  vtkAlgorithm* Algorithm;
+  unsigned long Tag;
+};
+
+std::string Describe(vtkDICOMDirectory* directory, int s)
+{
+  const vtkDICOMItem& record = directory->GetSeriesRecord(s);
+  std::ostringstream text;
+  text << record.Get(DC::Modality).AsString() << " '"
+       << record.Get(DC::SeriesDescription).AsString() << "' ("
+       << directory->GetFileNamesForSeries(s)->GetNumberOfValues() << " images)";
+  return text.str();
+}
+
+// vtk-dicom splits a series whose images repeat (the same image in two
+// files) or disagree into several; one SeriesInstanceUID must be one series.
+std::string SplitSeries(vtkDICOMDirectory* directory)
+{
+  std::vector<std::string> uids;
+  for (int s = 0; s < directory->GetNumberOfSeries(); ++s)
+  {
+    uids.push_back(directory->GetSeriesRecord(s).Get(DC::SeriesInstanceUID).AsString());
+  }
+  for (std::size_t a = 0; a < uids.size(); ++a)
+  {
+    for (std::size_t b = a + 1; b < uids.size(); ++b)
+    {
+      if (!uids[a].empty() && uids[a] == uids[b])
+      {
+        return "the images of series " + uids[a] + " fall into parts (" +
+          Describe(directory, static_cast<int>(a)) + "; " +
+          Describe(directory, static_cast<int>(b)) +
+          "): duplicated images, or images that disagree on size or orientation";
+      }
+    }
+  }
+  return std::string();
+}
+
+// Positions along the slice normal, in the reader's slice order.
+std::vector<double> SlicePositions(vtkDICOMReader* reader, const double normal[3])
+{
+  vtkIntArray* files = reader->GetFileIndexArray();
+  vtkIntArray* frames = reader->GetFrameIndexArray(); // enhanced multi-frame files
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  std::vector<double> along(static_cast<std::size_t>(files->GetNumberOfTuples()));
+  for (vtkIdType k = 0; k < files->GetNumberOfTuples(); ++k)
+  {
+    double p[3] = { 0, 0, 0 };
+    const int file = static_cast<int>(files->GetComponent(k, 0));
+    const int frame = frames ? static_cast<int>(frames->GetComponent(k, 0)) : 0;
+    const vtkDICOMValue& position = meta->Get(file, frame, DC::ImagePositionPatient);
+    if (position.GetNumberOfValues() == 3)
+    {
+      position.GetValues(p, 3);
+    }
+    along[static_cast<std::size_t>(k)] = p[0] * normal[0] + p[1] * normal[1] + p[2] * normal[2];
+  }
+  return along;
+}
+
+// Repeated positions and gaps of more than 1.5 times the median spacing
+// (missing slices); empty when the slices are evenly spaced.
+std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
+{
+  if (reader->GetFileIndexArray()->GetNumberOfComponents() > 1)
+  {
+    return "several images share slice positions (duplicated slices, or a time series: "
+           "keep one image per position)";
+  }
+  const std::vector<double> along = SlicePositions(reader, normal);
+  if (along.size() < 3)
+  {
+    return std::string();
+  }
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < along.size(); ++k)
+  {
+    steps.push_back(std::fabs(along[k] - along[k - 1]));
+  }
+  std::vector<double> sorted = steps;
+  // The lower median: with 2 steps, the smaller (a gap is the larger one).
+  const std::size_t middle = (sorted.size() - 1) / 2;
+  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
+  const double median = sorted[middle];
+  for (std::size_t k = 0; k < steps.size(); ++k)
+  {
+    std::ostringstream where;
+    where << " between slices " << k + 1 << " and " << k + 2 << " (" << along[k] << " and "
+          << along[k + 1] << " mm along the normal)";
+    if (!(steps[k] > 1e-3 * median))
+    {
+      return "two slices lie at the same position" + where.str() + " (a duplicated slice?)";
+    }
+    if (steps[k] > 1.5 * median)
+    {
+      std::ostringstream gap;
+      gap << "a gap of " << steps[k] << " mm where the slices are " << median << " mm apart"
+          << where.str() << " (missing slices?)";
+      return gap.str();
+    }
+  }
+  return std::string();
+}
+}
+
+struct vtkMCXDICOMSeriesReader::Internals
+{
+  vtkNew<vtkDICOMDirectory> Directory;
+  vtkNew<vtkDICOMReader> Reader;
+  vtkNew<vtkCallbackCommand> Progress;
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  double Origin[3] = { 0, 0, 0 };
+
+  // Scans the folder (again only when the name changed) and chooses the
+  // series; empty on success, else what is wrong.
+  std::string ChooseSeries(const char* folder, int index, unsigned long& code)
+  {
+    code = vtkErrorCode::CannotOpenFileError;
+    if (!folder || !*folder)
+    {
+      return "no DirectoryName is set";
+    }
+    this->Directory->SetDirectoryName(folder);
+    this->Directory->SetScanDepth(4); // series in subfolders too, as exports nest them
+    this->Directory->Modified();      // files may have come or gone since the last scan
+    FirstError scan(this->Directory);
+    this->Directory->Update();
+    const int count = this->Directory->GetNumberOfSeries();
+    if (count == 0)
+    {
+      return std::string("no DICOM series in '") + folder + "'" +
+        (scan.Message().empty() ? std::string() : ": " + scan.Message());
+    }
+    code = vtkErrorCode::FileFormatError;
+    const std::string split = SplitSeries(this->Directory);
+    if (!split.empty())
+    {
+      return std::string("the DICOM files in '") + folder + "' do not make consistent series: " +
+        split;
+    }
+    if (index >= count || (index < 0 && count > 1))
+    {
+      code = SeriesChoiceError;
+      std::string list;
+      for (int s = 0; s < count; ++s)
+      {
+        list += (s ? "; " : "") + std::to_string(s) + ": " + Describe(this->Directory, s);
+      }
+      return std::string("'") + folder + "' holds " + std::to_string(count) + " DICOM series" +
+        (index >= count ? "; there is no series index " + std::to_string(index) : std::string()) +
+        "; choose one with SetSeriesIndex: " + list;
+    }
+    this->Reader->SetFileNames(this->Directory->GetFileNamesForSeries(std::max(index, 0)));
+    code = vtkErrorCode::NoError;
+    return std::string();
+  }
+
+  // The chosen series' geometry in patient space; empty on success.
+  std::string ReadInformation(const char* folder, unsigned long& code)
+  {
+    code = vtkErrorCode::FileFormatError;
+    this->Reader->SetMemoryRowOrderToFileNative();
+    this->Reader->AutoRescaleOn(); // CT values in HU
+    FirstError read(this->Reader);
+    this->Reader->UpdateInformation();
+    if (!read.Message().empty())
+    {
+      return std::string("cannot read the DICOM series in '") + folder + "': " + read.Message();
+    }
+    // Patient space: world = M (spacing x index), M the patient matrix.
+    vtkMatrix4x4* m = this->Reader->GetPatientMatrix();
+    const double normal[3] = { m->GetElement(0, 2), m->GetElement(1, 2), m->GetElement(2, 2) };
+    const std::string spacing = CheckSliceSpacing(this->Reader, normal);
+    if (!spacing.empty())
+    {
+      return std::string("the DICOM series in '") + folder + "' is not a volume: " + spacing;
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Direction[3 * r + c] = m->GetElement(r, c);
+      }
+    }
+    double o[3] = { 0, 0, 0 };
+    this->Reader->GetOutputInformation(0)->Get(vtkDataObject::ORIGIN(), o);
+    for (int r = 0; r < 3; ++r)
+    {
+      this->Origin[r] = m->GetElement(r, 3) + this->Direction[3 * r] * o[0] +
+        this->Direction[3 * r + 1] * o[1] + this->Direction[3 * r + 2] * o[2];
+    }
+    code = vtkErrorCode::NoError;
+    return std::string();
+  }
+};
+
+vtkMCXDICOMSeriesReader::vtkMCXDICOMSeriesReader()
+  : Internal(new Internals)
+{
+  this->SetNumberOfInputPorts(0);
+  // The reader's progress is this reader's; an abort here stops it.
+  this->Internal->Progress->SetClientData(this);
+  this->Internal->Progress->SetCallback(
+    [](vtkObject* caller, unsigned long, void* self, void*)
+    {
+      auto* reader = static_cast<vtkDICOMReader*>(caller);
+      auto* outer = static_cast<vtkMCXDICOMSeriesReader*>(self);
+      outer->UpdateProgress(reader->GetProgress());
+      if (outer->GetAbortExecute())
+      {
+        reader->AbortExecuteOn();
+      }
+    });
+  this->Internal->Reader->AddObserver(vtkCommand::ProgressEvent, this->Internal->Progress);
+}
+
+vtkMCXDICOMSeriesReader::~vtkMCXDICOMSeriesReader()
+{
+  this->SetDirectoryName(nullptr);
+}
+
+int vtkMCXDICOMSeriesReader::GetNumberOfSeries()
+{
+  return this->Internal->Directory->GetNumberOfSeries();
+}
+
+std::string vtkMCXDICOMSeriesReader::GetSeriesDescription(int index)
+{
+  if (index < 0 || index >= this->GetNumberOfSeries())
+  {
+    return std::string();
+  }
+  return Describe(this->Internal->Directory, index);
+}
+
+int vtkMCXDICOMSeriesReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // A failure below leaves no stale volume of an earlier series.
+  vtkImageData::GetData(outInfo)->Initialize();
+  const char* folder = this->DirectoryName ? this->DirectoryName : "";
+  unsigned long code = vtkErrorCode::NoError;
+  std::string problem = this->Internal->ChooseSeries(this->DirectoryName, this->SeriesIndex, code);
+  if (problem.empty())
+  {
+    problem = this->Internal->ReadInformation(folder, code);
+  }
+  this->SetErrorCode(code);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+  vtkInformation* readerInfo = this->Internal->Reader->GetOutputInformation(0);
+  outInfo->CopyEntry(readerInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  outInfo->CopyEntry(readerInfo, vtkDataObject::SPACING());
+  outInfo->CopyEntry(readerInfo, vtkDataObject::POINT_DATA_VECTOR(), 1);
+  outInfo->Set(vtkDataObject::ORIGIN(), this->Internal->Origin, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), this->Internal->Direction, 9);
+  return 1;
+}
+
+int vtkMCXDICOMSeriesReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  const std::string folder = this->DirectoryName ? this->DirectoryName : "";
+  vtkDICOMReader* reader = this->Internal->Reader;
+  FirstError read(reader);
+  try
+  {
+    reader->AbortExecuteOff();
+    reader->UpdateWholeExtent();
+  }
+  catch (const std::bad_alloc&)
+  {
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    vtkErrorMacro(<< "out of memory reading the DICOM series in '" << folder << "'");
+    return 0;
+  }
+  if (this->GetAbortExecute())
+  {
+    reader->GetOutput()->ReleaseData();
+    return 1; // stopped by the user: an empty output, no error
+  }
+  vtkImageData* image = reader->GetOutput();
+  if (!read.Message().empty() || !image || image->GetNumberOfPoints() == 0 ||
+    !image->GetPointData()->GetScalars())
+  {
+    this->SetErrorCode(reader->GetErrorCode() ? reader->GetErrorCode() : vtkErrorCode::FileFormatError);
+    vtkErrorMacro(<< "cannot read the DICOM series in '" << folder << "'"
+                  << (read.Message().empty() ? std::string(": no image data")
+                                           : ": " + read.Message()));
+    return 0;
+  }
+  output->ShallowCopy(image);
+  output->SetOrigin(this->Internal->Origin);
+  output->SetDirectionMatrix(this->Internal->Direction);
+  reader->GetOutput()->ReleaseData(); // the output holds the voxels now
+  this->SetErrorCode(vtkErrorCode::NoError);
+  return 1;
+}
+
+void vtkMCXDICOMSeriesReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "DirectoryName: " << (this->DirectoryName ? this->DirectoryName : "(none)")
+     << "\n";
+  os << indent << "SeriesIndex: " << this->SeriesIndex << "\n";
+  os << indent << "NumberOfSeries (last scan): " << this->GetNumberOfSeries() << "\n";
+}

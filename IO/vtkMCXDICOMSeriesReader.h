@@ -1,0 +1,92 @@
+/**
+ * @class   vtkMCXDICOMSeriesReader
+ * @brief   A DICOM series as hospitals export it, read with vtk-dicom.
+ *
+ * Scans DirectoryName (and its subfolders, four levels deep, as exports nest
+ * them) for DICOM series, reads the chosen one with vtk-dicom's
+ * vtkDICOMReader and checks it is a volume:
+ * - slices sorted by position along the slice normal;
+ * - rescale slope and intercept applied (CT values in Hounsfield units);
+ * - the output placed in patient space: origin and direction matrix from the
+ *   patient matrix (world = direction x (spacing x index) + origin);
+ * - repeated slice positions (duplicated slices, time series), gaps of more
+ *   than 1.5 times the median spacing (missing slices), a series whose images
+ *   fall into parts, and short pixel data are errors that say where.
+ *
+ * Errors are reported with vtkErrorMacro as one line, and leave an empty
+ * output; GetErrorCode() tells them apart (vtkErrorCode's codes, and
+ * SeriesChoiceError when the folder holds several series and SeriesIndex
+ * names none of them). VTK's vtkDICOMImageReader trusts its headers and passes truncated
+ * slices silently; this reader does neither.
+ *
+ * After UpdateInformation(), GetNumberOfSeries() and GetSeriesDescription()
+ * list the folder's series, so that a caller can choose one.
+ */
+#ifndef vtkMCXDICOMSeriesReader_h
+#define vtkMCXDICOMSeriesReader_h
+
+#include "MonteCarloXRayIOModule.h" // for export macro
+#include "vtkErrorCode.h"     // for vtkErrorCode::UserError
+#include "vtkImageAlgorithm.h"
+
+#include <memory> // for std::unique_ptr
+#include <string> // for std::string
+
+class MONTECARLOXRAYIO_EXPORT vtkMCXDICOMSeriesReader : public vtkImageAlgorithm
+{
+public:
+  static vtkMCXDICOMSeriesReader* New();
+  vtkTypeMacro(vtkMCXDICOMSeriesReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /** GetErrorCode() after the folder's series could not be chosen. */
+  enum
+  {
+    SeriesChoiceError = vtkErrorCode::UserError + 1
+  };
+
+  ///@{
+  /** The folder that holds the series (default: none). */
+  vtkSetStringMacro(DirectoryName);
+  vtkGetStringMacro(DirectoryName);
+  ///@}
+
+  ///@{
+  /**
+   * Which of the folder's series to read: 0, 1, ... in the order of
+   * GetSeriesDescription(); -1 (the default) when the folder must hold
+   * exactly one (else an error lists them).
+   */
+  vtkSetClampMacro(SeriesIndex, int, -1, VTK_INT_MAX);
+  vtkGetMacro(SeriesIndex, int);
+  ///@}
+
+  /** The number of series the last scan of DirectoryName found. */
+  int GetNumberOfSeries();
+
+  /**
+   * Series index of the last scan, in words: "CT 'HEAD' (93 images)"
+   * (modality, series description, number of images); empty when out of range.
+   */
+  std::string GetSeriesDescription(int index);
+
+protected:
+  vtkMCXDICOMSeriesReader();
+  ~vtkMCXDICOMSeriesReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  char* DirectoryName = nullptr;
+  int SeriesIndex = -1;
+
+private:
+  vtkMCXDICOMSeriesReader(const vtkMCXDICOMSeriesReader&) = delete;
+  void operator=(const vtkMCXDICOMSeriesReader&) = delete;
+
+  // vtk-dicom's directory scan and reader, kept out of the public header.
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif
