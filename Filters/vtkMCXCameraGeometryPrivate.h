@@ -13,12 +13,21 @@ class vtkCamera;
 namespace mcx
 {
 
-/// Fills the axes, eye and field of view of `camera` for an image of `size`
-/// pixels (0 = 512) with square pixels of `spacing` world units on the focal
-/// plane (0 = what the camera's view angle or parallel scale gives, as VTK
-/// renders it). Returns why the camera is unusable, or "".
-MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(
-  vtkCamera* camera, const int size[2], double spacing, ProjectionGeometry& g);
+/// Fills the axes, eye and detector grid of `camera` for an image of `size`
+/// pixels (0 = 512) exactly as VTK's projection matrix for `aspect` (0 =
+/// size[0] / size[1], square pixels; a renderer passes its tiled aspect
+/// ratio) places them: window centre and tiled viewports included, so that
+/// a tile of a large screenshot is that part of the large image. Pixels are
+/// `spacing` world units on the focal plane when spacing > 0, centred where
+/// the camera's window centre puts the image centre. View shear and off-axis
+/// projection are not modelled (see HasUnmodelledProjection). Returns why
+/// the camera is unusable, or "".
+MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(vtkCamera* camera, const int size[2],
+  double spacing, double aspect, ProjectionGeometry& g);
+
+/// True when the camera's view shear or off-axis projection is set: rays
+/// that are not those of a detector plane perpendicular to the view.
+MONTECARLOXRAYFILTERS_EXPORT bool HasUnmodelledProjection(vtkCamera* camera);
 
 } // namespace mcx
 

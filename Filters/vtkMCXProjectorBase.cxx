@@ -59,7 +59,7 @@ int vtkMCXProjectorBase::RequestInformation(
   std::string problem;
   if (this->Camera)
   {
-    problem = mcx::GeometryFromCamera(this->Camera, this->ImageSize, this->PixelSpacing, g);
+    problem = mcx::GeometryFromCamera(this->Camera, this->ImageSize, this->PixelSpacing, 0.0, g);
   }
   else
   {

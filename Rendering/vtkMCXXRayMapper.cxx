@@ -256,7 +256,11 @@ struct vtkMCXXRayMapper::vtkInternals
       return false;
     }
     view.Camera = renderer->GetActiveCamera();
-    std::string problem = mcx::GeometryFromCamera(view.Camera, view.Size, 0.0, view.Geometry);
+    // The renderer's tiled aspect ratio, as VTK's camera uses it: a tile of
+    // a large screenshot (window centre and tiled viewport) is that part of
+    // the large image.
+    std::string problem = mcx::GeometryFromCamera(
+      view.Camera, view.Size, 0.0, renderer->GetTiledAspectRatio(), view.Geometry);
     if (problem.empty())
     {
       problem = view.Geometry.Validate();
@@ -288,13 +292,11 @@ struct vtkMCXXRayMapper::vtkInternals
       return false;
     }
     vtkCamera* camera = view.Camera;
-    const double* windowCenter = camera->GetWindowCenter();
-    if (windowCenter[0] != 0 || windowCenter[1] != 0 || camera->GetUseOffAxisProjection() ||
-      camera->GetViewShear()[0] != 0 || camera->GetViewShear()[1] != 0)
+    if (mcx::HasUnmodelledProjection(camera))
     {
       vtkWarningWithObjectMacro(self,
-        "Window centre, view shear and off-axis projection are ignored: the X-ray "
-        "is drawn for the camera without them.");
+        "View shear and off-axis projection are ignored: the X-ray is drawn for the camera "
+        "without them.");
     }
     std::vector<double> limits(view.Depth.size());
     const double* range = camera->GetClippingRange();

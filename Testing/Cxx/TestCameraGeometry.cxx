@@ -67,6 +67,11 @@ std::vector<View> Views()
           NewCamera(parallel, horizontal), size[0], size[1] });
       }
     }
+    // A window centre, as tiled rendering (large screenshots) sets it.
+    auto shifted = NewCamera(parallel, false);
+    shifted->SetWindowCenter(0.3, -0.45);
+    views.push_back({ std::string(parallel ? "parallel " : "perspective ") + "window centre 200x160",
+      shifted, 200, 160 });
   }
   return views;
 }
@@ -107,7 +112,7 @@ TEST(CameraGeometry, PixelsOfWorldPointsAreVTKs)
   {
     mcx::ProjectionGeometry g;
     const int size[2] = { view.Width, view.Height };
-    ASSERT_EQ("", mcx::GeometryFromCamera(view.Camera, size, 0.0, g)) << view.Name;
+    ASSERT_EQ("", mcx::GeometryFromCamera(view.Camera, size, 0.0, 0.0, g)) << view.Name;
     EXPECT_EQ(view.Width, g.Size[0]);
     EXPECT_EQ(view.Height, g.Size[1]);
     for (const auto& x : WorldPoints(view.Camera))

@@ -819,6 +819,43 @@ TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)
   }
 }
 
+TEST(Mapper, LargeScreenshotsAreOneImageNotTiles)
+{
+  // vtkWindowToImageFilter at scale 2 (as ParaView's screenshots at a larger
+  // resolution) renders four tiles, each through a shifted window centre and
+  // the renderer's tiled viewport: together they must be the picture of a
+  // window twice the size, not four copies of the small one. Samples are
+  // placed by the same geometry up to rounding, so pixels may differ only
+  // where a sample sits on a pixel edge.
+  for (const bool parallel : { true, false })
+  {
+    Scene small(18, 160, 128);
+    Scene large(18, 320, 256);
+    for (Scene* scene : { &small, &large })
+    {
+      scene->Renderer->GetActiveCamera()->SetParallelProjection(parallel);
+      scene->Mapper->ProgressiveRefinementOff();
+      scene->Mapper->AutomaticWindowLevelOff();
+      scene->Mapper->SetColorWindow(40);
+      scene->Mapper->SetColorLevel(20);
+    }
+    large.Window->Render();
+    auto expected = Grab(large.Window);
+    small.Window->Render();
+    vtkNew<vtkWindowToImageFilter> tiled;
+    tiled->SetInput(small.Window);
+    tiled->SetScale(2);
+    tiled->ReadFrontBufferOff();
+    tiled->SetInputBufferTypeToRGB();
+    tiled->Update();
+    ASSERT_EQ(320, tiled->GetOutput()->GetDimensions()[0]);
+    ASSERT_EQ(256, tiled->GetOutput()->GetDimensions()[1]);
+    const vtkIdType differing = DifferingColours(tiled->GetOutput(), expected, 3);
+    EXPECT_LE(differing, 320 * 256 / 200) << (parallel ? "parallel" : "perspective");
+    EXPECT_GT(Sum(large.OnScreen()), 0.0);
+  }
+}
+
 TEST(Mapper, ViewportSmallerThanTheWindow)
 {
   // A renderer in part of the window: the image has the viewport's size and
