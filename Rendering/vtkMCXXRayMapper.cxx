@@ -62,6 +62,7 @@ const char* DisplayShaderBody = R"(
     g = 1.0 - g;
   }
   gl_FragData[0] = vec4(g, g, g, 1.0);
+  gl_FragDepth = 1.0; // at the far plane: depth tests tell film from geometry in front
 )";
 
 bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometry& b)
@@ -193,6 +194,13 @@ struct vtkMCXXRayMapper::vtkInternals
   bool AutomaticWindowPending = true;
   double AutomaticWindow = 1.0;
   double AutomaticLevel = 0.5;
+  // The automatic window's source: the line integrals of the first
+  // WindowPrefix points of the current input, whatever the sample count and
+  // the time budget (so the window is a property of the image, not of the
+  // noise of however many points the first render happened to afford).
+  std::vector<float> WindowSource;
+  int WindowSourceSize[2] = { 0, 0 };
+  bool WindowSourceKept = false;
 
   double SecondsPerSample = 1e-8; // measured, for the progressive budget
 
@@ -323,7 +331,51 @@ struct vtkMCXXRayMapper::vtkInternals
       std::fabs(vtkMatrix4x4::Determinant(m));
     this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
     this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
+    this->WindowSourceKept = this->WindowSourceKept && !newInput;
     return true;
+  }
+
+  // The points the automatic window is taken from: the smallest prefix of
+  // 2^k - 1 points with at least 4 per pixel (64 per 4 x 4 block), or all.
+  std::uint64_t WindowPrefix(const int size[2]) const
+  {
+    const double wanted = 4.0 * size[0] * size[1];
+    std::uint64_t prefix = 1;
+    while (static_cast<double>(prefix) < wanted && prefix < this->NumberOfPoints)
+    {
+      prefix = 2 * prefix + 1;
+    }
+    return std::min(prefix, this->NumberOfPoints);
+  }
+
+  // Projects up to the window prefix (the image holds no more yet) and keeps
+  // its line integrals as the automatic window's source.
+  void KeepWindowSource(vtkPoints* points, const int size[2])
+  {
+    const std::uint64_t prefix = this->WindowPrefix(size);
+    if (this->Image.Count() < prefix)
+    {
+      this->Advance(points, prefix);
+    }
+    this->WindowSource.resize(this->Image.NumberOfPixels());
+    this->Image.ToValues(this->SampleWeight(), this->WindowSource.data());
+    this->WindowSourceSize[0] = size[0];
+    this->WindowSourceSize[1] = size[1];
+    this->WindowSourceKept = true;
+  }
+
+  // The automatic window of the source under the radiograph effects shown.
+  void ChooseWindowFromSource()
+  {
+    std::vector<float> values = this->WindowSource;
+    if (this->Effects.Any())
+    {
+      float* v = values.data();
+      this->Effects.ApplyToImage(mcx::SMPExecutor(), static_cast<std::int64_t>(values.size()),
+        [v](std::int64_t p) { return static_cast<double>(v[p]); }, v);
+    }
+    ChooseAutomaticWindow(values, this->WindowSourceSize[0], this->WindowSourceSize[1],
+      this->AutomaticWindow, this->AutomaticLevel);
   }
 
   // Stage 5: uploads what changed (new points, other effects, a new
@@ -408,10 +460,9 @@ struct vtkMCXXRayMapper::vtkInternals
         mcx::SMPExecutor(), static_cast<std::int64_t>(this->Values.size()),
         [values](std::int64_t p) { return static_cast<double>(values[p]); }, values);
     }
-    if (this->AutomaticWindowPending && this->Image.Count() > 0)
+    if (this->AutomaticWindowPending && this->WindowSourceKept)
     {
-      ChooseAutomaticWindow(
-        this->Values, width, height, this->AutomaticWindow, this->AutomaticLevel);
+      this->ChooseWindowFromSource();
       this->AutomaticWindowPending = false;
     }
     if (!this->Texture || this->Texture->GetContext() != window)
@@ -429,8 +480,12 @@ struct vtkMCXXRayMapper::vtkInternals
   }
 
   // Draws the texture over the viewport through the display shader; false
-  // if the shader cannot be built.
-  bool Draw(vtkOpenGLRenderWindow* window, double lowest, double inverseWindow, bool invert)
+  // if the shader cannot be built. As film, the grey replaces the background
+  // where nothing opaque was drawn (the quad lies at the far plane and passes
+  // the depth test only there) and blends over the geometry elsewhere
+  // (when there is some); additive, it blends everywhere.
+  bool Draw(vtkOpenGLRenderWindow* window, double lowest, double inverseWindow, bool invert,
+    bool film, bool overGeometry)
   {
     if (!this->Quad)
     {
@@ -452,24 +507,42 @@ struct vtkMCXXRayMapper::vtkInternals
     vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
     vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
     vtkOpenGLState::ScopedglDepthMask depthMask(state);
+    vtkOpenGLState::ScopedglDepthFunc depthFunction(state);
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(state);
-    state->vtkglDisable(GL_DEPTH_TEST);
     state->vtkglDepthMask(GL_FALSE);
-    state->vtkglEnable(GL_BLEND);
-    if (invert)
-    {
-      state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE); // dst * (1 - g)
-    }
-    else
-    {
-      state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE); // dst + g
-    }
     this->Texture->Activate();
     this->Quad->Program->SetUniformi("lineIntegrals", this->Texture->GetTextureUnit());
     this->Quad->Program->SetUniformf("lowest", static_cast<float>(lowest));
     this->Quad->Program->SetUniformf("inverseWindow", static_cast<float>(inverseWindow));
     this->Quad->Program->SetUniformi("invert", invert ? 1 : 0);
-    this->Quad->Render();
+    if (film)
+    {
+      state->vtkglEnable(GL_DEPTH_TEST); // the film where the depth buffer is empty
+      state->vtkglDepthFunc(GL_LEQUAL);
+      state->vtkglDisable(GL_BLEND);
+      this->Quad->Render();
+    }
+    if (!film || overGeometry)
+    {
+      if (film)
+      {
+        state->vtkglDepthFunc(GL_GREATER); // the geometry's pixels
+      }
+      else
+      {
+        state->vtkglDisable(GL_DEPTH_TEST);
+      }
+      state->vtkglEnable(GL_BLEND);
+      if (invert)
+      {
+        state->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE); // dst * (1 - g)
+      }
+      else
+      {
+        state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE); // dst + g
+      }
+      this->Quad->Render();
+    }
     this->Texture->Deactivate();
     return true;
   }
@@ -547,24 +620,35 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   {
     return;
   }
+  const bool needWindowSource = this->AutomaticWindowLevel && !in.WindowSourceKept;
+  if (needWindowSource && in.HasImage && in.Image.Count() > in.WindowPrefix(view.Size))
+  {
+    in.HasImage = false; // the window's prefix has passed: project again from its start
+  }
   const bool restart = in.RestartIfChanged(this, cloud, view);
   if (restart)
   {
     ++this->NumberOfRestarts;
   }
-  if (in.Image.Count() < in.NumberOfPoints)
+  bool sourceMade = false; // this render projected the automatic window's prefix
+  if (this->AutomaticWindowLevel && !in.WindowSourceKept)
   {
-    std::uint64_t target = in.NumberOfPoints;
-    if (this->ProgressiveRefinement)
-    {
-      // The first image of a new input sets the automatic window: give it
-      // enough points for a stable percentile (4 per pixel, 64 per block).
-      const double floor = std::max(
-        static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent))),
-        in.AutomaticWindowPending && this->AutomaticWindowLevel ? 4.0 * view.Size[0] * view.Size[1]
-                                                                : 0.0);
-      target = in.RefinementTarget(volume->GetAllocatedRenderTime(), floor);
-    }
+    in.KeepWindowSource(cloud->GetPoints(), view.Size);
+    sourceMade = true;
+  }
+  const double floor =
+    static_cast<double>(mcx::SampleCount(static_cast<unsigned>(this->InitialSampleExponent)));
+  std::uint64_t target = in.NumberOfPoints;
+  if (this->ProgressiveRefinement)
+  {
+    // A render that made the window's prefix shows it (at least 4 points a
+    // pixel); later renders add what the time budget affords.
+    target = sourceMade && static_cast<double>(in.Image.Count()) >= floor
+      ? in.Image.Count()
+      : in.RefinementTarget(volume->GetAllocatedRenderTime(), floor);
+  }
+  if (target > in.Image.Count())
+  {
     in.Advance(cloud->GetPoints(), target); // stage 4: refine within the time budget
     if (!restart)
     {
@@ -580,7 +664,8 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const double lowest = this->DisplayedLevel - 0.5 * this->DisplayedWindow;
   const double inverseWindow =
     this->DisplayedWindow > 0 ? 1.0 / this->DisplayedWindow : std::numeric_limits<float>::max();
-  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay))
+  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay,
+        this->Compositing == FILM, this->LastRenderUsedDepth))
   {
     vtkErrorMacro("The X-ray display shader failed to compile.");
     return;
@@ -615,6 +700,7 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DisplayedWindow: " << this->DisplayedWindow << "\n";
   os << indent << "DisplayedLevel: " << this->DisplayedLevel << "\n";
   os << indent << "InvertDisplay: " << this->InvertDisplay << "\n";
+  os << indent << "Compositing: " << (this->Compositing == FILM ? "FILM" : "ADDITIVE") << "\n";
   os << indent << "BeerLambert: " << this->BeerLambert << "\n";
   os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";
   os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";

@@ -36,9 +36,14 @@
  *
  * Display: the image is mapped by a window and level (in line-integral units;
  * automatic by default: 0 to the 99.5th percentile of the 4 x 4 block means
- * of the first image of each input) to a grey value g in [0, 1] and composited as emitted light
- * (added to what is behind it). With InvertDisplay on, 1 - g multiplies what is behind it instead,
- * as film does on a light box: give the renderer a white background.
+ * of the image of the first 2^k - 1 points with at least 4 per pixel, once
+ * per input) to a grey value g in [0, 1]. By default (FILM compositing) g is
+ * drawn opaquely, as film, wherever no opaque geometry is in front, so the
+ * picture is the same on any background; with InvertDisplay on, 1 - g (dark
+ * bone on light film). ADDITIVE compositing adds g to what is behind it
+ * (the X-ray as emitted light), or with InvertDisplay multiplies it by
+ * 1 - g, for compositing with other props; over opaque geometry both blend
+ * that way.
  *
  * The accumulation runs on the CPU with vtkSMPTools; images are the same for
  * any number of threads.
@@ -73,9 +78,12 @@ public:
 
   ///@{
   /**
-   * Choose window and level from the first image of each input (default on):
-   * 0 to the 99.5th percentile of its non-zero 4 x 4 block means. That image
-   * has at least 4 points per pixel.
+   * Choose window and level for each input (default on): 0 to the 99.5th
+   * percentile of the non-zero 4 x 4 block means of the image of its first
+   * 2^k - 1 points, the smallest such prefix with at least 4 points per pixel
+   * (or all points). The window does not depend on the sample count beyond
+   * that prefix, on the time budget or on how far refinement has gone; a
+   * camera change keeps it.
    */
   vtkSetMacro(AutomaticWindowLevel, bool);
   vtkGetMacro(AutomaticWindowLevel, bool);
@@ -87,10 +95,25 @@ public:
   vtkGetMacro(DisplayedLevel, double);
 
   ///@{
-  /** Show 1 - g, multiplied onto the background (default off). */
+  /** Show 1 - g: dark where the line integral is large (default off). */
   vtkSetMacro(InvertDisplay, bool);
   vtkGetMacro(InvertDisplay, bool);
   vtkBooleanMacro(InvertDisplay, bool);
+  ///@}
+
+  /** How the grey value meets what the renderer drew before. */
+  enum
+  {
+    FILM = 0,    ///< opaque film where nothing opaque is in front (the default)
+    ADDITIVE = 1 ///< added to the background (inverted: multiplied onto it)
+  };
+
+  ///@{
+  /** FILM (default) or ADDITIVE; see the class description. */
+  vtkSetClampMacro(Compositing, int, FILM, ADDITIVE);
+  vtkGetMacro(Compositing, int);
+  void SetCompositingToFilm() { this->SetCompositing(FILM); }
+  void SetCompositingToAdditive() { this->SetCompositing(ADDITIVE); }
   ///@}
 
   ///@{
@@ -197,6 +220,7 @@ protected:
   double DisplayedWindow = 1.0;
   double DisplayedLevel = 0.5;
   bool InvertDisplay = false;
+  int Compositing = FILM;
   bool BeerLambert = false;
   double IncidentIntensity = 1.0;
   double PhotonsPerPixel = 0.0;

@@ -739,11 +739,16 @@ TEST(Mapper, RegressionImages)
   CompareWithBaseline(scene.Window, "XRayOccluded");
 }
 
+// The automatic window's prefix for a 160 x 128 viewport: the smallest
+// 2^k - 1 with at least 4 points per pixel (81920).
+constexpr vtkIdType WindowPrefix160x128 = (1 << 17) - 1;
+
 TEST(Mapper, DisplayShowsTheWindowedImage)
 {
   // Every pixel drawn is the documented grey of the line integral under it:
   // a set window and level on black, inverted on white, and the automatic
-  // window, which is the documented percentile of the image's block means.
+  // window, which is the documented percentile of the block means of the
+  // image of the window's prefix (the off-line image of those points).
   Scene scene(18, 160, 128);
   scene.Mapper->ProgressiveRefinementOff();
   scene.Mapper->AutomaticWindowLevelOff();
@@ -766,10 +771,66 @@ TEST(Mapper, DisplayShowsTheWindowedImage)
   scene.Window->Render();
   image = scene.OnScreen();
   values = mcxtest::LineIntegral(image);
-  const double window = AutomaticWindow(values, 160, 128);
+  auto prefix = scene.Offline(WindowPrefix160x128);
+  const double window = AutomaticWindow(mcxtest::LineIntegral(prefix), 160, 128);
+  EXPECT_GT(window, 0.0);
   EXPECT_NEAR(window, scene.Mapper->GetDisplayedWindow(), 1e-6 * window);
   EXPECT_NEAR(0.5 * window, scene.Mapper->GetDisplayedLevel(), 1e-6 * window);
   EXPECT_EQ(0, MisdrawnPixels(Grab(scene.Window), values, window, 0.5 * window));
+}
+
+TEST(Mapper, AutomaticWindowIsThePicturesNotTheNoises)
+{
+  // The automatic window is taken from the window's prefix whatever the
+  // sample count (2^17 - 1 to 2^20 - 1 points), the time budget or the
+  // refinement: it is the same number for all of them, and stays while
+  // points are added.
+  double first = 0;
+  for (const int exponent : { 17, 18, 20 })
+  {
+    for (const bool progressive : { false, true })
+    {
+      Scene scene(exponent, 160, 128);
+      scene.Mapper->SetProgressiveRefinement(progressive);
+      scene.Window->SetDesiredUpdateRate(progressive ? 1e6 : 1e-3); // a tiny or an ample budget
+      scene.Window->Render();
+      const double window = scene.Mapper->GetDisplayedWindow();
+      first = first > 0 ? first : window;
+      EXPECT_EQ(first, window) << exponent << (progressive ? " progressive" : "");
+      for (int render = 0; render < 4 && !scene.Mapper->IsRefinementComplete(); ++render)
+      {
+        scene.Window->Render();
+        EXPECT_EQ(first, scene.Mapper->GetDisplayedWindow()) << "after " << render + 1;
+      }
+    }
+  }
+  EXPECT_GT(first, 0.0);
+}
+
+TEST(Mapper, FilmLooksTheSameOnAnyBackground)
+{
+  // Film compositing (the default) draws the grey opaquely: on ParaView's
+  // blue-grey background the picture is the one on black, and inverted it
+  // is the one on white. Additive compositing adds to the background.
+  Scene scene(17, 160, 128);
+  scene.Mapper->ProgressiveRefinementOff();
+  scene.Mapper->AutomaticWindowLevelOff();
+  scene.Mapper->SetColorWindow(40);
+  scene.Mapper->SetColorLevel(20);
+  scene.Window->Render();
+  auto image = scene.OnScreen();
+  vtkDataArray* values = mcxtest::LineIntegral(image);
+  for (const bool invert : { false, true })
+  {
+    scene.Mapper->SetInvertDisplay(invert);
+    scene.Renderer->SetBackground(0.32, 0.34, 0.43);
+    scene.Window->Render();
+    EXPECT_EQ(0, MisdrawnPixels(Grab(scene.Window), values, 40, 20, invert)) << invert;
+  }
+  scene.Mapper->InvertDisplayOff();
+  scene.Mapper->SetCompositingToAdditive();
+  scene.Window->Render();
+  EXPECT_GT(MisdrawnPixels(Grab(scene.Window), values, 40, 20), 160 * 128 / 2);
 }
 
 TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)
@@ -785,6 +846,7 @@ TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)
   scene.Mapper->ProgressiveRefinementOff();
   scene.Window->Render();
   auto lineIntegrals = scene.OnScreen();
+  auto prefix = scene.Offline(WindowPrefix160x128); // what the automatic window sees
   struct Case
   {
     const char* Name;
@@ -813,7 +875,14 @@ TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)
     vtkDataArray* expected = radiograph->GetOutput()->GetPointData()->GetArray(
       c.NegativeLog ? vtkMCXRadiograph::AttenuationName() : vtkMCXRadiograph::IntensityName());
     ASSERT_NE(nullptr, expected) << c.Name;
-    const double window = AutomaticWindow(expected, 160, 128);
+    radiograph->SetInputData(prefix);
+    radiograph->Update();
+    const double window = AutomaticWindow(radiograph->GetOutput()->GetPointData()->GetArray(
+                                            c.NegativeLog ? vtkMCXRadiograph::AttenuationName()
+                                                          : vtkMCXRadiograph::IntensityName()),
+      160, 128);
+    radiograph->SetInputData(lineIntegrals);
+    radiograph->Update();
     EXPECT_NEAR(window, scene.Mapper->GetDisplayedWindow(), 1e-6 * window) << c.Name;
     EXPECT_EQ(0, MisdrawnPixels(Grab(scene.Window), expected, window, 0.5 * window)) << c.Name;
   }

@@ -20,6 +20,8 @@ CONSTANTS = {
     "Box (nearest)": mcxray.vtkMCXPointSampler.BOX,
     "Point": mcxray.vtkMCXPointSampler.POINT,
     "Footprint": mcxray.vtkMCXPointSampler.FOOTPRINT,
+    "Film": mcxray.vtkMCXXRayMapper.FILM,
+    "Additive": mcxray.vtkMCXXRayMapper.ADDITIVE,
 }
 VECTOR_PROPERTIES = ("IntVectorProperty", "DoubleVectorProperty", "IdTypeVectorProperty")
 
@@ -88,7 +90,8 @@ class XMLDefaults(unittest.TestCase):
         sampler = mcxray.vtkMCXPointSampler()
         getters = {"SetSampleExponent": lambda: 22, "SetStrategy": sampler.GetStrategy,
                    "SetKernel": sampler.GetKernel, "SetSeed": sampler.GetSeed,
-                   "SetInvertDisplay": mapper.GetInvertDisplay, "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
+                   "SetInvertDisplay": mapper.GetInvertDisplay, "SetCompositing": mapper.GetCompositing,
+                   "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
                    "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,
                    "SetProgressiveRefinement": mapper.GetProgressiveRefinement}
         representation = next(self.root.iter("RepresentationProxy"))

@@ -173,6 +173,11 @@ void vtkMCXXRayRepresentation::SetInvertDisplay(bool invert)
   this->Mapper->SetInvertDisplay(invert);
 }
 
+void vtkMCXXRayRepresentation::SetCompositing(int compositing)
+{
+  this->Mapper->SetCompositing(compositing);
+}
+
 void vtkMCXXRayRepresentation::SetAutomaticWindowLevel(bool automatic)
 {
   this->Mapper->SetAutomaticWindowLevel(automatic);

@@ -56,6 +56,7 @@ public:
   ///@{
   /** Forwarded to the mapper (see vtkMCXXRayMapper). */
   void SetInvertDisplay(bool invert);
+  void SetCompositing(int compositing);
   void SetAutomaticWindowLevel(bool automatic);
   void SetColorWindow(double window);
   void SetColorLevel(double level);
