@@ -94,8 +94,9 @@ bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
 
 // Window 0 .. the 99.5th percentile of the positive means of 4 x 4 pixel
 // blocks: the blocks average out most of a coarse image's noise, which would
-// otherwise push a high percentile up.
-void ChooseAutomaticWindow(
+// otherwise push a high percentile up. False (window unchanged) when the
+// image is empty.
+bool ChooseAutomaticWindow(
   const std::vector<float>& values, int width, int height, double& window, double& level)
 {
   std::vector<double> blocks;
@@ -120,13 +121,14 @@ void ChooseAutomaticWindow(
   }
   if (blocks.empty())
   {
-    return;
+    return false;
   }
   auto rank =
     blocks.begin() + static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(blocks.size() - 1));
   std::nth_element(blocks.begin(), rank, blocks.end());
   window = *rank;
   level = 0.5 * *rank;
+  return true;
 }
 
 // The radiograph physics the mapper's properties ask for.
@@ -331,7 +333,10 @@ struct vtkMCXXRayMapper::vtkInternals
       std::fabs(vtkMatrix4x4::Determinant(m));
     this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
     this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
-    this->WindowSourceKept = this->WindowSourceKept && !newInput;
+    // A new input needs a new source; so does a new view while the last
+    // source showed nothing (the camera had not reached the volume yet).
+    this->WindowSourceKept =
+      this->WindowSourceKept && !newInput && !this->AutomaticWindowPending;
     return true;
   }
 
@@ -364,8 +369,9 @@ struct vtkMCXXRayMapper::vtkInternals
     this->WindowSourceKept = true;
   }
 
-  // The automatic window of the source under the radiograph effects shown.
-  void ChooseWindowFromSource()
+  // The automatic window of the source under the radiograph effects shown;
+  // false when the source is empty.
+  bool ChooseWindowFromSource()
   {
     std::vector<float> values = this->WindowSource;
     if (this->Effects.Any())
@@ -374,7 +380,7 @@ struct vtkMCXXRayMapper::vtkInternals
       this->Effects.ApplyToImage(mcx::SMPExecutor(), static_cast<std::int64_t>(values.size()),
         [v](std::int64_t p) { return static_cast<double>(v[p]); }, v);
     }
-    ChooseAutomaticWindow(values, this->WindowSourceSize[0], this->WindowSourceSize[1],
+    return ChooseAutomaticWindow(values, this->WindowSourceSize[0], this->WindowSourceSize[1],
       this->AutomaticWindow, this->AutomaticLevel);
   }
 
@@ -460,9 +466,8 @@ struct vtkMCXXRayMapper::vtkInternals
         mcx::SMPExecutor(), static_cast<std::int64_t>(this->Values.size()),
         [values](std::int64_t p) { return static_cast<double>(values[p]); }, values);
     }
-    if (this->AutomaticWindowPending && this->WindowSourceKept)
+    if (this->AutomaticWindowPending && this->WindowSourceKept && this->ChooseWindowFromSource())
     {
-      this->ChooseWindowFromSource();
       this->AutomaticWindowPending = false;
     }
     if (!this->Texture || this->Texture->GetContext() != window)

@@ -11,6 +11,7 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCullerCollection.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -805,6 +806,25 @@ TEST(Mapper, AutomaticWindowIsThePicturesNotTheNoises)
     }
   }
   EXPECT_GT(first, 0.0);
+
+  // A first view that shows nothing (ParaView renders before it resets the
+  // camera) sets no window; the first view of the volume does.
+  Scene scene(17, 160, 128);
+  scene.Renderer->GetCullers()->RemoveAllItems(); // as ParaView: the mapper renders anyway
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  double focal[3], position[3];
+  camera->GetFocalPoint(focal);
+  camera->GetPosition(position);
+  camera->SetFocalPoint(focal[0] + 5000, focal[1], focal[2]);
+  camera->SetPosition(position[0] + 5000, position[1], position[2]);
+  scene.Window->Render();
+  auto away = scene.OnScreen();
+  vtkDataArray* nothing = mcxtest::LineIntegral(away);
+  EXPECT_TRUE(!nothing || nothing->GetRange()[1] == 0.0);
+  camera->SetFocalPoint(focal);
+  camera->SetPosition(position);
+  scene.Window->Render();
+  EXPECT_EQ(first, scene.Mapper->GetDisplayedWindow());
 }
 
 TEST(Mapper, FilmLooksTheSameOnAnyBackground)

@@ -5,6 +5,8 @@
 #include "vtkMCXXRayMapper.h"
 
 #include "vtkAlgorithmOutput.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -12,17 +14,62 @@
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 
+#include <string>
+
 vtkStandardNewMacro(vtkMCXXRayRepresentation);
+
+namespace
+{
+// The density array, as ParaView's Volume representation picks it: the
+// coloured array when it is a one-component point array, else the active
+// point scalars, else the first one-component point array; null when the
+// image has none (problem says why).
+vtkDataArray* ChooseDensityArray(vtkImageData* image, const char* coloured, std::string& problem)
+{
+  vtkPointData* pd = image->GetPointData();
+  if (coloured && *coloured)
+  {
+    if (vtkDataArray* array = pd->GetArray(coloured))
+    {
+      if (array->GetNumberOfComponents() == 1)
+      {
+        return array;
+      }
+      problem = std::string("the coloured array '") + coloured + "' has " +
+        std::to_string(array->GetNumberOfComponents()) +
+        " components; colour by a one-component density array";
+      return nullptr;
+    }
+  }
+  if (vtkDataArray* scalars = pd->GetScalars())
+  {
+    if (scalars->GetNumberOfComponents() == 1)
+    {
+      return scalars;
+    }
+  }
+  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = pd->GetArray(a);
+    if (array && array->GetNumberOfComponents() == 1)
+    {
+      return array;
+    }
+  }
+  problem = "the image has no one-component point array to show as an X-ray (a density such as CT values)";
+  return nullptr;
+}
+}
 
 vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
 {
   vtkMath::UninitializeBounds(this->DataBounds);
-  // Until the colour map provides one: g = 0, an empty image.
-  vtkNew<vtkPiecewiseFunction> zero;
-  this->Sampler->SetTransferFunction(zero);
+  // Until the colour map provides one: the default ramp, once the index is known.
+  this->Sampler->SetTransferFunction(this->DefaultRamp);
   // The interactive preview's 4 M points; the mapper is the only consumer of
   // the cloud, so a TF edit may rewrite it in place.
   this->Sampler->SetSampleExponent(DefaultSampleExponent);
@@ -51,17 +98,31 @@ int vtkMCXXRayRepresentation::RequestData(
   {
     if (vtkImageData* input = vtkImageData::GetData(inputVector[0], 0))
     {
+      // The array the user colours by is the density (or, before one is
+      // chosen, the one ParaView's Volume representation would show).
+      vtkInformation* chosen = this->GetInputArrayInformation(0);
+      const char* coloured = chosen && chosen->Has(vtkDataObject::FIELD_NAME())
+        ? chosen->Get(vtkDataObject::FIELD_NAME())
+        : nullptr;
+      std::string problem;
+      vtkDataArray* density = ChooseDensityArray(input, coloured, problem);
+      if (!density)
+      {
+        vtkErrorMacro("Monte Carlo X-Ray: " << problem << ".");
+        return this->Superclass::RequestData(request, inputVector, outputVector);
+      }
       vtkNew<vtkImageData> volume;
       volume->ShallowCopy(input);
       this->Index->SetInputData(volume);
-      // The array the user colours by is the density.
-      if (vtkInformation* array = this->GetInputArrayInformation(0))
+      if (density->GetName())
       {
-        if (array->Has(vtkDataObject::FIELD_NAME()))
-        {
-          this->Index->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
-            array->Get(vtkDataObject::FIELD_NAME()));
-        }
+        this->Index->SetInputArrayToProcess(
+          0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, density->GetName());
+      }
+      else // the active scalars, unnamed
+      {
+        this->Index->SetInputArrayToProcess(
+          0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
       }
       this->Index->Update();
       this->DeliveredIndex = vtkSmartPointer<vtkImageData>::New();
@@ -90,8 +151,22 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
+    // An empty delivery (no density array: reported on the data server)
+    // draws nothing and asks nothing of the sampler.
     vtkAlgorithmOutput* producer = vtkPVRenderView::GetPieceProducer(inInfo, this);
-    this->Sampler->SetInputConnection(producer);
+    vtkDataObject* piece = producer && producer->GetProducer()
+      ? producer->GetProducer()->GetOutputDataObject(producer->GetIndex())
+      : nullptr;
+    vtkImageData* index = vtkImageData::SafeDownCast(piece);
+    if (index && index->GetNumberOfPoints() > 0)
+    {
+      this->Sampler->SetInputConnection(producer);
+      this->UseDefaultRampUnlessColoured(index);
+    }
+    else
+    {
+      this->Sampler->RemoveAllInputConnections(0);
+    }
     this->SetVisibility(this->GetVisibility());
   }
   return 1;
@@ -126,16 +201,34 @@ void vtkMCXXRayRepresentation::SetVisibility(bool visible)
 
 void vtkMCXXRayRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* function)
 {
-  if (function)
-  {
-    this->Sampler->SetTransferFunction(function);
-  }
-  else
-  {
-    vtkNew<vtkPiecewiseFunction> zero;
-    this->Sampler->SetTransferFunction(zero);
-  }
+  this->OpacityFunction = function;
+  this->Sampler->SetTransferFunction(function ? function : this->DefaultRamp.GetPointer());
   this->MarkModified();
+}
+
+void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
+{
+  if (this->OpacityFunction)
+  {
+    return;
+  }
+  // The index's density levels, lowest and highest.
+  vtkDataArray* levels = index->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName());
+  if (!levels || levels->GetNumberOfTuples() < 1)
+  {
+    return;
+  }
+  const double low = levels->GetTuple1(0);
+  const double high = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
+  double range[2];
+  this->DefaultRamp->GetRange(range);
+  if (this->DefaultRamp->GetSize() != 2 || range[0] != low || range[1] != high)
+  {
+    this->DefaultRamp->RemoveAllPoints();
+    this->DefaultRamp->AddPoint(low, 0.0);
+    this->DefaultRamp->AddPoint(high > low ? high : low + 1.0, 1.0);
+  }
+  this->Sampler->SetTransferFunction(this->DefaultRamp);
 }
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)
@@ -211,6 +304,8 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mapper: " << this->Mapper.GetPointer() << "\n";
   os << indent << "Volume: " << this->Volume.GetPointer() << "\n";
   os << indent << "DeliveredIndex: " << this->DeliveredIndex.GetPointer() << "\n";
+  os << indent << "OpacityFunction: " << this->OpacityFunction.GetPointer() << "\n";
+  os << indent << "DefaultRamp: " << this->DefaultRamp.GetPointer() << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

@@ -38,7 +38,11 @@ public:
     vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
   void SetVisibility(bool visible) override;
 
-  /** The TF from data values to g: the colour map's scalar opacity function. */
+  /**
+   * The TF from data values to g: the colour map's scalar opacity function.
+   * Without one (not coloured by an array yet), a ramp from 0 at the lowest
+   * density to 1 at the highest, as ParaView's default opacity map.
+   */
   void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
 
   /** The sampler's exponent until set: 2^22 - 1 points, the interactive preview. */
@@ -81,10 +85,13 @@ protected:
   vtkNew<vtkMCXXRayMapper> Mapper;
   vtkNew<vtkVolume> Volume;
   vtkSmartPointer<vtkImageData> DeliveredIndex;
+  vtkSmartPointer<vtkPiecewiseFunction> OpacityFunction; // the colour map's, if any
+  vtkNew<vtkPiecewiseFunction> DefaultRamp;              // else this, over the densities
   double DataBounds[6];
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
+  void UseDefaultRampUnlessColoured(vtkImageData* index);
   void operator=(const vtkMCXXRayRepresentation&) = delete;
 };
 
