@@ -19,66 +19,25 @@ function and checks what it computes and what it draws:
 """
 import math
 import os
-import re
 import sys
 
 import numpy
 from paraview import servermanager
-from paraview.modules.vtkRemotingClientServerStream import (
-    vtkClientServerInterpreterInitializer,
-    vtkClientServerStream,
-)
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import vtkFieldData, vtkImageData, vtkPiecewiseFunction
+from vtkmodules.vtkCommonDataModel import vtkFieldData, vtkPiecewiseFunction
 from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvbatch_support import (  # noqa: E402
+    as_array, check, failures, invoke, line_integral_image, mapper_call, obj, xray_representation)
 
 plugin, volume_path, baseline, output_dir = sys.argv[1:5]
 LoadPlugin(plugin, remote=False, ns=globals())
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAILED:", message)
-
-
-# The plugin's classes are wrapped for ParaView's client-server interpreter,
-# not for Python: their own methods are called through it (pvbatch is one
-# process, so the VTK objects are local and passed by address).
-INTERPRETER = vtkClientServerInterpreterInitializer.GetGlobalInterpreter()
-
-
-def obj(vtk_object):
-    return "obj(%s)" % vtk_object.GetAddressAsString("vtkObject").split("=")[-1]
-
-
-def invoke(*messages):
-    """Runs interpreter messages ("Invoke obj(...) Method args", "result()"
-    standing for the previous reply); returns the last reply as text."""
-    stream = vtkClientServerStream()
-    if not stream.StreamFromString("\n".join(messages)) or not INTERPRETER.ProcessStream(stream):
-        raise RuntimeError("interpreter refused: %s" % "; ".join(messages))
-    return INTERPRETER.GetLastResult().StreamToString()
-
-
-def xray_representation(display):
-    representation = display.GetClientSideObject().GetActiveRepresentation()
-    assert representation.GetClassName() == "vtkMCXXRayRepresentation", representation.GetClassName()
-    return representation
-
-
-def line_integral_image(representation):
-    """The mapper's GetLineIntegralImage as a (rows, columns) array."""
-    image = vtkImageData()
-    invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLineIntegralImage %s" % obj(image))
-    return as_array(image, "LineIntegral")
 
 
 def accumulated_samples(representation):
-    reply = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetNumberOfAccumulatedSamples")
-    return int(re.search(r"int64\((\d+)\)", reply).group(1))
+    return int(mapper_call(representation, "GetNumberOfAccumulatedSamples"))
 
 
 def sampler_of(representation):

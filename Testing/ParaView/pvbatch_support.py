@@ -1,0 +1,74 @@
+"""What the pvbatch tests share: checks that collect failures, calls into
+the plugin's VTK objects through ParaView's client-server interpreter (the
+plugin's classes are wrapped for it, not for Python; pvbatch is one process,
+so the objects are local and passed by address), and images as arrays."""
+import re
+
+import numpy
+from paraview.modules.vtkRemotingClientServerStream import (
+    vtkClientServerInterpreterInitializer,
+    vtkClientServerStream,
+)
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAILED:", message)
+
+
+def obj(vtk_object):
+    return "obj(%s)" % vtk_object.GetAddressAsString("vtkObject").split("=")[-1]
+
+
+def invoke(*messages):
+    """Runs interpreter messages ("Invoke obj(...) Method args", "result()"
+    standing for the previous reply); returns the last reply as text."""
+    interpreter = vtkClientServerInterpreterInitializer.GetGlobalInterpreter()
+    stream = vtkClientServerStream()
+    if not stream.StreamFromString("\n".join(messages)) or not interpreter.ProcessStream(stream):
+        raise RuntimeError("interpreter refused: %s" % "; ".join(messages))
+    return interpreter.GetLastResult().StreamToString()
+
+
+def reply_number(reply):
+    """The number in an interpreter reply such as "Reply float64(47.8)"."""
+    return float(re.search(r"\(([-+0-9.eE]+|nan|inf)\)", reply).group(1))
+
+
+def xray_representation(display):
+    representation = display.GetClientSideObject().GetActiveRepresentation()
+    assert representation.GetClassName() == "vtkMCXXRayRepresentation", representation.GetClassName()
+    return representation
+
+
+def mapper_call(representation, method):
+    """A getter of the representation's mapper, as a number."""
+    return reply_number(invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() %s" % method))
+
+
+def line_integral_image(representation):
+    """The mapper's GetLineIntegralImage as a (rows, columns) array."""
+    image = vtkImageData()
+    invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLineIntegralImage %s" % obj(image))
+    return as_array(image, "LineIntegral")
+
+
+def as_array(image, name):
+    width, height = image.GetDimensions()[:2]
+    array = image.GetPointData().GetArray(name)
+    return vtk_to_numpy(array).reshape(height, width, -1).squeeze().astype(numpy.float64)
+
+
+def read_png(path):
+    """A PNG as a float array (rows, columns, channels), row 0 at the bottom."""
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    return as_array(image, image.GetPointData().GetScalars().GetName())

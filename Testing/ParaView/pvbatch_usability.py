@@ -1,0 +1,127 @@
+"""pvbatch test of the plugin as a new user meets it:
+
+- the X-Ray representation chosen before any array is coloured draws the
+  density array ParaView's Volume representation would pick, under a ramp
+  over the densities (not a blank view, no errors); an image without a
+  one-component array gives one error and draws nothing;
+- the default display (film) looks the same on ParaView's blue-grey
+  background as on black;
+- a screenshot at three times the view's resolution is one image (the
+  view rendered at that size), not a mosaic of tiles;
+- the automatic window is the same for 2^20 - 1 and 2^22 - 1 points;
+- the sampler's and projector's transfer functions default to a ramp over
+  the index's densities, and "reset to data range" restores it.
+
+    pvbatch pvbatch_usability.py PLUGIN VOLUME.vti OUTPUT_DIR
+"""
+import os
+import sys
+
+import numpy
+from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvbatch_support import check, failures, mapper_call, read_png, xray_representation  # noqa: E402
+
+plugin, volume_path, output_dir = sys.argv[1:4]
+LoadPlugin(plugin, remote=False, ns=globals())
+reader = XMLImageDataReader(FileName=[volume_path])
+reader.UpdatePipeline()
+DENSITY_RANGE = (0.0, 3926.0)  # headsq
+
+
+def screenshot(view, name, resolution=None):
+    path = os.path.join(output_dir, name)
+    SaveScreenshot(path, view, ImageResolution=resolution or list(view.ViewSize))
+    return read_png(path)
+
+
+def xray_view(size):
+    """A view of the size showing the CT as an X-ray, seen from the front
+    (set after Show, which resets the camera of a view's first display)."""
+    view = CreateView("RenderView")
+    view.ViewSize = size
+    view.OrientationAxesVisibility = 0
+    display = Show(reader, view, "UniformGridRepresentation")
+    display.SetRepresentationType("Monte Carlo X-Ray")
+    view.CameraPosition = [102.0, -500.0, 70.0]
+    view.CameraFocalPoint = [102.0, 102.0, 70.0]
+    view.CameraViewUp = [0.0, 0.0, 1.0]
+    view.CameraParallelProjection = 1
+    view.CameraParallelScale = 90.0
+    return view, display
+
+
+# 1. The representation before any colouring: the array and a ramp are chosen.
+view, display = xray_view([300, 240])
+Render(view)
+uncoloured = screenshot(view, "UsabilityUncoloured.png")
+check(uncoloured[:, :, 0].mean() > 10, "the X-ray before colouring is blank (mean grey %.1f)" % uncoloured[:, :, 0].mean())
+check(uncoloured[:, :, 0].max() < 255 or (uncoloured[:, :, 0] == 255).mean() < 0.02,
+      "the X-ray before colouring is saturated (%.1f %% white)" % (100 * (uncoloured[:, :, 0] == 255).mean()))
+representation = xray_representation(display)
+
+# 2. Film: ParaView's background does not show through or add.
+view.UseColorPaletteForBackground = 0
+view.Background = [0.32, 0.34, 0.43]
+film = screenshot(view, "UsabilityFilmBlueGrey.png")
+view.Background = [0.0, 0.0, 0.0]
+black = screenshot(view, "UsabilityFilmBlack.png")
+check(numpy.abs(film - black).max() <= 1, "film differs between backgrounds by %d grey levels" % numpy.abs(film - black).max())
+
+# 3. A screenshot three times the view's size is the view rendered at that size.
+display.XRayAutomaticWindow = 0  # the same window for both sizes
+display.XRayWindow = 60.0
+display.XRayLevel = 30.0
+large = screenshot(view, "UsabilityTiled.png", [900, 720])
+big_view, big_display = xray_view([900, 720])
+Render(big_view)
+for name in ("CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraParallelScale"):
+    setattr(big_view, name, getattr(view, name))  # the small view's camera, as it rendered
+big_display.XRayAutomaticWindow = 0
+big_display.XRayWindow = 60.0
+big_display.XRayLevel = 30.0
+Render(big_view)
+direct = screenshot(big_view, "UsabilityDirect.png")
+differing = (numpy.abs(large - direct).max(axis=2) > 3).mean() if large.shape == direct.shape else 1.0
+check(large.shape == direct.shape and differing < 0.005,
+      "the 900 x 720 screenshot of a 300 x 240 view differs from the 900 x 720 view in %.1f %% of pixels"
+      % (100 * differing))
+Delete(big_display)
+
+# 4. The automatic window does not depend on the point count.
+display.XRayAutomaticWindow = 1
+windows = []
+for exponent in (20, 22):
+    display.XRaySampleExponent = exponent
+    Render(view)
+    windows.append(mapper_call(representation, "GetDisplayedWindow"))
+check(windows[0] == windows[1] and windows[0] > 0, "automatic windows %s for 2^20 - 1 and 2^22 - 1 points" % windows)
+
+# 5. An image without a one-component point array: one error, nothing drawn.
+errors = []
+wavelet = Wavelet()
+vectors = Calculator(Input=wavelet, Function="iHat*RTData", ResultArrayName="vectors")
+only_vectors = PassArrays(Input=vectors, PointDataArrays=["vectors"])
+vector_display = Show(only_vectors, view, "UniformGridRepresentation")
+vector_display.SetRepresentationType("Monte Carlo X-Ray")
+vector_representation = xray_representation(vector_display)
+vector_representation.AddObserver("ErrorEvent", lambda caller, event: errors.append(event))
+Render(view)  # the observer keeps the error from being printed
+check(len(errors) == 1, "%d errors for an image without a density array, not 1" % len(errors))
+Delete(vector_display)
+
+# 6. The filters' transfer functions: a ramp over the densities by default.
+index = XRayDensityIndex(Input=reader)
+index.UpdatePipeline()
+ramp = [DENSITY_RANGE[0], 0.0, 0.5, 0.0, DENSITY_RANGE[1], 1.0, 0.5, 0.0]
+for name, proxy in (("sampler", XRayPointSampler(Input=index)), ("projector", XRayProjector(Input=index))):
+    check(list(proxy.TransferFunction.Points) == ramp, "%s TF %s, not %s" % (name, list(proxy.TransferFunction.Points), ramp))
+    proxy.TransferFunction.Points = [0.0, 0.0, 0.5, 0.0, 1.0, 1.0, 0.5, 0.0]
+    proxy.GetProperty("TransferFunction").SMProperty.ResetToDomainDefaults(False)
+    check(list(proxy.TransferFunction.Points) == ramp,
+          "%s TF after reset to the data range %s" % (name, list(proxy.TransferFunction.Points)))
+
+if failures:
+    sys.exit("%d check(s) failed" % len(failures))
+print("ParaView usability checks passed (array choice, film, tiles, window, errors, TF range)")
