@@ -57,24 +57,25 @@ int vtkMCXProjectorBase::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   mcx::ProjectionGeometry g;
   std::string problem;
+  // The corners of the volume's support, when the input tells them.
+  double corners[24];
+  bool framed = false;
+  if (inInfo->Has(vtkMCXPointSampler::SUPPORT_CORNERS()))
+  {
+    inInfo->Get(vtkMCXPointSampler::SUPPORT_CORNERS(), corners);
+    framed = true;
+  }
+  else
+  {
+    framed = mcx::SupportCornersFromInformation(
+      inInfo, mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners);
+  }
   if (this->Camera)
   {
     problem = mcx::GeometryFromCamera(this->Camera, this->ImageSize, this->PixelSpacing, 0.0, g);
   }
   else
   {
-    double corners[24];
-    bool framed = false;
-    if (inInfo->Has(vtkMCXPointSampler::SUPPORT_CORNERS()))
-    {
-      inInfo->Get(vtkMCXPointSampler::SUPPORT_CORNERS(), corners);
-      framed = true;
-    }
-    else
-    {
-      framed = mcx::SupportCornersFromInformation(
-        inInfo, mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners);
-    }
     for (int a = 0; a < 3; ++a)
     {
       g.U[a] = this->DetectorAxisU[a];
@@ -130,12 +131,25 @@ int vtkMCXProjectorBase::RequestInformation(
     return 0;
   }
   this->Internals->Geometry = g;
+  // The detector plane's depth: the camera's focal plane, else the support's centre.
+  double depth = this->Camera ? vtkMath::Dot(this->Camera->GetFocalPoint(), g.W) : 0.0;
+  if (!this->Camera && framed)
+  {
+    depth = 0.0;
+    for (int c = 0; c < 8; ++c)
+    {
+      depth += vtkMath::Dot(corners + 3 * c, g.W) / 8.0;
+    }
+  }
+  this->Internals->PlaneDepth = depth;
   const int extent[6] = { 0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0 };
-  const double origin[3] = { g.Origin[0], g.Origin[1], 0.0 };
+  double origin[3], direction[9];
+  this->OutputPlacement(origin, direction);
   const double spacing[3] = { g.Spacing[0], g.Spacing[1], 1.0 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
   return 1;
 }
@@ -156,7 +170,10 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
 {
   const mcx::ProjectionGeometry& g = this->Internals->Geometry;
   output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
-  output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
+  double origin[3], direction[9];
+  this->OutputPlacement(origin, direction);
+  output->SetOrigin(origin);
+  output->SetDirectionMatrix(direction);
   output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
   vtkNew<vtkDoubleArray> values;
   values->SetName(LineIntegralName());
@@ -167,10 +184,38 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
   return values;
 }
 
+void vtkMCXProjectorBase::OutputPlacement(double origin[3], double direction[9]) const
+{
+  const mcx::ProjectionGeometry& g = this->Internals->Geometry;
+  if (!this->PlaceOnDetectorPlane)
+  {
+    const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    std::copy(identity, identity + 9, direction);
+    origin[0] = g.Origin[0];
+    origin[1] = g.Origin[1];
+    origin[2] = 0.0;
+    return;
+  }
+  // Columns U, V, W; pixel (0, 0) where the plane coordinates Origin put it:
+  // absolute along U and V for a parallel view, from the principal point on
+  // the focal plane for a perspective one.
+  for (int r = 0; r < 3; ++r)
+  {
+    direction[3 * r] = g.U[r];
+    direction[3 * r + 1] = g.V[r];
+    direction[3 * r + 2] = g.W[r];
+    const double onAxis = g.Perspective
+      ? g.Eye[r] + g.FocalDistance * g.W[r]
+      : this->Internals->PlaneDepth * g.W[r];
+    origin[r] = onAxis + g.Origin[0] * g.U[r] + g.Origin[1] * g.V[r];
+  }
+}
+
 void vtkMCXProjectorBase::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "PlaceOnDetectorPlane: " << this->PlaceOnDetectorPlane << "\n";
   os << indent << "DetectorAxisU: " << this->DetectorAxisU[0] << " " << this->DetectorAxisU[1]
      << " " << this->DetectorAxisU[2] << "\n";
   os << indent << "DetectorAxisV: " << this->DetectorAxisV[0] << " " << this->DetectorAxisV[1]

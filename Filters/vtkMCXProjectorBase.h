@@ -67,6 +67,22 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Where the output lies (default off). Off: in the XY plane, its origin
+   * and spacing in detector-plane coordinates (pixel (i, j) at
+   * (Origin[0] + i s, Origin[1] + j s, 0)). On: in the view's detector plane
+   * in world space, with the direction matrix (U, V, W) of the detector axes
+   * and the view direction, so that a 3D scene shows the image where the
+   * detector of its view is, facing the view. The plane is the camera's
+   * focal plane, or for an explicit detector the plane through the centre
+   * of the volume's support. The values do not change.
+   */
+  vtkSetMacro(PlaceOnDetectorPlane, bool);
+  vtkGetMacro(PlaceOnDetectorPlane, bool);
+  vtkBooleanMacro(PlaceOnDetectorPlane, bool);
+  ///@}
+
+  ///@{
   /** Image size in pixels; 0 picks it automatically (see the class description). */
   vtkSetVector2Macro(ImageSize, int);
   vtkGetVector2Macro(ImageSize, int);
@@ -123,11 +139,15 @@ protected:
   /** Gives the output its extent, origin and spacing and a zeroed LineIntegral array. */
   vtkDoubleArray* AllocateLineIntegral(vtkImageData* output);
 
+  /** The output's origin and direction matrix (see PlaceOnDetectorPlane). */
+  void OutputPlacement(double origin[3], double direction[9]) const;
+
   vtkCamera* Camera = nullptr;
   double DetectorAxisU[3] = { 1, 0, 0 };
   double DetectorAxisV[3] = { 0, 1, 0 };
   double DetectorCenter[2] = { 0, 0 };
   bool CenterOnVolume = true;
+  bool PlaceOnDetectorPlane = false;
   int ImageSize[2] = { 0, 0 };
   double PixelSpacing = 0.0;
   int DefaultImageSize = 512;

@@ -10,6 +10,9 @@
 struct vtkMCXProjectorBase::vtkInternals
 {
   mcx::ProjectionGeometry Geometry;
+  // Along the view direction, where the detector plane lies in world space
+  // (PlaceOnDetectorPlane): W . x for the plane's points.
+  double PlaneDepth = 0.0;
 };
 
 #endif

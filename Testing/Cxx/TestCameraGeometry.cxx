@@ -181,6 +181,62 @@ TEST(CameraGeometry, ProjectorPutsEachPointInVTKsPixel)
   }
 }
 
+TEST(CameraGeometry, ImagePlacedOnTheDetectorPlaneFacesItsView)
+{
+  // PlaceOnDetectorPlane: the world position of each pixel centre (origin,
+  // spacing and direction matrix of the output) is where VTK's projection of
+  // this camera puts that pixel, on the focal plane; the values are those of
+  // the image in detector coordinates.
+  for (const View& view : Views())
+  {
+    vtkNew<vtkPoints> points;
+    for (const auto& x : WorldPoints(view.Camera))
+    {
+      points->InsertNextPoint(x.data());
+    }
+    vtkNew<vtkPolyData> cloud;
+    cloud->SetPoints(points);
+    vtkNew<vtkDoubleArray> weight;
+    weight->SetName(vtkMCXPointSampler::SampleWeightName());
+    weight->InsertNextValue(1.0);
+    cloud->GetFieldData()->AddArray(weight);
+    vtkNew<vtkMCXProjector> flat;
+    flat->SetInputData(cloud);
+    flat->SetCamera(view.Camera);
+    flat->SetImageSize(view.Width, view.Height);
+    flat->Update();
+    vtkNew<vtkMCXProjector> placed;
+    placed->SetInputData(cloud);
+    placed->SetCamera(view.Camera);
+    placed->SetImageSize(view.Width, view.Height);
+    placed->PlaceOnDetectorPlaneOn();
+    placed->Update();
+    vtkImageData* image = placed->GetOutput();
+    const double* focal = view.Camera->GetFocalPoint();
+    const double* normal = view.Camera->GetDirectionOfProjection();
+    for (const int i : { 0, view.Width / 3, view.Width - 1 })
+    {
+      for (const int j : { 0, view.Height / 2, view.Height - 1 })
+      {
+        double x[3], d[2];
+        image->TransformContinuousIndexToPhysicalPoint(i, j, 0, x);
+        ASSERT_TRUE(mcxtest::DisplayCoordinates(view.Camera, view.Width, view.Height, x, d));
+        EXPECT_NEAR(i + 0.5, d[0], 1e-6 * view.Width) << view.Name;
+        EXPECT_NEAR(j + 0.5, d[1], 1e-6 * view.Height) << view.Name;
+        const double off[3] = { x[0] - focal[0], x[1] - focal[1], x[2] - focal[2] };
+        EXPECT_NEAR(0.0, vtkMath::Dot(off, normal), 1e-9 * view.Camera->GetDistance()) << view.Name;
+      }
+    }
+    vtkDataArray* a = mcxtest::LineIntegral(flat->GetOutput());
+    vtkDataArray* b = mcxtest::LineIntegral(image);
+    ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+    for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)
+    {
+      ASSERT_EQ(a->GetTuple1(p), b->GetTuple1(p)) << view.Name;
+    }
+  }
+}
+
 TEST(CameraGeometry, ReferenceFramesABoxAsVTKProjectsIt)
 {
   // A uniform box seen along its z axis by a parallel camera of a
