@@ -650,7 +650,7 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     // pixel); later renders add what the time budget affords.
     target = sourceMade && static_cast<double>(in.Image.Count()) >= floor
       ? in.Image.Count()
-      : in.RefinementTarget(volume->GetAllocatedRenderTime(), floor);
+      : in.RefinementTarget(this->RenderTimeBudget(volume), floor);
   }
   if (target > in.Image.Count())
   {
@@ -678,6 +678,14 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   ++this->NumberOfDraws;
   this->TimeToDraw =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double vtkMCXXRayMapper::RenderTimeBudget(vtkVolume* volume) const
+{
+  const double allocated = volume->GetAllocatedRenderTime();
+  return this->MaximumRenderTime > 0 && !(allocated < this->MaximumRenderTime)
+    ? this->MaximumRenderTime
+    : allocated;
 }
 
 void vtkMCXXRayMapper::ReleaseGraphicsResources(vtkWindow* window)
@@ -713,6 +721,7 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NegativeLog: " << this->NegativeLog << "\n";
   os << indent << "ProgressiveRefinement: " << this->ProgressiveRefinement << "\n";
   os << indent << "InitialSampleExponent: " << this->InitialSampleExponent << "\n";
+  os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
   os << indent << "FootprintReach: " << this->FootprintReach << "\n";
   os << indent << "NumberOfAccumulatedSamples: " << this->GetNumberOfAccumulatedSamples() << "\n";
   os << indent << "NumberOfRestarts: " << this->NumberOfRestarts << "\n";

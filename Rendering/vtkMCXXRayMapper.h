@@ -151,6 +151,18 @@ public:
 
   ///@{
   /**
+   * The most time one render may spend projecting points, in seconds (0,
+   * the default: no limit beyond the prop's allocated render time). An
+   * application sets it for interactive renders (ParaView's representation
+   * does while the camera moves) so that a frame draws only the prefix that
+   * fits, and clears it for the still render.
+   */
+  vtkSetClampMacro(MaximumRenderTime, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumRenderTime, double);
+  ///@}
+
+  ///@{
+  /**
    * The first image after a change has at least 2^InitialSampleExponent - 1
    * points (default 14), however little time is allocated.
    */
@@ -214,6 +226,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
+  /** Seconds this render may spend projecting: allocated, capped by MaximumRenderTime. */
+  double RenderTimeBudget(vtkVolume* volume) const;
+
   double ColorWindow = 1.0;
   double ColorLevel = 0.5;
   bool AutomaticWindowLevel = true;
@@ -228,6 +243,7 @@ protected:
   bool NegativeLog = false;
   bool ProgressiveRefinement = true;
   int InitialSampleExponent = 14;
+  double MaximumRenderTime = 0.0;
   double FootprintReach = 16.0;
   vtkTypeInt64 NumberOfRestarts = 0;
   vtkTypeInt64 NumberOfRefinements = 0;

@@ -9,6 +9,8 @@
 - a screenshot at three times the view's resolution is one image (the
   view rendered at that size), not a mosaic of tiles;
 - the automatic window is the same for 2^20 - 1 and 2^22 - 1 points;
+- while the camera moves (interactive renders) a frame draws only a prefix
+  that fits the interactive budget, and the still render draws every point;
 - the sampler's and projector's transfer functions default to a ramp over
   the index's densities, and "reset to data range" restores it.
 
@@ -98,7 +100,22 @@ for exponent in (20, 22):
     windows.append(mapper_call(representation, "GetDisplayedWindow"))
 check(windows[0] == windows[1] and windows[0] > 0, "automatic windows %s for 2^20 - 1 and 2^22 - 1 points" % windows)
 
-# 5. An image without a one-component point array: one error, nothing drawn.
+# 5. Camera motion draws a prefix; the still render that ends it draws all.
+view.LODThreshold = 1.0  # MB: the 2^22 - 1 points (48 MiB) make moves interactive renders
+display.XRayInteractiveRenderTime = 0.001
+Render(view)
+camera = view.GetActiveCamera()
+drawn = []
+for step in range(3):
+    camera.Azimuth(2)
+    view.SMProxy.InteractiveRender()
+    drawn.append(int(mapper_call(representation, "GetNumberOfAccumulatedSamples")))
+check(all(0 < n < 2**22 - 1 for n in drawn), "interactive frames drew %s points, not a prefix of 2^22 - 1" % drawn)
+Render(view)
+still = int(mapper_call(representation, "GetNumberOfAccumulatedSamples"))
+check(still == 2**22 - 1, "the still render after the motion drew %d points, not 2^22 - 1" % still)
+
+# 6. An image without a one-component point array: one error, nothing drawn.
 errors = []
 wavelet = Wavelet()
 vectors = Calculator(Input=wavelet, Function="iHat*RTData", ResultArrayName="vectors")
@@ -111,7 +128,7 @@ Render(view)  # the observer keeps the error from being printed
 check(len(errors) == 1, "%d errors for an image without a density array, not 1" % len(errors))
 Delete(vector_display)
 
-# 6. The filters' transfer functions: a ramp over the densities by default.
+# 7. The filters' transfer functions: a ramp over the densities by default.
 index = XRayDensityIndex(Input=reader)
 index.UpdatePipeline()
 ramp = [DENSITY_RANGE[0], 0.0, 0.5, 0.0, DENSITY_RANGE[1], 1.0, 0.5, 0.0]
@@ -124,4 +141,4 @@ for name, proxy in (("sampler", XRayPointSampler(Input=index)), ("projector", XR
 
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
-print("ParaView usability checks passed (array choice, film, tiles, window, errors, TF range)")
+print("ParaView usability checks passed (array choice, film, tiles, window, interaction, errors, TF range)")

@@ -18,6 +18,8 @@
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkMCXXRayRepresentation);
@@ -143,7 +145,13 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   if (request == vtkPVView::REQUEST_UPDATE())
   {
     // Only the index travels to the rendering processes: 4 or 8 bytes a voxel.
-    vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex);
+    // The size that decides on interactive (LOD) renders is that of the
+    // cloud the renders draw, so that a large point count makes camera
+    // motion use the interactive budget.
+    const double cloudKiB = 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
+    const double indexKiB = this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
+    vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex,
+      static_cast<unsigned long>(std::min(std::max(cloudKiB, indexKiB), 4.0e9)));
     if (vtkMath::AreBoundsInitialized(this->DataBounds))
     {
       vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
@@ -167,6 +175,12 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     {
       this->Sampler->RemoveAllInputConnections(0);
     }
+    // While the camera moves (an interactive, LOD render), each frame
+    // projects only what fits the interactive budget; the still render that
+    // ends the interaction draws every point.
+    const bool interactive =
+      inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
+    this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime : 0.0);
     this->SetVisibility(this->GetVisibility());
   }
   return 1;
@@ -286,6 +300,15 @@ void vtkMCXXRayRepresentation::SetColorLevel(double level)
   this->Mapper->SetColorLevel(level);
 }
 
+void vtkMCXXRayRepresentation::SetInteractiveRenderTime(double seconds)
+{
+  if (this->InteractiveRenderTime != seconds)
+  {
+    this->InteractiveRenderTime = seconds;
+    this->Modified();
+  }
+}
+
 void vtkMCXXRayRepresentation::SetProgressiveRefinement(bool progressive)
 {
   this->Mapper->SetProgressiveRefinement(progressive);
@@ -306,6 +329,7 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DeliveredIndex: " << this->DeliveredIndex.GetPointer() << "\n";
   os << indent << "OpacityFunction: " << this->OpacityFunction.GetPointer() << "\n";
   os << indent << "DefaultRamp: " << this->DefaultRamp.GetPointer() << "\n";
+  os << indent << "InteractiveRenderTime: " << this->InteractiveRenderTime << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

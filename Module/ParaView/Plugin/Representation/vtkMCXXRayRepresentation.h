@@ -65,6 +65,15 @@ public:
   void SetColorWindow(double window);
   void SetColorLevel(double level);
   void SetProgressiveRefinement(bool progressive);
+  ///@}
+
+  ///@{
+  /**
+   * Seconds a frame may spend projecting points while the camera moves
+   * (default 0.05: 20 frames a second); the still render draws them all.
+   */
+  void SetInteractiveRenderTime(double seconds);
+  double GetInteractiveRenderTime() const { return this->InteractiveRenderTime; }
   void SetFootprintReach(double reach);
   ///@}
 
@@ -88,6 +97,7 @@ protected:
   vtkSmartPointer<vtkPiecewiseFunction> OpacityFunction; // the colour map's, if any
   vtkNew<vtkPiecewiseFunction> DefaultRamp;              // else this, over the densities
   double DataBounds[6];
+  double InteractiveRenderTime = 0.05;
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
