@@ -12,7 +12,7 @@
 #include "vtkMCXFirstErrorObserver.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaImageReader.h"
-#include "vtkNIFTIImageReader.h"
+#include "vtkMCXNIFTIReader.h"
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
 #include "vtkPointData.h"
@@ -36,46 +36,6 @@ bool EndsWith(std::string text, const std::string& suffix)
   return text.size() >= suffix.size() &&
     text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
-
-// NIfTI: world = (s|q)form * (spacing * index); apply it as origin and
-// direction, and the scl_slope/scl_inter rescaling, so values and geometry are physical.
-void ApplyNiftiHeader(vtkNIFTIImageReader* reader, vtkImageData* image)
-{
-  vtkMatrix4x4* form =
-    reader->GetSFormMatrix() ? reader->GetSFormMatrix() : reader->GetQFormMatrix();
-  if (form)
-  {
-    double direction[9];
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        direction[3 * r + c] = form->GetElement(r, c);
-      }
-    }
-    const double origin[3] = { form->GetElement(0, 3), form->GetElement(1, 3),
-      form->GetElement(2, 3) };
-    image->SetDirectionMatrix(direction);
-    image->SetOrigin(origin);
-  }
-  // NIfTI-1: scl_slope 0 means no scaling at all (scl_inter ignored).
-  const double slope = reader->GetRescaleSlope();
-  const double intercept = reader->GetRescaleIntercept();
-  if (slope != 0.0 && (slope != 1.0 || intercept != 0.0))
-  {
-    vtkDataArray* scalars = image->GetPointData()->GetScalars();
-    vtkSmartPointer<vtkDataArray> rescaled =
-      vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
-    rescaled->SetName(scalars->GetName());
-    rescaled->SetNumberOfTuples(scalars->GetNumberOfTuples());
-    for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-    {
-      rescaled->SetTuple1(i, scalars->GetTuple1(i) * slope + intercept);
-    }
-    image->GetPointData()->SetScalars(rescaled);
-  }
-}
-
 }
 
 std::string BundledVolumePath()
@@ -122,7 +82,6 @@ vtkSmartPointer<vtkImageData> ReadVolume(
     return ReadDicomSeries(path, options.DicomSeries, error);
   }
   vtkSmartPointer<vtkAlgorithm> reader;
-  vtkNIFTIImageReader* nifti = nullptr;
   if (EndsWith(path, ".vti"))
   {
     auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
@@ -137,10 +96,9 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   }
   else if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
   {
-    auto n = vtkSmartPointer<vtkNIFTIImageReader>::New();
-    n->SetFileName(path.c_str());
-    nifti = n;
-    reader = n;
+    auto nifti = vtkSmartPointer<vtkMCXNIFTIReader>::New(); // sform/qform and scaling applied
+    nifti->SetFileName(path.c_str());
+    reader = nifti;
   }
   else if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
   {
@@ -181,10 +139,6 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();
   volume->ShallowCopy(image);
-  if (nifti)
-  {
-    ApplyNiftiHeader(nifti, volume);
-  }
   return volume;
 }
 

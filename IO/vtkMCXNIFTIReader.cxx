@@ -1,0 +1,175 @@
+#include "vtkMCXNIFTIReader.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMCXFirstErrorObserver.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNIFTIImageReader.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
+#include <cctype>
+#include <new>
+#include <string>
+
+vtkStandardNewMacro(vtkMCXNIFTIReader);
+
+namespace
+{
+bool EndsWith(std::string text, const std::string& suffix) // of a lower-case suffix, any case
+{
+  std::transform(
+    text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text.size() >= suffix.size() &&
+    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Runs a stage of the wrapped reader; its first error, or "" on success.
+template <typename Stage>
+std::string Run(vtkNIFTIImageReader* reader, Stage stage)
+{
+  vtkNew<vtkMCXFirstErrorObserver> error;
+  const unsigned long tag = reader->AddObserver(vtkCommand::ErrorEvent, error);
+  stage();
+  reader->RemoveObserver(tag);
+  return error->GetMessage();
+}
+}
+
+vtkMCXNIFTIReader::vtkMCXNIFTIReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkMCXNIFTIReader::~vtkMCXNIFTIReader()
+{
+  this->SetFileName(nullptr);
+}
+
+int vtkMCXNIFTIReader::CanReadFile(const char* name)
+{
+  const std::string path = name ? name : "";
+  return EndsWith(path, ".nii") || EndsWith(path, ".nii.gz") ? 1 : 0;
+}
+
+bool vtkMCXNIFTIReader::Rescale() const
+{
+  // NIfTI-1: scl_slope 0 means no scaling at all (scl_inter ignored).
+  const double slope = this->Reader->GetRescaleSlope();
+  const double intercept = this->Reader->GetRescaleIntercept();
+  return slope != 0.0 && (slope != 1.0 || intercept != 0.0);
+}
+
+void vtkMCXNIFTIReader::Placement(double origin[3], double direction[9]) const
+{
+  vtkMatrix4x4* form = this->Reader->GetSFormMatrix() ? this->Reader->GetSFormMatrix()
+                                                      : this->Reader->GetQFormMatrix();
+  for (int r = 0; r < 3; ++r)
+  {
+    origin[r] = form ? form->GetElement(r, 3) : 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      direction[3 * r + c] = form ? form->GetElement(r, c) : (r == c ? 1.0 : 0.0);
+    }
+  }
+}
+
+int vtkMCXNIFTIReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData::GetData(outInfo)->Initialize(); // no stale volume after a failure
+  const std::string path = this->FileName ? this->FileName : "";
+  if (path.empty())
+  {
+    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    vtkErrorMacro(<< "no FileName is set");
+    return 0;
+  }
+  this->Reader->SetFileName(path.c_str());
+  const std::string problem = Run(this->Reader, [this] { this->Reader->UpdateInformation(); });
+  if (!problem.empty())
+  {
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    vtkErrorMacro(<< "cannot read '" << path << "': " << problem);
+    return 0;
+  }
+  vtkInformation* readerInfo = this->Reader->GetOutputInformation(0);
+  outInfo->CopyEntry(readerInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  outInfo->CopyEntry(readerInfo, vtkDataObject::SPACING());
+  outInfo->CopyEntry(readerInfo, vtkDataObject::POINT_DATA_VECTOR(), 1);
+  if (this->Rescale())
+  {
+    vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
+  }
+  double origin[3], direction[9];
+  this->Placement(origin, direction);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
+  this->SetErrorCode(vtkErrorCode::NoError);
+  return 1;
+}
+
+int vtkMCXNIFTIReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  output->Initialize();
+  const std::string path = this->FileName ? this->FileName : "";
+  std::string problem;
+  try
+  {
+    problem = Run(this->Reader, [this] { this->Reader->UpdateWholeExtent(); });
+  }
+  catch (const std::bad_alloc&)
+  {
+    problem = "out of memory";
+  }
+  vtkImageData* image = this->Reader->GetOutput();
+  if (problem.empty() && (image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars()))
+  {
+    problem = "no volume data";
+  }
+  if (!problem.empty())
+  {
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    vtkErrorMacro(<< "cannot read '" << path << "': " << problem);
+    return 0;
+  }
+  output->ShallowCopy(image);
+  double origin[3], direction[9];
+  this->Placement(origin, direction);
+  output->SetOrigin(origin);
+  output->SetDirectionMatrix(direction);
+  if (this->Rescale())
+  {
+    const double slope = this->Reader->GetRescaleSlope();
+    const double intercept = this->Reader->GetRescaleIntercept();
+    vtkDataArray* stored = output->GetPointData()->GetScalars();
+    auto rescaled = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
+    rescaled->SetName(stored->GetName());
+    rescaled->SetNumberOfTuples(stored->GetNumberOfTuples());
+    for (vtkIdType i = 0; i < stored->GetNumberOfTuples(); ++i)
+    {
+      rescaled->SetTuple1(i, stored->GetTuple1(i) * slope + intercept);
+    }
+    output->GetPointData()->SetScalars(rescaled);
+  }
+  this->Reader->GetOutput()->ReleaseData(); // the output holds the voxels now
+  return 1;
+}
+
+void vtkMCXNIFTIReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Reader: " << this->Reader.GetPointer() << "\n";
+}

@@ -1,0 +1,60 @@
+/**
+ * @class   vtkMCXNIFTIReader
+ * @brief   A NIfTI-1 or NIfTI-2 volume (.nii, .nii.gz) in world space and
+ *          physical values, as mcxray reads it.
+ *
+ * VTK's vtkNIFTIImageReader gives the voxels on a grid at the origin and
+ * leaves the header's placement and scaling to the caller (ParaView's own
+ * NIfTI reader ignores the sform). This reader applies them:
+ * - world = form x (spacing x index), form the sform when the file has one,
+ *   else the qform: the output's origin and direction matrix;
+ * - values = scl_slope x stored + scl_inter (float64), unless scl_slope is 0
+ *   (no scaling, as NIfTI-1 says) or the pair is 1 and 0.
+ * Errors are one vtkErrorMacro line each and leave an empty output.
+ */
+#ifndef vtkMCXNIFTIReader_h
+#define vtkMCXNIFTIReader_h
+
+#include "MonteCarloXRayIOModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+#include "vtkNew.h" // for the wrapped reader
+
+class vtkNIFTIImageReader;
+
+class MONTECARLOXRAYIO_EXPORT vtkMCXNIFTIReader : public vtkImageAlgorithm
+{
+public:
+  static vtkMCXNIFTIReader* New();
+  vtkTypeMacro(vtkMCXNIFTIReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** The .nii or .nii.gz file (default: none). */
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  /** 1 if the file name ends in .nii or .nii.gz (what ParaView asks a reader). */
+  int CanReadFile(const char* name);
+
+protected:
+  vtkMCXNIFTIReader();
+  ~vtkMCXNIFTIReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  char* FileName = nullptr;
+
+private:
+  vtkMCXNIFTIReader(const vtkMCXNIFTIReader&) = delete;
+  void operator=(const vtkMCXNIFTIReader&) = delete;
+
+  // The header's placement and scaling, from the last RequestInformation.
+  bool Rescale() const;
+  void Placement(double origin[3], double direction[9]) const;
+
+  vtkNew<vtkNIFTIImageReader> Reader;
+};
+
+#endif
