@@ -12,7 +12,10 @@
 - while the camera moves (interactive renders) a frame draws only a prefix
   that fits the interactive budget, and the still render draws every point;
 - the sampler's and projector's transfer functions default to a ramp over
-  the index's densities, and "reset to data range" restores it.
+  the index's densities, and "reset to data range" restores it;
+- with ParaView's streaming on, a still render spends only its budget and
+  the streaming passes (what the GUI runs after each render, without user
+  action) refine the image until every point counts, then stop.
 
     pvbatch pvbatch_usability.py PLUGIN VOLUME.vti OUTPUT_DIR
 """
@@ -20,6 +23,7 @@ import os
 import sys
 
 import numpy
+from paraview.modules.vtkRemotingViews import vtkPVView
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -139,6 +143,26 @@ for name, proxy in (("sampler", XRayPointSampler(Input=index)), ("projector", XR
     check(list(proxy.TransferFunction.Points) == ramp,
           "%s TF after reset to the data range %s" % (name, list(proxy.TransferFunction.Points)))
 
+# 8. Streaming: the still render draws a prefix, each pass adds to it, the
+# error falls, and the passes stop once every point counts.
+vtkPVView.SetEnableStreaming(True)  # as paraview --enable-streaming
+view.LODThreshold = 1000.0
+display.XRayStillRenderTime = 0.001
+camera.Azimuth(2)
+Render(view)
+counts = [int(mapper_call(representation, "GetNumberOfAccumulatedSamples"))]
+errors_along = [mapper_call(representation, "GetEstimatedRelativeError")]
+passes = 0
+while view.SMProxy.StreamingUpdate(True) and passes < 40:
+    passes += 1
+    counts.append(int(mapper_call(representation, "GetNumberOfAccumulatedSamples")))
+    errors_along.append(mapper_call(representation, "GetEstimatedRelativeError"))
+check(counts[0] < 2**22 - 1, "the budgeted still render drew all %d points" % counts[0])
+check(counts[-1] == 2**22 - 1 and passes < 40, "streaming ended at %d points after %d passes" % (counts[-1], passes))
+check(all(b > a for a, b in zip(counts, counts[1:])), "a streaming pass added no points: %s" % counts)
+check(errors_along[-1] < 0.5 * errors_along[0], "the error went from %g to %g only" % (errors_along[0], errors_along[-1]))
+
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
-print("ParaView usability checks passed (array choice, film, tiles, window, interaction, errors, TF range)")
+print("ParaView usability checks passed (array choice, film, tiles, window, interaction, errors, TF range, "
+      "streaming)")

@@ -15,6 +15,7 @@
 #include "vtkPVRenderView.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 
@@ -152,6 +153,9 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     const double indexKiB = this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
     vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex,
       static_cast<unsigned long>(std::min(std::max(cloudKiB, indexKiB), 4.0e9)));
+    // With streaming on, ParaView asks after each render whether there is
+    // more to show (REQUEST_STREAMING_UPDATE) and renders again if so.
+    vtkPVRenderView::SetStreamable(inInfo, this, true);
     if (vtkMath::AreBoundsInitialized(this->DataBounds))
     {
       vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
@@ -178,10 +182,23 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // While the camera moves (an interactive, LOD render), each frame
     // projects only what fits the interactive budget; the still render that
     // ends the interaction draws every point.
+    // With streaming on, a still render too spends at most the still budget,
+    // and the streaming passes that follow it add the rest.
     const bool interactive =
       inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
-    this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime : 0.0);
+    this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime
+        : vtkPVView::GetEnableStreaming()       ? this->StillRenderTime
+                                                : 0.0);
     this->SetVisibility(this->GetVisibility());
+  }
+  else if (request == vtkPVRenderView::REQUEST_STREAMING_UPDATE())
+  {
+    // More to show while points remain: a token piece makes the view render
+    // again (the points are already here; the render adds the next prefix).
+    if (this->Volume->GetVisibility() && !this->Mapper->IsRefinementComplete())
+    {
+      vtkPVRenderView::SetNextStreamedPiece(inInfo, this, this->MorePointsToken);
+    }
   }
   return 1;
 }
@@ -309,6 +326,15 @@ void vtkMCXXRayRepresentation::SetInteractiveRenderTime(double seconds)
   }
 }
 
+void vtkMCXXRayRepresentation::SetStillRenderTime(double seconds)
+{
+  if (this->StillRenderTime != seconds)
+  {
+    this->StillRenderTime = seconds;
+    this->Modified();
+  }
+}
+
 void vtkMCXXRayRepresentation::SetProgressiveRefinement(bool progressive)
 {
   this->Mapper->SetProgressiveRefinement(progressive);
@@ -330,6 +356,7 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OpacityFunction: " << this->OpacityFunction.GetPointer() << "\n";
   os << indent << "DefaultRamp: " << this->DefaultRamp.GetPointer() << "\n";
   os << indent << "InteractiveRenderTime: " << this->InteractiveRenderTime << "\n";
+  os << indent << "StillRenderTime: " << this->StillRenderTime << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

@@ -21,6 +21,7 @@
 #include "vtkSmartPointer.h" // for members
 
 class vtkImageData;
+class vtkPolyData;
 class vtkMCXDensityIndex;
 class vtkMCXPointSampler;
 class vtkMCXXRayMapper;
@@ -74,6 +75,17 @@ public:
    */
   void SetInteractiveRenderTime(double seconds);
   double GetInteractiveRenderTime() const { return this->InteractiveRenderTime; }
+  ///@}
+
+  ///@{
+  /**
+   * With ParaView's streaming on (paraview --enable-streaming), the seconds
+   * a still render may spend projecting points (default 0.5); the streaming
+   * passes that follow add the rest, render by render, without user action.
+   * Without streaming a still render draws every point.
+   */
+  void SetStillRenderTime(double seconds);
+  double GetStillRenderTime() const { return this->StillRenderTime; }
   void SetFootprintReach(double reach);
   ///@}
 
@@ -98,6 +110,8 @@ protected:
   vtkNew<vtkPiecewiseFunction> DefaultRamp;              // else this, over the densities
   double DataBounds[6];
   double InteractiveRenderTime = 0.05;
+  double StillRenderTime = 0.5;
+  vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
