@@ -143,7 +143,30 @@ for name, proxy in (("sampler", XRayPointSampler(Input=index)), ("projector", XR
     check(list(proxy.TransferFunction.Points) == ramp,
           "%s TF after reset to the data range %s" % (name, list(proxy.TransferFunction.Points)))
 
-# 8. Streaming: the still render draws a prefix, each pass adds to it, the
+# 8. Abort: 2^30 samples (about a minute here) stop at the first progress
+# report once the algorithm is told to abort, as ParaView's abort button
+# tells it: the output does not hold them all.
+long_run = XRayProjector(Input=index)
+long_run.SampleExponent = 30
+long_run.ImageSize = [64, 64]
+algorithm = long_run.GetClientSideObject()
+labels = []
+
+
+def abort_on_progress(caller, event):
+    labels.append(caller.GetProgressText())
+    caller.SetAbortExecute(1)
+
+
+algorithm.AddObserver("ProgressEvent", abort_on_progress)
+long_run.UpdatePipeline()
+aborted = algorithm.GetOutputDataObject(0)
+count = aborted.GetFieldData().GetArray("SampleCount")
+check(count is None or count.GetTuple1(0) < 2**30 - 1,
+      "the aborted projection holds all %d samples" % (count.GetTuple1(0) if count else -1))
+check(labels and labels[0] == "X-Ray Projector", "progress labelled %s" % labels[:1])
+
+# 9. Streaming: the still render draws a prefix, each pass adds to it, the
 # error falls, and the passes stop once every point counts.
 vtkPVView.SetEnableStreaming(True)  # as paraview --enable-streaming
 view.LODThreshold = 1000.0
