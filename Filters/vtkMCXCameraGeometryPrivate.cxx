@@ -9,6 +9,83 @@
 namespace mcx
 {
 
+namespace
+{
+double Dot3(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// An off-axis or sheared perspective camera (head-tracked screens, CAVEs,
+// oblique frusta) from VTK's composite matrix M = P V: still a central
+// projection, whose eye is where rows 0, 1 and 3 vanish, the view
+// direction W is row 3's (clip w grows along it), and on a plane at
+// distance F along W, n_k = (row_k . (x - eye)) / (|row 3| F) is affine in
+// the plane coordinate along the part of row k orthogonal to W: the screen's
+// axes. Fills eye and axes, and scale and offset with n = scale p + offset.
+std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
+  ProjectionGeometry& g, double scale[2], double offset[2])
+{
+  vtkMatrix4x4* m = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  double rows[4][4];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      rows[r][c] = m->GetElement(r, c);
+    }
+  }
+  double a[3][3] = { { rows[0][0], rows[0][1], rows[0][2] },
+    { rows[1][0], rows[1][1], rows[1][2] }, { rows[3][0], rows[3][1], rows[3][2] } };
+  double eye[3] = { -rows[0][3], -rows[1][3], -rows[3][3] };
+  double* system[3] = { a[0], a[1], a[2] };
+  if (!vtkMath::SolveLinearSystem(system, eye, 3))
+  {
+    return "the camera's off-axis projection has no eye point";
+  }
+  const double depthScale = vtkMath::Norm(rows[3], 3);
+  double w[3] = { rows[3][0] / depthScale, rows[3][1] / depthScale, rows[3][2] / depthScale };
+  double axes[2][3];
+  for (int k = 0; k < 2; ++k)
+  {
+    const double along = Dot3(rows[k], w);
+    for (int i = 0; i < 3; ++i)
+    {
+      axes[k][i] = rows[k][i] - along * w[i];
+    }
+    const double length = vtkMath::Normalize(axes[k]);
+    scale[k] = length / (depthScale * distance);
+    offset[k] = along / depthScale;
+  }
+  if (std::fabs(Dot3(axes[0], axes[1])) > 1e-9)
+  {
+    return "the camera's off-axis screen is not rectangular";
+  }
+  // The near plane (normalized depth -1) along W from the eye: at E + t W,
+  // (row 2 + row 3) . (E + t W, 1) = 0, and row 3 vanishes at the eye.
+  double sum[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    sum[i] = rows[2][i] + rows[3][i];
+  }
+  const double nearDistance =
+    -(Dot3(rows[2], eye) + rows[2][3]) / Dot3(sum, w);
+  if (!(nearDistance > 0) || !std::isfinite(nearDistance))
+  {
+    return "the camera's off-axis near plane is not in front of the eye";
+  }
+  g.NearDistance = nearDistance;
+  for (int i = 0; i < 3; ++i)
+  {
+    g.Eye[i] = eye[i];
+    g.U[i] = axes[0][i];
+    g.V[i] = axes[1][i];
+    g.W[i] = w[i];
+  }
+  return std::string();
+}
+}
+
 std::string GeometryFromCamera(
   vtkCamera* camera, const int size[2], double spacing, double aspect, ProjectionGeometry& g)
 {
@@ -52,6 +129,7 @@ std::string GeometryFromCamera(
   // the offsets.
   vtkMatrix4x4* p = camera->GetProjectionTransformMatrix(aspect, -1, 1);
   double centre[2] = { 0.0, 0.0 };
+  double scales[2], offsets[2];
   if (g.Perspective)
   {
     g.FocalDistance = distance;
@@ -64,8 +142,22 @@ std::string GeometryFromCamera(
   }
   for (int k = 0; k < 2; ++k)
   {
-    const double scale = g.Perspective ? p->GetElement(k, k) / distance : p->GetElement(k, k);
-    const double offset = g.Perspective ? -p->GetElement(k, 2) : p->GetElement(k, 3);
+    scales[k] = g.Perspective ? p->GetElement(k, k) / distance : p->GetElement(k, k);
+    offsets[k] = g.Perspective ? -p->GetElement(k, 2) : p->GetElement(k, 3);
+  }
+  const double* shear = camera->GetViewShear();
+  if (g.Perspective && (camera->GetUseOffAxisProjection() || shear[0] != 0 || shear[1] != 0))
+  {
+    const std::string problem = OffAxisGeometry(camera, aspect, distance, g, scales, offsets);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    const double scale = scales[k];
+    const double offset = offsets[k];
     if (!(scale > 0) || !std::isfinite(scale) || !std::isfinite(offset))
     {
       return "the camera's view angle or parallel scale gives no image";
@@ -82,7 +174,8 @@ std::string GeometryFromCamera(
 bool HasUnmodelledProjection(vtkCamera* camera)
 {
   const double* shear = camera->GetViewShear();
-  return shear[0] != 0 || shear[1] != 0 || camera->GetUseOffAxisProjection();
+  return camera->GetParallelProjection() &&
+    (shear[0] != 0 || shear[1] != 0 || camera->GetUseOffAxisProjection());
 }
 
 } // namespace mcx

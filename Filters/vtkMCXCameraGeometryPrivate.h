@@ -19,14 +19,18 @@ namespace mcx
 /// ratio) places them: window centre and tiled viewports included, so that
 /// a tile of a large screenshot is that part of the large image. Pixels are
 /// `spacing` world units on the focal plane when spacing > 0, centred where
-/// the camera's window centre puts the image centre. View shear and off-axis
-/// projection are not modelled (see HasUnmodelledProjection). Returns why
-/// the camera is unusable, or "".
+/// the camera's window centre puts the image centre. A perspective camera
+/// with off-axis projection (screen corners and eye position, as
+/// head-tracked displays set them) or view shear is taken from VTK's
+/// composite matrix: the eye, the screen's axes and its normal. A parallel
+/// camera's shear or off-axis projection (oblique rays) is not modelled
+/// (see HasUnmodelledProjection).
+/// Returns why the camera is unusable, or "".
 MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(vtkCamera* camera, const int size[2],
   double spacing, double aspect, ProjectionGeometry& g);
 
-/// True when the camera's view shear or off-axis projection is set: rays
-/// that are not those of a detector plane perpendicular to the view.
+/// True for a parallel camera with view shear or off-axis projection: oblique
+/// rays, not those of a detector plane perpendicular to the view.
 MONTECARLOXRAYFILTERS_EXPORT bool HasUnmodelledProjection(vtkCamera* camera);
 
 } // namespace mcx

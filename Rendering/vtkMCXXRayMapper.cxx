@@ -305,8 +305,8 @@ struct vtkMCXXRayMapper::vtkInternals
     if (mcx::HasUnmodelledProjection(camera))
     {
       vtkWarningWithObjectMacro(self,
-        "View shear and off-axis projection are ignored: the X-ray is drawn for the camera "
-        "without them.");
+        "The view shear and off-axis projection of a parallel camera are ignored: the X-ray "
+        "is drawn for the camera without them.");
     }
     std::vector<double> limits(view.Depth.size());
     const double* range = camera->GetClippingRange();

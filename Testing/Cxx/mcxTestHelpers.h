@@ -155,8 +155,29 @@ inline double PerspectiveWeight(vtkCamera* camera, const double x[3])
   {
     return 1.0;
   }
-  const double* eye = camera->GetPosition();
-  const double* w = camera->GetDirectionOfProjection();
+  double eye[3], w[3];
+  camera->GetPosition(eye);
+  camera->GetDirectionOfProjection(w);
+  const double* shear = camera->GetViewShear();
+  if (camera->GetUseOffAxisProjection() || shear[0] != 0 || shear[1] != 0)
+  {
+    // Off the camera's position: the centre of projection is the world
+    // point VTK's matrix sends to clip coordinates (0, 0, 1, 0); depth grows
+    // along clip w's row.
+    vtkMatrix4x4* m = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(m, inverse);
+    const double centre[4] = { 0, 0, 1, 0 };
+    double h[4];
+    inverse->MultiplyPoint(centre, h);
+    const double norm = std::sqrt(m->GetElement(3, 0) * m->GetElement(3, 0) +
+      m->GetElement(3, 1) * m->GetElement(3, 1) + m->GetElement(3, 2) * m->GetElement(3, 2));
+    for (int a = 0; a < 3; ++a)
+    {
+      eye[a] = h[a] / h[3];
+      w[a] = m->GetElement(3, a) / norm;
+    }
+  }
   const double d[3] = { x[0] - eye[0], x[1] - eye[1], x[2] - eye[2] };
   const double z = d[0] * w[0] + d[1] * w[1] + d[2] * w[2];
   const double s = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
