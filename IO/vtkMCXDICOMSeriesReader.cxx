@@ -32,25 +32,20 @@ vtkStandardNewMacro(vtkMCXDICOMSeriesReader);
 
 namespace
 {
-// The first error an algorithm of vtk-dicom reports, while in scope.
+// The first error an algorithm of vtk-dicom (or its executive) reports,
+// while in scope: kept for one line of ours, not printed.
 class FirstError
 {
 public:
-  explicit FirstError(vtkAlgorithm* algorithm)
-    : Algorithm(algorithm)
-    , Tag(algorithm->AddObserver(vtkCommand::ErrorEvent, this->Observer))
-  {
-  }
-  ~FirstError() { this->Algorithm->RemoveObserver(this->Tag); }
+  explicit FirstError(vtkAlgorithm* algorithm) { this->Observer->ObserveAlgorithm(algorithm); }
+  ~FirstError() { this->Observer->StopObserving(); }
   FirstError(const FirstError&) = delete;
   FirstError& operator=(const FirstError&) = delete;
 
-  const std::string& Message() const { return this->Observer->GetMessage(); }
+  const std::string& Message() const { return this->Observer->GetErrorText(); }
 
 private:
   vtkNew<vtkMCXFirstErrorObserver> Observer;
-  vtkAlgorithm* Algorithm;
-  unsigned long Tag;
 };
 
 std::string Describe(vtkDICOMDirectory* directory, int s)
@@ -162,6 +157,14 @@ struct vtkMCXDICOMSeriesReader::Internals
   vtkNew<vtkCallbackCommand> Progress;
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   double Origin[3] = { 0, 0, 0 };
+  bool Failed = false; // the last RequestInformation reported an error
+
+  // Drops what the wrapped reader read, so that the next update reads again.
+  void Forget()
+  {
+    this->Reader->GetOutput()->ReleaseData();
+    this->Reader->Modified();
+  }
 
   // Scans the folder (again only when the name changed) and chooses the
   // series; empty on success, else what is wrong.
@@ -174,7 +177,7 @@ struct vtkMCXDICOMSeriesReader::Internals
     }
     this->Directory->SetDirectoryName(folder);
     this->Directory->SetScanDepth(4); // series in subfolders too, as exports nest them
-    this->Directory->Modified();      // files may have come or gone since the last scan
+    this->Directory->Modified();      // rescanned each time: files may have come or gone
     FirstError scan(this->Directory);
     this->Directory->Update();
     const int count = this->Directory->GetNumberOfSeries();
@@ -301,9 +304,15 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
   this->SetErrorCode(code);
   if (!problem.empty())
   {
+    // One line: reported here, then an empty extent (not a failed request,
+    // which the executive would report again).
     vtkErrorMacro(<< problem);
-    return 0;
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+    this->Internal->Failed = true;
+    return 1;
   }
+  this->Internal->Failed = false;
   vtkInformation* readerInfo = this->Internal->Reader->GetOutputInformation(0);
   outInfo->CopyEntry(readerInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
   outInfo->CopyEntry(readerInfo, vtkDataObject::SPACING());
@@ -318,6 +327,10 @@ int vtkMCXDICOMSeriesReader::RequestData(
 {
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
+  if (this->Internal->Failed)
+  {
+    return 1; // reported by RequestInformation
+  }
   const std::string folder = this->DirectoryName ? this->DirectoryName : "";
   vtkDICOMReader* reader = this->Internal->Reader;
   FirstError read(reader);
@@ -329,12 +342,13 @@ int vtkMCXDICOMSeriesReader::RequestData(
   catch (const std::bad_alloc&)
   {
     this->SetErrorCode(vtkErrorCode::UnknownError);
+    this->Internal->Forget();
     vtkErrorMacro(<< "out of memory reading the DICOM series in '" << folder << "'");
-    return 0;
+    return 1;
   }
   if (this->GetAbortExecute())
   {
-    reader->GetOutput()->ReleaseData();
+    this->Internal->Forget();
     return 1; // stopped by the user: an empty output, no error
   }
   vtkImageData* image = reader->GetOutput();
@@ -342,10 +356,11 @@ int vtkMCXDICOMSeriesReader::RequestData(
     !image->GetPointData()->GetScalars())
   {
     this->SetErrorCode(reader->GetErrorCode() ? reader->GetErrorCode() : vtkErrorCode::FileFormatError);
+    this->Internal->Forget(); // a partial read must not pass as current next time
     vtkErrorMacro(<< "cannot read the DICOM series in '" << folder << "'"
                   << (read.Message().empty() ? std::string(": no image data")
                                            : ": " + read.Message()));
-    return 0;
+    return 1;
   }
   output->ShallowCopy(image);
   output->SetOrigin(this->Internal->Origin);

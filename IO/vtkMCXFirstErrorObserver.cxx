@@ -1,5 +1,7 @@
 #include "vtkMCXFirstErrorObserver.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkExecutive.h"
 #include "vtkObjectFactory.h"
 
 #include <cctype>
@@ -12,6 +14,26 @@ void vtkMCXFirstErrorObserver::Execute(vtkObject*, unsigned long event, void* ca
   {
     this->Message = MessageOf(static_cast<const char*>(callData));
   }
+}
+
+void vtkMCXFirstErrorObserver::ObserveAlgorithm(vtkAlgorithm* algorithm)
+{
+  this->StopObserving();
+  this->Algorithm = algorithm;
+  this->Executive = algorithm->GetExecutive();
+  this->AlgorithmTag = algorithm->AddObserver(vtkCommand::ErrorEvent, this);
+  this->ExecutiveTag = this->Executive->AddObserver(vtkCommand::ErrorEvent, this);
+}
+
+void vtkMCXFirstErrorObserver::StopObserving()
+{
+  if (this->Algorithm)
+  {
+    this->Algorithm->RemoveObserver(this->AlgorithmTag);
+    this->Executive->RemoveObserver(this->ExecutiveTag);
+  }
+  this->Algorithm = nullptr;
+  this->Executive = nullptr;
 }
 
 std::string vtkMCXFirstErrorObserver::MessageOf(const std::string& report)

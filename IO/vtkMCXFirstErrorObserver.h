@@ -7,13 +7,17 @@
  * message's first line, and a report that nests another (vtk-dicom's
  * reader repeats its parser's) to the innermost one. Later errors are
  * ignored until Clear(). The report is then not printed: a program can say
- * it once, in its own words.
+ * it once, in its own words. ObserveAlgorithm() watches an algorithm and its
+ * executive (whose "returned failure" report would otherwise be printed);
+ * StopObserving() lets them go (the observed hold the observer).
  */
 #ifndef vtkMCXFirstErrorObserver_h
 #define vtkMCXFirstErrorObserver_h
 
 #include "MonteCarloXRayIOModule.h" // for export macro
 #include "vtkCommand.h"
+
+class vtkAlgorithm;
 
 #include <string> // for std::string
 
@@ -26,7 +30,13 @@ public:
   void Execute(vtkObject* caller, unsigned long event, void* callData) override;
 
   /** The first error's message since construction or Clear(); empty if none. */
-  const std::string& GetMessage() const { return this->Message; }
+  const std::string& GetErrorText() const { return this->Message; }
+
+  /** Observes the errors of the algorithm and of its executive. */
+  void ObserveAlgorithm(vtkAlgorithm* algorithm);
+
+  /** Removes this observer from what ObserveAlgorithm() watched. */
+  void StopObserving();
 
   /** Forgets the error kept so far. */
   void Clear() { this->Message.clear(); }
@@ -43,6 +53,10 @@ private:
   void operator=(const vtkMCXFirstErrorObserver&) = delete;
 
   std::string Message;
+  vtkAlgorithm* Algorithm = nullptr;
+  vtkObject* Executive = nullptr;
+  unsigned long AlgorithmTag = 0;
+  unsigned long ExecutiveTag = 0;
 };
 
 #endif

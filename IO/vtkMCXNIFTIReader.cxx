@@ -3,6 +3,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -32,15 +33,24 @@ bool EndsWith(std::string text, const std::string& suffix) // of a lower-case su
     text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// Runs a stage of the wrapped reader; its first error, or "" on success.
+// Runs a stage of the wrapped reader; its first error (its executive's
+// included, none of them printed), or "" on success.
 template <typename Stage>
 std::string Run(vtkNIFTIImageReader* reader, Stage stage)
 {
   vtkNew<vtkMCXFirstErrorObserver> error;
-  const unsigned long tag = reader->AddObserver(vtkCommand::ErrorEvent, error);
-  stage();
-  reader->RemoveObserver(tag);
-  return error->GetMessage();
+  error->ObserveAlgorithm(reader);
+  try
+  {
+    stage();
+  }
+  catch (const std::bad_alloc&)
+  {
+    error->StopObserving();
+    return "out of memory";
+  }
+  error->StopObserving();
+  return error->GetErrorText();
 }
 }
 
@@ -88,19 +98,22 @@ int vtkMCXNIFTIReader::RequestInformation(
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData::GetData(outInfo)->Initialize(); // no stale volume after a failure
   const std::string path = this->FileName ? this->FileName : "";
-  if (path.empty())
+  std::string problem = path.empty() ? "no FileName is set" : std::string();
+  if (problem.empty())
   {
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
-    vtkErrorMacro(<< "no FileName is set");
-    return 0;
+    this->Reader->SetFileName(path.c_str());
+    problem = Run(this->Reader, [this] { this->Reader->UpdateInformation(); });
   }
-  this->Reader->SetFileName(path.c_str());
-  const std::string problem = Run(this->Reader, [this] { this->Reader->UpdateInformation(); });
-  if (!problem.empty())
+  this->Failed = !problem.empty();
+  if (this->Failed)
   {
-    this->SetErrorCode(vtkErrorCode::FileFormatError);
-    vtkErrorMacro(<< "cannot read '" << path << "': " << problem);
-    return 0;
+    // One line: reported here, then an empty extent (not a failed request,
+    // which the executive would report again).
+    this->SetErrorCode(path.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::FileFormatError);
+    vtkErrorMacro(<< (path.empty() ? problem : "cannot read '" + path + "': " + problem));
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+    return 1;
   }
   vtkInformation* readerInfo = this->Reader->GetOutputInformation(0);
   outInfo->CopyEntry(readerInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
@@ -108,7 +121,12 @@ int vtkMCXNIFTIReader::RequestInformation(
   outInfo->CopyEntry(readerInfo, vtkDataObject::POINT_DATA_VECTOR(), 1);
   if (this->Rescale())
   {
-    vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
+    vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
+      readerInfo, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+    const int components = scalars && scalars->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+      ? scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+      : 1;
+    vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, components);
   }
   double origin[3], direction[9];
   this->Placement(origin, direction);
@@ -123,16 +141,12 @@ int vtkMCXNIFTIReader::RequestData(
 {
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   output->Initialize();
+  if (this->Failed)
+  {
+    return 1; // reported by RequestInformation
+  }
   const std::string path = this->FileName ? this->FileName : "";
-  std::string problem;
-  try
-  {
-    problem = Run(this->Reader, [this] { this->Reader->UpdateWholeExtent(); });
-  }
-  catch (const std::bad_alloc&)
-  {
-    problem = "out of memory";
-  }
+  std::string problem = Run(this->Reader, [this] { this->Reader->UpdateWholeExtent(); });
   vtkImageData* image = this->Reader->GetOutput();
   if (problem.empty() && (image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars()))
   {
@@ -140,9 +154,12 @@ int vtkMCXNIFTIReader::RequestData(
   }
   if (!problem.empty())
   {
+    // A partial read must not pass as current at the next update.
+    this->Reader->GetOutput()->ReleaseData();
+    this->Reader->Modified();
     this->SetErrorCode(vtkErrorCode::FileFormatError);
     vtkErrorMacro(<< "cannot read '" << path << "': " << problem);
-    return 0;
+    return 1;
   }
   output->ShallowCopy(image);
   double origin[3], direction[9];
@@ -156,10 +173,15 @@ int vtkMCXNIFTIReader::RequestData(
     vtkDataArray* stored = output->GetPointData()->GetScalars();
     auto rescaled = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
     rescaled->SetName(stored->GetName());
+    rescaled->SetNumberOfComponents(stored->GetNumberOfComponents()); // vector intents too
     rescaled->SetNumberOfTuples(stored->GetNumberOfTuples());
-    for (vtkIdType i = 0; i < stored->GetNumberOfTuples(); ++i)
+    const int components = stored->GetNumberOfComponents();
+    for (vtkIdType t = 0; t < stored->GetNumberOfTuples(); ++t)
     {
-      rescaled->SetTuple1(i, stored->GetTuple1(i) * slope + intercept);
+      for (int c = 0; c < components; ++c)
+      {
+        rescaled->SetComponent(t, c, stored->GetComponent(t, c) * slope + intercept);
+      }
     }
     output->GetPointData()->SetScalars(rescaled);
   }
@@ -172,4 +194,5 @@ void vtkMCXNIFTIReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "Reader: " << this->Reader.GetPointer() << "\n";
+  os << indent << "Failed (last information request): " << this->Failed << "\n";
 }

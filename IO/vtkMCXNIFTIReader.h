@@ -10,7 +10,8 @@
  *   else the qform: the output's origin and direction matrix;
  * - values = scl_slope x stored + scl_inter (float64), unless scl_slope is 0
  *   (no scaling, as NIfTI-1 says) or the pair is 1 and 0.
- * Errors are one vtkErrorMacro line each and leave an empty output.
+ * An error is one vtkErrorMacro line (the wrapped reader's own reports are
+ * folded into it) and leaves an empty output.
  */
 #ifndef vtkMCXNIFTIReader_h
 #define vtkMCXNIFTIReader_h
@@ -55,6 +56,7 @@ private:
   void Placement(double origin[3], double direction[9]) const;
 
   vtkNew<vtkNIFTIImageReader> Reader;
+  bool Failed = false; // the last RequestInformation reported an error
 };
 
 #endif

@@ -10,12 +10,15 @@
 #include "vtkMCXRadiograph.h"
 #include "vtkMCXSMPExecutorPrivate.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationIntegerKey.h"
 #include "vtkMCXProjectorBase.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -44,6 +47,8 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXXRayMapper);
+vtkInformationKeyMacro(vtkMCXXRayMapper, FILM_LAID, Integer);
+vtkInformationKeyMacro(vtkMCXXRayMapper, FILM_RESET_INSTALLED, Integer);
 
 namespace
 {
@@ -669,8 +674,8 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const double lowest = this->DisplayedLevel - 0.5 * this->DisplayedWindow;
   const double inverseWindow =
     this->DisplayedWindow > 0 ? 1.0 / this->DisplayedWindow : std::numeric_limits<float>::max();
-  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay,
-        this->Compositing == FILM, this->LastRenderUsedDepth))
+  const bool film = this->Compositing == FILM && this->TakeFilm(renderer, volume);
+  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay, film, this->LastRenderUsedDepth))
   {
     vtkErrorMacro("The X-ray display shader failed to compile.");
     return;
@@ -678,6 +683,40 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   ++this->NumberOfDraws;
   this->TimeToDraw =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool vtkMCXXRayMapper::TakeFilm(vtkRenderer* renderer, vtkVolume* volume)
+{
+  vtkInformation* info = renderer->GetInformation();
+  if (!info->Has(FILM_RESET_INSTALLED()))
+  {
+    // Each render of the renderer starts without film; the callback keeps
+    // no pointer to this mapper.
+    vtkNew<vtkCallbackCommand> reset;
+    reset->SetCallback(
+      [](vtkObject* caller, unsigned long, void*, void*)
+      { static_cast<vtkRenderer*>(caller)->GetInformation()->Set(FILM_LAID(), 0); });
+    renderer->AddObserver(vtkCommand::StartEvent, reset);
+    info->Set(FILM_RESET_INSTALLED(), 1);
+  }
+  if (info->Has(FILM_LAID()) && info->Get(FILM_LAID()) != 0)
+  {
+    return false; // another X-ray laid it this render: add to it
+  }
+  // Translucent props draw no depth: film would cover them.
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (prop != volume && prop->GetVisibility() && !prop->IsA("vtkVolume") &&
+      prop->HasTranslucentPolygonalGeometry())
+    {
+      return false;
+    }
+  }
+  info->Set(FILM_LAID(), 1);
+  return true;
 }
 
 double vtkMCXXRayMapper::RenderTimeBudget(vtkVolume* volume) const

@@ -42,8 +42,10 @@
  * picture is the same on any background; with InvertDisplay on, 1 - g (dark
  * bone on light film). ADDITIVE compositing adds g to what is behind it
  * (the X-ray as emitted light), or with InvertDisplay multiplies it by
- * 1 - g, for compositing with other props; over opaque geometry both blend
- * that way.
+ * 1 - g, for compositing with other props. Film is laid once per render of
+ * a renderer, by its first X-ray: further X-rays (several volumes shown as
+ * X-rays), and every X-ray over opaque geometry or in a renderer that holds
+ * translucent props (which film would cover), blend additively.
  *
  * The accumulation runs on the CPU with vtkSMPTools; images are the same for
  * any number of threads.
@@ -57,6 +59,7 @@
 #include "vtkMCXRadiograph.h"   // for the radiograph limits
 
 class vtkImageData;
+class vtkInformationIntegerKey;
 
 class MONTECARLOXRAYRENDERING_EXPORT vtkMCXXRayMapper : public vtkAbstractVolumeMapper
 {
@@ -253,6 +256,13 @@ protected:
 
 private:
   vtkMCXXRayMapper(const vtkMCXXRayMapper&) = delete;
+
+  // In a renderer's information: whether an X-ray has laid its film in the
+  // render in progress (reset by the renderer's StartEvent), and whether
+  // that reset is installed.
+  static vtkInformationIntegerKey* FILM_LAID();
+  static vtkInformationIntegerKey* FILM_RESET_INSTALLED();
+  bool TakeFilm(vtkRenderer* renderer, vtkVolume* volume);
   void operator=(const vtkMCXXRayMapper&) = delete;
 
   struct vtkInternals;

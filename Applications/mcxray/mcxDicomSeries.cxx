@@ -1,6 +1,5 @@
 #include "mcxDicomSeries.h"
 
-#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkMCXDICOMSeriesReader.h"
 #include "vtkMCXFirstErrorObserver.h"
@@ -16,8 +15,9 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
   reader->SetDirectoryName(folder.c_str());
   reader->SetSeriesIndex(series - 1); // --series counts from 1; 0 (none) is -1
   vtkNew<vtkMCXFirstErrorObserver> read; // the reader's report, said once below
-  reader->AddObserver(vtkCommand::ErrorEvent, read);
+  read->ObserveAlgorithm(reader);
   reader->Update();
+  read->StopObserving();
   if (reader->GetErrorCode() == vtkMCXDICOMSeriesReader::SeriesChoiceError)
   {
     // The reader's list counts from 0 and names its setter; ours counts as
@@ -33,9 +33,9 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
       "; choose one with --series N: " + list;
     return nullptr;
   }
-  if (!read->GetMessage().empty())
+  if (!read->GetErrorText().empty())
   {
-    error = read->GetMessage();
+    error = read->GetErrorText();
     return nullptr;
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();

@@ -5,7 +5,6 @@
 #include "mcxHeaderCheck.h"
 
 #include "vtkAlgorithm.h"
-#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
@@ -126,10 +125,11 @@ vtkSmartPointer<vtkImageData> ReadVolume(
     return nullptr;
   }
   vtkNew<vtkMCXFirstErrorObserver> capture; // the reader's report, said once below
-  reader->AddObserver(vtkCommand::ErrorEvent, capture);
+  capture->ObserveAlgorithm(reader);
   reader->Update();
+  capture->StopObserving();
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
-  const std::string& message = capture->GetMessage();
+  const std::string& message = capture->GetErrorText();
   if (!message.empty() || !image || image->GetNumberOfPoints() == 0 ||
     !image->GetPointData()->GetScalars())
   {

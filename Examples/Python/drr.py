@@ -35,7 +35,6 @@ def read_dicom_series(folder):
         errors.append(mcxray.vtkMCXFirstErrorObserver.MessageOf(report))
     keep.CallDataType = VTK_STRING  # VTK hands the report over
     reader.AddObserver(vtkCommand.ErrorEvent, keep)  # kept instead of printed
-    reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda caller, event: None)
     reader.Update()
     if errors:
         sys.exit("drr.py: error: %s" % errors[0])

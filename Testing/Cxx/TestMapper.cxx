@@ -28,6 +28,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
+#include "vtkSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
@@ -851,6 +852,70 @@ TEST(Mapper, FilmLooksTheSameOnAnyBackground)
   scene.Mapper->SetCompositingToAdditive();
   scene.Window->Render();
   EXPECT_GT(MisdrawnPixels(Grab(scene.Window), values, 40, 20), 160 * 128 / 2);
+}
+
+TEST(Mapper, FilmKeepsOtherXRaysAndTranslucentProps)
+{
+  // Film is laid once per render, by the first X-ray: a second X-ray volume
+  // beside the first adds to it (both heads show, each as it shows alone),
+  // and a translucent prop is not covered.
+  Scene scene(16, 200, 100);
+  scene.Mapper->ProgressiveRefinementOff();
+  scene.Mapper->AutomaticWindowLevelOff();
+  scene.Mapper->SetColorWindow(40);
+  scene.Mapper->SetColorLevel(20);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(1.2 * camera->GetParallelScale());
+  double focal[3];
+  camera->GetFocalPoint(focal);
+  vtkNew<vtkMCXXRayMapper> secondMapper;
+  secondMapper->SetInputConnection(scene.Sampler->GetOutputPort());
+  secondMapper->ProgressiveRefinementOff();
+  secondMapper->AutomaticWindowLevelOff();
+  secondMapper->SetColorWindow(40);
+  secondMapper->SetColorLevel(20);
+  vtkNew<vtkVolume> second;
+  second->SetMapper(secondMapper);
+  scene.Renderer->AddVolume(second);
+  const double shift = 1.1 * camera->GetParallelScale(); // half the view's height
+  double right[3];
+  vtkMath::Cross(camera->GetDirectionOfProjection(), camera->GetViewUp(), right);
+  vtkMath::Normalize(right);
+  scene.Volume->SetPosition(-shift * right[0], -shift * right[1], -shift * right[2]);
+  second->SetPosition(shift * right[0], shift * right[1], shift * right[2]);
+  scene.Window->Render();
+  auto both = Grab(scene.Window);
+  vtkDataArray* rgb = both->GetPointData()->GetScalars();
+  double halves[2] = { 0, 0 };
+  for (vtkIdType p = 0; p < rgb->GetNumberOfTuples(); ++p)
+  {
+    halves[(p % 200) < 100 ? 0 : 1] += rgb->GetComponent(p, 0);
+  }
+  EXPECT_GT(halves[0], 0.25 * halves[1]);
+  EXPECT_GT(halves[1], 0.25 * halves[0]);
+
+  scene.Renderer->RemoveVolume(second);
+  scene.Volume->SetPosition(0, 0, 0);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(focal);
+  sphere->SetRadius(0.3 * camera->GetParallelScale());
+  vtkNew<vtkPolyDataMapper> sphereMapper;
+  sphereMapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> glass;
+  glass->SetMapper(sphereMapper);
+  glass->GetProperty()->SetColor(1, 0, 0);
+  glass->GetProperty()->SetOpacity(0.5);
+  scene.Renderer->AddActor(glass);
+  scene.Window->Render();
+  auto withGlass = Grab(scene.Window);
+  vtkDataArray* colours = withGlass->GetPointData()->GetScalars();
+  vtkIdType reddish = 0;
+  for (vtkIdType p = 0; p < colours->GetNumberOfTuples(); ++p)
+  {
+    reddish += colours->GetComponent(p, 0) > colours->GetComponent(p, 1) + 40 ? 1 : 0;
+  }
+  EXPECT_GT(reddish, 100);
 }
 
 TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)

@@ -1,14 +1,19 @@
-"""The Python package reads DICOM series through vtk-dicom, as the command
-line does: mcxray.vtkMCXDICOMSeriesReader on the shared headsq series.
+"""The Python package's readers, as the command line reads with them:
+mcxray.vtkMCXDICOMSeriesReader (vtk-dicom) on the shared headsq series and
+mcxray.vtkMCXNIFTIReader on the shared CT body and on files written here.
 
-    python3 test_dicom_series.py SERIES_FOLDER HEADSQ_VTI
+    python3 test_readers.py SERIES_FOLDER HEADSQ_VTI BODY_NII_GZ
 
 The series holds the voxels of headsq.vti, its slices at positions that run
-the other way along z; an error is one VTK error, an error code and an empty
-output, never a crash or a stale volume.
+the other way along z; the NIfTI volume lies where its header's sform puts
+it. An error is exactly one printed VTK error line, an error code and an
+empty output, never a crash or a stale (half-read) volume.
 """
+import gzip
 import os
 import shutil
+import struct
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -29,7 +34,7 @@ class vtkErrorCode:
     CannotOpenFileError = 20002
     FileFormatError = 20005
 
-SERIES, HEADSQ = sys.argv[1], sys.argv[2]
+SERIES, HEADSQ, BODY = sys.argv[1], sys.argv[2], sys.argv[3]
 
 
 def voxels(image):
@@ -48,9 +53,31 @@ def read(folder, index=-1):
         messages.append(str(text))
     keep.CallDataType = VTK_STRING
     reader.AddObserver(vtkCommand.ErrorEvent, keep)
-    reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda caller, event: None)
     reader.Update()
     return reader, messages
+
+
+def printed_errors(code):
+    """The VTK error lines a fresh Python prints running code (no observers)."""
+    result = subprocess.run([sys.executable, "-c", "import mcxray\n" + code],
+                            capture_output=True, text=True, timeout=120)
+    return [line for line in result.stderr.splitlines() if "ERR|" in line or "ERROR:" in line]
+
+
+def write_nifti(path, dims, components, slope, values):
+    """A little-endian NIfTI-1 file of float32 voxels (.nii): dim[5] =
+    components (a vector intent), unit spacing, scl_slope and no form."""
+    header = bytearray(348)
+    struct.pack_into("<i", header, 0, 348)
+    struct.pack_into("<8h", header, 40, 5 if components > 1 else 3, dims[0], dims[1], dims[2], 1,
+                     components, 1, 1)
+    struct.pack_into("<2h", header, 70, 16, 32)  # float32
+    struct.pack_into("<8f", header, 76, 1, 1, 1, 1, 1, 1, 1, 1)
+    struct.pack_into("<f", header, 108, 352.0)
+    struct.pack_into("<2f", header, 112, slope, 0.0)
+    header[344:348] = b"n+1\0"
+    with open(path, "wb") as f:
+        f.write(bytes(header) + bytes(4) + numpy.asarray(values, dtype="<f4").tobytes())
 
 
 class DicomSeries(unittest.TestCase):
@@ -125,8 +152,8 @@ class DicomSeries(unittest.TestCase):
         reader, messages = read(two)
         self.assertEqual(mcxray.vtkMCXDICOMSeriesReader.SeriesChoiceError, reader.GetErrorCode())
         self.assertEqual(2, reader.GetNumberOfSeries())
-        self.assertTrue(any("holds 2 DICOM series; choose one with SetSeriesIndex: 0: " in m for m in messages),
-                        messages)
+        self.assertEqual(1, len(messages), messages)
+        self.assertIn("holds 2 DICOM series; choose one with SetSeriesIndex: 0: ", messages[0])
         self.assertEqual(0, reader.GetOutput().GetNumberOfPoints())
         reader.SetSeriesIndex(1)
         reader.Update()
@@ -137,16 +164,78 @@ class DicomSeries(unittest.TestCase):
         self.assertEqual(mcxray.vtkMCXDICOMSeriesReader.SeriesChoiceError, reader.GetErrorCode())
         self.assertEqual(0, reader.GetOutput().GetNumberOfPoints())  # no stale volume
 
+    def test_an_error_prints_one_line(self):
+        errors = printed_errors("r = mcxray.vtkMCXDICOMSeriesReader()\n"
+                                "r.SetDirectoryName(%r)\nr.Update()\nr.Modified()\nr.Update()\n"
+                                "assert r.GetOutput().GetNumberOfPoints() == 0" % os.path.join(self.work, "nowhere"))
+        self.assertEqual(2, len(errors), errors)  # one per Update, each one line
+        self.assertTrue(all("no DICOM series in" in e for e in errors), errors)
+
     def test_missing_slice_and_missing_folder_are_errors(self):
         missing = self.copy_series("missing")
         os.remove(os.path.join(missing, "CTHead50.dcm"))
         reader, messages = read(missing)
         self.assertEqual(vtkErrorCode.FileFormatError, reader.GetErrorCode())
-        self.assertTrue(any("a gap of 3 mm where the slices are 1.5 mm apart" in m for m in messages), messages)
+        self.assertEqual(1, len(messages), messages)
+        self.assertIn("a gap of 3 mm where the slices are 1.5 mm apart", messages[0])
         self.assertEqual(0, reader.GetOutput().GetNumberOfPoints())
         reader, messages = read(os.path.join(self.work, "nowhere"))
         self.assertEqual(vtkErrorCode.CannotOpenFileError, reader.GetErrorCode())
-        self.assertTrue(any("no DICOM series in" in m for m in messages), messages)
+        self.assertEqual(1, len(messages), messages)
+        self.assertIn("no DICOM series in", messages[0])
+
+
+class Nifti(unittest.TestCase):
+    def setUp(self):
+        self.work = tempfile.mkdtemp(prefix="mcxray-nifti-")
+
+    def tearDown(self):
+        shutil.rmtree(self.work)
+
+    def test_volume_lies_where_the_sform_puts_it(self):
+        with gzip.open(BODY, "rb") as f:
+            header = f.read(348)
+        dims = struct.unpack("<8h", header[40:56])[1:4]
+        srow = numpy.array(struct.unpack("<12f", header[280:328]), dtype=float).reshape(3, 4)
+        reader = mcxray.vtkMCXNIFTIReader()
+        reader.SetFileName(BODY)
+        reader.Update()
+        volume = reader.GetOutput()
+        self.assertEqual(tuple(dims), volume.GetDimensions())
+        for index in ((0, 0, 0), (dims[0] - 1, 1, 2), (5, dims[1] - 1, dims[2] - 1)):
+            placed = [0.0, 0.0, 0.0]
+            volume.TransformIndexToPhysicalPoint(*index, placed)
+            expected = srow @ numpy.array(list(index) + [1.0])
+            self.assertLess(numpy.abs(numpy.array(placed) - expected).max(), 1e-4, index)
+
+    def test_scaling_keeps_every_component(self):
+        path = os.path.join(self.work, "vectors.nii")
+        values = numpy.arange(2 * 3 * 4 * 3, dtype=float)  # x fastest, then components last
+        write_nifti(path, (4, 3, 2), 3, 2.0, values)
+        reader = mcxray.vtkMCXNIFTIReader()
+        reader.SetFileName(path)
+        errors = []
+        reader.AddObserver(vtkCommand.ErrorEvent, lambda caller, event: errors.append(event))
+        reader.Update()
+        scalars = reader.GetOutput().GetPointData().GetScalars()
+        self.assertEqual([], errors)
+        self.assertEqual(3, scalars.GetNumberOfComponents())
+        got = vtk_to_numpy(scalars)
+        # vtkNIFTIImageReader interleaves the components (dim[5]) per voxel.
+        expected = 2.0 * values.reshape(3, 24).T
+        self.assertTrue(numpy.array_equal(expected, got), (expected[:2], got[:2]))
+
+    def test_a_truncated_file_is_one_error_and_never_a_half_volume(self):
+        path = os.path.join(self.work, "cut.nii.gz")
+        with gzip.open(BODY, "rb") as f:
+            data = f.read()
+        with gzip.open(path, "wb") as f:
+            f.write(data[:len(data) // 2])
+        errors = printed_errors("r = mcxray.vtkMCXNIFTIReader()\nr.SetFileName(%r)\n"
+                                "r.Update()\nassert r.GetOutput().GetNumberOfPoints() == 0\n"
+                                "r.Modified()\nr.Update()\nassert r.GetOutput().GetNumberOfPoints() == 0" % path)
+        self.assertEqual(2, len(errors), errors)  # one per Update, each one line
+        self.assertTrue(all("cut.nii.gz" in e for e in errors), errors)
 
 
 if __name__ == "__main__":
