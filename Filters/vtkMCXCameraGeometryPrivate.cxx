@@ -145,8 +145,12 @@ std::string GeometryFromCamera(
     scales[k] = g.Perspective ? p->GetElement(k, k) / distance : p->GetElement(k, k);
     offsets[k] = g.Perspective ? -p->GetElement(k, 2) : p->GetElement(k, 3);
   }
+  // Projections beyond the plain frustum: off-axis screens, shear, a stereo
+  // eye's shift, or an explicit matrix.
   const double* shear = camera->GetViewShear();
-  if (g.Perspective && (camera->GetUseOffAxisProjection() || shear[0] != 0 || shear[1] != 0))
+  if (g.Perspective &&
+    (camera->GetUseOffAxisProjection() || shear[0] != 0 || shear[1] != 0 || camera->GetStereo() ||
+      camera->GetUseExplicitProjectionTransformMatrix()))
   {
     const std::string problem = OffAxisGeometry(camera, aspect, distance, g, scales, offsets);
     if (!problem.empty())

@@ -71,11 +71,13 @@ public:
    * Where the output lies (default off). Off: in the XY plane, its origin
    * and spacing in detector-plane coordinates (pixel (i, j) at
    * (Origin[0] + i s, Origin[1] + j s, 0)). On: in the view's detector plane
-   * in world space, with the direction matrix (U, V, W) of the detector axes
-   * and the view direction, so that a 3D scene shows the image where the
+   * in world space, with the direction matrix (U, V, U x V) of the detector
+   * axes (a rotation), so that a 3D scene shows the image where the
    * detector of its view is, facing the view. The plane is the camera's
-   * focal plane, or for an explicit detector the plane through the centre
-   * of the volume's support. The values do not change.
+   * focal plane (for an off-axis or sheared camera: the plane at the
+   * camera's distance from the centre of projection, parallel to the
+   * screen), or for an explicit detector the plane through the centre of
+   * the volume's support. The values do not change.
    */
   vtkSetMacro(PlaceOnDetectorPlane, bool);
   vtkGetMacro(PlaceOnDetectorPlane, bool);

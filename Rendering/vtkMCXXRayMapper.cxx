@@ -685,6 +685,37 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+double* vtkMCXXRayMapper::GetBounds()
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+  if (this->GetNumberOfInputConnections(0) < 1)
+  {
+    return this->Bounds;
+  }
+  this->Update();
+  vtkPolyData* cloud = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
+  vtkDataArray* support =
+    cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
+  if (support && support->GetNumberOfValues() == 24)
+  {
+    for (int c = 0; c < 8; ++c)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        const double x = support->GetComponent(
+          (3 * c + a) / support->GetNumberOfComponents(), (3 * c + a) % support->GetNumberOfComponents());
+        this->Bounds[2 * a] = c == 0 ? x : std::min(this->Bounds[2 * a], x);
+        this->Bounds[2 * a + 1] = c == 0 ? x : std::max(this->Bounds[2 * a + 1], x);
+      }
+    }
+  }
+  else if (cloud && cloud->GetNumberOfPoints() > 0)
+  {
+    cloud->GetBounds(this->Bounds);
+  }
+  return this->Bounds;
+}
+
 bool vtkMCXXRayMapper::TakeFilm(vtkRenderer* renderer, vtkVolume* volume)
 {
   vtkInformation* info = renderer->GetInformation();

@@ -220,6 +220,14 @@ public:
   /** True when the last render culled samples against opaque geometry. */
   vtkGetMacro(LastRenderUsedDepth, bool);
 
+  /**
+   * The volume's support (the sampler's SupportCorners), so that a camera
+   * reset frames the volume even when the TF leaves the cloud empty; else
+   * the points' bounds; uninitialised without points or support.
+   */
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  using vtkAbstractVolumeMapper::GetBounds;
+
   void Render(vtkRenderer* renderer, vtkVolume* volume) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 

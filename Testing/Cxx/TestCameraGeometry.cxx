@@ -15,6 +15,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkMath.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -251,6 +252,8 @@ TEST(CameraGeometry, ImagePlacedOnTheDetectorPlaneFacesItsView)
     placed->PlaceOnDetectorPlaneOn();
     placed->Update();
     vtkImageData* image = placed->GetOutput();
+    EXPECT_NEAR(1.0, image->GetDirectionMatrix()->Determinant(), 1e-12)
+      << view.Name << ": the placement is a rotation";
     const double* focal = view.Camera->GetFocalPoint();
     const double* normal = view.Camera->GetDirectionOfProjection();
     for (const int i : { 0, view.Width / 3, view.Width - 1 })

@@ -854,6 +854,30 @@ TEST(Mapper, FilmLooksTheSameOnAnyBackground)
   EXPECT_GT(MisdrawnPixels(Grab(scene.Window), values, 40, 20), 160 * 128 / 2);
 }
 
+TEST(Mapper, BoundsAreTheSupportEvenForAnEmptyCloud)
+{
+  // A TF that is zero everywhere leaves the cloud empty: the bounds are still
+  // the volume's support (a camera reset frames the volume, never NaN).
+  Scene scene(12, 64, 64);
+  scene.TransferFunction->RemoveAllPoints();
+  scene.TransferFunction->AddPoint(0, 0);
+  scene.TransferFunction->AddPoint(5000, 0);
+  double bounds[6];
+  scene.Mapper->GetBounds(bounds);
+  double volume[6];
+  scene.Reader->Update();
+  scene.Reader->GetOutput()->GetBounds(volume);
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_LE(bounds[2 * a], volume[2 * a]);
+    EXPECT_GE(bounds[2 * a + 1], volume[2 * a + 1]);
+    EXPECT_LT(bounds[2 * a + 1] - bounds[2 * a], 1.5 * (volume[2 * a + 1] - volume[2 * a]));
+  }
+  scene.Renderer->ResetCamera();
+  const double* position = scene.Renderer->GetActiveCamera()->GetPosition();
+  EXPECT_TRUE(std::isfinite(position[0]) && std::isfinite(position[1]) && std::isfinite(position[2]));
+}
+
 TEST(Mapper, FilmKeepsOtherXRaysAndTranslucentProps)
 {
   // Film is laid once per render, by the first X-ray: a second X-ray volume
@@ -949,25 +973,28 @@ TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)
     scene.Mapper->SetNoiseSeed(5);
     scene.Mapper->SetNegativeLog(c.NegativeLog);
     scene.Window->Render();
+    // The same physics on the screen's line integrals and on the window's
+    // prefix, each from a filter of its own (an update frees the last output).
     vtkNew<vtkMCXRadiograph> radiograph;
+    vtkNew<vtkMCXRadiograph> prefixRadiograph;
+    for (vtkMCXRadiograph* filter : { radiograph.GetPointer(), prefixRadiograph.GetPointer() })
+    {
+      filter->SetBeerLambert(c.BeerLambert);
+      filter->SetIncidentIntensity(2.0);
+      filter->SetPhotonsPerPixel(c.Photons);
+      filter->SetNoiseSeed(5);
+      filter->SetNegativeLog(c.NegativeLog);
+    }
     radiograph->SetInputData(lineIntegrals);
-    radiograph->SetBeerLambert(c.BeerLambert);
-    radiograph->SetIncidentIntensity(2.0);
-    radiograph->SetPhotonsPerPixel(c.Photons);
-    radiograph->SetNoiseSeed(5);
-    radiograph->SetNegativeLog(c.NegativeLog);
     radiograph->Update();
-    vtkDataArray* expected = radiograph->GetOutput()->GetPointData()->GetArray(
-      c.NegativeLog ? vtkMCXRadiograph::AttenuationName() : vtkMCXRadiograph::IntensityName());
+    prefixRadiograph->SetInputData(prefix);
+    prefixRadiograph->Update();
+    const char* name =
+      c.NegativeLog ? vtkMCXRadiograph::AttenuationName() : vtkMCXRadiograph::IntensityName();
+    vtkDataArray* expected = radiograph->GetOutput()->GetPointData()->GetArray(name);
     ASSERT_NE(nullptr, expected) << c.Name;
-    radiograph->SetInputData(prefix);
-    radiograph->Update();
-    const double window = AutomaticWindow(radiograph->GetOutput()->GetPointData()->GetArray(
-                                            c.NegativeLog ? vtkMCXRadiograph::AttenuationName()
-                                                          : vtkMCXRadiograph::IntensityName()),
-      160, 128);
-    radiograph->SetInputData(lineIntegrals);
-    radiograph->Update();
+    const double window =
+      AutomaticWindow(prefixRadiograph->GetOutput()->GetPointData()->GetArray(name), 160, 128);
     EXPECT_NEAR(window, scene.Mapper->GetDisplayedWindow(), 1e-6 * window) << c.Name;
     EXPECT_EQ(0, MisdrawnPixels(Grab(scene.Window), expected, window, 0.5 * window)) << c.Name;
   }

@@ -132,8 +132,36 @@ Render(view)  # the observer keeps the error from being printed
 check(len(errors) == 1, "%d errors for an image without a density array, not 1" % len(errors))
 Delete(vector_display)
 
+# A coloured cell array: one error, not another array's X-ray.
+cell_errors = []
+cells = PointDatatoCellData(Input=wavelet)
+cell_display = Show(cells, view, "UniformGridRepresentation")
+ColorBy(cell_display, ("CELLS", "RTData"))
+cell_display.SetRepresentationType("Monte Carlo X-Ray")
+xray_representation(cell_display).AddObserver("ErrorEvent", lambda caller, event: cell_errors.append(event))
+Render(view)
+check(len(cell_errors) == 1, "%d errors for a coloured cell array, not 1" % len(cell_errors))
+Delete(cell_display)
+
+# A constant volume: the default ramp maps it to 1 (an image, not zero) and
+# renders do not restart the X-ray over and over.
+constant = Calculator(Input=wavelet, Function="7", ResultArrayName="constant")
+only_constant = PassArrays(Input=constant, PointDataArrays=["constant"])
+constant_display = Show(only_constant, view, "UniformGridRepresentation")
+constant_display.SetRepresentationType("Monte Carlo X-Ray")
+constant_representation = xray_representation(constant_display)
+Render(view)
+restarts = mapper_call(constant_representation, "GetNumberOfRestarts")
+for again in range(3):
+    Render(view)
+check(mapper_call(constant_representation, "GetNumberOfRestarts") == restarts,
+      "a constant volume restarted the X-ray on every render")
+check(mapper_call(constant_representation, "GetNumberOfAccumulatedSamples") > 0, "a constant volume drew nothing")
+Delete(constant_display)
+
 # 7. The filters' transfer functions: a ramp over the densities by default.
 index = XRayDensityIndex(Input=reader)
+index.Density = ["POINTS", "headsq"]  # ParaView's default would be the last array made above
 index.UpdatePipeline()
 ramp = [DENSITY_RANGE[0], 0.0, 0.5, 0.0, DENSITY_RANGE[1], 1.0, 0.5, 0.0]
 for name, proxy in (("sampler", XRayPointSampler(Input=index)), ("projector", XRayProjector(Input=index))):

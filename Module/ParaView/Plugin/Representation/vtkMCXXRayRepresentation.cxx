@@ -31,9 +31,16 @@ namespace
 // coloured array when it is a one-component point array, else the active
 // point scalars, else the first one-component point array; null when the
 // image has none (problem says why).
-vtkDataArray* ChooseDensityArray(vtkImageData* image, const char* coloured, std::string& problem)
+vtkDataArray* ChooseDensityArray(
+  vtkImageData* image, const char* coloured, int association, std::string& problem)
 {
   vtkPointData* pd = image->GetPointData();
+  if (coloured && *coloured && association == vtkDataObject::FIELD_ASSOCIATION_CELLS)
+  {
+    problem = std::string("the coloured array '") + coloured +
+      "' is cell data; the X-ray needs densities at the points (apply Cell Data to Point Data)";
+    return nullptr;
+  }
   if (coloured && *coloured)
   {
     if (vtkDataArray* array = pd->GetArray(coloured))
@@ -107,8 +114,11 @@ int vtkMCXXRayRepresentation::RequestData(
       const char* coloured = chosen && chosen->Has(vtkDataObject::FIELD_NAME())
         ? chosen->Get(vtkDataObject::FIELD_NAME())
         : nullptr;
+      const int association = chosen && chosen->Has(vtkDataObject::FIELD_ASSOCIATION())
+        ? chosen->Get(vtkDataObject::FIELD_ASSOCIATION())
+        : vtkDataObject::FIELD_ASSOCIATION_POINTS;
       std::string problem;
-      vtkDataArray* density = ChooseDensityArray(input, coloured, problem);
+      vtkDataArray* density = ChooseDensityArray(input, coloured, association, problem);
       if (!density)
       {
         vtkErrorMacro("Monte Carlo X-Ray: " << problem << ".");
@@ -195,8 +205,13 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   {
     // More to show while points remain: a token piece makes the view render
     // again (the points are already here; the render adds the next prefix).
-    if (this->Volume->GetVisibility() && !this->Mapper->IsRefinementComplete())
+    // A pass that added nothing (this process does not render, or cannot)
+    // ends the passes.
+    const vtkTypeInt64 count = this->Mapper->GetNumberOfAccumulatedSamples();
+    if (this->Volume->GetVisibility() && !this->Mapper->IsRefinementComplete() &&
+      count != this->StreamedCount)
     {
+      this->StreamedCount = count;
       vtkPVRenderView::SetNextStreamedPiece(inInfo, this, this->MorePointsToken);
     }
   }
@@ -249,15 +264,16 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
   {
     return;
   }
-  const double low = levels->GetTuple1(0);
+  // 0 at the lowest density, 1 at the highest; a constant volume gets 1.
   const double high = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
+  const double low = std::min(levels->GetTuple1(0), high - 1.0);
   double range[2];
   this->DefaultRamp->GetRange(range);
   if (this->DefaultRamp->GetSize() != 2 || range[0] != low || range[1] != high)
   {
     this->DefaultRamp->RemoveAllPoints();
     this->DefaultRamp->AddPoint(low, 0.0);
-    this->DefaultRamp->AddPoint(high > low ? high : low + 1.0, 1.0);
+    this->DefaultRamp->AddPoint(high, 1.0);
   }
   this->Sampler->SetTransferFunction(this->DefaultRamp);
 }
@@ -319,6 +335,7 @@ void vtkMCXXRayRepresentation::SetColorLevel(double level)
 
 void vtkMCXXRayRepresentation::SetInteractiveRenderTime(double seconds)
 {
+  seconds = std::min(std::max(seconds, 0.001), 10.0); // the XML's range
   if (this->InteractiveRenderTime != seconds)
   {
     this->InteractiveRenderTime = seconds;
@@ -328,6 +345,7 @@ void vtkMCXXRayRepresentation::SetInteractiveRenderTime(double seconds)
 
 void vtkMCXXRayRepresentation::SetStillRenderTime(double seconds)
 {
+  seconds = std::min(std::max(seconds, 0.001), 1000.0); // the XML's range
   if (this->StillRenderTime != seconds)
   {
     this->StillRenderTime = seconds;
@@ -357,6 +375,8 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DefaultRamp: " << this->DefaultRamp.GetPointer() << "\n";
   os << indent << "InteractiveRenderTime: " << this->InteractiveRenderTime << "\n";
   os << indent << "StillRenderTime: " << this->StillRenderTime << "\n";
+  os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
+  os << indent << "StreamedCount: " << this->StreamedCount << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

@@ -71,7 +71,14 @@ public:
   ///@{
   /**
    * Seconds a frame may spend projecting points while the camera moves
-   * (default 0.05: 20 frames a second); the still render draws them all.
+   * (default 0.05: 20 frames a second, 0.001 to 10); the still render draws
+   * them all. Camera motion counts as interactive when ParaView uses its
+   * LOD path: the representation reports the drawn cloud's size (12 bytes a
+   * point) as its data size, so with many points ParaView also uses the
+   * other representations' LOD geometry and, in client-server sessions,
+   * remote rendering (both decided by ParaView's size thresholds). The first
+   * render after a TF edit projects the automatic window's prefix (4 points
+   * a pixel) whatever the budget.
    */
   void SetInteractiveRenderTime(double seconds);
   double GetInteractiveRenderTime() const { return this->InteractiveRenderTime; }
@@ -112,6 +119,7 @@ protected:
   double InteractiveRenderTime = 0.05;
   double StillRenderTime = 0.5;
   vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
+  vtkTypeInt64 StreamedCount = -1;     // points shown at the last streaming pass
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
