@@ -11,11 +11,6 @@ namespace mcx
 
 namespace
 {
-double Dot3(const double* a, const double* b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 // An off-axis or sheared perspective camera (head-tracked screens, CAVEs,
 // oblique frusta) from VTK's composite matrix M = P V: still a central
 // projection, whose eye is where rows 0, 1 and 3 vanish, the view
@@ -48,7 +43,7 @@ std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
   double axes[2][3];
   for (int k = 0; k < 2; ++k)
   {
-    const double along = Dot3(rows[k], w);
+    const double along = vtkMath::Dot(rows[k], w);
     for (int i = 0; i < 3; ++i)
     {
       axes[k][i] = rows[k][i] - along * w[i];
@@ -57,7 +52,7 @@ std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
     scale[k] = length / (depthScale * distance);
     offset[k] = along / depthScale;
   }
-  if (std::fabs(Dot3(axes[0], axes[1])) > 1e-9)
+  if (std::fabs(vtkMath::Dot(axes[0], axes[1])) > 1e-9)
   {
     return "the camera's off-axis screen is not rectangular";
   }
@@ -69,7 +64,7 @@ std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
     sum[i] = rows[2][i] + rows[3][i];
   }
   const double nearDistance =
-    -(Dot3(rows[2], eye) + rows[2][3]) / Dot3(sum, w);
+    -(vtkMath::Dot(rows[2], eye) + rows[2][3]) / vtkMath::Dot(sum, w);
   if (!(nearDistance > 0) || !std::isfinite(nearDistance))
   {
     return "the camera's off-axis near plane is not in front of the eye";

@@ -144,6 +144,31 @@ bool PixelCoordinates(const mcx::ProjectionGeometry& g, const double x[3], doubl
   }
   return true;
 }
+// A cloud of the points, each one sample of weight 1.
+vtkSmartPointer<vtkPolyData> UnitWeightCloud(vtkPoints* points)
+{
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  vtkNew<vtkDoubleArray> weight;
+  weight->SetName(vtkMCXPointSampler::SampleWeightName());
+  weight->InsertNextValue(1.0);
+  cloud->GetFieldData()->AddArray(weight);
+  return cloud;
+}
+
+// The projector's image of the cloud for the view's camera and size.
+vtkSmartPointer<vtkImageData> Project(vtkPolyData* cloud, const View& view, bool onDetectorPlane)
+{
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputData(cloud);
+  projector->SetCamera(view.Camera);
+  projector->SetImageSize(view.Width, view.Height);
+  projector->SetPlaceOnDetectorPlane(onDetectorPlane);
+  projector->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(projector->GetOutput());
+  return image;
+}
 }
 
 TEST(CameraGeometry, PixelsOfWorldPointsAreVTKs)
@@ -191,18 +216,8 @@ TEST(CameraGeometry, ProjectorPutsEachPointInVTKsPixel)
       }
     }
     ASSERT_GT(pixels.size(), 10u) << view.Name;
-    vtkNew<vtkPolyData> cloud;
-    cloud->SetPoints(points);
-    vtkNew<vtkDoubleArray> weight;
-    weight->SetName(vtkMCXPointSampler::SampleWeightName());
-    weight->InsertNextValue(1.0);
-    cloud->GetFieldData()->AddArray(weight);
-    vtkNew<vtkMCXProjector> projector;
-    projector->SetInputData(cloud);
-    projector->SetCamera(view.Camera);
-    projector->SetImageSize(view.Width, view.Height);
-    projector->Update();
-    vtkImageData* image = projector->GetOutput();
+    auto projected = Project(UnitWeightCloud(points), view, false);
+    vtkImageData* image = projected;
     ASSERT_EQ(view.Width, image->GetDimensions()[0]) << view.Name;
     ASSERT_EQ(view.Height, image->GetDimensions()[1]) << view.Name;
     std::vector<double> expected(static_cast<std::size_t>(view.Width) * view.Height, 0.0);
@@ -234,24 +249,10 @@ TEST(CameraGeometry, ImagePlacedOnTheDetectorPlaneFacesItsView)
     {
       points->InsertNextPoint(x.data());
     }
-    vtkNew<vtkPolyData> cloud;
-    cloud->SetPoints(points);
-    vtkNew<vtkDoubleArray> weight;
-    weight->SetName(vtkMCXPointSampler::SampleWeightName());
-    weight->InsertNextValue(1.0);
-    cloud->GetFieldData()->AddArray(weight);
-    vtkNew<vtkMCXProjector> flat;
-    flat->SetInputData(cloud);
-    flat->SetCamera(view.Camera);
-    flat->SetImageSize(view.Width, view.Height);
-    flat->Update();
-    vtkNew<vtkMCXProjector> placed;
-    placed->SetInputData(cloud);
-    placed->SetCamera(view.Camera);
-    placed->SetImageSize(view.Width, view.Height);
-    placed->PlaceOnDetectorPlaneOn();
-    placed->Update();
-    vtkImageData* image = placed->GetOutput();
+    auto cloud = UnitWeightCloud(points);
+    auto flat = Project(cloud, view, false);
+    auto placed = Project(cloud, view, true);
+    vtkImageData* image = placed;
     EXPECT_NEAR(1.0, image->GetDirectionMatrix()->Determinant(), 1e-12)
       << view.Name << ": the placement is a rotation";
     const double* focal = view.Camera->GetFocalPoint();
@@ -273,7 +274,7 @@ TEST(CameraGeometry, ImagePlacedOnTheDetectorPlaneFacesItsView)
         }
       }
     }
-    vtkDataArray* a = mcxtest::LineIntegral(flat->GetOutput());
+    vtkDataArray* a = mcxtest::LineIntegral(flat);
     vtkDataArray* b = mcxtest::LineIntegral(image);
     ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
     for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)
