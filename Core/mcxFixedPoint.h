@@ -30,7 +30,7 @@ inline FixedSum FixedIncrement(double f)
 }
 
 /// Converts the first `pixels` fixed-point sums to pixel values:
-/// sum / 2^32 * sampleWeight / pixelArea.
+/// sum / 2^32 * sampleWeight / area (the beam cross-section of a pixel).
 template <typename Value>
 void FixedSumsToValues(
   const FixedSum* sums, std::size_t pixels, double sampleWeight, double pixelArea, Value* values)

@@ -28,10 +28,21 @@ public:
     , Near(g.NearDistance)
     , FocalSquared(g.FocalDistance * g.FocalDistance)
   {
-    const double* axes[3] = { g.U, g.V, g.W };
-    // Rows k = 0, 1 give (x - E) . U, . V (perspective) or x . U, x . V
-    // (parallel), row 2 the depth (x - E) . W, as affine functions of the
-    // source coordinates p.
+    // Rows k = 0, 1 give (x - E) . U, . V (perspective) or the plane
+    // coordinates x . U - o_0 x . W, x . V - o_1 x . W (parallel, obliquity
+    // o), row 2 the depth (x - E) . W, as affine functions of the source
+    // coordinates p.
+    double planeAxes[2][3];
+    for (int k = 0; k < 2; ++k)
+    {
+      const double o = this->Perspective ? 0.0 : g.Obliquity[k];
+      const double* axis = k == 0 ? g.U : g.V;
+      for (int r = 0; r < 3; ++r)
+      {
+        planeAxes[k][r] = axis[r] - o * g.W[r];
+      }
+    }
+    const double* axes[3] = { planeAxes[0], planeAxes[1], g.W };
     for (int k = 0; k < 3; ++k)
     {
       this->Offset[k] = 0.0;

@@ -91,7 +91,7 @@ public:
   void ToValues(double sampleWeight, Value* values) const
   {
     FixedSumsToValues(
-      this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.PixelArea(), values);
+      this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.BeamCrossSection(), values);
   }
 
 private:

@@ -15,6 +15,16 @@ double Dot(const double a[3], const double b[3])
 }
 }
 
+double ProjectionGeometry::RayLengthPerDepth() const
+{
+  if (this->Perspective)
+  {
+    return 1.0;
+  }
+  return std::sqrt(
+    1.0 + this->Obliquity[0] * this->Obliquity[0] + this->Obliquity[1] * this->Obliquity[1]);
+}
+
 std::string ProjectionGeometry::Validate() const
 {
   const double tolerance = 1e-9;
@@ -38,6 +48,16 @@ std::string ProjectionGeometry::Validate() const
     !std::isfinite(this->Eye[0]) || !std::isfinite(this->Eye[1]) || !std::isfinite(this->Eye[2]))
   {
     return "the image origin and the eye must be finite";
+  }
+  // Rays within about 89.4 degrees of the plane normal: beyond, a pixel's beam
+  // is a sliver and its weight 1 / cos explodes.
+  if (!(std::fabs(this->Obliquity[0]) <= 100 && std::fabs(this->Obliquity[1]) <= 100))
+  {
+    return "the rays' obliquity must be finite and at most 100 (89.4 degrees)";
+  }
+  if (this->Perspective && (this->Obliquity[0] != 0 || this->Obliquity[1] != 0))
+  {
+    return "oblique rays are for parallel views only";
   }
   if (this->Size[0] < 1 || this->Size[1] < 1)
   {
@@ -106,8 +126,9 @@ bool ProjectToPlane(const ProjectionGeometry& g, const double x[3], double& a, d
 {
   if (!g.Perspective)
   {
-    a = Dot(x, g.U);
-    b = Dot(x, g.V);
+    const double depth = Dot(x, g.W);
+    a = Dot(x, g.U) - g.Obliquity[0] * depth;
+    b = Dot(x, g.V) - g.Obliquity[1] * depth;
     return true;
   }
   const double d[3] = { x[0] - g.Eye[0], x[1] - g.Eye[1], x[2] - g.Eye[2] };

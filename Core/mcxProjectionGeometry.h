@@ -3,7 +3,11 @@
 // Image pixel (i, j) is centred at detector-plane coordinates
 // (Origin[0] + i * Spacing[0], Origin[1] + j * Spacing[1]) and covers a
 // Spacing[0] x Spacing[1] rectangle around that centre.
-//   Parallel:    a point x has plane coordinates (x . U, x . V); rays run along W.
+//   Parallel:    rays run along R = W + Obliquity[0] U + Obliquity[1] V (along
+//                W unless a sheared or off-axis camera tilts them); a point x
+//                has plane coordinates (x . U - Obliquity[0] x . W,
+//                x . V - Obliquity[1] x . W), those of the point where its
+//                ray crosses the plane x . W = 0.
 //   Perspective: rays leave the eye E; a point x has plane coordinates
 //                D * ((x - E) . U, (x - E) . V) / z with depth z = (x - E) . W,
 //                i.e. coordinates on the plane at distance D from the eye
@@ -11,7 +15,9 @@
 //                Only depths z >= NearDistance are seen; NearDistance must be
 //                at least 1e-6 FocalDistance, which bounds a sample's weight.
 // A pixel's value is (1 / pixel area) times the integral over the pixel of
-// the line integral of g along the ray, in TF units times world length.
+// the line integral of g along the ray, in TF units times world length; in a
+// parallel view that is the mass of g in the pixel's beam divided by the
+// beam's cross-section (BeamCrossSection).
 #ifndef mcxProjectionGeometry_h
 #define mcxProjectionGeometry_h
 
@@ -32,8 +38,21 @@ struct ProjectionGeometry
   int Size[2] = { 0, 0 };
   double Spacing[2] = { 1, 1 };
   double Origin[2] = { 0, 0 };
+  /// Parallel views: the rays' shear per unit depth along U and V (as
+  /// vtkCamera::SetViewShear's dx/dz, dy/dz); 0 for rays along W. Perspective
+  /// views: unused, must be 0.
+  double Obliquity[2] = { 0, 0 };
 
   double PixelArea() const { return this->Spacing[0] * this->Spacing[1]; }
+
+  /// World length of a ray per unit of depth along W: 1 / cos of the rays'
+  /// angle to W (1 in perspective views, whose weights carry the angle).
+  double RayLengthPerDepth() const;
+
+  /// The area across the rays of one pixel's beam: the pixel area times the
+  /// cosine of the rays' angle to W (parallel views); the pixel area in
+  /// perspective views. Mass in a beam over this area is the pixel's value.
+  double BeamCrossSection() const { return this->PixelArea() / this->RayLengthPerDepth(); }
 
   /// Empty when usable, else why not (non-orthonormal axes, empty image, ...).
   std::string Validate() const;

@@ -12,6 +12,14 @@
 // Everything about sample k depends on (seed, k) alone, so
 // the result is the same for any split of the work among threads, and the
 // first 2^j - 1 Hybrid samples of a run are exactly a 2^j - 1 sample run.
+//
+// A volume cut into pieces (one per process, pieces in the global order of
+// voxel ids: z-slabs) samples the same way: every piece holds the global
+// table (levels, counts, masses) and its own sorted ids, and emits exactly
+// the samples whose voxel it holds, with the numbering of a single process.
+// Under the Halton choice a piece's samples in a level are a contiguous run
+// of ranks (the voxel rank grows with the sample rank), so PieceRanks finds
+// them in O(levels log M) and a piece generates only its own.
 #ifndef mcxSampleGenerator_h
 #define mcxSampleGenerator_h
 
@@ -23,6 +31,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace mcx
 {
@@ -94,6 +104,15 @@ struct SampleSource
   /// Emit voxel centres, without the kernel offset (for the footprint
   /// deposit, which spreads the kernel itself).
   bool Centres = false;
+  /// A piece of the volume (null: the whole of it). SortedIds are then the
+  /// piece's, PieceOffsets (NumberOfLevels + 1 entries) delimit them per
+  /// level, PieceFirstRank[l] is the global rank in level l of the piece's
+  /// first voxel, LevelOffsets stay global, and the Decoder decodes ids of
+  /// the piece's extent, whose first voxel is PieceStart in the whole
+  /// volume's voxel coordinates (points are emitted in those).
+  const std::int64_t* PieceOffsets = nullptr;
+  const std::int64_t* PieceFirstRank = nullptr;
+  std::uint64_t PieceStart[3] = { 0, 0, 0 };
 
   std::uint64_t NumberOfSamples() const { return SampleCount(this->Exponent); }
 
@@ -220,6 +239,74 @@ struct SampleSource
     }
   }
 
+  /// The ranks i (of Generate) of the samples whose voxels this piece holds,
+  /// as sorted, disjoint [begin, end) runs: all of [0, M) for the whole
+  /// volume; for MonteCarlo, whose choice is random, also all of [0, M)
+  /// (each piece then draws every sample and emits its own).
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> PieceRanks() const
+  {
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> runs;
+    const std::uint64_t m = this->NumberOfSamples();
+    if (!this->PieceOffsets || this->Method == Strategy::MonteCarlo)
+    {
+      if (m > 0)
+      {
+        runs.emplace_back(0, m);
+      }
+      return runs;
+    }
+    const double step =
+      std::ldexp(this->Cumulative[this->NumberOfLevels], -static_cast<int>(this->Exponent));
+    auto target = [step](std::uint64_t i) { return static_cast<double>(i + 1) * step; };
+    // First i in [lo, hi) where a monotone predicate holds (hi when none).
+    auto first = [](std::uint64_t lo, std::uint64_t hi, const auto& holds)
+    {
+      while (lo < hi)
+      {
+        const std::uint64_t mid = lo + (hi - lo) / 2;
+        if (holds(mid))
+        {
+          hi = mid;
+        }
+        else
+        {
+          lo = mid + 1;
+        }
+      }
+      return lo;
+    };
+    for (std::int64_t c = 1; c <= this->NumberOfLevels; ++c)
+    {
+      const std::int64_t held = this->PieceOffsets[c] - this->PieceOffsets[c - 1];
+      if (held <= 0)
+      {
+        continue;
+      }
+      // Level c - 1 takes the targets in (Cumulative[c - 1], Cumulative[c]].
+      const std::uint64_t levelBegin =
+        first(0, m, [&](std::uint64_t i) { return target(i) > this->Cumulative[c - 1]; });
+      const std::uint64_t levelEnd =
+        first(levelBegin, m, [&](std::uint64_t i) { return target(i) > this->Cumulative[c]; });
+      const std::int64_t low = this->PieceFirstRank[c - 1];
+      const std::uint64_t begin = first(levelBegin, levelEnd,
+        [&](std::uint64_t i) { return this->VoxelRank(target(i), c) >= low; });
+      const std::uint64_t end = first(begin, levelEnd,
+        [&](std::uint64_t i) { return this->VoxelRank(target(i), c) >= low + held; });
+      if (begin < end)
+      {
+        if (!runs.empty() && runs.back().second == begin)
+        {
+          runs.back().second = end;
+        }
+        else
+        {
+          runs.emplace_back(begin, end);
+        }
+      }
+    }
+    return runs;
+  }
+
   /// Rank within level c - 1 of the voxel whose share (rank, rank + 1] of
   /// the level's mass, in units of one voxel, contains target: ceil(x) - 1 of
   /// x = (target - Cumulative[c - 1]) * RankScale[c - 1], kept in [0, count).
@@ -261,10 +348,24 @@ private:
   void Emit(std::uint64_t k, double target, std::int64_t c, CounterRandom& random,
     const RotationShift& shift, Sink& sink) const
   {
-    const std::int64_t first = this->LevelOffsets[c - 1];
     const std::int64_t rank = this->VoxelRank(target, c);
+    std::int64_t slot = this->LevelOffsets[c - 1] + rank;
+    if (this->PieceOffsets)
+    {
+      // Another piece's voxel: its process emits this sample.
+      const std::int64_t local = rank - this->PieceFirstRank[c - 1];
+      if (local < 0 || local >= this->PieceOffsets[c] - this->PieceOffsets[c - 1])
+      {
+        return;
+      }
+      slot = this->PieceOffsets[c - 1] + local;
+    }
     std::uint64_t voxel[3];
-    this->Decoder.Decode(this->SortedIds[first + rank], voxel[0], voxel[1], voxel[2]);
+    this->Decoder.Decode(this->SortedIds[slot], voxel[0], voxel[1], voxel[2]);
+    for (int a = 0; a < 3; ++a)
+    {
+      voxel[a] += this->PieceStart[a];
+    }
     double p[3];
     if (this->Centres)
     {

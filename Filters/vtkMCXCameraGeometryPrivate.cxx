@@ -79,6 +79,56 @@ std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
   }
   return std::string();
 }
+
+// A sheared or off-axis parallel camera from VTK's composite matrix M = P V,
+// affine here: n_k = row_k . x + row_k[3]. The rays run along R, where rows
+// 0 and 1 do not change, and W is row 2's direction (normalized depth grows
+// from -1 at the near plane to 1 at the far one). Row k's part
+// orthogonal to W, |.| times screen axis k, and its part along W, -|.| o_k,
+// make n_k = |.| (x . axis_k - o_k x . W) + row_k[3]: the plane coordinate
+// of ProjectionGeometry, with obliquity o_k = R . axis_k / R . W.
+std::string ObliqueParallelGeometry(
+  vtkCamera* camera, double aspect, ProjectionGeometry& g, double scale[2], double offset[2])
+{
+  vtkMatrix4x4* m = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  double rows[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rows[r][c] = m->GetElement(r, c);
+    }
+  }
+  double w[3] = { rows[2][0], rows[2][1], rows[2][2] };
+  if (!(vtkMath::Normalize(w) > 0) || m->GetElement(3, 0) != 0 || m->GetElement(3, 1) != 0 ||
+    m->GetElement(3, 2) != 0)
+  {
+    return "the camera's parallel projection is not an affine map with a depth";
+  }
+  double axes[2][3];
+  for (int k = 0; k < 2; ++k)
+  {
+    const double along = vtkMath::Dot(rows[k], w);
+    for (int i = 0; i < 3; ++i)
+    {
+      axes[k][i] = rows[k][i] - along * w[i];
+    }
+    scale[k] = vtkMath::Normalize(axes[k]);
+    offset[k] = m->GetElement(k, 3);
+    g.Obliquity[k] = scale[k] > 0 ? -along / scale[k] : 0.0;
+  }
+  if (std::fabs(vtkMath::Dot(axes[0], axes[1])) > 1e-9)
+  {
+    return "the camera's oblique parallel screen is not rectangular";
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    g.U[i] = axes[0][i];
+    g.V[i] = axes[1][i];
+    g.W[i] = w[i];
+  }
+  return std::string();
+}
 }
 
 std::string GeometryFromCamera(
@@ -110,6 +160,7 @@ std::string GeometryFromCamera(
     g.W[a] = w[a];
     g.Eye[a] = position[a];
   }
+  g.Obliquity[0] = g.Obliquity[1] = 0.0;
   g.Size[0] = size[0] > 0 ? size[0] : 512;
   g.Size[1] = size[1] > 0 ? size[1] : 512;
   g.Perspective = !camera->GetParallelProjection();
@@ -140,18 +191,27 @@ std::string GeometryFromCamera(
     scales[k] = g.Perspective ? p->GetElement(k, k) / distance : p->GetElement(k, k);
     offsets[k] = g.Perspective ? -p->GetElement(k, 2) : p->GetElement(k, 3);
   }
-  // Projections beyond the plain frustum: off-axis screens, shear, a stereo
-  // eye's shift, or an explicit matrix.
+  // Projections beyond the plain frustum or box: off-axis screens, shear, a
+  // stereo eye's shift, or an explicit matrix.
   const double* shear = camera->GetViewShear();
-  if (g.Perspective &&
-    (camera->GetUseOffAxisProjection() || shear[0] != 0 || shear[1] != 0 || camera->GetStereo() ||
-      camera->GetUseExplicitProjectionTransformMatrix()))
+  const bool beyond = camera->GetUseOffAxisProjection() || shear[0] != 0 || shear[1] != 0 ||
+    camera->GetUseExplicitProjectionTransformMatrix();
+  if (g.Perspective && (beyond || camera->GetStereo()))
   {
     const std::string problem = OffAxisGeometry(camera, aspect, distance, g, scales, offsets);
     if (!problem.empty())
     {
       return problem;
     }
+  }
+  else if (!g.Perspective && beyond)
+  {
+    const std::string problem = ObliqueParallelGeometry(camera, aspect, g, scales, offsets);
+    if (!problem.empty())
+    {
+      return problem;
+    }
+    centre[0] = centre[1] = 0.0; // the composite matrix's offsets are absolute
   }
   for (int k = 0; k < 2; ++k)
   {
@@ -168,13 +228,6 @@ std::string GeometryFromCamera(
     g.Origin[k] = middle - 0.5 * (g.Size[k] - 1) * g.Spacing[k];
   }
   return std::string();
-}
-
-bool HasUnmodelledProjection(vtkCamera* camera)
-{
-  const double* shear = camera->GetViewShear();
-  return camera->GetParallelProjection() &&
-    (shear[0] != 0 || shear[1] != 0 || camera->GetUseOffAxisProjection());
 }
 
 } // namespace mcx

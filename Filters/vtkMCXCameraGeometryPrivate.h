@@ -22,16 +22,12 @@ namespace mcx
 /// the camera's window centre puts the image centre. A perspective camera
 /// with off-axis projection (screen corners and eye position, as
 /// head-tracked displays set them) or view shear is taken from VTK's
-/// composite matrix: the eye, the screen's axes and its normal. A parallel
-/// camera's shear or off-axis projection (oblique rays) is not modelled
-/// (see HasUnmodelledProjection).
+/// composite matrix: the eye, the screen's axes and its normal. So is a
+/// parallel camera with shear, off-axis projection or an explicit matrix:
+/// its rays may be oblique to the screen (ProjectionGeometry::Obliquity).
 /// Returns why the camera is unusable, or "".
 MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(vtkCamera* camera, const int size[2],
   double spacing, double aspect, ProjectionGeometry& g);
-
-/// True for a parallel camera with view shear or off-axis projection: oblique
-/// rays, not those of a detector plane perpendicular to the view.
-MONTECARLOXRAYFILTERS_EXPORT bool HasUnmodelledProjection(vtkCamera* camera);
 
 } // namespace mcx
 

@@ -1,6 +1,8 @@
 #include "vtkMCXDensityIndex.h"
 
 #include "mcxCountingSort.h"
+#include "mcxFixedPoint.h"
+#include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXSMPExecutorPrivate.h"
@@ -11,7 +13,9 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkCommunicator.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -31,16 +35,25 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXDensityIndex);
+vtkCxxSetObjectMacro(vtkMCXDensityIndex, Controller, vtkMultiProcessController);
 
 namespace
 {
 // Integer data with a value range up to this size is binned directly;
 // wider ranges are binned through the sorted list of distinct values.
 constexpr long long DenseIntegerBinLimit = 1LL << 24;
+// A voxel's offset from its float bin's start in fixed point: 2^50 steps per
+// bin width (within a few units of the double's own resolution), biased by
+// 2^52 (offsets down to minus 4 widths, from rounding at the bin's edges,
+// stay positive; the biased value is below 2^53, an exact integer), so that
+// sums of up to 2^74 voxels stay exact in 128 bits.
+constexpr double FloatLevelFraction = 1125899906842624.0;
+constexpr double FloatLevelBias = 4.0 * FloatLevelFraction;
 
 struct IndexResult
 {
   std::vector<double> LevelValues;
+  std::vector<std::int64_t> LevelBins; // the bin each level came from
   std::vector<std::int64_t> LevelOffsets;
   vtkSmartPointer<vtkDataArray> SortedIds;
   std::int64_t NonFinite = 0;
@@ -109,6 +122,37 @@ ValueRange<T> ComputeRange(const T* values, std::int64_t n)
   return total;
 }
 
+// The range of the whole volume when it is cut into pieces (one per process):
+// every piece bins alike, so a level is the same value everywhere.
+template <typename T>
+void AgreeOnRange(vtkMultiProcessController* controller, ValueRange<T>& range)
+{
+  if (!mcx::IsDistributed(controller))
+  {
+    return;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  const double low = range.Finite > 0 ? static_cast<double>(range.Min) : inf;
+  const double high = range.Finite > 0 ? static_cast<double>(range.Max) : -inf;
+  const long long finite = range.Finite;
+  const int integers = range.AllIntegers ? 1 : 0;
+  double lowest = 0, highest = 0;
+  long long finiteTotal = 0;
+  int allIntegers = 0;
+  controller->AllReduce(&low, &lowest, 1, vtkCommunicator::MIN_OP);
+  controller->AllReduce(&high, &highest, 1, vtkCommunicator::MAX_OP);
+  controller->AllReduce(&finite, &finiteTotal, 1, vtkCommunicator::SUM_OP);
+  controller->AllReduce(&integers, &allIntegers, 1, vtkCommunicator::MIN_OP);
+  range.Finite = finiteTotal;
+  range.AllIntegers = allIntegers == 1;
+  if (finiteTotal > 0)
+  {
+    // Exact for floating-point data (the only data binned by its range).
+    range.Min = static_cast<T>(lowest);
+    range.Max = static_cast<T>(highest);
+  }
+}
+
 template <typename IdType, typename BinFunction>
 void SortIntoLevels(std::int64_t n, std::int64_t numberOfBins, std::int64_t numberKept,
   const BinFunction& binOf, const std::function<double(std::int64_t)>& binValue,
@@ -130,15 +174,19 @@ void SortIntoLevels(std::int64_t n, std::int64_t numberOfBins, std::int64_t numb
     if (binOffsets[static_cast<std::size_t>(b + 1)] > binOffsets[static_cast<std::size_t>(b)])
     {
       result.LevelValues.push_back(binValue(b));
+      result.LevelBins.push_back(b);
       result.LevelOffsets.push_back(binOffsets[static_cast<std::size_t>(b + 1)]);
     }
   }
 }
 
 template <typename IdType, typename T>
-void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& result)
+void BuildIndex(const T* values, std::int64_t n, int floatLevels,
+  vtkMultiProcessController* controller, IndexResult& result)
 {
-  const ValueRange<T> range = ComputeRange(values, n);
+  ValueRange<T> range = ComputeRange(values, n);
+  const std::int64_t finiteHere = range.Finite;
+  AgreeOnRange(controller, range);
   if (range.Finite == 0)
   {
     SortIntoLevels<IdType>(
@@ -153,7 +201,7 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     // Floating-point data holding whole numbers (CT stored as float) is exact.
     const double minimum = static_cast<double>(range.Min);
     SortIntoLevels<IdType>(
-      n, static_cast<std::int64_t>(static_cast<double>(range.Max) - minimum) + 1, range.Finite,
+      n, static_cast<std::int64_t>(static_cast<double>(range.Max) - minimum) + 1, finiteHere,
       [=](std::int64_t id) -> std::int64_t
       {
         const double v = static_cast<double>(values[id]);
@@ -171,7 +219,7 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
     const std::int64_t last = floatLevels - 1;
     result.BinWidth = hi > lo ? 2.0 * (hi - lo) / floatLevels : 0.0;
     SortIntoLevels<IdType>(
-      n, floatLevels, range.Finite,
+      n, floatLevels, finiteHere,
       [=](std::int64_t id) -> std::int64_t
       {
         const double v = static_cast<double>(values[id]);
@@ -183,26 +231,68 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels, IndexResult& r
         return std::min(b, last);
       },
       [](std::int64_t) { return 0.0; }, result);
-    // A level stands for the mean of its voxels' values: exact when they are all equal.
+    // A level stands for the mean of its voxels' values, from exact
+    // fixed-point sums of their offsets from the bin's start (so that pieces
+    // of the volume add up to the same mean), and is their value when they
+    // are all equal.
+    const double width = result.BinWidth;
+    auto binStart = [=](std::int64_t bin) { return 2.0 * (lo + static_cast<double>(bin) / scale); };
     const IdType* ids = static_cast<const IdType*>(result.SortedIds->GetVoidPointer(0));
     const std::int64_t levels = static_cast<std::int64_t>(result.LevelValues.size());
+    std::vector<mcx::FixedSum> sums(static_cast<std::size_t>(floatLevels), mcx::FixedSum(0));
+    std::vector<long long> counts(static_cast<std::size_t>(floatLevels), 0);
+    std::vector<double> lowest(static_cast<std::size_t>(floatLevels), range.Max);
+    std::vector<double> highest(static_cast<std::size_t>(floatLevels), range.Min);
     vtkSMPTools::For(0, levels,
       [&](std::int64_t l0, std::int64_t l1)
       {
         for (std::int64_t l = l0; l < l1; ++l)
         {
+          const std::int64_t bin = result.LevelBins[static_cast<std::size_t>(l)];
           const std::int64_t begin = result.LevelOffsets[static_cast<std::size_t>(l)];
           const std::int64_t end = result.LevelOffsets[static_cast<std::size_t>(l + 1)];
-          double sum = 0.0;
+          mcx::FixedSum sum = 0;
+          double& low = lowest[static_cast<std::size_t>(bin)];
+          double& high = highest[static_cast<std::size_t>(bin)];
           for (std::int64_t i = begin; i < end; ++i)
           {
-            sum += 0.5 * static_cast<double>(values[ids[i]]);
+            const double v = static_cast<double>(values[ids[i]]);
+            low = std::min(low, v);
+            high = std::max(high, v);
+            const double offset = (v - binStart(bin)) / width * FloatLevelFraction + FloatLevelBias;
+            sum += mcx::FixedSum(static_cast<std::uint64_t>(
+              std::llround(std::min(2.0 * FloatLevelBias, std::max(0.0, offset)))));
           }
-          const double mean = 2.0 * (sum / static_cast<double>(end - begin));
-          result.LevelValues[static_cast<std::size_t>(l)] = std::min(
-            static_cast<double>(range.Max), std::max(static_cast<double>(range.Min), mean));
+          sums[static_cast<std::size_t>(bin)] = sum;
+          counts[static_cast<std::size_t>(bin)] = end - begin;
         }
       });
+    if (mcx::IsDistributed(controller))
+    {
+      mcx::SumExactly(controller, sums);
+      std::vector<long long> total(counts.size());
+      controller->AllReduce(counts.data(), total.data(), static_cast<vtkIdType>(counts.size()),
+        vtkCommunicator::SUM_OP);
+      counts.swap(total);
+      std::vector<double> reduced(lowest.size());
+      controller->AllReduce(lowest.data(), reduced.data(), static_cast<vtkIdType>(lowest.size()),
+        vtkCommunicator::MIN_OP);
+      lowest.swap(reduced);
+      controller->AllReduce(highest.data(), reduced.data(),
+        static_cast<vtkIdType>(highest.size()), vtkCommunicator::MAX_OP);
+      highest.swap(reduced);
+    }
+    for (std::int64_t l = 0; l < levels; ++l)
+    {
+      const std::size_t bin = static_cast<std::size_t>(result.LevelBins[static_cast<std::size_t>(l)]);
+      const double offset =
+        (mcx::ToDouble(sums[bin]) / static_cast<double>(counts[bin]) - FloatLevelBias) /
+        FloatLevelFraction * width;
+      const double mean =
+        lowest[bin] == highest[bin] ? lowest[bin] : binStart(static_cast<std::int64_t>(bin)) + offset;
+      result.LevelValues[static_cast<std::size_t>(l)] =
+        std::min(highest[bin], std::max(lowest[bin], mean));
+    }
     return;
   }
   // Differences of integers in [Min, Max] fit 64 unsigned bits exactly
@@ -239,6 +329,12 @@ vtkMCXDensityIndex::vtkMCXDensityIndex()
   this->SetProgressText("X-Ray Density Index"); // what progress bars show (ParaView's label)
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+vtkMCXDensityIndex::~vtkMCXDensityIndex()
+{
+  this->SetController(nullptr);
 }
 
 bool vtkMCXDensityIndex::NeedsWideIds(long long numberOfVoxels)
@@ -265,13 +361,114 @@ int vtkMCXDensityIndex::RequestInformation(
 }
 
 int vtkMCXDensityIndex::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // The index always covers the whole volume.
+  // The extent asked of the index (a process's z-slab of a distributed
+  // volume), else the whole volume. An empty slab (more processes than
+  // slices) asks the input for one slice, the least it can deliver.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int extent[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int asked[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+    if (asked[1] >= asked[0] && asked[3] >= asked[2] && asked[5] >= asked[4])
+    {
+      std::copy(asked, asked + 6, extent);
+    }
+    else
+    {
+      extent[5] = extent[4];
+    }
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
   return 1;
+}
+
+namespace
+{
+// The part of the input the output was asked for (its update extent): the
+// input itself when it is exactly that, else a copy of that part's scalars
+// (empty for an empty extent); null when the input does not hold it.
+vtkSmartPointer<vtkImageData> PieceOf(
+  vtkImageData* input, vtkDataArray*& scalars, vtkInformation* outInfo)
+{
+  int extent[6];
+  input->GetExtent(extent);
+  if (!outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    return input;
+  }
+  int asked[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+  if (std::equal(asked, asked + 6, extent))
+  {
+    return input;
+  }
+  auto piece = vtkSmartPointer<vtkImageData>::New();
+  piece->CopyStructure(input);
+  piece->SetExtent(asked);
+  auto values = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
+  values->SetName(scalars->GetName());
+  const bool empty = asked[1] < asked[0] || asked[3] < asked[2] || asked[5] < asked[4];
+  if (!empty)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      if (asked[2 * a] < extent[2 * a] || asked[2 * a + 1] > extent[2 * a + 1])
+      {
+        return nullptr; // the input does not hold the piece
+      }
+    }
+    // The piece's rows, copied out of the input's.
+    const vtkIdType row = asked[1] - asked[0] + 1;
+    values->SetNumberOfTuples(row * (asked[3] - asked[2] + 1) * (asked[5] - asked[4] + 1));
+    vtkIdType target = 0;
+    for (int z = asked[4]; z <= asked[5]; ++z)
+    {
+      for (int y = asked[2]; y <= asked[3]; ++y)
+      {
+        int ijk[3] = { asked[0], y, z };
+        const vtkIdType source = input->ComputePointId(ijk);
+        values->InsertTuples(target, row, source, scalars);
+        target += row;
+      }
+    }
+  }
+  piece->GetPointData()->SetScalars(values);
+  scalars = values;
+  return piece;
+}
+}
+
+namespace
+{
+// Why the scalars cannot be indexed, or "".
+std::string ScalarsProblem(vtkDataArray* scalars, vtkIdType points)
+{
+  if (!scalars)
+  {
+    return "The input image has no point scalars to index";
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    return std::string("The input scalars '") + (scalars->GetName() ? scalars->GetName() : "") +
+      "' have " + std::to_string(scalars->GetNumberOfComponents()) +
+      " components; the index needs one";
+  }
+  if (scalars->GetNumberOfTuples() != points)
+  {
+    return "The input scalars do not cover the image's " + std::to_string(points) + " points";
+  }
+  switch (scalars->GetDataType())
+  {
+    vtkTemplateMacro(return std::string());
+    default:
+      return std::string("Unsupported scalar type ") + scalars->GetDataTypeAsString();
+  }
+}
 }
 
 int vtkMCXDensityIndex::RequestData(
@@ -285,36 +482,41 @@ int vtkMCXDensityIndex::RequestData(
     return 0;
   }
   output->Initialize(); // a failure below leaves no stale index of an earlier input
+
+  // Checks first; distributed, all processes fail together on the first
+  // process's problem (none waits for one that gave up).
+  vtkMultiProcessController* controller =
+    mcx::IsDistributed(this->Controller) ? this->Controller : nullptr;
   vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  if (!scalars)
+  std::string problem = ScalarsProblem(scalars, input->GetNumberOfPoints());
+  vtkSmartPointer<vtkImageData> piece;
+  if (problem.empty())
   {
-    vtkErrorMacro("The input image has no point scalars to index.");
-    return 0;
+    piece = PieceOf(input, scalars, outputVector->GetInformationObject(0));
+    problem = piece ? std::string() : "The input does not hold the extent asked of the index";
   }
-  if (scalars->GetNumberOfComponents() != 1)
+  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
+  if (problem.empty() && n <= 0 && !controller)
   {
-    vtkErrorMacro("The input scalars '" << (scalars->GetName() ? scalars->GetName() : "")
-                                        << "' have " << scalars->GetNumberOfComponents()
-                                        << " components; the index needs one.");
-    return 0;
+    problem = "The input image has no voxels";
   }
-  const vtkIdType n = input->GetNumberOfPoints();
-  if (scalars->GetNumberOfTuples() != n || n <= 0)
+  const bool wide = this->AlwaysUseWideIds || vtkMCXDensityIndex::NeedsWideIds(n);
+  if (problem.empty())
   {
-    vtkErrorMacro("The input scalars do not cover the image's " << n << " points.");
+    // The sorted ids, the sort's copy of them and a level per voxel.
+    const double bytesPerVoxel = 2.0 * (wide ? 8 : 4) + 4;
+    problem = mcx::MemoryProblem(
+      bytesPerVoxel * static_cast<double>(n), "An index of " + std::to_string(n) + " voxels");
+  }
+  problem = mcx::FirstErrorOfAll(controller, problem);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem << ".");
     return 0;
   }
 
   this->UpdateProgress(0.0);
   IndexResult result;
-  const bool wide = this->AlwaysUseWideIds || vtkMCXDensityIndex::NeedsWideIds(n);
-  // The sorted ids, the sort's copy of them and a level per voxel.
-  const double bytesPerVoxel = 2.0 * (wide ? 8 : 4) + 4;
-  if (!mcx::CheckMemory(this, bytesPerVoxel * static_cast<double>(n),
-        "An index of " + std::to_string(n) + " voxels"))
-  {
-    return 0;
-  }
   try
   {
     switch (scalars->GetDataType())
@@ -323,16 +525,13 @@ int vtkMCXDensityIndex::RequestData(
         const VTK_TT* values = static_cast<const VTK_TT*>(scalars->GetVoidPointer(0));
         if (wide)
         {
-          BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, result);
+          BuildIndex<std::uint64_t>(values, n, this->NumberOfFloatLevels, controller, result);
         }
         else
         {
-          BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, result);
+          BuildIndex<std::uint32_t>(values, n, this->NumberOfFloatLevels, controller, result);
         }
       });
-      default:
-        vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString() << ".");
-        return 0;
     }
   }
   catch (const std::bad_alloc&)
@@ -342,7 +541,7 @@ int vtkMCXDensityIndex::RequestData(
   }
   this->UpdateProgress(0.9);
 
-  output->CopyStructure(input);
+  output->CopyStructure(piece);
   output->GetPointData()->Initialize();
   output->GetCellData()->Initialize();
   vtkFieldData* fd = output->GetFieldData();
@@ -375,4 +574,5 @@ void vtkMCXDensityIndex::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfFloatLevels: " << this->NumberOfFloatLevels << "\n";
   os << indent << "AlwaysUseWideIds: " << this->AlwaysUseWideIds << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -24,12 +24,22 @@
  *
  * The sort runs in parallel with vtkSMPTools and its output is identical for
  * any number of threads.
+ *
+ * The output holds the extent asked of it (its update extent; the whole
+ * volume unless a consumer asks for less), and the index of that part.
+ * vtkMCXProjector under several processes asks each for its z-slab: each
+ * process then reads and indexes only its slab, and the processes agree on
+ * the data's range (Controller) so that floating-point data is binned alike
+ * everywhere and a level's value is the whole volume's mean, the same for
+ * any number of processes. A process beyond the slices gets an empty index.
  */
 #ifndef vtkMCXDensityIndex_h
 #define vtkMCXDensityIndex_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+
+class vtkMultiProcessController;
 
 class MONTECARLOXRAYFILTERS_EXPORT vtkMCXDensityIndex : public vtkImageAlgorithm
 {
@@ -60,6 +70,16 @@ public:
 
   ///@{
   /**
+   * The processes that hold the volume's pieces (default: the global
+   * controller). Under more than one, a problem on any process fails the
+   * index on all of them, with that process's message.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
+  /**
    * Names of the field-data arrays of the output.
    */
   static const char* LevelValuesName() { return "LevelValues"; }
@@ -76,7 +96,7 @@ public:
 
 protected:
   vtkMCXDensityIndex();
-  ~vtkMCXDensityIndex() override = default;
+  ~vtkMCXDensityIndex() override;
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -84,6 +104,7 @@ protected:
 
   int NumberOfFloatLevels = 4096;
   bool AlwaysUseWideIds = false;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkMCXDensityIndex(const vtkMCXDensityIndex&) = delete;

@@ -1,6 +1,7 @@
 #include "vtkMCXIndexViewPrivate.h"
 
 #include "vtkMCXDensityIndex.h"
+#include "vtkMCXDistributedPrivate.h"
 
 #include "mcxProjectionGeometry.h"
 #include "vtkAlgorithm.h"
@@ -160,6 +161,33 @@ bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* 
   std::string warning;
   if (error.empty())
   {
+    error = view.MakeTransferTable(tf, table, integral, warning);
+  }
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, "Cannot " << action << ": " << error << ".");
+    return false;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningWithObjectMacro(algorithm, << warning);
+  }
+  return true;
+}
+
+bool PrepareDistributedSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
+  vtkPiecewiseFunction* tf, vtkMultiProcessController* controller, const int wholeExtent[6],
+  DistributedLevels& levels, IndexView& view, TransferTable& table, double& integral)
+{
+  std::string error = FirstErrorOfAll(controller, view.Read(index));
+  std::string warning;
+  if (error.empty())
+  {
+    error = FirstErrorOfAll(controller, GatherLevels(controller, wholeExtent, view, levels));
+  }
+  if (error.empty())
+  {
+    // The same table on every process: the whole volume's levels and TF.
     error = view.MakeTransferTable(tf, table, integral, warning);
   }
   if (!error.empty())

@@ -7,11 +7,13 @@
 #include "mcxSampleGenerator.h"
 #include "mcxTransferTable.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 class vtkAlgorithm;
+class vtkMultiProcessController;
 class vtkDataArray;
 class vtkFieldData;
 class vtkImageData;
@@ -22,6 +24,7 @@ class vtkPiecewiseFunction;
 
 namespace mcx
 {
+struct DistributedLevels;
 
 struct IndexView
 {
@@ -35,6 +38,11 @@ struct IndexView
   std::int64_t NumberOfLevels = 0;
   vtkDataArray* Ids = nullptr;
   bool WideIds = false;
+  /// A piece of a distributed index (see GatherLevels): Extent is then the
+  /// whole volume's and Dimensions the piece's; null offsets: the whole.
+  const std::int64_t* PieceOffsets = nullptr;
+  const std::int64_t* PieceFirstRank = nullptr;
+  std::uint64_t PieceStart[3] = { 0, 0, 0 };
 
   /// Reads the index arrays; returns an empty string or the reason it cannot.
   std::string Read(vtkImageData* index);
@@ -67,6 +75,9 @@ struct IndexView
     source.NumberOfLevels = this->NumberOfLevels;
     source.Decoder = VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->Dimensions[0]),
       static_cast<std::uint64_t>(this->Dimensions[1]));
+    source.PieceOffsets = this->PieceOffsets;
+    source.PieceFirstRank = this->PieceFirstRank;
+    std::copy(this->PieceStart, this->PieceStart + 3, source.PieceStart);
     return source;
   }
 
@@ -79,6 +90,15 @@ struct IndexView
 /// false when no output can be made.
 bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
   vtkPiecewiseFunction* tf, IndexView& view, TransferTable& table, double& integral);
+
+/// PrepareSampling for this process's piece of an index cut into pieces
+/// (`wholeExtent` the volume's): every process of the controller calls it,
+/// and all fail, with the first process's error, if any does. The view then
+/// sees the whole volume's levels (backed by `levels`), so the table is a
+/// single process's.
+bool PrepareDistributedSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
+  vtkPiecewiseFunction* tf, vtkMultiProcessController* controller, const int wholeExtent[6],
+  DistributedLevels& levels, IndexView& view, TransferTable& table, double& integral);
 
 /// Adds a one-value array to field data (the metadata that travels with outputs).
 /// (Exported: the Rendering module's mapper writes its image's field data too.)

@@ -39,16 +39,25 @@ void SetMemoryBudget(double bytes)
   Budget.store(bytes > 0 ? bytes : 0.0);
 }
 
-bool CheckMemory(vtkObject* self, double bytes, const std::string& what)
+std::string MemoryProblem(double bytes, const std::string& what)
 {
   const double budget = MemoryBudget();
   if (bytes <= budget)
   {
+    return std::string();
+  }
+  return what + " needs " + DescribeBytes(bytes) + ", more than the memory budget of " +
+    DescribeBytes(budget);
+}
+
+bool CheckMemory(vtkObject* self, double bytes, const std::string& what)
+{
+  const std::string problem = MemoryProblem(bytes, what);
+  if (problem.empty())
+  {
     return true;
   }
-  vtkErrorWithObjectMacro(self, << what << " needs " << DescribeBytes(bytes)
-                                << ", more than the memory budget of "
-                                << DescribeBytes(budget) << ".");
+  vtkErrorWithObjectMacro(self, << problem << ".");
   return false;
 }
 

@@ -23,6 +23,10 @@ MONTECARLOXRAYFILTERS_EXPORT double MemoryBudget();
 /// Sets the budget for this process; 0 goes back to the physical memory.
 MONTECARLOXRAYFILTERS_EXPORT void SetMemoryBudget(double bytes);
 
+/// "" when bytes fit the budget; else "<what> needs N, more than the memory
+/// budget of B" (no full stop).
+MONTECARLOXRAYFILTERS_EXPORT std::string MemoryProblem(double bytes, const std::string& what);
+
 /// True when bytes fit the budget; else reports "<what> needs N, more than
 /// the memory budget of B" as an error of self and returns false.
 MONTECARLOXRAYFILTERS_EXPORT bool CheckMemory(vtkObject* self, double bytes, const std::string& what);

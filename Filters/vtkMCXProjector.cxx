@@ -5,6 +5,7 @@
 #include "mcxSampleAccumulator.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXCloudDepositPrivate.h"
+#include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
@@ -16,17 +17,22 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
 #include <cmath>
 #include <new>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXProjector);
+vtkCxxSetObjectMacro(vtkMCXProjector, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -108,19 +114,30 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
 }
 
 // Stage 1b: samples generated from the index and deposited as they come,
-// never stored.
+// never stored. Under a controller of several processes the index is this
+// process's piece: it deposits the samples whose voxels it holds, and the
+// processes add their sums, so that every one holds the single-process image.
 class IndexProjection
 {
 public:
-  IndexProjection(vtkAlgorithm* self, const mcx::ProjectionGeometry& geometry)
+  IndexProjection(vtkAlgorithm* self, const mcx::ProjectionGeometry& geometry,
+    vtkMultiProcessController* controller, const int wholeExtent[6])
     : Self(self)
     , Geometry(geometry)
+    , Controller(mcx::IsDistributed(controller) ? controller : nullptr)
   {
+    std::copy(wholeExtent, wholeExtent + 6, this->WholeExtent);
   }
 
-  /// Reads the index and evaluates the TF; false (reported) when no image can be made.
+  /// Reads the index and evaluates the TF; false (reported) when no image
+  /// can be made (on every process, when distributed).
   bool Prepare(vtkImageData* index, vtkPiecewiseFunction* tf)
   {
+    if (this->Controller)
+    {
+      return mcx::PrepareDistributedSampling(this->Self, "project", index, tf, this->Controller,
+        this->WholeExtent, this->Levels, this->View, this->Table, this->Integral);
+    }
     return mcx::PrepareSampling(
       this->Self, "project", index, tf, this->View, this->Table, this->Integral);
   }
@@ -141,13 +158,41 @@ public:
     accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), this->Settings());
     projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
     accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
-    if (m > 0)
+    std::string error;
+    try
     {
-      projection.Completed = this->View.WideIds
-        ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
-        : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
+      if (m > 0)
+      {
+        projection.Completed = this->View.WideIds
+          ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
+          : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
+      }
+      CollectSums(accumulator, projection);
     }
-    CollectSums(accumulator, projection);
+    catch (const std::bad_alloc&)
+    {
+      error = "out of memory projecting into " + std::to_string(this->Geometry.Size[0]) + " x " +
+        std::to_string(this->Geometry.Size[1]) + " pixels";
+    }
+    if (this->Controller)
+    {
+      // Every process reaches this point, whatever happened to it.
+      error = mcx::FirstErrorOfAll(this->Controller,
+        !error.empty() ? error : projection.Completed ? std::string() : std::string("aborted"));
+      if (error.empty())
+      {
+        mcx::SumExactly(this->Controller, projection.Sums);
+      }
+      else if (error.find(": aborted") != std::string::npos)
+      {
+        error.clear();
+        projection.Completed = false;
+      }
+    }
+    if (!error.empty())
+    {
+      throw std::runtime_error(error);
+    }
     return projection;
   }
 
@@ -184,17 +229,38 @@ private:
     source.Seed = this->Seed;
     source.Exponent = m;
     source.Centres = this->DepositMode == mcx::Deposit::Footprint;
-    return mcx::BatchedFor(this->Self, source.NumberOfSamples(), progressBegin, progressEnd,
+    // The runs of sample ranks this piece deposits (all of them for a whole
+    // index), laid end to end.
+    const auto runs = source.PieceRanks();
+    std::vector<std::uint64_t> ends(runs.size());
+    std::uint64_t total = 0;
+    for (std::size_t r = 0; r < runs.size(); ++r)
+    {
+      total += runs[r].second - runs[r].first;
+      ends[r] = total;
+    }
+    return mcx::BatchedFor(this->Self, total, progressBegin, progressEnd,
       [&](std::uint64_t b, std::uint64_t e)
       {
         const Accumulator::ThreadImage image = accumulator.Local();
         auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
-        source.Generate(b, e, deposit);
+        std::size_t r = static_cast<std::size_t>(
+          std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
+        for (; r < runs.size() && b < e; ++r)
+        {
+          const std::uint64_t runBegin = ends[r] - (runs[r].second - runs[r].first);
+          const std::uint64_t stop = std::min(e, ends[r]);
+          source.Generate(runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
+          b = stop;
+        }
       });
   }
 
   vtkAlgorithm* Self;
   const mcx::ProjectionGeometry& Geometry;
+  vtkMultiProcessController* Controller;
+  int WholeExtent[6];
+  mcx::DistributedLevels Levels;
   mcx::IndexView View;
   mcx::TransferTable Table;
   double Integral = 0.0;
@@ -248,14 +314,14 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
 
 // Stage 1: the input's samples, projected (false, reported, when there is
 // no image to make).
-bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input,
+bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeExtent[6],
   const mcx::ProjectionGeometry& geometry, Projection& projection)
 {
   if (auto* cloud = vtkPolyData::SafeDownCast(input))
   {
     return ProjectCloud(self, cloud, geometry, self->GetFootprintReach(), projection);
   }
-  IndexProjection sampler(self, geometry);
+  IndexProjection sampler(self, geometry, self->GetController(), wholeExtent);
   if (!sampler.Prepare(vtkImageData::SafeDownCast(input), self->GetTransferFunction()))
   {
     return false;
@@ -282,7 +348,7 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
 {
   const std::size_t pixels = projection.Sums.size() / 2;
   mcx::FixedSumsToValues(projection.Sums.data(), pixels, projection.SampleWeight,
-    geometry.PixelArea(), values->GetPointer(0));
+    geometry.BeamCrossSection(), values->GetPointer(0));
   fd->Initialize();
   mcx::AddFieldValue(
     fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));
@@ -296,6 +362,30 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
 vtkMCXProjector::vtkMCXProjector()
 {
   this->SetProgressText("X-Ray Projector"); // what progress bars show (ParaView's label)
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+vtkMCXProjector::~vtkMCXProjector()
+{
+  this->SetController(nullptr);
+}
+
+int vtkMCXProjector::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (!mcx::IsDistributed(this->Controller) ||
+    !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  }
+  // An index under several processes: this process's z-slab of it.
+  int whole[6], slab[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  mcx::ZSlabExtent(whole, this->Controller->GetLocalProcessId(),
+    this->Controller->GetNumberOfProcesses(), slab);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), slab, 6);
+  return 1;
 }
 
 void vtkMCXProjector::SetNumberOfSamples(vtkTypeInt64 n)
@@ -323,10 +413,16 @@ int vtkMCXProjector::RequestData(
   vtkImageData* output = vtkImageData::GetData(outputVector);
   const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
 
+  int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 };
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  }
   Projection projection;
   try
   {
-    if (!ProjectInput(this, input, geometry, projection))
+    if (!ProjectInput(this, input, wholeExtent, geometry, projection))
     {
       output->Initialize();
       return 0;
@@ -336,6 +432,12 @@ int vtkMCXProjector::RequestData(
   {
     vtkErrorMacro("Out of memory projecting into " << geometry.Size[0] << " x " << geometry.Size[1]
                                                    << " pixels.");
+    output->Initialize();
+    return 0;
+  }
+  catch (const std::runtime_error& error)
+  {
+    vtkErrorMacro("Cannot project: " << error.what() << ".");
     output->Initialize();
     return 0;
   }
@@ -359,4 +461,5 @@ void vtkMCXProjector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TargetRelativeError: " << this->TargetRelativeError << "\n";
   os << indent << "TargetQuantizationLevels: " << this->TargetQuantizationLevels << "\n";
   os << indent << "MaximumSampleExponent: " << this->MaximumSampleExponent << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

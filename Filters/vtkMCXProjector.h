@@ -44,6 +44,8 @@
 #include "vtkMCXPointSampler.h"          // for the sample-count limits
 #include "vtkMCXProjectorBase.h"
 
+class vtkMultiProcessController;
+
 class MONTECARLOXRAYFILTERS_EXPORT vtkMCXProjector : public vtkMCXProjectorBase
 {
 public:
@@ -93,6 +95,20 @@ public:
   ///@}
 
   ///@{
+  /**
+   * The processes that share the work (default: the global controller).
+   * Under more than one, an index input is requested as z-slabs, one per
+   * process; each process deposits the samples whose voxels its slab holds
+   * (with the numbering of a single process), and the exact sums are added
+   * over the processes, so every process's output is, bit for bit, the
+   * image one process makes of the whole volume, for any number of
+   * processes. A point-cloud input is projected by each process alone.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
   /** Upper bound of the exponent the target controls may choose (default 30). */
   vtkSetClampMacro(MaximumSampleExponent, int, vtkMCXPointSampler::PilotSampleExponent,
     vtkMCXPointSampler::LargestSampleExponent);
@@ -101,9 +117,10 @@ public:
 
 protected:
   vtkMCXProjector();
-  ~vtkMCXProjector() override = default;
+  ~vtkMCXProjector() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int SampleExponent = 24;
@@ -114,6 +131,7 @@ protected:
   double TargetRelativeError = 0.0;
   int TargetQuantizationLevels = 0;
   int MaximumSampleExponent = 30;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkMCXProjector(const vtkMCXProjector&) = delete;

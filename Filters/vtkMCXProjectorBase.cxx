@@ -198,8 +198,9 @@ void vtkMCXProjectorBase::OutputPlacement(double origin[3], double direction[9])
   }
   // Columns U, V and U x V (a rotation: +W or -W, the normal of the image's
   // front face); pixel (0, 0) where the plane coordinates Origin put it:
-  // absolute along U and V for a parallel view, from the principal point on
-  // the focal plane for a perspective one.
+  // absolute along U and V for a parallel view (moved along the oblique rays
+  // to the plane's depth), from the principal point on the focal plane for a
+  // perspective one.
   double normal[3];
   vtkMath::Cross(g.U, g.V, normal);
   for (int r = 0; r < 3; ++r)
@@ -207,9 +208,10 @@ void vtkMCXProjectorBase::OutputPlacement(double origin[3], double direction[9])
     direction[3 * r] = g.U[r];
     direction[3 * r + 1] = g.V[r];
     direction[3 * r + 2] = normal[r];
-    const double onAxis = g.Perspective
-      ? g.Eye[r] + g.FocalDistance * g.W[r]
-      : this->Internals->PlaneDepth * g.W[r];
+    const double depth = this->Internals->PlaneDepth;
+    const double onAxis = g.Perspective ? g.Eye[r] + g.FocalDistance * g.W[r]
+                                        : depth * (g.W[r] + g.Obliquity[0] * g.U[r] +
+                                                    g.Obliquity[1] * g.V[r]);
     origin[r] = onAxis + g.Origin[0] * g.U[r] + g.Origin[1] * g.V[r];
   }
 }

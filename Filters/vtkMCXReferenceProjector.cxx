@@ -92,8 +92,9 @@ public:
       for (int r = 0; r < 3; ++r)
       {
         start[r] = a * g.U[r] + b * g.V[r];
-        direction[r] = g.W[r];
+        direction[r] = g.W[r] + g.Obliquity[0] * g.U[r] + g.Obliquity[1] * g.V[r];
       }
+      vtkMath::Normalize(direction);
       tmin = -std::numeric_limits<double>::infinity();
       tmax = std::numeric_limits<double>::infinity();
     }

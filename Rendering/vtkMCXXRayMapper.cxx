@@ -76,7 +76,8 @@ bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometr
   return a.Perspective == b.Perspective && same(a.Eye, b.Eye, 3) && same(a.U, b.U, 3) &&
     same(a.V, b.V, 3) && same(a.W, b.W, 3) && a.FocalDistance == b.FocalDistance &&
     a.NearDistance == b.NearDistance && a.Size[0] == b.Size[0] && a.Size[1] == b.Size[1] &&
-    same(a.Spacing, b.Spacing, 2) && same(a.Origin, b.Origin, 2);
+    same(a.Spacing, b.Spacing, 2) && same(a.Origin, b.Origin, 2) &&
+    same(a.Obliquity, b.Obliquity, 2);
 }
 
 // Whether any other visible prop in the renderer draws opaque 3D geometry
@@ -307,12 +308,6 @@ struct vtkMCXXRayMapper::vtkInternals
       return false;
     }
     vtkCamera* camera = view.Camera;
-    if (mcx::HasUnmodelledProjection(camera))
-    {
-      vtkWarningWithObjectMacro(self,
-        "The view shear and off-axis projection of a parallel camera are ignored: the X-ray "
-        "is drawn for the camera without them.");
-    }
     std::vector<double> limits(view.Depth.size());
     const double* range = camera->GetClippingRange();
     for (std::size_t p = 0; p < view.Depth.size(); ++p)

@@ -1037,6 +1037,25 @@ TEST(Mapper, LargeScreenshotsAreOneImageNotTiles)
   }
 }
 
+TEST(Mapper, ObliqueParallelCameraIsTheProjectorsView)
+{
+  // A parallel camera with view shear casts oblique rays: the mapper's image
+  // is the off-line projector's for that camera, pixel for pixel, and not the
+  // image of the same camera without the shear (which it once drew, with a
+  // warning).
+  Scene scene(18, 160, 128);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  camera->SetViewShear(0.45, -0.3, 1.0);
+  scene.Mapper->ProgressiveRefinementOff();
+  scene.Window->Render();
+  auto image = scene.OnScreen();
+  EXPECT_EQ(0, DifferingPixels(image, scene.Offline()));
+  EXPECT_GT(Sum(image), 0.0);
+  camera->SetViewShear(0, 0, 1.0);
+  EXPECT_GT(DifferingPixels(image, scene.Offline()), 160 * 128 / 4);
+}
+
 TEST(Mapper, ViewportSmallerThanTheWindow)
 {
   // A renderer in part of the window: the image has the viewport's size and

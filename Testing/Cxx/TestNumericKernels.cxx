@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -423,4 +424,160 @@ TEST(Accumulation, PerspectivePointsBehindOnAndBeforeTheEye)
   // Nearer than 1e-6 of the focal distance is refused as a geometry.
   g.NearDistance = 1e-6;
   EXPECT_NE("", g.Validate());
+}
+
+TEST(Accumulation, ObliqueParallelRaysBinAlongTheirDirection)
+{
+  // Rays along R = W + 0.75 U: a point at depth z lands 0.75 z to the left of
+  // where its perpendicular projection would, and a pixel's value is its
+  // mass over the beam's cross-section, the pixel area times cos = 1 / 1.25.
+  mcx::ProjectionGeometry g;
+  g.Obliquity[0] = 0.75;
+  g.Size[0] = g.Size[1] = 8;
+  g.Spacing[0] = g.Spacing[1] = 1;
+  g.Origin[0] = g.Origin[1] = -3.5;
+  ASSERT_EQ("", g.Validate());
+  EXPECT_DOUBLE_EQ(1.25, g.RayLengthPerDepth());
+  EXPECT_DOUBLE_EQ(0.8, g.BeamCrossSection());
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const mcx::PixelBinner binner(g, origin, identity);
+  std::int64_t pixel = -1;
+  mcx::FixedSum increment = 0;
+  const double deep[3] = { 0.2, 0.2, 4.0 }; // plane coordinates (0.2 - 3, 0.2)
+  ASSERT_TRUE(binner.Bin(deep, pixel, increment));
+  EXPECT_EQ(1 + 8 * 4, pixel);
+  double a = 0, b = 0;
+  ASSERT_TRUE(mcx::ProjectToPlane(g, deep, a, b));
+  EXPECT_DOUBLE_EQ(0.2 - 3.0, a);
+  EXPECT_DOUBLE_EQ(0.2, b);
+  // Obliquity is for parallel views, and bounded.
+  g.Perspective = true;
+  g.FocalDistance = 10;
+  g.NearDistance = 1;
+  EXPECT_NE("", g.Validate());
+  g.Perspective = false;
+  g.Obliquity[1] = std::nan("");
+  EXPECT_NE("", g.Validate());
+}
+
+namespace
+{
+// A sample as a piece emits it: output index and position, bit for bit.
+struct EmittedSample
+{
+  std::uint64_t K;
+  double P[3];
+  bool operator<(const EmittedSample& o) const { return this->K < o.K; }
+  bool operator==(const EmittedSample& o) const
+  {
+    return this->K == o.K && std::memcmp(this->P, o.P, sizeof(this->P)) == 0;
+  }
+};
+}
+
+TEST(SampleGenerator, PiecesEmitExactlyTheWholeVolumesSamples)
+{
+  // A 5 x 4 x 9 volume of 12 levels cut into z-slabs, as processes hold it
+  // (an empty slab, one whose voxels all have zero weight, uneven sizes):
+  // each slab, knowing only the global table and its own sorted ids, emits
+  // exactly the whole volume's samples whose voxels it holds, with the same
+  // output indices and positions, for every strategy; under the Halton
+  // choice its runs (PieceRanks) hold its samples and no other.
+  const std::uint64_t nx = 5, ny = 4, nz = 9, slice = nx * ny;
+  const std::int64_t levels = 12;
+  std::vector<std::int64_t> level(nx * ny * nz);
+  for (std::size_t id = 0; id < level.size(); ++id)
+  {
+    const std::uint64_t z = id / slice;
+    // Slab z in [6, 8) holds level 11 alone, whose weight is 0.
+    level[id] = z >= 6 && z < 8 ? 11 : static_cast<std::int64_t>((id * 7 + id / 3) % 11);
+  }
+  auto sortSlab = [&](std::uint64_t z0, std::uint64_t z1, std::vector<std::uint32_t>& ids,
+                    std::vector<std::int64_t>& offsets)
+  {
+    offsets.assign(levels + 1, 0);
+    ids.clear();
+    for (std::int64_t l = 0; l < levels; ++l)
+    {
+      for (std::uint64_t id = z0 * slice; id < z1 * slice; ++id)
+      {
+        if (level[id] == l)
+        {
+          ids.push_back(static_cast<std::uint32_t>(id - z0 * slice));
+        }
+      }
+      offsets[l + 1] = static_cast<std::int64_t>(ids.size());
+    }
+  };
+  std::vector<std::uint32_t> wholeIds;
+  std::vector<std::int64_t> wholeOffsets;
+  sortSlab(0, nz, wholeIds, wholeOffsets);
+  std::vector<double> weights(levels);
+  for (std::int64_t l = 0; l < levels; ++l)
+  {
+    weights[l] = l == 11 ? 0.0 : 0.5 + 0.37 * static_cast<double>((l * 5) % 7);
+  }
+  const mcx::TransferTable table =
+    mcx::BuildTransferTable(weights.data(), wholeOffsets.data(), levels);
+  const std::uint64_t cuts[] = { 0, 2, 2, 3, 6, 8, 9 }; // slabs [cuts[r], cuts[r + 1])
+  for (const mcx::Strategy method :
+    { mcx::Strategy::Hybrid, mcx::Strategy::QuasiMonteCarlo, mcx::Strategy::MonteCarlo })
+  {
+    mcx::SampleSource<std::uint32_t> whole;
+    whole.SortedIds = wholeIds.data();
+    whole.LevelOffsets = wholeOffsets.data();
+    whole.SetTable(table);
+    whole.NumberOfLevels = levels;
+    whole.Decoder = mcx::VoxelDecoder<std::uint32_t>(nx, ny);
+    whole.Method = method;
+    whole.Seed = 5;
+    whole.Exponent = 11;
+    std::vector<EmittedSample> expected, pieces;
+    auto into = [](std::vector<EmittedSample>& list)
+    {
+      return [&list](std::uint64_t k, const double p[3])
+      { list.push_back({ k, { p[0], p[1], p[2] } }); };
+    };
+    auto wholeSink = into(expected);
+    whole.Generate(0, whole.NumberOfSamples(), wholeSink);
+    ASSERT_EQ(whole.NumberOfSamples(), expected.size());
+    std::vector<std::int64_t> firstRank(levels, 0); // running over the slabs
+    for (std::size_t r = 0; r + 1 < sizeof(cuts) / sizeof(cuts[0]); ++r)
+    {
+      std::vector<std::uint32_t> ids;
+      std::vector<std::int64_t> offsets;
+      sortSlab(cuts[r], cuts[r + 1], ids, offsets);
+      mcx::SampleSource<std::uint32_t> piece = whole;
+      piece.SortedIds = ids.data();
+      piece.PieceOffsets = offsets.data();
+      piece.PieceFirstRank = firstRank.data();
+      piece.PieceStart[2] = cuts[r];
+      std::vector<EmittedSample> own;
+      auto pieceSink = into(own);
+      std::uint64_t generated = 0;
+      for (const auto& run : piece.PieceRanks())
+      {
+        piece.Generate(run.first, run.second, pieceSink);
+        generated += run.second - run.first;
+      }
+      if (method != mcx::Strategy::MonteCarlo)
+      {
+        EXPECT_EQ(generated, own.size()) << "slab " << r << ": runs of other slabs' samples";
+      }
+      if (cuts[r] >= 6 && cuts[r + 1] <= 8)
+      {
+        EXPECT_EQ(0u, own.size()) << "a slab of zero weight";
+      }
+      pieces.insert(pieces.end(), own.begin(), own.end());
+      for (std::int64_t l = 0; l < levels; ++l)
+      {
+        firstRank[l] += offsets[l + 1] - offsets[l];
+      }
+    }
+    std::sort(expected.begin(), expected.end());
+    std::sort(pieces.begin(), pieces.end());
+    ASSERT_EQ(expected.size(), pieces.size()) << static_cast<int>(method);
+    EXPECT_TRUE(expected == pieces) << static_cast<int>(method);
+  }
 }

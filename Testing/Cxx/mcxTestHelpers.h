@@ -148,12 +148,27 @@ inline bool DisplayCoordinates(
 /// The factor f = D^2 s / z^3 by which a perspective view scales a sample's
 /// count (D the focal distance, z the depth and s the distance of the point
 /// from the eye: the Jacobian of the central projection onto the focal
-/// plane, times the ray length per depth); 1 for a parallel view.
+/// plane, times the ray length per depth); in a parallel view the ray length
+/// per depth alone, 1 / cos of the rays' angle to the view (1 unless sheared).
 inline double PerspectiveWeight(vtkCamera* camera, const double x[3])
 {
   if (camera->GetParallelProjection())
   {
-    return 1.0;
+    // 1 / cos of the rays' angle to the view direction: a ray is the set of
+    // world points VTK's matrix sends to one screen point, here the two at
+    // normalized depths -1 and 1.
+    vtkNew<vtkMatrix4x4> inverse;
+    vtkMatrix4x4::Invert(camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1), inverse);
+    const double nearPoint[4] = { 0.1, 0.2, -1, 1 }, farPoint[4] = { 0.1, 0.2, 1, 1 };
+    double a[4], b[4], ray[3];
+    inverse->MultiplyPoint(nearPoint, a);
+    inverse->MultiplyPoint(farPoint, b);
+    for (int k = 0; k < 3; ++k)
+    {
+      ray[k] = b[k] / b[3] - a[k] / a[3];
+    }
+    vtkMath::Normalize(ray);
+    return 1.0 / std::fabs(vtkMath::Dot(ray, camera->GetDirectionOfProjection()));
   }
   double eye[3], w[3];
   camera->GetPosition(eye);

@@ -1,0 +1,172 @@
+#include "vtkMCXDistributedPrivate.h"
+
+#include "vtkMCXIndexViewPrivate.h"
+
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace mcx
+{
+
+namespace
+{
+// 128-bit sums travel as three 48-bit limbs in 64-bit words: up to 2^16
+// processes add without a carry leaving its word, and MPI may cut the buffer
+// anywhere (a plain SUM of independent words).
+constexpr int LimbBits = 48;
+constexpr std::uint64_t LimbMask = (std::uint64_t(1) << LimbBits) - 1;
+constexpr int LimbsPerSum = 3;
+
+// Bytes an all-reduce or all-gather of `bytes` per process moves through
+// one process (sent plus received, the simplest algorithm's count).
+std::uint64_t Exchanged(vtkMultiProcessController* controller, std::uint64_t bytes)
+{
+  return 2 * bytes * static_cast<std::uint64_t>(controller->GetNumberOfProcesses() - 1);
+}
+}
+
+bool IsDistributed(vtkMultiProcessController* controller)
+{
+  return controller && controller->GetNumberOfProcesses() > 1;
+}
+
+void ZSlabExtent(const int whole[6], int piece, int pieces, int slab[6])
+{
+  // Whole slices, as even as they divide; never shared between pieces (VTK's
+  // extent translator splits cells, so its point extents share a slice, and
+  // it turns to another axis when z has too few).
+  const long long slices = static_cast<long long>(whole[5]) - whole[4] + 1;
+  std::copy(whole, whole + 6, slab);
+  slab[4] = static_cast<int>(whole[4] + slices * piece / pieces);
+  slab[5] = static_cast<int>(whole[4] + slices * (piece + 1) / pieces - 1);
+}
+
+std::string FirstErrorOfAll(vtkMultiProcessController* controller, const std::string& error)
+{
+  if (!IsDistributed(controller))
+  {
+    return error;
+  }
+  constexpr vtkIdType Width = 512; // a message is one line
+  const int processes = controller->GetNumberOfProcesses();
+  std::vector<char> mine(Width, 0), all(static_cast<std::size_t>(Width) * processes, 0);
+  std::memcpy(mine.data(), error.data(), std::min<std::size_t>(error.size(), Width - 1));
+  controller->AllGather(mine.data(), all.data(), Width);
+  for (int p = 0; p < processes; ++p)
+  {
+    const char* text = all.data() + static_cast<std::size_t>(p) * Width;
+    if (text[0] != '\0')
+    {
+      return "process " + std::to_string(p) + " of " + std::to_string(processes) + ": " +
+        std::string(text, strnlen(text, Width));
+    }
+  }
+  return std::string();
+}
+
+void SumExactly(vtkMultiProcessController* controller, std::vector<FixedSum>& values)
+{
+  if (!IsDistributed(controller))
+  {
+    return;
+  }
+  std::vector<unsigned long long> limbs(values.size() * LimbsPerSum), sums(limbs.size());
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    FixedSum v = values[i];
+    for (int l = 0; l < LimbsPerSum; ++l)
+    {
+      limbs[LimbsPerSum * i + l] = static_cast<std::uint64_t>(v) & LimbMask;
+      v >>= LimbBits;
+    }
+  }
+  controller->AllReduce(limbs.data(), sums.data(), static_cast<vtkIdType>(limbs.size()),
+    vtkCommunicator::SUM_OP);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    FixedSum v = 0;
+    for (int l = LimbsPerSum - 1; l >= 0; --l)
+    {
+      v = (v << LimbBits) + FixedSum(static_cast<std::uint64_t>(sums[LimbsPerSum * i + l]));
+    }
+    values[i] = v;
+  }
+}
+
+std::string GatherLevels(vtkMultiProcessController* controller, const int wholeExtent[6],
+  IndexView& view, DistributedLevels& levels)
+{
+  const int processes = controller->GetNumberOfProcesses();
+  const int rank = controller->GetLocalProcessId();
+  levels.BytesExchanged = 0;
+
+  // The union of the level values: every process's list, merged.
+  const vtkIdType mine = static_cast<vtkIdType>(view.NumberOfLevels);
+  std::vector<vtkIdType> counts(static_cast<std::size_t>(processes));
+  controller->AllGather(&mine, counts.data(), 1);
+  std::vector<vtkIdType> starts(static_cast<std::size_t>(processes) + 1, 0);
+  for (int p = 0; p < processes; ++p)
+  {
+    starts[p + 1] = starts[p] + counts[p];
+  }
+  std::vector<double> all(static_cast<std::size_t>(starts[processes]));
+  std::vector<double> own(view.LevelValues, view.LevelValues + view.NumberOfLevels);
+  controller->AllGatherV(own.data(), all.data(), mine, counts.data(), starts.data());
+  levels.BytesExchanged += Exchanged(controller, sizeof(double) * own.size());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  levels.LevelValues = all;
+  const std::size_t global = all.size();
+
+  // This piece's counts per global level; the whole volume's by a sum, its
+  // rank offsets by summing the counts of the processes before it.
+  std::vector<long long> local(global, 0);
+  for (std::int64_t l = 0; l < view.NumberOfLevels; ++l)
+  {
+    const std::size_t g = static_cast<std::size_t>(
+      std::lower_bound(all.begin(), all.end(), view.LevelValues[l]) - all.begin());
+    local[g] = view.LevelOffsets[l + 1] - view.LevelOffsets[l];
+  }
+  std::vector<long long> everyone(global * static_cast<std::size_t>(processes));
+  controller->AllGather(local.data(), everyone.data(), static_cast<vtkIdType>(global));
+  levels.BytesExchanged += Exchanged(controller, sizeof(long long) * global);
+  levels.LevelOffsets.assign(global + 1, 0);
+  levels.PieceOffsets.assign(global + 1, 0);
+  levels.PieceFirstRank.assign(global, 0);
+  for (std::size_t g = 0; g < global; ++g)
+  {
+    long long total = 0, before = 0;
+    for (int p = 0; p < processes; ++p)
+    {
+      const long long n = everyone[static_cast<std::size_t>(p) * global + g];
+      before += p < rank ? n : 0;
+      total += n;
+    }
+    levels.LevelOffsets[g + 1] = levels.LevelOffsets[g] + total;
+    levels.PieceOffsets[g + 1] = levels.PieceOffsets[g] + local[g];
+    levels.PieceFirstRank[g] = before;
+  }
+
+  for (int a = 0; a < 3; ++a)
+  {
+    const int start = view.Dimensions[a] > 0 ? view.Extent[2 * a] : wholeExtent[2 * a];
+    if (start < wholeExtent[2 * a])
+    {
+      return "the piece's extent lies outside the volume's";
+    }
+    view.PieceStart[a] = static_cast<std::uint64_t>(start - wholeExtent[2 * a]);
+  }
+  std::copy(wholeExtent, wholeExtent + 6, view.Extent);
+  view.LevelValues = levels.LevelValues.data();
+  view.LevelOffsets = levels.LevelOffsets.data();
+  view.NumberOfLevels = static_cast<std::int64_t>(global);
+  view.PieceOffsets = levels.PieceOffsets.data();
+  view.PieceFirstRank = levels.PieceFirstRank.data();
+  return std::string();
+}
+
+} // namespace mcx

@@ -1,0 +1,277 @@
+// Distributed rendering under MPI (run by ctest with mpiexec -np 1, 2 and 3):
+// every process reads and indexes only its z-slab of the volume, deposits
+// the samples whose voxels it holds, and the processes add their exact sums.
+// Each image must be, bit for bit, the one a single process makes of the
+// whole volume (computed here too, on every process, with no controller),
+// for point and footprint deposits, every strategy, parallel and perspective
+// views, float data, more processes than slices, and a transfer function
+// that is zero on some pieces or everywhere; a process that cannot index its
+// piece fails every process with its message, and none waits forever.
+#include "mcxTestHelpers.h"
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXFirstErrorObserver.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXProjector.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMPIController.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTrivialProducer.h"
+#include "vtkXMLImageDataReader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+vtkMultiProcessController* Controller()
+{
+  return vtkMultiProcessController::GetGlobalController();
+}
+
+struct Settings
+{
+  int Strategy = vtkMCXPointSampler::HYBRID;
+  int Deposit = vtkMCXPointSampler::POINT;
+  bool Perspective = false;
+  double TargetError = 0.0;
+};
+
+vtkSmartPointer<vtkCamera> ObliquePerspective()
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetFocalPoint(120, 110, 90);
+  camera->SetPosition(-300, -180, 420);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(40);
+  camera->SetClippingRange(10, 2000);
+  return camera;
+}
+
+// The image of an index pipeline's output; distributed when `controller`
+// is set (the index then reads only its slab through the pipeline).
+vtkSmartPointer<vtkImageData> Project(vtkAlgorithmOutput* volume, vtkPiecewiseFunction* tf,
+  const Settings& settings, vtkMultiProcessController* controller)
+{
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetController(controller);
+  index->SetInputConnection(volume);
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetController(controller);
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetTransferFunction(tf);
+  projector->SetStrategy(settings.Strategy);
+  projector->SetDeposit(settings.Deposit);
+  projector->SetSampleExponent(18);
+  projector->SetSeed(7);
+  projector->SetTargetRelativeError(settings.TargetError);
+  projector->SetMaximumSampleExponent(20);
+  projector->SetImageSize(96, 80);
+  if (settings.Perspective)
+  {
+    projector->SetCamera(ObliquePerspective());
+  }
+  projector->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(projector->GetOutput());
+  return image;
+}
+
+// Bit-for-bit equality of two projector outputs, with their sample counts
+// and error estimates.
+void ExpectSameImage(vtkImageData* serial, vtkImageData* distributed, const std::string& what)
+{
+  vtkDataArray* a = mcxtest::LineIntegral(serial);
+  vtkDataArray* b = mcxtest::LineIntegral(distributed);
+  ASSERT_NE(nullptr, a) << what;
+  ASSERT_NE(nullptr, b) << what;
+  ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples()) << what;
+  vtkIdType differing = 0;
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    differing += a->GetTuple1(i) != b->GetTuple1(i) ? 1 : 0;
+    sum += a->GetTuple1(i);
+  }
+  EXPECT_EQ(0, differing) << what << " on process " << Controller()->GetLocalProcessId();
+  EXPECT_GT(sum, 0.0) << what;
+  for (const char* name : { "SampleCount", "EstimatedRelativeError", "Integral" })
+  {
+    EXPECT_EQ(mcxtest::FieldValue(serial, name), mcxtest::FieldValue(distributed, name))
+      << what << ": " << name;
+  }
+}
+
+vtkSmartPointer<vtkPiecewiseFunction> Ramp(double lo, double hi)
+{
+  auto tf = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  tf->AddPoint(lo, 0.0);
+  tf->AddPoint(hi, 1.0);
+  return tf;
+}
+
+// A volume held by a trivial producer: the index crops each process's slab.
+vtkSmartPointer<vtkTrivialProducer> Produce(vtkImageData* volume)
+{
+  auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
+  producer->SetOutput(volume);
+  return producer;
+}
+}
+
+TEST(Distributed, ImagesAreTheSingleProcessImagesBitForBit)
+{
+  // The bundled CT head read as pieces by VTK's XML reader (each process
+  // reads its slab's slices).
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
+  auto tf = Ramp(500, 3000);
+  for (const bool perspective : { false, true })
+  {
+    for (const int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+    {
+      for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO,
+             vtkMCXPointSampler::MONTE_CARLO })
+      {
+        Settings settings;
+        settings.Strategy = strategy;
+        settings.Deposit = deposit;
+        settings.Perspective = perspective;
+        const std::string what = std::string(perspective ? "perspective" : "parallel") +
+          (deposit == vtkMCXPointSampler::POINT ? " point" : " footprint") + " strategy " +
+          std::to_string(strategy);
+        ExpectSameImage(Project(reader->GetOutputPort(), tf, settings, nullptr),
+          Project(reader->GetOutputPort(), tf, settings, Controller()), what);
+      }
+    }
+  }
+}
+
+TEST(Distributed, TargetErrorChoosesTheSameSampleCount)
+{
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
+  auto tf = Ramp(500, 3000);
+  Settings settings;
+  settings.TargetError = 0.05;
+  settings.Deposit = vtkMCXPointSampler::FOOTPRINT;
+  ExpectSameImage(Project(reader->GetOutputPort(), tf, settings, nullptr),
+    Project(reader->GetOutputPort(), tf, settings, Controller()), "target error");
+}
+
+TEST(Distributed, FloatDataIsBinnedAlikeOnEveryPiece)
+{
+  // Float values with a different range on each slab: the levels (bins of
+  // the global range, each the mean of its voxels) must be the whole
+  // volume's for the images to agree.
+  const int dims[3] = { 23, 19, 17 };
+  auto volume = mcxtest::MakeVolume(VTK_FLOAT, dims,
+    [](int i, int j, int k) { return 0.37 * k * k + std::sin(0.7 * i + 1.3 * j) + 0.01 * i; });
+  auto producer = Produce(volume);
+  vtkAlgorithmOutput* port = producer->GetOutputPort();
+  auto tf = Ramp(-1.0, 110.0);
+  for (const int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+  {
+    Settings settings;
+    settings.Deposit = deposit;
+    ExpectSameImage(Project(port, tf, settings, nullptr), Project(port, tf, settings, Controller()),
+      deposit == vtkMCXPointSampler::POINT ? "float point" : "float footprint");
+  }
+}
+
+TEST(Distributed, MoreProcessesThanSlicesAndZeroWeightPieces)
+{
+  // Two slices: with three processes one holds nothing. The TF is zero on
+  // the lower slice, so the process holding it deposits nothing either.
+  const int dims[3] = { 12, 9, 2 };
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [](int i, int j, int k) { return 100 * k + (i * 3 + j) % 7; });
+  auto producer = Produce(volume);
+  vtkAlgorithmOutput* port = producer->GetOutputPort();
+  auto tf = Ramp(99, 110);
+  for (const bool perspective : { false, true })
+  {
+    Settings settings;
+    settings.Perspective = perspective;
+    settings.Deposit = vtkMCXPointSampler::FOOTPRINT;
+    ExpectSameImage(Project(port, tf, settings, nullptr), Project(port, tf, settings, Controller()),
+      perspective ? "two slices, perspective" : "two slices, parallel");
+  }
+}
+
+TEST(Distributed, ZeroTransferFunctionGivesAnEmptyImageEverywhere)
+{
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
+  vtkNew<vtkPiecewiseFunction> zero;
+  zero->AddPoint(0, 0);
+  zero->AddPoint(4000, 0);
+  auto image = Project(reader->GetOutputPort(), zero, Settings(), Controller());
+  vtkDataArray* values = mcxtest::LineIntegral(image);
+  ASSERT_NE(nullptr, values);
+  EXPECT_EQ(0.0, values->GetRange()[1]);
+  EXPECT_EQ(0.0, mcxtest::FieldValue(image, "SampleCount"));
+}
+
+TEST(Distributed, AProcessThatCannotIndexItsPieceFailsEveryProcess)
+{
+  // The last process's volume has no scalars: every process's index fails
+  // with that process's message, and the projector makes no image.
+  vtkMultiProcessController* controller = Controller();
+  const int last = controller->GetNumberOfProcesses() - 1;
+  const int dims[3] = { 8, 8, 6 };
+  auto volume =
+    mcxtest::MakeVolume(VTK_SHORT, dims, [](int i, int j, int k) { return i + j + k; });
+  if (controller->GetLocalProcessId() == last)
+  {
+    volume->GetPointData()->Initialize();
+  }
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetImageSize(32, 32);
+  vtkNew<vtkMCXFirstErrorObserver> errors;
+  errors->ObserveAlgorithm(index);
+  vtkNew<vtkMCXFirstErrorObserver> projectorErrors;
+  projectorErrors->ObserveAlgorithm(projector);
+  projector->Update();
+  const std::string expected =
+    (controller->GetNumberOfProcesses() > 1
+        ? "process " + std::to_string(last) + " of " +
+          std::to_string(controller->GetNumberOfProcesses()) + ": "
+        : std::string()) +
+    "The input image has no point scalars to index.";
+  EXPECT_EQ(expected, errors->GetErrorText());
+  EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints());
+  errors->StopObserving();
+  projectorErrors->StopObserving();
+}
+
+int main(int argc, char* argv[])
+{
+  vtkNew<vtkMPIController> controller;
+  controller->Initialize(&argc, &argv);
+  vtkMultiProcessController::SetGlobalController(controller);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (controller->GetLocalProcessId() != 0)
+  {
+    // One report: the others fail through their exit code.
+    ::testing::TestEventListeners& listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  const int result = RUN_ALL_TESTS();
+  int worst = 0;
+  controller->AllReduce(&result, &worst, 1, vtkCommunicator::MAX_OP);
+  controller->Finalize();
+  return worst;
+}
