@@ -7,6 +7,7 @@
 #ifndef vtkMCXDistributedPrivate_h
 #define vtkMCXDistributedPrivate_h
 
+#include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxFixedPoint.h"
 
 #include <cstdint>
@@ -27,7 +28,9 @@ bool IsDistributed(vtkMultiProcessController* controller);
 /// slices, as evenly as they divide, in rank order (so that the global order
 /// of voxel ids within a level is the rank order); an empty extent (z range
 /// reversed) when there are fewer slices than processes.
-void ZSlabExtent(const int whole[6], int piece, int pieces, int slab[6]);
+/// (Exported: mcxray asks its index for the slab the projector will.)
+MONTECARLOXRAYFILTERS_EXPORT void ZSlabExtent(
+  const int whole[6], int piece, int pieces, int slab[6]);
 
 /// Agreement on success: every process passes its own error ("" when it
 /// has none) and gets the first failing process's, prefixed with its rank

@@ -441,7 +441,11 @@ int vtkMCXProjector::RequestData(
     output->Initialize();
     return 0;
   }
-  if (!projection.Completed)
+  // Distributed, the image is process 0's output and the others' are empty
+  // (as parallel VTK and ParaView expect of a result that is one dataset).
+  const bool elsewhere = vtkImageData::SafeDownCast(input) && mcx::IsDistributed(this->Controller) &&
+    this->Controller->GetLocalProcessId() != 0;
+  if (!projection.Completed || elsewhere)
   {
     output->Initialize();
     return 1;

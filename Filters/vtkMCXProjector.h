@@ -100,9 +100,11 @@ public:
    * Under more than one, an index input is requested as z-slabs, one per
    * process; each process deposits the samples whose voxels its slab holds
    * (with the numbering of a single process), and the exact sums are added
-   * over the processes, so every process's output is, bit for bit, the
-   * image one process makes of the whole volume, for any number of
-   * processes. A point-cloud input is projected by each process alone.
+   * over the processes: the output of process 0 is, bit for bit, the image
+   * one process makes of the whole volume, for any number of processes, and
+   * the other processes' outputs are empty (as with VTK's other parallel
+   * filters whose result is one dataset). A point-cloud input is projected
+   * by each process alone.
    */
   virtual void SetController(vtkMultiProcessController*);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);

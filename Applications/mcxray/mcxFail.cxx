@@ -1,5 +1,7 @@
 #include "mcxFail.h"
 
+#include "mcxProcesses.h"
+
 #include <cstdlib>
 #include <iostream>
 
@@ -46,7 +48,14 @@ void Fail(const std::string& message)
   {
     Handler(line);
   }
-  std::cerr << "mcxray: error: " << line << std::endl;
+  // Under MPI the processes fail alike (errors in the filters are agreed on
+  // and name the process they come from), so the first one says it; the
+  // launcher ends the others (no MPI_Finalize: it would wait for a process
+  // that is still at work).
+  if (IsFirstProcess())
+  {
+    std::cerr << "mcxray: error: " << line << std::endl;
+  }
   std::exit(2);
 }
 

@@ -7,15 +7,18 @@
 #include "mcxImageOutput.h"
 #include "mcxOptionTable.h"
 #include "mcxPreflight.h"
+#include "mcxProcesses.h"
 #include "mcxProgressBar.h"
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxTransferFunctionSpec.h"
 #include "mcxVolumeReader.h"
+#include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
@@ -24,6 +27,7 @@
 #include "vtkMCXProjector.h"
 #include "vtkMCXRadiograph.h"
 #include "vtkMCXReferenceProjector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -36,6 +40,7 @@
 #include <iomanip>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -275,8 +280,12 @@ public:
     {
       Fail(error);
     }
-    vtkImageData* image = this->ApplyRadiograph(this->Project(tf));
-    this->Write(image);
+    vtkImageData* projected = this->Project(tf);
+    if (!IsFirstProcess())
+    {
+      return 0; // the image is the first process's: it logs, applies the physics and writes
+    }
+    this->Write(this->ApplyRadiograph(projected));
     return 0;
   }
 
@@ -287,20 +296,45 @@ private:
   {
     this->Index->SetInputData(volume);
     this->Capture.Watch(this->Index);
-    this->Progress.Watch(this->Index);
+    this->Watch(this->Index);
     this->Progress.Begin("index");
     const auto start = std::chrono::steady_clock::now();
-    this->Index->Update();
+    vtkMultiProcessController* controller = DistributedController();
+    if (controller)
+    {
+      // This process's z-slab, as the projector will ask for it.
+      int whole[6], slab[6];
+      volume->GetExtent(whole);
+      mcx::ZSlabExtent(
+        whole, controller->GetLocalProcessId(), controller->GetNumberOfProcesses(), slab);
+      this->Index->UpdateExtent(slab);
+    }
+    else
+    {
+      this->Index->Update();
+    }
     this->Progress.End();
     this->Capture.FailOnAnyError();
     const double seconds = Seconds(start);
     int dims[3];
-    volume->GetDimensions(dims);
+    this->Index->GetOutput()->GetDimensions(dims);
     std::ostringstream line;
     line << "index:       " << seconds << " s (" << this->Levels()->GetNumberOfTuples()
          << " density levels, " << static_cast<double>(dims[0]) * dims[1] * dims[2] / seconds / 1e6
-         << " M voxels/s)";
+         << " M voxels/s" << (controller ? "; the first of " + std::to_string(NumberOfProcesses()) +
+                                  " processes' z-slabs: " + std::to_string(dims[2]) + " slices"
+                                          : std::string())
+         << ")";
     this->Log(line.str());
+  }
+
+  // Progress bars on the first process only.
+  void Watch(vtkAlgorithm* algorithm)
+  {
+    if (IsFirstProcess())
+    {
+      this->Progress.Watch(algorithm);
+    }
   }
 
   vtkDataArray* Levels() const
@@ -309,14 +343,30 @@ private:
       vtkMCXDensityIndex::LevelValuesName());
   }
 
-  // The lowest and highest density level (what the raw TF spans).
+  // The lowest and highest density level (what the raw TF spans), over
+  // every process's slab.
   const double* DataRange()
   {
     vtkDataArray* levels = this->Levels();
+    const double inf = std::numeric_limits<double>::infinity();
+    double range[2] = { inf, -inf };
     if (levels->GetNumberOfTuples() > 0)
     {
-      this->Range[0] = levels->GetTuple1(0);
-      this->Range[1] = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
+      range[0] = levels->GetTuple1(0);
+      range[1] = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
+    }
+    if (vtkMultiProcessController* controller = DistributedController())
+    {
+      double all[2];
+      controller->AllReduce(&range[0], &all[0], 1, vtkCommunicator::MIN_OP);
+      controller->AllReduce(&range[1], &all[1], 1, vtkCommunicator::MAX_OP);
+      range[0] = all[0];
+      range[1] = all[1];
+    }
+    if (range[0] <= range[1])
+    {
+      this->Range[0] = range[0];
+      this->Range[1] = range[1];
     }
     return this->Range;
   }
@@ -353,7 +403,7 @@ private:
     sampler->SetDeposit(DepositOf(this->Options.Deposit));
     sampler->SetSeed(this->Options.Seed);
     this->Capture.Watch(sampler);
-    this->Progress.Watch(sampler);
+    this->Watch(sampler);
     this->Progress.Begin("sampling");
     const auto start = std::chrono::steady_clock::now();
     sampler->Update();
@@ -385,19 +435,25 @@ private:
     projector->SetDetectorAxisU(this->View.DetectorU);
     projector->SetDetectorAxisV(this->View.DetectorV);
     this->Capture.Watch(projector);
-    this->Progress.Watch(projector);
+    this->Watch(projector);
     this->Progress.Begin(this->Options.Method == "reference" ? "reference" : "projection");
     const auto start = std::chrono::steady_clock::now();
     projector->Update();
     this->Progress.End();
     for (const std::string& warning : this->Capture.Warnings())
     {
-      std::cerr << "mcxray: warning: " << warning << std::endl;
+      if (IsFirstProcess())
+      {
+        std::cerr << "mcxray: warning: " << warning << std::endl;
+      }
     }
     this->Capture.FailOnAnyError();
     const double seconds = Seconds(start);
     vtkImageData* image = projector->GetOutput();
-    this->LogProjection(image, seconds);
+    if (IsFirstProcess())
+    {
+      this->LogProjection(image, seconds);
+    }
     return image;
   }
 
@@ -495,9 +551,14 @@ int RunRender(int argc, char* argv[])
   settings.Samples = DefaultSamples;
   if (!ParseArguments(argc, argv, Command::Render, settings))
   {
-    PrintRenderUsage();
+    if (IsFirstProcess())
+    {
+      PrintRenderUsage();
+    }
     return 0;
   }
+  // Under MPI the first process alone prints and writes.
+  settings.Quiet = settings.Quiet || !IsFirstProcess();
   CheckCombinations(settings);
   ErrorCapture capture;
   if (settings.Threads > 0)

@@ -3,6 +3,7 @@
 // file (mcxRenderCommand, mcxViewCommand); this only picks one.
 #include "mcxFail.h"
 #include "mcxPartialFileGuard.h"
+#include "mcxProcesses.h"
 #include "mcxRenderCommand.h"
 #include "mcxViewCommand.h"
 
@@ -11,19 +12,33 @@
 int main(int argc, char* argv[])
 {
   mcxapp::InstallInterruptHandlers();
+  mcxapp::StartProcesses(&argc, &argv);
   const std::string command = argc >= 2 ? argv[1] : "";
   if (command == "render")
   {
-    return mcxapp::RunRender(argc, argv);
+    const int status = mcxapp::RunRender(argc, argv);
+    mcxapp::FinishProcesses();
+    return status;
   }
   if (command == "view")
   {
-    return mcxapp::RunView(argc, argv);
+    if (mcxapp::NumberOfProcesses() > 1)
+    {
+      mcxapp::Fail("mcxray view is interactive: run it as one process (mcxray render runs under "
+                   "mpirun)");
+    }
+    const int status = mcxapp::RunView(argc, argv);
+    mcxapp::FinishProcesses();
+    return status;
   }
   // No command, or --help: the main help (an error without any arguments).
   if (argc < 2 || command == "--help" || command == "-h")
   {
-    mcxapp::PrintRenderUsage();
+    if (mcxapp::IsFirstProcess())
+    {
+      mcxapp::PrintRenderUsage();
+    }
+    mcxapp::FinishProcesses();
     return argc < 2 ? 2 : 0;
   }
   mcxapp::Fail(

@@ -516,3 +516,51 @@ TEST(CommandLine, GantryTurnsTheSourceAboutZ)
   EXPECT_GT(mcxtest::RelativeRMS(straight, expected), 0.1);
   EXPECT_GT(mcxtest::RelativeRMS(wrongWay, expected), 0.1);
 }
+
+#ifdef MCXRAY_MPIEXEC
+namespace
+{
+std::size_t Occurrences(const std::string& text, const std::string& part)
+{
+  std::size_t count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1))
+  {
+    ++count;
+  }
+  return count;
+}
+}
+
+TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
+{
+  // mpirun -np N mcxray render ...: each process renders its z-slab and the
+  // first writes the image, byte for byte the one process's file, for point
+  // and footprint deposits in a parallel view and a cone-beam radiograph.
+  const std::string launcher =
+    std::string(MCXRAY_MPIEXEC) + " --allow-run-as-root --oversubscribe -np ";
+  const std::string runs[] = { "--samples 262143 --size 96x80",
+    "--samples 262143 --size 96x80 --deposit point --view -y --tf bone",
+    "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --gantry 30 --tf mu" };
+  for (const std::string& arguments : runs)
+  {
+    const std::string single = Temporary("mpirun-single.vti");
+    Result one = RunCLI("render " + arguments + " --quiet --output " + single);
+    ASSERT_EQ(0, one.Status) << one.Errors;
+    for (const int processes : { 2, 3 })
+    {
+      const std::string many = Temporary("mpirun-" + std::to_string(processes) + ".vti");
+      Result r = RunCLI("render " + arguments + " --output " + many,
+        launcher + std::to_string(processes) + " ");
+      ASSERT_EQ(0, r.Status) << arguments << "\n" << r.Errors;
+      EXPECT_EQ(1u, Occurrences(r.Output, "output:")) << "one process logs:\n" << r.Output;
+      EXPECT_EQ(Slurp(single), Slurp(many)) << arguments << " on " << processes << " processes";
+    }
+  }
+  // An error is said once, by the first process, and ends every process.
+  const std::string output = Temporary("mpirun-error.png");
+  Result r = RunCLI("render /nonexistent/volume.vti --output " + output, launcher + "2 ");
+  EXPECT_NE(0, r.Status);
+  EXPECT_EQ(1u, Occurrences(r.Errors, "mcxray: error: ")) << r.Errors;
+  EXPECT_FALSE(vtksys::SystemTools::FileExists(output));
+}
+#endif
