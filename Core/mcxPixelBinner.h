@@ -39,7 +39,7 @@ public:
       const double* axis = k == 0 ? g.U : g.V;
       for (int r = 0; r < 3; ++r)
       {
-        planeAxes[k][r] = axis[r] - o * g.W[r];
+        planeAxes[k][r] = o != 0 ? axis[r] - o * g.W[r] : axis[r];
       }
     }
     const double* axes[3] = { planeAxes[0], planeAxes[1], g.W };

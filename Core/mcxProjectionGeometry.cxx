@@ -126,9 +126,14 @@ bool ProjectToPlane(const ProjectionGeometry& g, const double x[3], double& a, d
 {
   if (!g.Perspective)
   {
-    const double depth = Dot(x, g.W);
-    a = Dot(x, g.U) - g.Obliquity[0] * depth;
-    b = Dot(x, g.V) - g.Obliquity[1] * depth;
+    a = Dot(x, g.U);
+    b = Dot(x, g.V);
+    if (g.Obliquity[0] != 0 || g.Obliquity[1] != 0) // (rays along W need no W)
+    {
+      const double depth = Dot(x, g.W);
+      a -= g.Obliquity[0] * depth;
+      b -= g.Obliquity[1] * depth;
+    }
     return true;
   }
   const double d[3] = { x[0] - g.Eye[0], x[1] - g.Eye[1], x[2] - g.Eye[2] };

@@ -384,6 +384,11 @@ int vtkMCXDensityIndex::RequestUpdateExtent(
     }
   }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+  // The extent is the request: a piece request passed down with it (ParaView
+  // asks every filter for piece r of N) would make the reader deliver its
+  // own block of the volume instead.
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   return 1;
 }
 
