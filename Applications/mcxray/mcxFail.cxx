@@ -1,7 +1,5 @@
 #include "mcxFail.h"
 
-#include "mcxProcesses.h"
-
 #include <cstdlib>
 #include <iostream>
 
@@ -11,6 +9,7 @@ namespace mcxapp
 namespace
 {
 FailHandler Handler = nullptr;
+bool Silent = false;
 
 // One line whatever a message quotes (a file name, an option's value):
 // control characters are written as \xNN.
@@ -41,6 +40,11 @@ void SetFailHandler(FailHandler handler)
   Handler = handler;
 }
 
+void SilenceFailures(bool silent)
+{
+  Silent = silent;
+}
+
 void Fail(const std::string& message)
 {
   const std::string line = OneLine(message);
@@ -48,11 +52,7 @@ void Fail(const std::string& message)
   {
     Handler(line);
   }
-  // Under MPI the processes fail alike (errors in the filters are agreed on
-  // and name the process they come from), so the first one says it; the
-  // launcher ends the others (no MPI_Finalize: it would wait for a process
-  // that is still at work).
-  if (IsFirstProcess())
+  if (!Silent)
   {
     std::cerr << "mcxray: error: " << line << std::endl;
   }

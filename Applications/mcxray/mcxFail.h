@@ -17,6 +17,10 @@ namespace mcxapp
 using FailHandler = void (*)(const std::string& message);
 void SetFailHandler(FailHandler handler);
 
+/// Exits without the line (the processes of an MPI run other than the first:
+/// they fail alike, so one says it).
+void SilenceFailures(bool silent);
+
 } // namespace mcxapp
 
 #endif

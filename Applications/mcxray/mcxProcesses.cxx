@@ -1,5 +1,7 @@
 #include "mcxProcesses.h"
 
+#include "mcxFail.h"
+
 #include "vtkMPIController.h"
 #include "vtkMultiProcessController.h"
 #include "vtkSmartPointer.h"
@@ -37,6 +39,11 @@ void StartProcesses(int* argc, char*** argv)
   Controller = vtkSmartPointer<vtkMPIController>::New();
   Controller->Initialize(argc, argv);
   vtkMultiProcessController::SetGlobalController(Controller);
+  // The processes fail alike (errors in the filters are agreed on and name
+  // the process they come from), so the first one says it; the launcher
+  // ends the others (no MPI_Finalize: it would wait for a process still at
+  // work).
+  SilenceFailures(Controller->GetLocalProcessId() != 0);
 }
 
 void FinishProcesses()
