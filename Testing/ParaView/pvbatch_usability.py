@@ -196,7 +196,7 @@ check(labels and labels[0] == "X-Ray Projector", "progress labelled %s" % labels
 
 # 9. Streaming: the still render draws a prefix, each pass adds to it, the
 # error falls, and the passes stop once every point counts.
-vtkPVView.SetEnableStreaming(True)  # as paraview --enable-streaming
+vtkPVView.SetEnableStreaming(True)  # as the general setting Enable Streaming does
 view.LODThreshold = 1000.0
 display.XRayStillRenderTime = 0.001
 camera.Azimuth(2)

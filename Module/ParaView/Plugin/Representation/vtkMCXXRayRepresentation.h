@@ -86,7 +86,7 @@ public:
 
   ///@{
   /**
-   * With ParaView's streaming on (paraview --enable-streaming), the seconds
+   * With ParaView's streaming on (its general setting EnableStreaming), the seconds
    * a still render may spend projecting points (default 0.5); the streaming
    * passes that follow add the rest, render by render, without user action.
    * Without streaming a still render draws every point.
