@@ -213,6 +213,36 @@ TEST(Distributed, MoreProcessesThanSlicesAndZeroWeightPieces)
   }
 }
 
+TEST(Distributed, SumsBeyondFortyEightBitsStayExact)
+{
+  // About 2^20 samples in each of 4 pixels: sums of 2^52 in fixed point,
+  // past the first 48-bit limb of the exchange.
+  const int dims[3] = { 6, 5, 7 };
+  auto volume =
+    mcxtest::MakeVolume(VTK_SHORT, dims, [](int i, int j, int k) { return (i + 2 * j + 3 * k) % 5; });
+  auto producer = Produce(volume);
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputConnection(producer->GetOutputPort());
+  vtkNew<vtkMCXDensityIndex> wholeIndex;
+  wholeIndex->SetController(nullptr);
+  wholeIndex->SetInputConnection(producer->GetOutputPort());
+  auto tf = Ramp(-1, 4);
+  vtkSmartPointer<vtkImageData> images[2];
+  for (int distributed = 0; distributed < 2; ++distributed)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetController(distributed ? Controller() : nullptr);
+    projector->SetInputConnection((distributed ? index : wholeIndex)->GetOutputPort());
+    projector->SetTransferFunction(tf);
+    projector->SetSampleExponent(22);
+    projector->SetImageSize(2, 2);
+    projector->Update();
+    images[distributed] = vtkSmartPointer<vtkImageData>::New();
+    images[distributed]->DeepCopy(projector->GetOutput());
+  }
+  ExpectSameImage(images[0], images[1], "2 x 2 pixels, 2^22 - 1 samples");
+}
+
 TEST(Distributed, ZeroTransferFunctionGivesAnEmptyImageEverywhere)
 {
   vtkNew<vtkXMLImageDataReader> reader;
