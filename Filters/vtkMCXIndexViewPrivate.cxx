@@ -154,10 +154,13 @@ std::vector<double> IndexView::EvaluateTransferFunction(vtkPiecewiseFunction* tf
   return weights;
 }
 
-bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
-  vtkPiecewiseFunction* tf, IndexView& view, TransferTable& table, double& integral)
+namespace
 {
-  std::string error = view.Read(index);
+// The table of the view's levels, then the outcome told on the algorithm:
+// the error ("Cannot <action>: ...", an earlier one kept) or the warning.
+bool FinishPreparation(vtkAlgorithm* algorithm, const char* action, std::string error,
+  vtkPiecewiseFunction* tf, const IndexView& view, TransferTable& table, double& integral)
+{
   std::string warning;
   if (error.empty())
   {
@@ -174,32 +177,25 @@ bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* 
   }
   return true;
 }
+}
+
+bool PrepareSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
+  vtkPiecewiseFunction* tf, IndexView& view, TransferTable& table, double& integral)
+{
+  return FinishPreparation(algorithm, action, view.Read(index), tf, view, table, integral);
+}
 
 bool PrepareDistributedSampling(vtkAlgorithm* algorithm, const char* action, vtkImageData* index,
   vtkPiecewiseFunction* tf, vtkMultiProcessController* controller, const int wholeExtent[6],
   DistributedLevels& levels, IndexView& view, TransferTable& table, double& integral)
 {
   std::string error = FirstErrorOfAll(controller, view.Read(index));
-  std::string warning;
   if (error.empty())
   {
     error = FirstErrorOfAll(controller, GatherLevels(controller, wholeExtent, view, levels));
   }
-  if (error.empty())
-  {
-    // The same table on every process: the whole volume's levels and TF.
-    error = view.MakeTransferTable(tf, table, integral, warning);
-  }
-  if (!error.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, "Cannot " << action << ": " << error << ".");
-    return false;
-  }
-  if (!warning.empty())
-  {
-    vtkWarningWithObjectMacro(algorithm, << warning);
-  }
-  return true;
+  // The same table on every process: the whole volume's levels and TF.
+  return FinishPreparation(algorithm, action, error, tf, view, table, integral);
 }
 
 bool CheckPointType(vtkObject* reporter, vtkPoints* points)

@@ -156,6 +156,46 @@ bool PixelCoordinates(const mcx::ProjectionGeometry& g, const double x[3], doubl
   }
   return true;
 }
+// A uniform box of 6 x 5 x 4 voxels of spacing (2, 3, 2.5) from (1, -4, 2),
+// indexed: with the box kernel its support is x in [0, 12], y in
+// [-5.5, 9.5], z in [0.75, 10.75].
+vtkSmartPointer<vtkMCXDensityIndex> UniformBoxIndex()
+{
+  const int dims[3] = { 6, 5, 4 };
+  const double spacing[3] = { 2, 3, 2.5 };
+  const double origin[3] = { 1, -4, 2 };
+  auto volume = mcxtest::MakeVolume(
+    VTK_UNSIGNED_CHAR, dims, [](int, int, int) { return 1.0; }, spacing, origin);
+  auto index = vtkSmartPointer<vtkMCXDensityIndex>::New();
+  index->SetInputData(volume);
+  return index;
+}
+
+// A parallel camera looking down the box's z axis, off its centre.
+vtkSmartPointer<vtkCamera> CameraAboveTheBox()
+{
+  auto camera = vtkSmartPointer<vtkCamera>::New();
+  camera->SetFocalPoint(6.17, 1.31, 0);
+  camera->SetPosition(6.17, 1.31, 100);
+  camera->SetViewUp(0, 1, 0);
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(13.3);
+  return camera;
+}
+
+// The exact reference of an index with the box kernel, for a camera.
+vtkSmartPointer<vtkMCXReferenceProjector> BoxKernelReference(
+  vtkMCXDensityIndex* index, vtkCamera* camera, int width, int height)
+{
+  auto reference = vtkSmartPointer<vtkMCXReferenceProjector>::New();
+  reference->SetInputConnection(index->GetOutputPort());
+  reference->SetKernel(vtkMCXPointSampler::BOX);
+  reference->SetCamera(camera);
+  reference->SetImageSize(width, height);
+  reference->Update();
+  return reference;
+}
+
 // A cloud of the points, each one sample of weight 1.
 vtkSmartPointer<vtkPolyData> UnitWeightCloud(vtkPoints* points)
 {
@@ -302,26 +342,10 @@ TEST(CameraGeometry, ReferenceFramesABoxAsVTKProjectsIt)
   // non-square window: each pixel is the box's depth times the fraction of
   // the pixel's S x S rays (at the centres of its subdivision) inside the
   // box's outline, whose edges lie where VTK's projection puts them.
-  const int dims[3] = { 6, 5, 4 };
-  const double spacing[3] = { 2, 3, 2.5 };
-  const double origin[3] = { 1, -4, 2 };
-  auto volume = mcxtest::MakeVolume(
-    VTK_UNSIGNED_CHAR, dims, [](int, int, int) { return 1.0; }, spacing, origin);
-  vtkNew<vtkMCXDensityIndex> index;
-  index->SetInputData(volume);
-  vtkNew<vtkCamera> camera;
-  camera->SetFocalPoint(6.17, 1.31, 0);
-  camera->SetPosition(6.17, 1.31, 100);
-  camera->SetViewUp(0, 1, 0);
-  camera->ParallelProjectionOn();
-  camera->SetParallelScale(13.3);
+  auto index = UniformBoxIndex();
+  auto camera = CameraAboveTheBox();
   const int width = 50, height = 40;
-  vtkNew<vtkMCXReferenceProjector> reference;
-  reference->SetInputConnection(index->GetOutputPort());
-  reference->SetKernel(vtkMCXPointSampler::BOX);
-  reference->SetCamera(camera);
-  reference->SetImageSize(width, height);
-  reference->Update();
+  auto reference = BoxKernelReference(index, camera, width, height);
   // The box kernel fills voxel centres +- half a spacing: x in [0, 12],
   // y in [-5.5, 9.5], depth 4 * 2.5 = 10.
   const double low[3] = { 0, -5.5, 2 }, high[3] = { 12, 9.5, 2 };
@@ -364,19 +388,8 @@ TEST(CameraGeometry, ObliqueRaysCrossABoxAlongTheirLength)
   // projector's footprint deposit agrees within its sampling error. Mass is
   // conserved: the values times the beams' cross-sections sum to the box's
   // mass exactly.
-  const int dims[3] = { 6, 5, 4 };
-  const double spacing[3] = { 2, 3, 2.5 };
-  const double origin[3] = { 1, -4, 2 };
-  auto volume = mcxtest::MakeVolume(
-    VTK_UNSIGNED_CHAR, dims, [](int, int, int) { return 1.0; }, spacing, origin);
-  vtkNew<vtkMCXDensityIndex> index;
-  index->SetInputData(volume);
-  vtkNew<vtkCamera> camera;
-  camera->SetFocalPoint(6.17, 1.31, 0);
-  camera->SetPosition(6.17, 1.31, 100);
-  camera->SetViewUp(0, 1, 0);
-  camera->ParallelProjectionOn();
-  camera->SetParallelScale(13.3);
+  auto index = UniformBoxIndex();
+  auto camera = CameraAboveTheBox();
   camera->SetViewShear(0.5, -0.4, 1.0);
   const int width = 50, height = 40;
   const double top = 10.75, bottom = 0.75; // the box kernel's reach in z
@@ -404,12 +417,7 @@ TEST(CameraGeometry, ObliqueRaysCrossABoxAlongTheirLength)
     return true;
   };
 
-  vtkNew<vtkMCXReferenceProjector> reference;
-  reference->SetInputConnection(index->GetOutputPort());
-  reference->SetKernel(vtkMCXPointSampler::BOX);
-  reference->SetCamera(camera);
-  reference->SetImageSize(width, height);
-  reference->Update();
+  auto reference = BoxKernelReference(index, camera, width, height);
   vtkNew<vtkPiecewiseFunction> tf;
   tf->AddPoint(0, 1);
   tf->AddPoint(255, 1);

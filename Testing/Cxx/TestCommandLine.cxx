@@ -536,8 +536,10 @@ TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
   // mpirun -np N mcxray render ...: each process renders its z-slab and the
   // first writes the image, byte for byte the one process's file, for point
   // and footprint deposits in a parallel view and a cone-beam radiograph.
+  // (No hwloc probing of X displays: the render tests' Xvfb servers come
+  // and go, and one that goes kills the probing process.)
   const std::string launcher =
-    std::string(MCXRAY_MPIEXEC) + " --allow-run-as-root --oversubscribe -np ";
+    "HWLOC_COMPONENTS=-gl " + std::string(MCXRAY_MPIEXEC) + " --allow-run-as-root --oversubscribe -np ";
   const std::string runs[] = { "--samples 262143 --size 96x80",
     "--samples 262143 --size 96x80 --deposit point --view -y --tf bone",
     "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --gantry 30 --tf mu" };

@@ -175,15 +175,17 @@ TEST(Distributed, TargetErrorChoosesTheSameSampleCount)
 
 TEST(Distributed, FloatDataIsBinnedAlikeOnEveryPiece)
 {
-  // Float values with a different range on each slab: the levels (bins of
-  // the global range, each the mean of its voxels) must be the whole
-  // volume's for the images to agree.
+  // Float values whose bins each hold voxels of every slab, with values a
+  // little apart within a bin (the offsets 0.0001 (k mod 3), under the bin
+  // width): a level is the mean of its voxels over the whole volume, and the
+  // images agree only if every process computes that same mean.
   const int dims[3] = { 23, 19, 17 };
   auto volume = mcxtest::MakeVolume(VTK_FLOAT, dims,
-    [](int i, int j, int k) { return 0.37 * k * k + std::sin(0.7 * i + 1.3 * j) + 0.01 * i; });
+    [](int i, int j, int k)
+    { return std::floor(8 * std::sin(0.7 * i + 1.3 * j)) / 8 + 0.0001 * (k % 3) + 0.37; });
   auto producer = Produce(volume);
   vtkAlgorithmOutput* port = producer->GetOutputPort();
-  auto tf = Ramp(-1.0, 110.0);
+  auto tf = Ramp(-1.0, 1.5);
   for (const int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
   {
     Settings settings;
