@@ -145,6 +145,14 @@ inline void Multiply64(std::uint64_t a, std::uint64_t b, std::uint64_t& high, st
   high = static_cast<std::uint64_t>(product >> 64);
   low = static_cast<std::uint64_t>(product);
 }
+inline std::uint64_t LowHalf(UInt128 value)
+{
+  return static_cast<std::uint64_t>(value);
+}
+inline std::uint64_t HighHalf(UInt128 value)
+{
+  return static_cast<std::uint64_t>(value >> 64);
+}
 #else
 using UInt128 = PortableUInt128;
 
@@ -159,6 +167,14 @@ inline UInt128 UInt128FromDouble(double value)
 inline void Multiply64(std::uint64_t a, std::uint64_t b, std::uint64_t& high, std::uint64_t& low)
 {
   PortableMultiply64(a, b, high, low);
+}
+inline std::uint64_t LowHalf(const UInt128& value)
+{
+  return value.LowHalf();
+}
+inline std::uint64_t HighHalf(const UInt128& value)
+{
+  return value.HighHalf();
 }
 #endif
 

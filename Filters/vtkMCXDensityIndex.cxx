@@ -31,6 +31,7 @@
 #include <functional>
 #include <limits>
 #include <new>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -58,6 +59,7 @@ struct IndexResult
   vtkSmartPointer<vtkDataArray> SortedIds;
   std::int64_t NonFinite = 0;
   double BinWidth = 0.0;
+  std::string Error; // why the index could not be made (agreed among processes), or ""
 };
 
 template <typename T>
@@ -131,12 +133,17 @@ void AgreeOnRange(vtkMultiProcessController* controller, ValueRange<T>& range)
   {
     return;
   }
-  const double inf = std::numeric_limits<double>::infinity();
-  const double low = range.Finite > 0 ? static_cast<double>(range.Min) : inf;
-  const double high = range.Finite > 0 ? static_cast<double>(range.Max) : -inf;
+  // Reduced in a type that holds every value of T exactly: double for
+  // floating-point data, 64-bit integers of T's signedness otherwise. An
+  // empty piece offers the type's extremes, which lose every comparison.
+  using Wide = typename std::conditional<std::is_floating_point<T>::value, double,
+    typename std::conditional<std::is_signed<T>::value, long long, unsigned long long>::type>::type;
+  const Wide low = range.Finite > 0 ? static_cast<Wide>(range.Min) : std::numeric_limits<Wide>::max();
+  const Wide high =
+    range.Finite > 0 ? static_cast<Wide>(range.Max) : std::numeric_limits<Wide>::lowest();
   const long long finite = range.Finite;
   const int integers = range.AllIntegers ? 1 : 0;
-  double lowest = 0, highest = 0;
+  Wide lowest = 0, highest = 0;
   long long finiteTotal = 0;
   int allIntegers = 0;
   controller->AllReduce(&low, &lowest, 1, vtkCommunicator::MIN_OP);
@@ -147,7 +154,6 @@ void AgreeOnRange(vtkMultiProcessController* controller, ValueRange<T>& range)
   range.AllIntegers = allIntegers == 1;
   if (finiteTotal > 0)
   {
-    // Exact for floating-point data (the only data binned by its range).
     range.Min = static_cast<T>(lowest);
     range.Max = static_cast<T>(highest);
   }
@@ -218,31 +224,47 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels,
     const double scale = hi > lo ? floatLevels / (hi - lo) : 0.0;
     const std::int64_t last = floatLevels - 1;
     result.BinWidth = hi > lo ? 2.0 * (hi - lo) / floatLevels : 0.0;
-    SortIntoLevels<IdType>(
-      n, floatLevels, finiteHere,
-      [=](std::int64_t id) -> std::int64_t
-      {
-        const double v = static_cast<double>(values[id]);
-        if (!std::isfinite(v))
-        {
-          return -1;
-        }
-        const std::int64_t b = static_cast<std::int64_t>((0.5 * v - lo) * scale);
-        return std::min(b, last);
-      },
-      [](std::int64_t) { return 0.0; }, result);
     // A level stands for the mean of its voxels' values, from exact
     // fixed-point sums of their offsets from the bin's start (so that pieces
     // of the volume add up to the same mean), and is their value when they
     // are all equal.
+    std::vector<mcx::FixedSum> sums;
+    std::vector<long long> counts;
+    std::vector<double> lowest, highest;
+    try
+    {
+      SortIntoLevels<IdType>(
+        n, floatLevels, finiteHere,
+        [=](std::int64_t id) -> std::int64_t
+        {
+          const double v = static_cast<double>(values[id]);
+          if (!std::isfinite(v))
+          {
+            return -1;
+          }
+          const std::int64_t b = static_cast<std::int64_t>((0.5 * v - lo) * scale);
+          return std::min(b, last);
+        },
+        [](std::int64_t) { return 0.0; }, result);
+      sums.assign(static_cast<std::size_t>(floatLevels), mcx::FixedSum(0));
+      counts.assign(static_cast<std::size_t>(floatLevels), 0);
+      lowest.assign(static_cast<std::size_t>(floatLevels), range.Max);
+      highest.assign(static_cast<std::size_t>(floatLevels), range.Min);
+    }
+    catch (const std::bad_alloc&)
+    {
+      result.Error = "Out of memory indexing " + std::to_string(n) + " voxels";
+    }
+    // Before the sums are exchanged: all go on, or all stop.
+    result.Error = mcx::FirstErrorOfAll(controller, result.Error);
+    if (!result.Error.empty())
+    {
+      return;
+    }
     const double width = result.BinWidth;
     auto binStart = [=](std::int64_t bin) { return 2.0 * (lo + static_cast<double>(bin) / scale); };
     const IdType* ids = static_cast<const IdType*>(result.SortedIds->GetVoidPointer(0));
     const std::int64_t levels = static_cast<std::int64_t>(result.LevelValues.size());
-    std::vector<mcx::FixedSum> sums(static_cast<std::size_t>(floatLevels), mcx::FixedSum(0));
-    std::vector<long long> counts(static_cast<std::size_t>(floatLevels), 0);
-    std::vector<double> lowest(static_cast<std::size_t>(floatLevels), range.Max);
-    std::vector<double> highest(static_cast<std::size_t>(floatLevels), range.Min);
     vtkSMPTools::For(0, levels,
       [&](std::int64_t l0, std::int64_t l1)
       {
@@ -541,7 +563,13 @@ int vtkMCXDensityIndex::RequestData(
   }
   catch (const std::bad_alloc&)
   {
-    vtkErrorMacro("Out of memory indexing " << n << " voxels.");
+    result.Error = "Out of memory indexing " + std::to_string(n) + " voxels";
+  }
+  // Every process reaches this point, with or without an index.
+  result.Error = mcx::FirstErrorOfAll(controller, result.Error);
+  if (!result.Error.empty())
+  {
+    vtkErrorMacro(<< result.Error << ".");
     return 0;
   }
   this->UpdateProgress(0.9);

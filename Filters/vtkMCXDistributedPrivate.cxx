@@ -14,9 +14,9 @@ namespace mcx
 
 namespace
 {
-// 128-bit sums travel as three 48-bit limbs in 64-bit words: up to 2^16
-// processes add without a carry leaving its word, and MPI may cut the buffer
-// anywhere (a plain SUM of independent words).
+// 128-bit sums travel as three 48-bit limbs in 64-bit words (the top one 32
+// bits): up to 2^16 processes add without a carry leaving its word, and MPI
+// may cut the buffer anywhere (a plain SUM of independent words).
 constexpr int LimbBits = 48;
 constexpr std::uint64_t LimbMask = (std::uint64_t(1) << LimbBits) - 1;
 constexpr int LimbsPerSum = 3;
@@ -56,6 +56,17 @@ std::string FirstErrorOfAll(vtkMultiProcessController* controller, const std::st
   std::vector<char> mine(Width, 0), all(static_cast<std::size_t>(Width) * processes, 0);
   std::memcpy(mine.data(), error.data(), std::min<std::size_t>(error.size(), Width - 1));
   controller->AllGather(mine.data(), all.data(), Width);
+  // The same message from every process (an error they all met, or one
+  // already agreed on) is told as it is.
+  bool same = true;
+  for (int p = 1; p < processes && same; ++p)
+  {
+    same = std::equal(all.begin(), all.begin() + Width, all.begin() + p * Width);
+  }
+  if (same)
+  {
+    return std::string(all.data(), strnlen(all.data(), Width));
+  }
   for (int p = 0; p < processes; ++p)
   {
     const char* text = all.data() + static_cast<std::size_t>(p) * Width;
@@ -77,12 +88,10 @@ void SumExactly(vtkMultiProcessController* controller, std::vector<FixedSum>& va
   std::vector<unsigned long long> limbs(values.size() * LimbsPerSum), sums(limbs.size());
   for (std::size_t i = 0; i < values.size(); ++i)
   {
-    FixedSum v = values[i];
-    for (int l = 0; l < LimbsPerSum; ++l)
-    {
-      limbs[LimbsPerSum * i + l] = static_cast<std::uint64_t>(v) & LimbMask;
-      v >>= LimbBits;
-    }
+    const std::uint64_t low = LowHalf(values[i]), high = HighHalf(values[i]);
+    limbs[LimbsPerSum * i] = low & LimbMask;
+    limbs[LimbsPerSum * i + 1] = ((low >> LimbBits) | (high << (64 - LimbBits))) & LimbMask;
+    limbs[LimbsPerSum * i + 2] = high >> (2 * LimbBits - 64);
   }
   controller->AllReduce(limbs.data(), sums.data(), static_cast<vtkIdType>(limbs.size()),
     vtkCommunicator::SUM_OP);
@@ -151,14 +160,24 @@ std::string GatherLevels(vtkMultiProcessController* controller, const int wholeE
     levels.PieceFirstRank[g] = before;
   }
 
+  // The pieces must be the z-slabs, in rank order, for the ids of a level to
+  // follow the rank order (an index given as data, not through the
+  // pipeline, is the whole volume on every process).
+  int slab[6];
+  ZSlabExtent(wholeExtent, rank, processes, slab);
+  const bool empty = slab[5] < slab[4];
+  if (empty ? view.NumberOfLevels > 0 : !std::equal(slab, slab + 6, view.Extent))
+  {
+    return "the index is not this process's z-slab of the volume (connect the index to the "
+           "projector with SetInputConnection, so that the projector asks for the slab)";
+  }
+  if (processes > 65536)
+  {
+    return "more than 65536 processes (the image sums are exchanged in 48-bit parts)";
+  }
   for (int a = 0; a < 3; ++a)
   {
-    const int start = view.Dimensions[a] > 0 ? view.Extent[2 * a] : wholeExtent[2 * a];
-    if (start < wholeExtent[2 * a])
-    {
-      return "the piece's extent lies outside the volume's";
-    }
-    view.PieceStart[a] = static_cast<std::uint64_t>(start - wholeExtent[2 * a]);
+    view.PieceStart[a] = empty ? 0 : static_cast<std::uint64_t>(slab[2 * a] - wholeExtent[2 * a]);
   }
   std::copy(wholeExtent, wholeExtent + 6, view.Extent);
   view.LevelValues = levels.LevelValues.data();

@@ -34,7 +34,8 @@ MONTECARLOXRAYFILTERS_EXPORT void ZSlabExtent(
 
 /// Agreement on success: every process passes its own error ("" when it
 /// has none) and gets the first failing process's, prefixed with its rank
-/// ("process 2 of 3: ..."), or "" when all succeeded. Collective.
+/// ("process 2 of 3: ..."), or "" when all succeeded; the same error from
+/// every process comes back as it is. Collective.
 std::string FirstErrorOfAll(vtkMultiProcessController* controller, const std::string& error);
 
 /// Sums each value over the processes, exactly (the sums of a projection:

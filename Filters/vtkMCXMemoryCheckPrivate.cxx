@@ -63,7 +63,7 @@ bool CheckMemory(vtkObject* self, double bytes, const std::string& what)
 
 double ProjectionBytesPerPixel()
 {
-  return 32.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 48.0;
+  return 32.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 48.0 + 96.0;
 }
 
 } // namespace mcx

@@ -32,8 +32,9 @@ MONTECARLOXRAYFILTERS_EXPORT std::string MemoryProblem(double bytes, const std::
 MONTECARLOXRAYFILTERS_EXPORT bool CheckMemory(vtkObject* self, double bytes, const std::string& what);
 
 /// Bytes per pixel of a projection: the per-thread fixed-point sums (all
-/// samples and the first half, 16 bytes each), their collection and the
-/// float64 output.
+/// samples and the first half, 16 bytes each), their collection, the
+/// float64 output, and the two buffers that exchange the sums between
+/// processes (48 bytes each).
 MONTECARLOXRAYFILTERS_EXPORT double ProjectionBytesPerPixel();
 
 } // namespace mcx

@@ -370,6 +370,18 @@ vtkMCXProjector::~vtkMCXProjector()
   this->SetController(nullptr);
 }
 
+std::string vtkMCXProjector::AgreeOnFailure(vtkInformation* inInfo, const std::string& failure)
+{
+  // Distributed over an index (a structured input): the processes wait for
+  // each other from the index on, so they must fail together.
+  if (mcx::IsDistributed(this->Controller) &&
+    inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return mcx::FirstErrorOfAll(this->Controller, failure);
+  }
+  return failure;
+}
+
 int vtkMCXProjector::RequestUpdateExtent(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

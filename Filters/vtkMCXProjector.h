@@ -123,6 +123,7 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  std::string AgreeOnFailure(vtkInformation* inInfo, const std::string& failure) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int SampleExponent = 24;

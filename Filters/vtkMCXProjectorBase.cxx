@@ -114,19 +114,17 @@ int vtkMCXProjectorBase::RequestInformation(
   {
     problem = g.Validate();
   }
+  std::string failure = !problem.empty() ? "Invalid projection: " + problem
+                                          : mcx::MemoryProblem(static_cast<double>(g.Size[0]) *
+                                                g.Size[1] * mcx::ProjectionBytesPerPixel(),
+                                              "An image of " + std::to_string(g.Size[0]) + " x " +
+                                                std::to_string(g.Size[1]) + " pixels");
+  failure = this->AgreeOnFailure(inInfo, failure);
   // A failed request leaves no stale image of an earlier one behind.
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!problem.empty())
+  if (!failure.empty())
   {
-    vtkErrorMacro("Invalid projection: " << problem << ".");
-    output->Initialize();
-    return 0;
-  }
-  if (!mcx::CheckMemory(this,
-        static_cast<double>(g.Size[0]) * g.Size[1] * mcx::ProjectionBytesPerPixel(),
-        "An image of " + std::to_string(g.Size[0]) + " x " + std::to_string(g.Size[1]) +
-          " pixels"))
-  {
+    vtkErrorMacro(<< failure << ".");
     output->Initialize();
     return 0;
   }
@@ -152,6 +150,11 @@ int vtkMCXProjectorBase::RequestInformation(
   outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
   return 1;
+}
+
+std::string vtkMCXProjectorBase::AgreeOnFailure(vtkInformation*, const std::string& failure)
+{
+  return failure;
 }
 
 int vtkMCXProjectorBase::RequestUpdateExtent(

@@ -26,6 +26,8 @@
 #include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+#include <string> // for std::string
+
 class vtkCamera;
 class vtkDoubleArray;
 class vtkPiecewiseFunction;
@@ -136,6 +138,13 @@ protected:
   ~vtkMCXProjectorBase() override;
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /**
+   * The failure of a request as all the processes that share the work see
+   * it (the first one's, or "" when none failed); this one process's by
+   * default. A subclass whose processes wait for each other agrees here, so
+   * that all fail or none.
+   */
+  virtual std::string AgreeOnFailure(vtkInformation* inInfo, const std::string& failure);
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /** Gives the output its extent, origin and spacing and a zeroed LineIntegral array. */

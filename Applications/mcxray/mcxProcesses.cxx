@@ -2,8 +2,11 @@
 
 #include "mcxFail.h"
 
+#ifdef MCXRAY_MPI
 #include "vtkMPIController.h"
-#include "vtkMultiProcessController.h"
+#else
+#include "vtkMultiProcessController.h" // a build without MPI: never started
+#endif
 #include "vtkSmartPointer.h"
 
 #include <cstdlib>
@@ -13,7 +16,11 @@ namespace mcxapp
 
 namespace
 {
+#ifdef MCXRAY_MPI
 vtkSmartPointer<vtkMPIController> Controller;
+#else
+vtkSmartPointer<vtkMultiProcessController> Controller;
+#endif
 
 // Variables that Open MPI, MPICH and PMIx-based launchers set for the
 // processes they start.
@@ -32,6 +39,13 @@ bool LaunchedByMPI()
 
 void StartProcesses(int* argc, char*** argv)
 {
+#ifndef MCXRAY_MPI
+  // A build without MPI runs as one process even under a launcher.
+  static_cast<void>(argc);
+  static_cast<void>(argv);
+  static_cast<void>(&LaunchedByMPI);
+  return;
+#else
   if (!LaunchedByMPI())
   {
     return;
@@ -44,6 +58,7 @@ void StartProcesses(int* argc, char*** argv)
   // ends the others (no MPI_Finalize: it would wait for a process still at
   // work).
   SilenceFailures(Controller->GetLocalProcessId() != 0);
+#endif
 }
 
 void FinishProcesses()
@@ -69,6 +84,11 @@ bool IsFirstProcess()
 int NumberOfProcesses()
 {
   return Controller ? Controller->GetNumberOfProcesses() : 1;
+}
+
+int ProcessRank()
+{
+  return Controller ? Controller->GetLocalProcessId() : 0;
 }
 
 } // namespace mcxapp

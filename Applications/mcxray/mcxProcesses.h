@@ -27,6 +27,9 @@ bool IsFirstProcess();
 /// Number of processes (1 without MPI).
 int NumberOfProcesses();
 
+/// This process's rank (0 without MPI).
+int ProcessRank();
+
 } // namespace mcxapp
 
 #endif

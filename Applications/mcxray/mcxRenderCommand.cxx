@@ -240,6 +240,13 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
     ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
   if (!volume)
   {
+    if (!IsFirstProcess())
+    {
+      // Each process reads for itself: a file that one of them cannot read
+      // (another node's copy) is said by that one.
+      std::cerr << "mcxray: error (process " << ProcessRank() << " of " << NumberOfProcesses()
+                << "): " << error << std::endl;
+    }
     Fail(error);
   }
   int dims[3];
