@@ -299,6 +299,37 @@ TEST(Distributed, AProcessThatCannotIndexItsPieceFailsEveryProcess)
   projectorErrors->StopObserving();
 }
 
+TEST(Distributed, AnIndexGivenAsDataIsRefusedNotCountedTwice)
+{
+  // An index handed to the projector as data is the whole volume on every
+  // process; summed over the processes it would count each voxel N times.
+  // Distributed, it is refused on every process with a hint; on one process
+  // it is the ordinary whole index.
+  const int dims[3] = { 8, 7, 6 };
+  auto volume =
+    mcxtest::MakeVolume(VTK_SHORT, dims, [](int i, int j, int k) { return 1 + (i + j + k) % 4; });
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetController(nullptr);
+  index->SetInputData(volume);
+  index->Update();
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputData(index->GetOutput());
+  projector->SetImageSize(16, 16);
+  vtkNew<vtkMCXFirstErrorObserver> errors;
+  errors->ObserveAlgorithm(projector);
+  projector->Update();
+  errors->StopObserving();
+  if (Controller()->GetNumberOfProcesses() == 1)
+  {
+    EXPECT_EQ("", errors->GetErrorText());
+    EXPECT_GT(projector->GetOutput()->GetNumberOfPoints(), 0);
+    return;
+  }
+  EXPECT_NE(std::string::npos, errors->GetErrorText().find("is not this process's z-slab"))
+    << errors->GetErrorText();
+  EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints());
+}
+
 int main(int argc, char* argv[])
 {
   vtkNew<vtkMPIController> controller;
