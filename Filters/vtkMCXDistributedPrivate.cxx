@@ -20,13 +20,6 @@ namespace
 constexpr int LimbBits = 48;
 constexpr std::uint64_t LimbMask = (std::uint64_t(1) << LimbBits) - 1;
 constexpr int LimbsPerSum = 3;
-
-// Bytes an all-reduce or all-gather of `bytes` per process moves through
-// one process (sent plus received, the simplest algorithm's count).
-std::uint64_t Exchanged(vtkMultiProcessController* controller, std::uint64_t bytes)
-{
-  return 2 * bytes * static_cast<std::uint64_t>(controller->GetNumberOfProcesses() - 1);
-}
 }
 
 bool IsDistributed(vtkMultiProcessController* controller)
@@ -111,7 +104,6 @@ std::string GatherLevels(vtkMultiProcessController* controller, const int wholeE
 {
   const int processes = controller->GetNumberOfProcesses();
   const int rank = controller->GetLocalProcessId();
-  levels.BytesExchanged = 0;
 
   // The union of the level values: every process's list, merged.
   const vtkIdType mine = static_cast<vtkIdType>(view.NumberOfLevels);
@@ -125,7 +117,6 @@ std::string GatherLevels(vtkMultiProcessController* controller, const int wholeE
   std::vector<double> all(static_cast<std::size_t>(starts[processes]));
   std::vector<double> own(view.LevelValues, view.LevelValues + view.NumberOfLevels);
   controller->AllGatherV(own.data(), all.data(), mine, counts.data(), starts.data());
-  levels.BytesExchanged += Exchanged(controller, sizeof(double) * own.size());
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   levels.LevelValues = all;
@@ -142,7 +133,6 @@ std::string GatherLevels(vtkMultiProcessController* controller, const int wholeE
   }
   std::vector<long long> everyone(global * static_cast<std::size_t>(processes));
   controller->AllGather(local.data(), everyone.data(), static_cast<vtkIdType>(global));
-  levels.BytesExchanged += Exchanged(controller, sizeof(long long) * global);
   levels.LevelOffsets.assign(global + 1, 0);
   levels.PieceOffsets.assign(global + 1, 0);
   levels.PieceFirstRank.assign(global, 0);

@@ -50,7 +50,6 @@ struct DistributedLevels
   std::vector<std::int64_t> LevelOffsets;   ///< the whole volume's, levels + 1 entries
   std::vector<std::int64_t> PieceOffsets;   ///< this piece's ids per global level, levels + 1
   std::vector<std::int64_t> PieceFirstRank; ///< the global rank of its first voxel per level
-  std::uint64_t BytesExchanged = 0;         ///< sent and received by this process
 };
 
 /// Turns `view` (this process's piece of an index, `wholeExtent` the

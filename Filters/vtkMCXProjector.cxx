@@ -11,6 +11,7 @@
 #include "vtkMCXProjectorBaseInternals.h"
 #include "vtkMCXSMPExecutorPrivate.h"
 
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -176,17 +177,19 @@ public:
     }
     if (this->Controller)
     {
-      // Every process reaches this point, whatever happened to it.
-      error = mcx::FirstErrorOfAll(this->Controller,
-        !error.empty() ? error : projection.Completed ? std::string() : std::string("aborted"));
+      // Every process reaches this point, whatever happened to it; an abort
+      // on any process leaves the image incomplete on all.
+      error = mcx::FirstErrorOfAll(this->Controller, error);
       if (error.empty())
       {
-        mcx::SumExactly(this->Controller, projection.Sums);
-      }
-      else if (error.find(": aborted") != std::string::npos)
-      {
-        error.clear();
-        projection.Completed = false;
+        const int completed = projection.Completed ? 1 : 0;
+        int everywhere = 0;
+        this->Controller->AllReduce(&completed, &everywhere, 1, vtkCommunicator::MIN_OP);
+        projection.Completed = everywhere == 1;
+        if (projection.Completed)
+        {
+          mcx::SumExactly(this->Controller, projection.Sums);
+        }
       }
     }
     if (!error.empty())

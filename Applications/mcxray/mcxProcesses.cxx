@@ -18,9 +18,6 @@ namespace
 {
 #ifdef MCXRAY_MPI
 vtkSmartPointer<vtkMPIController> Controller;
-#else
-vtkSmartPointer<vtkMultiProcessController> Controller;
-#endif
 
 // Variables that Open MPI, MPICH and PMIx-based launchers set for the
 // processes they start.
@@ -35,6 +32,9 @@ bool LaunchedByMPI()
   }
   return false;
 }
+#else
+vtkSmartPointer<vtkMultiProcessController> Controller; // a build without MPI: never set
+#endif
 }
 
 void StartProcesses(int* argc, char*** argv)
@@ -43,8 +43,6 @@ void StartProcesses(int* argc, char*** argv)
   // A build without MPI runs as one process even under a launcher.
   static_cast<void>(argc);
   static_cast<void>(argv);
-  static_cast<void>(&LaunchedByMPI);
-  return;
 #else
   if (!LaunchedByMPI())
   {
