@@ -59,6 +59,7 @@ uniform sampler2D lineIntegrals;
 uniform float lowest;
 uniform float inverseWindow;
 uniform int invert;
+uniform float imageDepth;
 )";
 const char* DisplayShaderBody = R"(
   float g = clamp((texture(lineIntegrals, texCoord).r - lowest) * inverseWindow, 0.0, 1.0);
@@ -67,7 +68,7 @@ const char* DisplayShaderBody = R"(
     g = 1.0 - g;
   }
   gl_FragData[0] = vec4(g, g, g, 1.0);
-  gl_FragDepth = 1.0; // at the far plane: depth tests tell film from geometry in front
+  gl_FragDepth = imageDepth; // at the far plane: depth tests tell film from geometry in front
 )";
 
 bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometry& b)
@@ -488,9 +489,12 @@ struct vtkMCXXRayMapper::vtkInternals
   // if the shader cannot be built. As film, the grey replaces the background
   // where nothing opaque was drawn (the quad lies at the far plane and passes
   // the depth test only there) and blends over the geometry elsewhere
-  // (when there is some); additive, it blends everywhere.
+  // (when there is some); additive, it blends everywhere. For a depth
+  // compositor the image writes a depth just in front of the far plane where
+  // nothing opaque was drawn (a first pass there, additive ones too), so
+  // that the compositor keeps it against other processes' empty pixels.
   bool Draw(vtkOpenGLRenderWindow* window, double lowest, double inverseWindow, bool invert,
-    bool film, bool overGeometry)
+    bool film, bool overGeometry, bool compositedByDepth)
   {
     if (!this->Quad)
     {
@@ -520,23 +524,10 @@ struct vtkMCXXRayMapper::vtkInternals
     this->Quad->Program->SetUniformf("lowest", static_cast<float>(lowest));
     this->Quad->Program->SetUniformf("inverseWindow", static_cast<float>(inverseWindow));
     this->Quad->Program->SetUniformi("invert", invert ? 1 : 0);
-    if (film)
+    // 2^-20 in front of the far plane: distinct from it in a 24-bit depth buffer.
+    this->Quad->Program->SetUniformf("imageDepth", compositedByDepth ? 1.0f - 0x1p-20f : 1.0f);
+    auto blendAdditively = [state, invert]()
     {
-      state->vtkglEnable(GL_DEPTH_TEST); // the film where the depth buffer is empty
-      state->vtkglDepthFunc(GL_LEQUAL);
-      state->vtkglDisable(GL_BLEND);
-      this->Quad->Render();
-    }
-    if (!film || overGeometry)
-    {
-      if (film)
-      {
-        state->vtkglDepthFunc(GL_GREATER); // the geometry's pixels
-      }
-      else
-      {
-        state->vtkglDisable(GL_DEPTH_TEST);
-      }
       state->vtkglEnable(GL_BLEND);
       if (invert)
       {
@@ -546,6 +537,35 @@ struct vtkMCXXRayMapper::vtkInternals
       {
         state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE); // dst + g
       }
+    };
+    const bool whereEmptyFirst = film || compositedByDepth;
+    if (whereEmptyFirst)
+    {
+      state->vtkglEnable(GL_DEPTH_TEST); // where the depth buffer is empty
+      state->vtkglDepthFunc(GL_LEQUAL);
+      state->vtkglDepthMask(compositedByDepth ? GL_TRUE : GL_FALSE);
+      if (film)
+      {
+        state->vtkglDisable(GL_BLEND);
+      }
+      else
+      {
+        blendAdditively();
+      }
+      this->Quad->Render();
+      state->vtkglDepthMask(GL_FALSE);
+    }
+    if (!whereEmptyFirst || overGeometry)
+    {
+      if (whereEmptyFirst)
+      {
+        state->vtkglDepthFunc(GL_GREATER); // the geometry's pixels
+      }
+      else
+      {
+        state->vtkglDisable(GL_DEPTH_TEST);
+      }
+      blendAdditively();
       this->Quad->Render();
     }
     this->Texture->Deactivate();
@@ -670,7 +690,8 @@ void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
   const double inverseWindow =
     this->DisplayedWindow > 0 ? 1.0 / this->DisplayedWindow : std::numeric_limits<float>::max();
   const bool film = this->Compositing == FILM && this->TakeFilm(renderer, volume);
-  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay, film, this->LastRenderUsedDepth))
+  if (!in.Draw(window, lowest, inverseWindow, this->InvertDisplay, film, this->LastRenderUsedDepth,
+        this->CompositedByDepth))
   {
     vtkErrorMacro("The X-ray display shader failed to compile.");
     return;
@@ -779,6 +800,7 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DisplayedLevel: " << this->DisplayedLevel << "\n";
   os << indent << "InvertDisplay: " << this->InvertDisplay << "\n";
   os << indent << "Compositing: " << (this->Compositing == FILM ? "FILM" : "ADDITIVE") << "\n";
+  os << indent << "CompositedByDepth: " << this->CompositedByDepth << "\n";
   os << indent << "BeerLambert: " << this->BeerLambert << "\n";
   os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";
   os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";

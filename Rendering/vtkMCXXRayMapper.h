@@ -121,6 +121,21 @@ public:
 
   ///@{
   /**
+   * Set when a depth compositor merges this render with other processes'
+   * (ParaView's IceT under pvbatch with several processes, where one process
+   * draws the X-ray and the others draw nothing of it): the image then
+   * writes a depth just in front of the far plane where nothing opaque was
+   * drawn, so that the compositor keeps it against the others' empty pixels
+   * (which it takes for background); geometry in front still covers it.
+   * Default off: the image writes no depth.
+   */
+  vtkSetMacro(CompositedByDepth, bool);
+  vtkGetMacro(CompositedByDepth, bool);
+  vtkBooleanMacro(CompositedByDepth, bool);
+  ///@}
+
+  ///@{
+  /**
    * Radiograph physics on the accumulated image, as vtkMCXRadiograph applies
    * it off line (use vtkMCXAttenuationFunction as the TF): BeerLambert shows
    * I0 exp(-line integral); PhotonsPerPixel > 0 adds seeded Poisson noise;
@@ -247,6 +262,7 @@ protected:
   double DisplayedLevel = 0.5;
   bool InvertDisplay = false;
   int Compositing = FILM;
+  bool CompositedByDepth = false;
   bool BeerLambert = false;
   double IncidentIntensity = 1.0;
   double PhotonsPerPixel = 0.0;

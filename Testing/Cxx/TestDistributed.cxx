@@ -7,7 +7,10 @@
 // views, float data, more processes than slices, and a transfer function
 // that is zero on some pieces or everywhere; a process that cannot index its
 // piece fails every process with its message, and none waits forever.
+// The index gathered onto process 0 (vtkMCXAggregateIndex) is, array for
+// array, one process's index of the whole volume.
 #include "mcxTestHelpers.h"
+#include "vtkMCXAggregateIndex.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXFirstErrorObserver.h"
 #include "vtkMCXPointSampler.h"
@@ -28,6 +31,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -328,6 +332,110 @@ TEST(Distributed, AnIndexGivenAsDataIsRefusedNotCountedTwice)
   EXPECT_NE(std::string::npos, errors->GetErrorText().find("is not this process's z-slab"))
     << errors->GetErrorText();
   EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints());
+}
+
+namespace
+{
+// The index of the whole volume, gathered from the processes' slabs onto
+// process 0, and one process's index of the same volume: the same geometry
+// and arrays, value for value and type for type. Elsewhere: an empty output.
+void ExpectAggregatedIndexIsTheWholeIndex(
+  vtkAlgorithmOutput* volume, bool wideIds, const std::string& what)
+{
+  vtkNew<vtkMCXDensityIndex> wholeIndex;
+  wholeIndex->SetController(nullptr);
+  wholeIndex->SetAlwaysUseWideIds(wideIds);
+  wholeIndex->SetInputConnection(volume);
+  wholeIndex->Update();
+  vtkImageData* serial = wholeIndex->GetOutput();
+
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetAlwaysUseWideIds(wideIds);
+  index->SetInputConnection(volume);
+  vtkNew<vtkMCXAggregateIndex> aggregate;
+  aggregate->SetInputConnection(index->GetOutputPort());
+  aggregate->Update();
+  vtkImageData* gathered = aggregate->GetOutput();
+  if (Controller()->GetLocalProcessId() != 0)
+  {
+    EXPECT_EQ(0, gathered->GetNumberOfPoints()) << what;
+    EXPECT_EQ(0, gathered->GetFieldData()->GetNumberOfArrays()) << what;
+    return;
+  }
+  int a[6], b[6];
+  serial->GetExtent(a);
+  gathered->GetExtent(b);
+  EXPECT_TRUE(std::equal(a, a + 6, b)) << what;
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_EQ(serial->GetOrigin()[c], gathered->GetOrigin()[c]) << what;
+    EXPECT_EQ(serial->GetSpacing()[c], gathered->GetSpacing()[c]) << what;
+  }
+  vtkFieldData* expected = serial->GetFieldData();
+  ASSERT_EQ(expected->GetNumberOfArrays(), gathered->GetFieldData()->GetNumberOfArrays()) << what;
+  for (int i = 0; i < expected->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* x = expected->GetArray(i);
+    vtkDataArray* y = gathered->GetFieldData()->GetArray(x->GetName());
+    ASSERT_NE(nullptr, y) << what << ": " << x->GetName();
+    EXPECT_EQ(x->GetDataType(), y->GetDataType()) << what << ": " << x->GetName();
+    ASSERT_EQ(x->GetNumberOfTuples(), y->GetNumberOfTuples()) << what << ": " << x->GetName();
+    vtkIdType differing = 0;
+    for (vtkIdType t = 0; t < x->GetNumberOfTuples(); ++t)
+    {
+      differing += x->GetVariantValue(t) == y->GetVariantValue(t) ? 0 : 1;
+    }
+    EXPECT_EQ(0, differing) << what << ": " << x->GetName();
+  }
+}
+}
+
+TEST(Distributed, TheAggregatedIndexIsTheSingleProcessIndex)
+{
+  // The CT head read in slabs; float data whose levels are means over the
+  // whole volume; two slices for three processes (a slab with nothing,
+  // process 0's among them); 64-bit ids.
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
+  ExpectAggregatedIndexIsTheWholeIndex(reader->GetOutputPort(), false, "CT head");
+  ExpectAggregatedIndexIsTheWholeIndex(reader->GetOutputPort(), true, "CT head, 64-bit ids");
+  const int floatDims[3] = { 23, 19, 17 };
+  auto floats = Produce(mcxtest::MakeVolume(VTK_FLOAT, floatDims,
+    [](int i, int j, int k)
+    { return std::floor(8 * std::sin(0.7 * i + 1.3 * j)) / 8 + 0.0001 * (k % 3) + 0.37; }));
+  ExpectAggregatedIndexIsTheWholeIndex(floats->GetOutputPort(), false, "float data");
+  const int thinDims[3] = { 12, 9, 2 };
+  auto thin = Produce(mcxtest::MakeVolume(
+    VTK_SHORT, thinDims, [](int i, int j, int k) { return 100 * k + (i * 3 + j) % 7; }));
+  ExpectAggregatedIndexIsTheWholeIndex(thin->GetOutputPort(), false, "two slices");
+}
+
+TEST(Distributed, AnAggregateOfAFailedIndexFailsEveryProcess)
+{
+  // The last process's slab has no scalars: the index fails there, and every
+  // process's aggregate says so instead of waiting for its ids.
+  vtkMultiProcessController* controller = Controller();
+  const int last = controller->GetNumberOfProcesses() - 1;
+  const int dims[3] = { 8, 8, 6 };
+  auto volume =
+    mcxtest::MakeVolume(VTK_SHORT, dims, [](int i, int j, int k) { return i + j + k; });
+  if (controller->GetLocalProcessId() == last)
+  {
+    volume->GetPointData()->Initialize();
+  }
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkMCXAggregateIndex> aggregate;
+  aggregate->SetInputConnection(index->GetOutputPort());
+  vtkNew<vtkMCXFirstErrorObserver> indexErrors;
+  indexErrors->ObserveAlgorithm(index);
+  vtkNew<vtkMCXFirstErrorObserver> errors;
+  errors->ObserveAlgorithm(aggregate);
+  aggregate->Update();
+  indexErrors->StopObserving();
+  errors->StopObserving();
+  EXPECT_NE(std::string::npos, indexErrors->GetErrorText().find("no point scalars"));
+  EXPECT_EQ(0, aggregate->GetOutput()->GetFieldData()->GetNumberOfArrays());
 }
 
 int main(int argc, char* argv[])

@@ -854,6 +854,68 @@ TEST(Mapper, FilmLooksTheSameOnAnyBackground)
   EXPECT_GT(MisdrawnPixels(Grab(scene.Window), values, 40, 20), 160 * 128 / 2);
 }
 
+TEST(Mapper, CompositedByDepthKeepsThePictureAndMarksItsPixels)
+{
+  // For a depth compositor (IceT), the image writes a depth just in front of
+  // the far plane where nothing opaque was drawn, and nothing where geometry
+  // is: the colours and the geometry's depths are those of the ordinary
+  // render, for film and additive compositing.
+  Scene scene(17, 160, 128);
+  scene.Mapper->ProgressiveRefinementOff();
+  vtkNew<vtkPlaneSource> plate;
+  plate->SetOrigin(40, 60, -20);
+  plate->SetPoint1(180, 150, 40);
+  plate->SetPoint2(10, 90, 120);
+  vtkNew<vtkPolyDataMapper> plateMapper;
+  plateMapper->SetInputConnection(plate->GetOutputPort());
+  vtkNew<vtkActor> plateActor;
+  plateActor->SetMapper(plateMapper);
+  scene.Renderer->AddActor(plateActor);
+  scene.Renderer->GetActiveCamera()->SetPosition(140, -400, 110);
+  scene.Renderer->ResetCameraClippingRange();
+  const float marked = 1.0f - std::ldexp(1.0f, -20);
+  for (const int compositing : { vtkMCXXRayMapper::FILM, vtkMCXXRayMapper::ADDITIVE })
+  {
+    scene.Mapper->SetCompositing(compositing);
+    std::vector<float> depth[2];
+    vtkSmartPointer<vtkImageData> colours[2];
+    for (const bool composited : { false, true })
+    {
+      scene.Mapper->SetCompositedByDepth(composited);
+      scene.Window->Render();
+      colours[composited] = Grab(scene.Window);
+      depth[composited].resize(160 * 128);
+      scene.Window->GetZbufferData(0, 0, 159, 127, depth[composited].data());
+    }
+    vtkDataArray* plain = colours[0]->GetPointData()->GetScalars();
+    vtkDataArray* marking = colours[1]->GetPointData()->GetScalars();
+    ASSERT_EQ(plain->GetNumberOfValues(), marking->GetNumberOfValues());
+    vtkIdType differing = 0;
+    for (vtkIdType v = 0; v < plain->GetNumberOfValues(); ++v)
+    {
+      differing += plain->GetVariantValue(v) == marking->GetVariantValue(v) ? 0 : 1;
+    }
+    EXPECT_EQ(0, differing) << compositing;
+    int empty = 0, geometry = 0, wrong = 0;
+    for (std::size_t p = 0; p < depth[0].size(); ++p)
+    {
+      if (depth[0][p] == 1.0f) // nothing opaque: marked, within the buffer's 2^-24 steps
+      {
+        ++empty;
+        wrong += std::abs(depth[1][p] - marked) <= std::ldexp(1.0f, -23) ? 0 : 1;
+      }
+      else // the plate's depth, untouched
+      {
+        ++geometry;
+        wrong += depth[1][p] == depth[0][p] ? 0 : 1;
+      }
+    }
+    EXPECT_GT(empty, 160 * 128 / 5) << compositing;
+    EXPECT_GT(geometry, 160 * 128 / 5) << compositing;
+    EXPECT_EQ(0, wrong) << compositing;
+  }
+}
+
 TEST(Mapper, BoundsAreTheSupportEvenForAnEmptyCloud)
 {
   // A TF that is zero everywhere leaves the cloud empty: the bounds are still

@@ -1,17 +1,26 @@
 """pvbatch under mpiexec: the X-Ray filters on every process of ParaView's
 own controller. The XML reader reads each process's z-slab, the X-Ray Density
 Index indexes it, and the X-Ray Projector's image (footprint deposit, a view
-along z and an oblique one) is fetched to the client and saved;
-a run on 1 process and one on 3 must save the same bytes.
+along z and an oblique one) is fetched to the client and saved. Then the
+"Monte Carlo X-Ray" representation shows the volume (each process indexes its
+slab; the first renders the gathered index): its line integrals (in single
+precision: IceT's render gives the camera's matrices other last bits) and its
+screenshot (FXAA off: ParaView applies it to the composited picture of a
+parallel render only), before and after an opacity edit, are saved too.
+Runs on 1, 2 and 3 processes must save the same bytes.
 
     mpiexec -np N pvbatch pvbatch_distributed.py PLUGIN VOLUME.vti OUTPUT.npy
 """
+import os
 import sys
 
 import numpy
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvbatch_support import line_integral_image, mapper_call, read_png, xray_representation  # noqa: E402
 
 plugin, volume_path, output = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -36,6 +45,45 @@ for axes in (([1, 0, 0], [0, 1, 0]), ([0.6, 0.8, 0], [0, 0, 1])):  # along z, an
             processes, image.GetClassName()))
     images.append(vtk_to_numpy(values).astype(numpy.float64))
     samples = int(image.GetFieldData().GetArray("SampleCount").GetTuple1(0))
-numpy.save(output, numpy.stack(images))
-print("%d processes, %d samples per image, sums %s, wrote %s" % (
-    processes, samples, ", ".join("%.17g" % i.sum() for i in images), output))
+
+# The representation, in an oblique perspective view, before and after an
+# opacity edit (which re-samples on the rendering process only).
+view = CreateView("RenderView")
+view.ViewSize = [200, 160]
+view.OrientationAxesVisibility = 0
+view.UseFXAA = 0
+view.Background = [0.0, 0.0, 0.0]
+if hasattr(view, "UseColorPaletteForBackground"):
+    view.UseColorPaletteForBackground = 0
+display = Show(reader, view, "UniformGridRepresentation")
+ColorBy(display, ("POINTS", "headsq"))
+display.SetRepresentationType("Monte Carlo X-Ray")
+display.XRayAutomaticWindow = 0
+display.XRayWindow = 60.0
+display.XRayLevel = 30.0
+view.CameraPosition = [-300.0, -180.0, 420.0]
+view.CameraFocalPoint = [120.0, 110.0, 90.0]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+view.CameraViewAngle = 40.0
+opacity = GetOpacityTransferFunction("headsq")
+representation = xray_representation(display)
+shown = []
+for points in ([500.0, 0.0, 0.5, 0.0, 3000.0, 1.0, 0.5, 0.0], [1500.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]):
+    opacity.Points = points
+    Render(view)
+    screenshot = "%s-%g.png" % (output, points[0])
+    SaveScreenshot(screenshot, view, ImageResolution=[200, 160])
+    integrals = line_integral_image(representation)
+    counted = int(mapper_call(representation, "GetNumberOfAccumulatedSamples"))
+    pixels = read_png(screenshot)
+    os.remove(screenshot)
+    if counted != 2**22 - 1 or integrals.shape != (160, 200) or not integrals.sum() > 0 or \
+            not pixels[:, :, 0].std() > 5:
+        sys.exit("pvbatch_distributed.py: the X-ray representation on %d processes drew %d points, "
+                 "line integrals %s summing to %g, screenshot grey spread %.1f" % (
+                     processes, counted, integrals.shape, integrals.sum(), pixels[:, :, 0].std()))
+    shown += [integrals.astype(numpy.float32).ravel(), pixels.ravel()]
+numpy.save(output, numpy.concatenate([image.ravel() for image in images] + shown))
+print("%d processes, %d samples per image, sums %s; representation: sums %s; wrote %s" % (
+    processes, samples, ", ".join("%.17g" % i.sum() for i in images),
+    ", ".join("%.17g" % shown[i].sum() for i in (0, 2)), output))

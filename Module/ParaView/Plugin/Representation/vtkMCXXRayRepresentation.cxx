@@ -1,6 +1,8 @@
 #include "vtkMCXXRayRepresentation.h"
 
+#include "vtkMCXAggregateIndex.h"
 #include "vtkMCXDensityIndex.h"
+#include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXXRayMapper.h"
 
@@ -11,12 +13,17 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkProcessModule.h"
 #include "vtkRenderer.h"
+#include "vtkSMSession.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTrivialProducer.h"
 #include "vtkVolume.h"
 
 #include <algorithm>
@@ -73,6 +80,30 @@ vtkDataArray* ChooseDensityArray(
   problem = "the image has no one-component point array to show as an X-ray (a density such as CT values)";
   return nullptr;
 }
+
+// The processes of the data server, the same number on every process of the
+// session (the client asks the server; a server process counts its peers).
+int DataServerProcesses()
+{
+  vtkProcessModule* pm = vtkProcessModule::GetProcessModule();
+  if (!pm)
+  {
+    return 1;
+  }
+  if (auto* session = vtkSMSession::SafeDownCast(pm->GetActiveSession()))
+  {
+    return session->GetNumberOfProcesses(vtkPVSession::DATA_SERVER);
+  }
+  return pm->GetNumberOfLocalPartitions();
+}
+
+// A parallel data server: each process indexes its z-slab and the index is
+// gathered onto the first process, which renders (see the class comment).
+bool IsParallelServer()
+{
+  return DataServerProcesses() > 1;
+}
+
 }
 
 vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
@@ -80,6 +111,8 @@ vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
   vtkMath::UninitializeBounds(this->DataBounds);
   // Until the colour map provides one: the default ramp, once the index is known.
   this->Sampler->SetTransferFunction(this->DefaultRamp);
+  this->Index->SetInputConnection(this->Slab->GetOutputPort());
+  this->Aggregate->SetInputConnection(this->Index->GetOutputPort());
   // The interactive preview's 4 M points; the mapper is the only consumer of
   // the cloud, so a TF edit may rewrite it in place.
   this->Sampler->SetSampleExponent(DefaultSampleExponent);
@@ -96,6 +129,40 @@ int vtkMCXXRayRepresentation::FillInputPortInformation(int, vtkInformation* info
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkMCXXRayRepresentation::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  vtkInformation* inInfo = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? inputVector[0]->GetInformationObject(0)
+    : nullptr;
+  if (!mcx::IsDistributed(controller) || !inInfo ||
+    !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return 1;
+  }
+  // This process's z-slab, whole slices that no other process holds (ParaView
+  // asks for piece r of N, whose point extents share their boundary slices).
+  // An empty slab (more processes than slices) asks for one slice, the
+  // least a reader delivers; the index then crops it to nothing.
+  int whole[6], slab[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  mcx::ZSlabExtent(
+    whole, controller->GetLocalProcessId(), controller->GetNumberOfProcesses(), slab);
+  if (slab[5] < slab[4])
+  {
+    slab[5] = slab[4] = whole[4];
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), slab, 6);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   return 1;
 }
 
@@ -124,9 +191,22 @@ int vtkMCXXRayRepresentation::RequestData(
         vtkErrorMacro("Monte Carlo X-Ray: " << problem << ".");
         return this->Superclass::RequestData(request, inputVector, outputVector);
       }
+      // The whole extent travels with this process's part, so that the
+      // index and the aggregate know which slab is this process's.
+      int whole[6];
+      vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+      if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+      {
+        inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+      }
+      else
+      {
+        input->GetExtent(whole);
+      }
       vtkNew<vtkImageData> volume;
       volume->ShallowCopy(input);
-      this->Index->SetInputData(volume);
+      this->Slab->SetOutput(volume);
+      this->Slab->SetWholeExtent(whole);
       if (density->GetName())
       {
         this->Index->SetInputArrayToProcess(
@@ -137,10 +217,14 @@ int vtkMCXXRayRepresentation::RequestData(
         this->Index->SetInputArrayToProcess(
           0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
       }
-      this->Index->Update();
+      this->Aggregate->Update();
       this->DeliveredIndex = vtkSmartPointer<vtkImageData>::New();
-      this->DeliveredIndex->ShallowCopy(this->Index->GetOutput());
-      input->GetBounds(this->DataBounds);
+      this->DeliveredIndex->ShallowCopy(this->Aggregate->GetOutput());
+      // The whole volume's bounds, the same on every process.
+      vtkNew<vtkImageData> wholeVolume;
+      wholeVolume->CopyStructure(input);
+      wholeVolume->SetExtent(whole);
+      wholeVolume->GetBounds(this->DataBounds);
     }
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -163,12 +247,31 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     const double indexKiB = this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
     vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex,
       static_cast<unsigned long>(std::min(std::max(cloudKiB, indexKiB), 4.0e9)));
+    const bool parallel = IsParallelServer();
+    if (parallel)
+    {
+      // The whole index is on the first process, which draws the whole
+      // image; the others draw nothing of it, and IceT's compositing keeps
+      // the first's pixels (see vtkMCXXRayMapper::SetCompositedByDepth).
+      // The server renders (as for ParaView's Volume representation): the
+      // index stays where it is and the client gets the picture.
+      vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    }
     // With streaming on, ParaView asks after each render whether there is
-    // more to show (REQUEST_STREAMING_UPDATE) and renders again if so.
-    vtkPVRenderView::SetStreamable(inInfo, this, true);
+    // more to show (REQUEST_STREAMING_UPDATE) and renders again if so; on a
+    // parallel server only one process would answer, so a still render
+    // there draws every point.
+    vtkPVRenderView::SetStreamable(inInfo, this, !parallel);
     if (vtkMath::AreBoundsInitialized(this->DataBounds))
     {
       vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
+    }
+  }
+  else if (request == vtkPVView::REQUEST_UPDATE_LOD())
+  {
+    if (IsParallelServer())
+    {
+      vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
     }
   }
   else if (request == vtkPVView::REQUEST_RENDER())
@@ -196,6 +299,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // and the streaming passes that follow it add the rest.
     const bool interactive =
       inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
+    this->Mapper->SetCompositedByDepth(IsParallelServer());
     this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime
         : vtkPVView::GetEnableStreaming()       ? this->StillRenderTime
                                                 : 0.0);
@@ -366,7 +470,9 @@ vtkMCXXRayMapper* vtkMCXXRayRepresentation::GetMapper()
 void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Slab: " << this->Slab.GetPointer() << "\n";
   os << indent << "Index: " << this->Index.GetPointer() << "\n";
+  os << indent << "Aggregate: " << this->Aggregate.GetPointer() << "\n";
   os << indent << "Sampler: " << this->Sampler.GetPointer() << "\n";
   os << indent << "Mapper: " << this->Mapper.GetPointer() << "\n";
   os << indent << "Volume: " << this->Volume.GetPointer() << "\n";

@@ -9,8 +9,16 @@
  * renders them in the view, refining progressively. An opacity edit
  * re-samples only; it neither re-indexes nor re-delivers the data.
  *
- * X-ray images add up rather than depth-composite: several ranks are for a
- * later version (each rank's image would be summed, not composited by depth).
+ * On a parallel server (pvserver or pvbatch under mpirun) each process reads
+ * and indexes only its z-slab of the volume, and the slabs' indices are
+ * gathered onto the first process (vtkMCXAggregateIndex): the index of the
+ * whole volume, the same as one process's. X-ray images add rather than
+ * depth-composite, so the first process draws the whole image and the others
+ * draw nothing of it; the server renders (IceT keeps the first process's
+ * pixels) and the picture is the serial one. The first process holds the
+ * whole index (4 bytes a voxel); an image of a volume whose index outgrows
+ * one machine is the X-Ray Projector's (vtkMCXProjector), which keeps the
+ * index distributed.
  */
 #ifndef vtkMCXXRayRepresentation_h
 #define vtkMCXXRayRepresentation_h
@@ -22,10 +30,12 @@
 
 class vtkImageData;
 class vtkPolyData;
+class vtkMCXAggregateIndex;
 class vtkMCXDensityIndex;
 class vtkMCXPointSampler;
 class vtkMCXXRayMapper;
 class vtkPiecewiseFunction;
+class vtkTrivialProducer;
 class vtkVolume;
 
 class MONTECARLOXRAYPARAVIEW_EXPORT vtkMCXXRayRepresentation : public vtkPVDataRepresentation
@@ -104,11 +114,14 @@ protected:
   ~vtkMCXXRayRepresentation() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   bool AddToView(vtkView* view) override;
   bool RemoveFromView(vtkView* view) override;
 
+  vtkNew<vtkTrivialProducer> Slab; // this process's part of the input, with the whole extent
   vtkNew<vtkMCXDensityIndex> Index;
+  vtkNew<vtkMCXAggregateIndex> Aggregate; // the whole index, on the first process
   vtkNew<vtkMCXPointSampler> Sampler;
   vtkNew<vtkMCXXRayMapper> Mapper;
   vtkNew<vtkVolume> Volume;
