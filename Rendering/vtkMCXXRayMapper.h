@@ -122,7 +122,7 @@ public:
   ///@{
   /**
    * Set when a depth compositor merges this render with other processes'
-   * (ParaView's IceT under pvbatch with several processes, where one process
+   * (ParaView's IceT on a server of several processes, where one process
    * draws the X-ray and the others draw nothing of it): the image then
    * writes a depth just in front of the far plane where nothing opaque was
    * drawn, so that the compositor keeps it against the others' empty pixels

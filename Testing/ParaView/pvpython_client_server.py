@@ -1,0 +1,55 @@
+"""pvpython as the client of a pvserver (run by client_server.sh with 1 and
+with 3 server processes): the CT head in the "Monte Carlo X-Ray"
+representation, rendered by the server (lossless image transfer, FXAA off)
+and saved as an array of the screenshot's pixels.
+
+    pvpython pvpython_client_server.py PLUGIN VOLUME.vti PORT OUTPUT.npy
+"""
+import os
+import sys
+
+# The system dist-packages behind ParaView's own (see pvpython_load_plugin.py).
+system = [p for p in sys.path if os.path.realpath(p) == "/usr/lib/python3/dist-packages"]
+for path in system:
+    sys.path.remove(path)
+sys.path.extend(system)
+
+import numpy  # noqa: E402
+from paraview.simple import *  # noqa: E402,F401,F403
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pvbatch_support import read_png  # noqa: E402
+
+plugin, volume_path, port, output = sys.argv[1:5]
+Connect("localhost", int(port))
+LoadPlugin(plugin, remote=False, ns=globals())
+LoadPlugin(plugin, remote=True, ns=globals())
+GetSettingsProxy("RenderViewSettings").CompressorConfig = "NULL"  # the picture as rendered
+reader = XMLImageDataReader(FileName=[volume_path])
+view = CreateView("RenderView")
+view.ViewSize = [200, 160]
+view.OrientationAxesVisibility = 0
+view.UseFXAA = 0
+view.Background = [0.0, 0.0, 0.0]
+if hasattr(view, "UseColorPaletteForBackground"):
+    view.UseColorPaletteForBackground = 0
+display = Show(reader, view, "UniformGridRepresentation")
+ColorBy(display, ("POINTS", "headsq"))
+display.SetRepresentationType("Monte Carlo X-Ray")
+display.XRayAutomaticWindow = 0
+display.XRayWindow = 60.0
+display.XRayLevel = 30.0
+view.CameraPosition = [-300.0, -180.0, 420.0]
+view.CameraFocalPoint = [120.0, 110.0, 90.0]
+view.CameraViewUp = [0.0, 0.0, 1.0]
+view.CameraViewAngle = 40.0
+GetOpacityTransferFunction("headsq").Points = [500.0, 0.0, 0.5, 0.0, 3000.0, 1.0, 0.5, 0.0]
+Render(view)
+screenshot = output + ".png"
+SaveScreenshot(screenshot, view, ImageResolution=[200, 160])
+pixels = read_png(screenshot)
+os.remove(screenshot)
+if not pixels[:, :, 0].std() > 5:
+    sys.exit("pvpython_client_server.py: the server's X-ray is blank (grey spread %.1f)" % pixels[:, :, 0].std())
+numpy.save(output, pixels)
+print("the client saved the server's X-ray, grey mean %.2f" % pixels[:, :, 0].mean())
