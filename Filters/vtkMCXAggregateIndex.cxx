@@ -31,8 +31,9 @@ vtkCxxSetObjectMacro(vtkMCXAggregateIndex, Controller, vtkMultiProcessController
 
 namespace
 {
-// Ids travel in messages of at most this many values (MPI counts are ints).
-constexpr vtkIdType MessageValues = vtkIdType(1) << 24;
+// Ids travel in messages of this many values (MPI counts are ints; 256 or
+// 512 KB, so that the bundled CT's slabs already take several).
+constexpr vtkIdType MessageValues = vtkIdType(1) << 16;
 constexpr int IdsTag = 52641;
 
 // Where one piece's ids go in the whole index: level by level, after the
@@ -287,6 +288,7 @@ int vtkMCXAggregateIndex::RequestData(
   controller->Reduce(&binWidth, &widestBin, 1, vtkCommunicator::MAX_OP, 0);
   if (rank != 0)
   {
+    mcx::EmptyOutputElsewhere(output, outputVector->GetInformationObject(0));
     this->UpdateProgress(1.0);
     return 1;
   }

@@ -11,8 +11,9 @@
  * processes output an empty image. With one process the output is the input.
  *
  * What crosses the network: the levels, as for vtkMCXProjector, and each
- * slab's voxel ids once (4 bytes a voxel, 8 above 2^32 voxels). Process 0
- * needs memory for the whole index plus the largest slab's ids.
+ * slab's voxel ids once (4 bytes a voxel; 8 above 2^32 voxels or with
+ * AlwaysUseWideIds). Process 0 needs memory for the whole index besides its
+ * own slab's.
  *
  * For consumers that need the whole index in one place: ParaView's "Monte
  * Carlo X-Ray" representation on a parallel server renders on one process;

@@ -2,6 +2,7 @@
 
 #include "mcxCountingSort.h"
 #include "mcxFixedPoint.h"
+#include "vtkMCXAgreeingExecutivePrivate.h"
 #include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
@@ -364,9 +365,37 @@ bool vtkMCXDensityIndex::NeedsWideIds(long long numberOfVoxels)
   return numberOfVoxels > static_cast<long long>(std::numeric_limits<std::uint32_t>::max());
 }
 
+vtkExecutive* vtkMCXDensityIndex::CreateDefaultExecutive()
+{
+  return vtkMCXAgreeingExecutive::New();
+}
+
+namespace
+{
+// True when the reader upstream failed on this process (only reported,
+// under several processes, by the index's own executive).
+bool InputFailed(vtkAlgorithm* algorithm, bool informationOnly)
+{
+  auto* executive = vtkMCXAgreeingExecutive::SafeDownCast(algorithm->GetExecutive());
+  return executive &&
+    (informationOnly ? executive->InformationFailed() : executive->InputFailed());
+}
+}
+
 int vtkMCXDensityIndex::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // Distributed, a reader that failed to describe this process's piece
+  // fails the index on every process, here, before anything downstream
+  // meets the others with what it cannot know.
+  const std::string problem = mcx::FirstErrorOfAll(
+    mcx::IsDistributed(this->Controller) ? this->Controller : nullptr,
+    InputFailed(this, true) ? "The volume's piece could not be read (see the reader's error)" : "");
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem << ".");
+    return 0;
+  }
   if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
   {
     return 0;
@@ -390,6 +419,10 @@ int vtkMCXDensityIndex::RequestUpdateExtent(
   // slices) asks the input for one slice, the least it can deliver.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return 1; // an input that failed to describe itself; RequestData says so
+  }
   int extent[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
@@ -503,7 +536,10 @@ int vtkMCXDensityIndex::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!input || !output)
+  vtkMultiProcessController* controller =
+    mcx::IsDistributed(this->Controller) ? this->Controller : nullptr;
+  const bool inputFailed = InputFailed(this, false);
+  if (!output || (!input && !controller))
   {
     vtkErrorMacro("Missing input or output image data.");
     return 0;
@@ -512,10 +548,17 @@ int vtkMCXDensityIndex::RequestData(
 
   // Checks first; distributed, all processes fail together on the first
   // process's problem (none waits for one that gave up).
-  vtkMultiProcessController* controller =
-    mcx::IsDistributed(this->Controller) ? this->Controller : nullptr;
-  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
-  std::string problem = ScalarsProblem(scalars, input->GetNumberOfPoints());
+  std::string problem;
+  vtkDataArray* scalars = nullptr;
+  if (inputFailed || !input)
+  {
+    problem = "The volume's piece could not be read (see the reader's error)";
+  }
+  else
+  {
+    scalars = this->GetInputArrayToProcess(0, inputVector);
+    problem = ScalarsProblem(scalars, input->GetNumberOfPoints());
+  }
   vtkSmartPointer<vtkImageData> piece;
   if (problem.empty())
   {

@@ -32,6 +32,11 @@
  * the data's range (Controller) so that floating-point data is binned alike
  * everywhere and a level's value is the whole volume's mean, the same for
  * any number of processes. A process beyond the slices gets an empty index.
+ * A process whose reader fails (its information or its data) still meets
+ * the others, and the index fails on every process with that process's
+ * message, so that none waits for it (the index's own executive lets the
+ * failure through; a pipeline that sets another executive, as ParaView's
+ * filters do, stops at the failing reader as usual).
  */
 #ifndef vtkMCXDensityIndex_h
 #define vtkMCXDensityIndex_h
@@ -98,6 +103,7 @@ protected:
   vtkMCXDensityIndex();
   ~vtkMCXDensityIndex() override;
 
+  vtkExecutive* CreateDefaultExecutive() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;

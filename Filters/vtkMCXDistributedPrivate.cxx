@@ -3,6 +3,10 @@
 #include "vtkMCXIndexViewPrivate.h"
 
 #include "vtkCommunicator.h"
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 
@@ -36,6 +40,17 @@ void ZSlabExtent(const int whole[6], int piece, int pieces, int slab[6])
   std::copy(whole, whole + 6, slab);
   slab[4] = static_cast<int>(whole[4] + slices * piece / pieces);
   slab[5] = static_cast<int>(whole[4] + slices * (piece + 1) / pieces - 1);
+}
+
+void EmptyOutputElsewhere(vtkImageData* output, vtkInformation* outInfo)
+{
+  output->Initialize();
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    // The extent the executive compares the next request with.
+    output->GetInformation()->Set(vtkDataObject::ALL_PIECES_EXTENT(),
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
 }
 
 std::string FirstErrorOfAll(vtkMultiProcessController* controller, const std::string& error)
@@ -158,8 +173,8 @@ std::string GatherLevels(vtkMultiProcessController* controller, const int wholeE
   const bool empty = slab[5] < slab[4];
   if (empty ? view.NumberOfLevels > 0 : !std::equal(slab, slab + 6, view.Extent))
   {
-    return "the index is not this process's z-slab of the volume (connect the index to the "
-           "projector with SetInputConnection, so that the projector asks for the slab)";
+    return "the index is not this process's z-slab of the volume (connect the index with "
+           "SetInputConnection, so that its consumer asks for the slab)";
   }
   if (processes > 65536)
   {

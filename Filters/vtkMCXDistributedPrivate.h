@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+class vtkImageData;
+class vtkInformation;
 class vtkMultiProcessController;
 
 namespace mcx
@@ -22,7 +24,8 @@ namespace mcx
 struct IndexView;
 
 /// True when the controller runs more than one process.
-bool IsDistributed(vtkMultiProcessController* controller);
+/// (Exported, as FirstErrorOfAll: ParaView's representation agrees too.)
+MONTECARLOXRAYFILTERS_EXPORT bool IsDistributed(vtkMultiProcessController* controller);
 
 /// The z-slab of `whole` that process `piece` of `pieces` holds: whole
 /// slices, as evenly as they divide, in rank order (so that the global order
@@ -32,11 +35,19 @@ bool IsDistributed(vtkMultiProcessController* controller);
 MONTECARLOXRAYFILTERS_EXPORT void ZSlabExtent(
   const int whole[6], int piece, int pieces, int slab[6]);
 
+/// Empties `output` on a process that holds no part of a result kept on
+/// process 0, and tells the pipeline that this empty output meets any
+/// request within the whole extent (`outInfo`'s): else VTK would run the
+/// filter again at every later update on this process alone, which would
+/// then wait for the others forever.
+void EmptyOutputElsewhere(vtkImageData* output, vtkInformation* outInfo);
+
 /// Agreement on success: every process passes its own error ("" when it
 /// has none) and gets the first failing process's, prefixed with its rank
 /// ("process 2 of 3: ..."), or "" when all succeeded; the same error from
 /// every process comes back as it is. Collective.
-std::string FirstErrorOfAll(vtkMultiProcessController* controller, const std::string& error);
+MONTECARLOXRAYFILTERS_EXPORT std::string FirstErrorOfAll(
+  vtkMultiProcessController* controller, const std::string& error);
 
 /// Sums each value over the processes, exactly (the sums of a projection:
 /// integers, so the result is the same for any number of processes and any

@@ -460,9 +460,14 @@ int vtkMCXProjector::RequestData(
   // (as parallel VTK and ParaView expect of a result that is one dataset).
   const bool elsewhere = vtkImageData::SafeDownCast(input) && mcx::IsDistributed(this->Controller) &&
     this->Controller->GetLocalProcessId() != 0;
-  if (!projection.Completed || elsewhere)
+  if (!projection.Completed) // aborted on every process: every one runs again next time
   {
     output->Initialize();
+    return 1;
+  }
+  if (elsewhere)
+  {
+    mcx::EmptyOutputElsewhere(output, outputVector->GetInformationObject(0));
     return 1;
   }
   WriteImage(projection, geometry, this->AllocateLineIntegral(output), output->GetFieldData());

@@ -16,12 +16,20 @@
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkMPIController.h"
+#include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -371,6 +379,11 @@ void ExpectAggregatedIndexIsTheWholeIndex(
     EXPECT_EQ(serial->GetOrigin()[c], gathered->GetOrigin()[c]) << what;
     EXPECT_EQ(serial->GetSpacing()[c], gathered->GetSpacing()[c]) << what;
   }
+  for (int c = 0; c < 9; ++c)
+  {
+    EXPECT_EQ(serial->GetDirectionMatrix()->GetData()[c], gathered->GetDirectionMatrix()->GetData()[c])
+      << what;
+  }
   vtkFieldData* expected = serial->GetFieldData();
   ASSERT_EQ(expected->GetNumberOfArrays(), gathered->GetFieldData()->GetNumberOfArrays()) << what;
   for (int i = 0; i < expected->GetNumberOfArrays(); ++i)
@@ -399,6 +412,27 @@ TEST(Distributed, TheAggregatedIndexIsTheSingleProcessIndex)
   reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
   ExpectAggregatedIndexIsTheWholeIndex(reader->GetOutputPort(), false, "CT head");
   ExpectAggregatedIndexIsTheWholeIndex(reader->GetOutputPort(), true, "CT head, 64-bit ids");
+  {
+    // Each process reads only its slab: whole slices, as evenly as they
+    // divide (a reader of its own, which no whole-volume request has read).
+    vtkNew<vtkXMLImageDataReader> slabReader;
+    slabReader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
+    vtkNew<vtkMCXDensityIndex> slabIndex;
+    slabIndex->SetInputConnection(slabReader->GetOutputPort());
+    vtkNew<vtkMCXAggregateIndex> slabAggregate;
+    slabAggregate->SetInputConnection(slabIndex->GetOutputPort());
+    slabAggregate->Update();
+    int whole[6], read[6];
+    slabReader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    slabReader->GetOutput()->GetExtent(read);
+    const int processes = Controller()->GetNumberOfProcesses();
+    const int rank = Controller()->GetLocalProcessId();
+    const int slices = whole[5] - whole[4] + 1;
+    EXPECT_EQ(whole[4] + slices * rank / processes, read[4]);
+    EXPECT_EQ(whole[4] + slices * (rank + 1) / processes - 1, read[5]);
+    EXPECT_EQ(whole[0], read[0]);
+    EXPECT_EQ(whole[3], read[3]);
+  }
   const int floatDims[3] = { 23, 19, 17 };
   auto floats = Produce(mcxtest::MakeVolume(VTK_FLOAT, floatDims,
     [](int i, int j, int k)
@@ -436,6 +470,133 @@ TEST(Distributed, AnAggregateOfAFailedIndexFailsEveryProcess)
   errors->StopObserving();
   EXPECT_NE(std::string::npos, indexErrors->GetErrorText().find("no point scalars"));
   EXPECT_EQ(0, aggregate->GetOutput()->GetFieldData()->GetNumberOfArrays());
+}
+
+namespace
+{
+// A source of a 10 x 9 x 8 volume that fails on one process, in its
+// information or in its data (as a reader of a missing or broken file).
+class FailingSource : public vtkImageAlgorithm
+{
+public:
+  static FailingSource* New();
+  vtkTypeMacro(FailingSource, vtkImageAlgorithm);
+  int FailingProcess = -1;
+  bool FailInInformation = false;
+
+protected:
+  FailingSource() { this->SetNumberOfInputPorts(0); }
+  bool FailsHere() const { return Controller()->GetLocalProcessId() == this->FailingProcess; }
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    if (this->FailsHere() && this->FailInInformation)
+    {
+      vtkErrorMacro("Cannot open the file.");
+      return 0;
+    }
+    const int whole[6] = { 0, 9, 0, 8, 0, 7 };
+    out->GetInformationObject(0)->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+    vtkDataObject::SetPointDataActiveScalarInfo(out->GetInformationObject(0), VTK_SHORT, 1);
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    if (this->FailsHere())
+    {
+      vtkErrorMacro("The file is truncated.");
+      return 0;
+    }
+    vtkInformation* info = out->GetInformationObject(0);
+    int extent[6];
+    info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+    vtkImageData* image = vtkImageData::GetData(info);
+    image->SetExtent(extent);
+    image->AllocateScalars(VTK_SHORT, 1);
+    auto* values = static_cast<short*>(image->GetScalarPointer());
+    for (vtkIdType p = 0; p < image->GetNumberOfPoints(); ++p)
+    {
+      values[p] = static_cast<short>(1 + p % 7);
+    }
+    return 1;
+  }
+};
+vtkStandardNewMacro(FailingSource);
+}
+
+TEST(Distributed, AReaderThatFailsOnOneProcessFailsEveryProcess)
+{
+  // The last process's reader fails, in its information or in its data:
+  // the index still meets the others and fails everywhere with that
+  // process's message; the projector makes no image and no process waits.
+  // On one process the pipeline stops at the reader, as VTK's does.
+  vtkMultiProcessController* controller = Controller();
+  const int processes = controller->GetNumberOfProcesses();
+  for (const bool inInformation : { false, true })
+  {
+    vtkNew<FailingSource> source;
+    source->FailingProcess = processes - 1;
+    source->FailInInformation = inInformation;
+    vtkNew<vtkMCXDensityIndex> index;
+    index->SetInputConnection(source->GetOutputPort());
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputConnection(index->GetOutputPort());
+    projector->SetImageSize(16, 16);
+    vtkNew<vtkMCXFirstErrorObserver> readerErrors, indexErrors, projectorErrors;
+    readerErrors->ObserveAlgorithm(source);
+    indexErrors->ObserveAlgorithm(index);
+    projectorErrors->ObserveAlgorithm(projector);
+    projector->Update();
+    readerErrors->StopObserving();
+    indexErrors->StopObserving();
+    projectorErrors->StopObserving();
+    const std::string where = inInformation ? "information" : "data";
+    if (processes == 1)
+    {
+      EXPECT_NE("", readerErrors->GetErrorText()) << where;
+      EXPECT_EQ("", indexErrors->GetErrorText()) << where;
+    }
+    else
+    {
+      EXPECT_EQ("process " + std::to_string(processes - 1) + " of " + std::to_string(processes) +
+          ": The volume's piece could not be read (see the reader's error).",
+        indexErrors->GetErrorText())
+        << where;
+    }
+    EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints()) << where;
+  }
+}
+
+TEST(Distributed, ASecondUpdateRunsNothingOnAnyProcess)
+{
+  // Process 0 holds the result and the others an empty output: without the
+  // pipeline being told that the empty output meets the request, a second
+  // update would run the filter again on the other processes alone, and
+  // they would wait for process 0 forever. Each filter runs once everywhere.
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti");
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputConnection(reader->GetOutputPort());
+  vtkNew<vtkMCXAggregateIndex> aggregate;
+  aggregate->SetInputConnection(index->GetOutputPort());
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(index->GetOutputPort());
+  projector->SetImageSize(32, 24);
+  projector->SetSampleExponent(14);
+  for (vtkAlgorithm* filter : { static_cast<vtkAlgorithm*>(aggregate), static_cast<vtkAlgorithm*>(projector) })
+  {
+    int runs = 0;
+    vtkNew<vtkCallbackCommand> counter;
+    counter->SetClientData(&runs);
+    counter->SetCallback([](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+    filter->AddObserver(vtkCommand::EndEvent, counter);
+    filter->Update();
+    filter->Update();
+    filter->GetOutputInformation(0)->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      filter->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+    filter->Update();
+    filter->RemoveObserver(counter);
+    EXPECT_EQ(1, runs) << filter->GetClassName() << " on process " << Controller()->GetLocalProcessId();
+  }
 }
 
 int main(int argc, char* argv[])

@@ -186,7 +186,10 @@ int vtkMCXXRayRepresentation::RequestData(
         : vtkDataObject::FIELD_ASSOCIATION_POINTS;
       std::string problem;
       vtkDataArray* density = ChooseDensityArray(input, coloured, association, problem);
-      if (!density)
+      // On a parallel server every process indexes its slab together: one
+      // without a density array fails all of them (none waits for it).
+      problem = mcx::FirstErrorOfAll(vtkMultiProcessController::GetGlobalController(), problem);
+      if (!problem.empty())
       {
         vtkErrorMacro("Monte Carlo X-Ray: " << problem << ".");
         return this->Superclass::RequestData(request, inputVector, outputVector);
@@ -245,10 +248,13 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // motion use the interactive budget.
     const double cloudKiB = 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
     const double indexKiB = this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
-    vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex,
-      static_cast<unsigned long>(std::min(std::max(cloudKiB, indexKiB), 4.0e9)));
     const bool parallel = IsParallelServer();
-    if (parallel)
+    if (!parallel || this->ServerRenders())
+    {
+      vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex,
+        static_cast<unsigned long>(std::min(std::max(cloudKiB, indexKiB), 4.0e9)));
+    }
+    if (parallel && this->ServerRenders())
     {
       // The whole index is on the first process, which draws the whole
       // image; the others draw nothing of it, and IceT's compositing keeps
@@ -256,6 +262,20 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
       // The server renders (as for ParaView's Volume representation): the
       // index stays where it is and the client gets the picture.
       vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    }
+    else if (parallel)
+    {
+      // A parallel server that cannot render (no OpenGL on its processes):
+      // nothing is delivered (ParaView 5.11 cannot move this index to the
+      // client from several processes), and the view says why instead of
+      // drawing.
+      if (!this->ToldServerCannotRender)
+      {
+        vtkWarningMacro("Monte Carlo X-Ray: this parallel server cannot render (no OpenGL on its "
+                        "processes), so the X-ray is not drawn; start pvserver with a display or "
+                        "offscreen rendering, or use one server process.");
+        this->ToldServerCannotRender = true;
+      }
     }
     // With streaming on, ParaView asks after each render whether there is
     // more to show (REQUEST_STREAMING_UPDATE) and renders again if so; on a
@@ -269,7 +289,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   }
   else if (request == vtkPVView::REQUEST_UPDATE_LOD())
   {
-    if (IsParallelServer())
+    if (IsParallelServer() && this->ServerRenders())
     {
       vtkPVRenderView::SetRequiresDistributedRenderingLOD(inInfo, this, true);
     }
@@ -299,9 +319,10 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // and the streaming passes that follow it add the rest.
     const bool interactive =
       inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
-    this->Mapper->SetCompositedByDepth(IsParallelServer());
+    this->Mapper->SetCompositedByDepth(IsParallelServer() && this->ServerRenders());
+    const bool streaming = vtkPVView::GetEnableStreaming() && !IsParallelServer();
     this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime
-        : vtkPVView::GetEnableStreaming()       ? this->StillRenderTime
+        : streaming                             ? this->StillRenderTime
                                                 : 0.0);
     this->SetVisibility(this->GetVisibility());
   }
@@ -340,6 +361,14 @@ bool vtkMCXXRayRepresentation::RemoveFromView(vtkView* view)
     return this->Superclass::RemoveFromView(view);
   }
   return false;
+}
+
+bool vtkMCXXRayRepresentation::ServerRenders()
+{
+  // The same answer on every process: ParaView tells them all when the
+  // server cannot render.
+  auto* view = vtkPVRenderView::SafeDownCast(this->GetView());
+  return view && view->GetRemoteRenderingAvailable();
 }
 
 void vtkMCXXRayRepresentation::SetVisibility(bool visible)
@@ -483,6 +512,7 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StillRenderTime: " << this->StillRenderTime << "\n";
   os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
   os << indent << "StreamedCount: " << this->StreamedCount << "\n";
+  os << indent << "ToldServerCannotRender: " << this->ToldServerCannotRender << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

@@ -133,10 +133,12 @@ protected:
   double StillRenderTime = 0.5;
   vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
   vtkTypeInt64 StreamedCount = -1;     // points shown at the last streaming pass
+  bool ToldServerCannotRender = false; // the warning is given once
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
   void UseDefaultRampUnlessColoured(vtkImageData* index);
+  bool ServerRenders(); // the view's server processes can render
   void operator=(const vtkMCXXRayRepresentation&) = delete;
 };
 
