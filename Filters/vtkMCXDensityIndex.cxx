@@ -385,16 +385,20 @@ bool InputFailed(vtkAlgorithm* algorithm, bool informationOnly)
 int vtkMCXDensityIndex::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Distributed, a reader that failed to describe this process's piece
-  // fails the index on every process, here, before anything downstream
-  // meets the others with what it cannot know.
-  const std::string problem = mcx::FirstErrorOfAll(
-    mcx::IsDistributed(this->Controller) ? this->Controller : nullptr,
-    InputFailed(this, true) ? "The volume's piece could not be read (see the reader's error)" : "");
-  if (!problem.empty())
+  // Distributed under the index's own executive, a reader that failed to
+  // describe this process's piece fails the index on every process, here,
+  // before anything downstream meets the others with what it cannot know.
+  if (vtkMCXAgreeingExecutive::SafeDownCast(this->GetExecutive()) &&
+    mcx::IsDistributed(this->Controller))
   {
-    vtkErrorMacro(<< problem << ".");
-    return 0;
+    const std::string problem = mcx::FirstErrorOfAll(this->Controller,
+      InputFailed(this, true) ? "The volume's piece could not be read (see the reader's error)"
+                              : "");
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< problem << ".");
+      return 0;
+    }
   }
   if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
   {
