@@ -42,6 +42,19 @@ void ZSlabExtent(const int whole[6], int piece, int pieces, int slab[6])
   slab[5] = static_cast<int>(whole[4] + slices * (piece + 1) / pieces - 1);
 }
 
+bool RequestZSlab(vtkMultiProcessController* controller, vtkInformation* inInfo)
+{
+  if (!IsDistributed(controller) || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return false;
+  }
+  int whole[6], slab[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  ZSlabExtent(whole, controller->GetLocalProcessId(), controller->GetNumberOfProcesses(), slab);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), slab, 6);
+  return true;
+}
+
 void EmptyOutputElsewhere(vtkImageData* output, vtkInformation* outInfo)
 {
   output->Initialize();

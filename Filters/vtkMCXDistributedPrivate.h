@@ -35,6 +35,11 @@ MONTECARLOXRAYFILTERS_EXPORT bool IsDistributed(vtkMultiProcessController* contr
 MONTECARLOXRAYFILTERS_EXPORT void ZSlabExtent(
   const int whole[6], int piece, int pieces, int slab[6]);
 
+/// Asks the input (`inInfo`) for this process's z-slab of its whole
+/// extent, whatever the consumer asked; false (nothing set) with one
+/// process or an input without a whole extent.
+bool RequestZSlab(vtkMultiProcessController* controller, vtkInformation* inInfo);
+
 /// Empties `output` on a process that holds no part of a result kept on
 /// process 0, and tells the pipeline that this empty output meets any
 /// request within the whole extent (`outInfo`'s): else VTK would run the

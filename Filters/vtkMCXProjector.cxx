@@ -388,19 +388,12 @@ std::string vtkMCXProjector::AgreeOnFailure(vtkInformation* inInfo, const std::s
 int vtkMCXProjector::RequestUpdateExtent(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (!mcx::IsDistributed(this->Controller) ||
-    !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  // Under several processes, this process's z-slab of the index.
+  if (mcx::RequestZSlab(this->Controller, inputVector[0]->GetInformationObject(0)))
   {
-    return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+    return 1;
   }
-  // An index under several processes: this process's z-slab of it.
-  int whole[6], slab[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  mcx::ZSlabExtent(whole, this->Controller->GetLocalProcessId(),
-    this->Controller->GetNumberOfProcesses(), slab);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), slab, 6);
-  return 1;
+  return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
 }
 
 void vtkMCXProjector::SetNumberOfSamples(vtkTypeInt64 n)

@@ -20,7 +20,8 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pvbatch_support import line_integral_image, mapper_call, read_png, xray_representation  # noqa: E402
+from pvbatch_support import (  # noqa: E402
+    line_integral_image, mapper_call, read_png, show_oblique_head_xray, xray_representation)
 
 plugin, volume_path, output = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -48,23 +49,7 @@ for axes in (([1, 0, 0], [0, 1, 0]), ([0.6, 0.8, 0], [0, 0, 1])):  # along z, an
 
 # The representation, in an oblique perspective view, before and after an
 # opacity edit (which re-samples on the rendering process only).
-view = CreateView("RenderView")
-view.ViewSize = [200, 160]
-view.OrientationAxesVisibility = 0
-view.UseFXAA = 0
-view.Background = [0.0, 0.0, 0.0]
-if hasattr(view, "UseColorPaletteForBackground"):
-    view.UseColorPaletteForBackground = 0
-display = Show(reader, view, "UniformGridRepresentation")
-ColorBy(display, ("POINTS", "headsq"))
-display.SetRepresentationType("Monte Carlo X-Ray")
-display.XRayAutomaticWindow = 0
-display.XRayWindow = 60.0
-display.XRayLevel = 30.0
-view.CameraPosition = [-300.0, -180.0, 420.0]
-view.CameraFocalPoint = [120.0, 110.0, 90.0]
-view.CameraViewUp = [0.0, 0.0, 1.0]
-view.CameraViewAngle = 40.0
+view, display = show_oblique_head_xray(reader)
 opacity = GetOpacityTransferFunction("headsq")
 representation = xray_representation(display)
 shown = []

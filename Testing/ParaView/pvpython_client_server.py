@@ -18,7 +18,7 @@ import numpy  # noqa: E402
 from paraview.simple import *  # noqa: E402,F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pvbatch_support import read_png  # noqa: E402
+from pvbatch_support import read_png, show_oblique_head_xray  # noqa: E402
 
 plugin, volume_path, port, output = sys.argv[1:5]
 Connect("localhost", int(port))
@@ -26,23 +26,7 @@ LoadPlugin(plugin, remote=False, ns=globals())
 LoadPlugin(plugin, remote=True, ns=globals())
 GetSettingsProxy("RenderViewSettings").CompressorConfig = "NULL"  # the picture as rendered
 reader = XMLImageDataReader(FileName=[volume_path])
-view = CreateView("RenderView")
-view.ViewSize = [200, 160]
-view.OrientationAxesVisibility = 0
-view.UseFXAA = 0
-view.Background = [0.0, 0.0, 0.0]
-if hasattr(view, "UseColorPaletteForBackground"):
-    view.UseColorPaletteForBackground = 0
-display = Show(reader, view, "UniformGridRepresentation")
-ColorBy(display, ("POINTS", "headsq"))
-display.SetRepresentationType("Monte Carlo X-Ray")
-display.XRayAutomaticWindow = 0
-display.XRayWindow = 60.0
-display.XRayLevel = 30.0
-view.CameraPosition = [-300.0, -180.0, 420.0]
-view.CameraFocalPoint = [120.0, 110.0, 90.0]
-view.CameraViewUp = [0.0, 0.0, 1.0]
-view.CameraViewAngle = 40.0
+view, display = show_oblique_head_xray(reader)
 GetOpacityTransferFunction("headsq").Points = [500.0, 0.0, 0.5, 0.0, 3000.0, 1.0, 0.5, 0.0]
 Render(view)
 screenshot = output + ".png"
