@@ -2,33 +2,64 @@
 // upstream (a reader that cannot read this process's piece, or its
 // information) does not stop the index here, because the index must meet the
 // other processes to tell them so -- else they would wait for it forever. The
-// index asks InputFailed() and then fails on every process with this
-// process's message. With one process, failures stop the pipeline as usual.
+// executive marks the request (UPSTREAM_FAILED) and the index then fails on
+// every process with this process's message. With one process, failures stop
+// the pipeline as usual.
+//
+// ParaView gives its filter proxies and representations executives of its
+// own; the plugin's executives for the index and the X-ray representation
+// (Module/ParaView/Plugin/Representation) do the same through
+// UpstreamFailures.
 #ifndef vtkMCXAgreeingExecutivePrivate_h
 #define vtkMCXAgreeingExecutivePrivate_h
 
+#include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "vtkCompositeDataPipeline.h"
 
-class vtkMCXAgreeingExecutive : public vtkCompositeDataPipeline
+class vtkInformationIntegerKey;
+
+class MONTECARLOXRAYFILTERS_EXPORT vtkMCXAgreeingExecutive : public vtkCompositeDataPipeline
 {
 public:
   static vtkMCXAgreeingExecutive* New();
   vtkTypeMacro(vtkMCXAgreeingExecutive, vtkCompositeDataPipeline);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// True when the last information pass upstream failed.
-  bool InformationFailed() const { return this->FailedInformation; }
-  /// True when the last information or data pass upstream failed.
-  bool InputFailed() const { return this->FailedInformation || this->FailedData; }
+  /// Set by an agreeing executive under several processes, in the
+  /// information and data requests its algorithm gets: 1 when this process's
+  /// input could not be produced (in this pass or in the information pass
+  /// before it), else 0. Absent otherwise.
+  static vtkInformationIntegerKey* UPSTREAM_FAILED();
+
+  /// True when the request says that the input of this pass failed upstream
+  /// (only an agreeing executive under several processes says so).
+  static bool UpstreamFailed(vtkInformation* request);
+
+  /// What an agreeing executive remembers between passes.
+  struct UpstreamFailures
+  {
+    bool Information = false;
+    bool Data = false;
+    /// Records the result of forwarding an information or data request
+    /// upstream and marks the request; returns what ForwardUpstream returns:
+    /// success under several processes (the algorithm must run to tell the
+    /// others), the result itself otherwise.
+    int Forwarded(vtkInformation* request, int result, bool distributed);
+    /// Clears the mark once the algorithm has run the pass (the request
+    /// travels on through other executives, whose algorithms must not read
+    /// it). Call after CallAlgorithm.
+    static void Consumed(vtkInformation* request);
+  };
 
 protected:
   vtkMCXAgreeingExecutive() = default;
   ~vtkMCXAgreeingExecutive() override = default;
 
   int ForwardUpstream(vtkInformation* request) override;
+  int CallAlgorithm(vtkInformation* request, int direction, vtkInformationVector** inInfo,
+    vtkInformationVector* outInfo) override;
 
-  bool FailedInformation = false;
-  bool FailedData = false;
+  UpstreamFailures Failures;
 
 private:
   vtkMCXAgreeingExecutive(const vtkMCXAgreeingExecutive&) = delete;

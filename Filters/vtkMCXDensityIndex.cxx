@@ -9,12 +9,12 @@
 #include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkCellData.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkCommunicator.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -139,7 +139,8 @@ void AgreeOnRange(vtkMultiProcessController* controller, ValueRange<T>& range)
   // empty piece offers the type's extremes, which lose every comparison.
   using Wide = typename std::conditional<std::is_floating_point<T>::value, double,
     typename std::conditional<std::is_signed<T>::value, long long, unsigned long long>::type>::type;
-  const Wide low = range.Finite > 0 ? static_cast<Wide>(range.Min) : std::numeric_limits<Wide>::max();
+  const Wide low =
+    range.Finite > 0 ? static_cast<Wide>(range.Min) : std::numeric_limits<Wide>::max();
   const Wide high =
     range.Finite > 0 ? static_cast<Wide>(range.Max) : std::numeric_limits<Wide>::lowest();
   const long long finite = range.Finite;
@@ -301,18 +302,20 @@ void BuildIndex(const T* values, std::int64_t n, int floatLevels,
       controller->AllReduce(lowest.data(), reduced.data(), static_cast<vtkIdType>(lowest.size()),
         vtkCommunicator::MIN_OP);
       lowest.swap(reduced);
-      controller->AllReduce(highest.data(), reduced.data(),
-        static_cast<vtkIdType>(highest.size()), vtkCommunicator::MAX_OP);
+      controller->AllReduce(highest.data(), reduced.data(), static_cast<vtkIdType>(highest.size()),
+        vtkCommunicator::MAX_OP);
       highest.swap(reduced);
     }
     for (std::int64_t l = 0; l < levels; ++l)
     {
-      const std::size_t bin = static_cast<std::size_t>(result.LevelBins[static_cast<std::size_t>(l)]);
+      const std::size_t bin =
+        static_cast<std::size_t>(result.LevelBins[static_cast<std::size_t>(l)]);
       const double offset =
         (mcx::ToDouble(sums[bin]) / static_cast<double>(counts[bin]) - FloatLevelBias) /
         FloatLevelFraction * width;
-      const double mean =
-        lowest[bin] == highest[bin] ? lowest[bin] : binStart(static_cast<std::int64_t>(bin)) + offset;
+      const double mean = lowest[bin] == highest[bin]
+        ? lowest[bin]
+        : binStart(static_cast<std::int64_t>(bin)) + offset;
       result.LevelValues[static_cast<std::size_t>(l)] =
         std::min(highest[bin], std::max(lowest[bin], mean));
     }
@@ -365,35 +368,32 @@ bool vtkMCXDensityIndex::NeedsWideIds(long long numberOfVoxels)
   return numberOfVoxels > static_cast<long long>(std::numeric_limits<std::uint32_t>::max());
 }
 
+namespace
+{
+constexpr const char* UnreadablePiece =
+  "The volume's piece could not be read (see the reader's error)";
+}
+
 vtkExecutive* vtkMCXDensityIndex::CreateDefaultExecutive()
 {
   return vtkMCXAgreeingExecutive::New();
 }
 
-namespace
-{
-// True when the reader upstream failed on this process (only reported,
-// under several processes, by the index's own executive).
-bool InputFailed(vtkAlgorithm* algorithm, bool informationOnly)
-{
-  auto* executive = vtkMCXAgreeingExecutive::SafeDownCast(algorithm->GetExecutive());
-  return executive &&
-    (informationOnly ? executive->InformationFailed() : executive->InputFailed());
-}
-}
-
 int vtkMCXDensityIndex::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Distributed under the index's own executive, a reader that failed to
-  // describe this process's piece fails the index on every process, here,
+  // Distributed under an agreeing executive (the index's own, or the
+  // plugin's in ParaView), which marks the request, a reader that failed to
+  // describe this process's piece (or described no voxels: ParaView's file
+  // series reader of a missing file) fails the index on every process, here,
   // before anything downstream meets the others with what it cannot know.
-  if (vtkMCXAgreeingExecutive::SafeDownCast(this->GetExecutive()) &&
+  if (request->Has(vtkMCXAgreeingExecutive::UPSTREAM_FAILED()) &&
     mcx::IsDistributed(this->Controller))
   {
-    const std::string problem = mcx::FirstErrorOfAll(this->Controller,
-      InputFailed(this, true) ? "The volume's piece could not be read (see the reader's error)"
-                              : "");
+    const bool unreadable = vtkMCXAgreeingExecutive::UpstreamFailed(request) ||
+      mcx::NothingDescribed(inputVector[0]->GetInformationObject(0));
+    const std::string problem =
+      mcx::FirstErrorOfAll(this->Controller, unreadable ? UnreadablePiece : "");
     if (!problem.empty())
     {
       vtkErrorMacro(<< problem << ".");
@@ -536,13 +536,13 @@ std::string ScalarsProblem(vtkDataArray* scalars, vtkIdType points)
 }
 
 int vtkMCXDensityIndex::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkMultiProcessController* controller =
     mcx::IsDistributed(this->Controller) ? this->Controller : nullptr;
-  const bool inputFailed = InputFailed(this, false);
+  const bool inputFailed = vtkMCXAgreeingExecutive::UpstreamFailed(request);
   if (!output || (!input && !controller))
   {
     vtkErrorMacro("Missing input or output image data.");
@@ -554,9 +554,11 @@ int vtkMCXDensityIndex::RequestData(
   // process's problem (none waits for one that gave up).
   std::string problem;
   vtkDataArray* scalars = nullptr;
-  if (inputFailed || !input)
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inputFailed || !input || mcx::NothingRead(input, inInfo) ||
+    (controller && mcx::NothingDescribed(inInfo)))
   {
-    problem = "The volume's piece could not be read (see the reader's error)";
+    problem = UnreadablePiece;
   }
   else
   {

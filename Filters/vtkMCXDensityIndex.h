@@ -35,8 +35,10 @@
  * A process whose reader fails (its information or its data) still meets
  * the others, and the index fails on every process with that process's
  * message, so that none waits for it (the index's own executive lets the
- * failure through; a pipeline that sets another executive, as ParaView's
- * filters do, stops at the failing reader as usual).
+ * failure through, and so do the plugin's executives for ParaView's X-Ray
+ * Density Index filter and the "Monte Carlo X-Ray" representation; a
+ * pipeline that gives the index another executive stops at the failing
+ * reader as usual).
  */
 #ifndef vtkMCXDensityIndex_h
 #define vtkMCXDensityIndex_h

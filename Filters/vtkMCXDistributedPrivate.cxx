@@ -6,9 +6,9 @@
 #include "vtkDataObject.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
 #include <cstring>
@@ -66,6 +66,29 @@ void EmptyOutputElsewhere(vtkImageData* output, vtkInformation* outInfo)
   }
 }
 
+bool NothingRead(vtkImageData* input, vtkInformation* inInfo)
+{
+  if (input->GetNumberOfPoints() > 0 || !inInfo ||
+    !inInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    return false;
+  }
+  int asked[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+  return asked[0] <= asked[1] && asked[2] <= asked[3] && asked[4] <= asked[5];
+}
+
+bool NothingDescribed(vtkInformation* inInfo)
+{
+  if (!inInfo || !inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    return true;
+  }
+  int whole[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  return whole[1] < whole[0] || whole[3] < whole[2] || whole[5] < whole[4];
+}
+
 std::string FirstErrorOfAll(vtkMultiProcessController* controller, const std::string& error)
 {
   if (!IsDistributed(controller))
@@ -114,8 +137,8 @@ void SumExactly(vtkMultiProcessController* controller, std::vector<FixedSum>& va
     limbs[LimbsPerSum * i + 1] = ((low >> LimbBits) | (high << (64 - LimbBits))) & LimbMask;
     limbs[LimbsPerSum * i + 2] = high >> (2 * LimbBits - 64);
   }
-  controller->AllReduce(limbs.data(), sums.data(), static_cast<vtkIdType>(limbs.size()),
-    vtkCommunicator::SUM_OP);
+  controller->AllReduce(
+    limbs.data(), sums.data(), static_cast<vtkIdType>(limbs.size()), vtkCommunicator::SUM_OP);
   for (std::size_t i = 0; i < values.size(); ++i)
   {
     FixedSum v = 0;

@@ -47,6 +47,19 @@ bool RequestZSlab(vtkMultiProcessController* controller, vtkInformation* inInfo)
 /// then wait for the others forever.
 void EmptyOutputElsewhere(vtkImageData* output, vtkInformation* outInfo);
 
+/// True when a reader delivered no voxels of the non-empty extent asked of
+/// it (`inInfo`'s update extent): it failed. A failed reader's empty output
+/// comes again, as if current, at the next update, without a failure the
+/// executive could report; distributed, the process must still say so.
+/// (Exported: ParaView's representation asks too.)
+MONTECARLOXRAYFILTERS_EXPORT bool NothingRead(vtkImageData* input, vtkInformation* inInfo);
+
+/// True when a reader described no voxels (`inInfo` has no whole extent, or
+/// an empty one). Distributed, the processes' volumes must agree: ParaView's
+/// reader of a file missing on one process describes nothing there without
+/// failing.
+MONTECARLOXRAYFILTERS_EXPORT bool NothingDescribed(vtkInformation* inInfo);
+
 /// Agreement on success: every process passes its own error ("" when it
 /// has none) and gets the first failing process's, prefixed with its rank
 /// ("process 2 of 3: ..."), or "" when all succeeded; the same error from

@@ -1,10 +1,12 @@
 #include "vtkMCXXRayRepresentation.h"
 
 #include "vtkMCXAggregateIndex.h"
+#include "vtkMCXAgreeingExecutivePrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXXRayMapper.h"
+#include "vtkMCXXRayRepresentationExecutive.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkDataArray.h"
@@ -77,7 +79,8 @@ vtkDataArray* ChooseDensityArray(
       return array;
     }
   }
-  problem = "the image has no one-component point array to show as an X-ray (a density such as CT values)";
+  problem =
+    "the image has no one-component point array to show as an X-ray (a density such as CT values)";
   return nullptr;
 }
 
@@ -108,6 +111,11 @@ bool IsParallelServer()
 
 vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
 {
+  // vtkPVDataRepresentation's constructor set its executive while this
+  // class's CreateDefaultExecutive could not yet be called.
+  vtkExecutive* executive = this->CreateDefaultExecutive();
+  this->SetExecutive(executive);
+  executive->Delete();
   vtkMath::UninitializeBounds(this->DataBounds);
   // Until the colour map provides one: the default ramp, once the index is known.
   this->Sampler->SetTransferFunction(this->DefaultRamp);
@@ -124,6 +132,11 @@ vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
 }
 
 vtkMCXXRayRepresentation::~vtkMCXXRayRepresentation() = default;
+
+vtkExecutive* vtkMCXXRayRepresentation::CreateDefaultExecutive()
+{
+  return vtkMCXXRayRepresentationExecutive::New();
+}
 
 int vtkMCXXRayRepresentation::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -173,7 +186,17 @@ int vtkMCXXRayRepresentation::RequestData(
   this->DeliveredIndex = nullptr;
   if (inputVector[0]->GetNumberOfInformationObjects() == 1)
   {
-    if (vtkImageData* input = vtkImageData::GetData(inputVector[0], 0))
+    vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
+    std::string problem;
+    vtkDataArray* density = nullptr;
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    const bool distributed = mcx::IsDistributed(vtkMultiProcessController::GetGlobalController());
+    if (vtkMCXAgreeingExecutive::UpstreamFailed(request) || !input ||
+      mcx::NothingRead(input, inInfo) || (distributed && mcx::NothingDescribed(inInfo)))
+    {
+      problem = "the volume's piece could not be read (see the reader's error)";
+    }
+    else
     {
       // The array the user colours by is the density (or, before one is
       // chosen, the one ParaView's Volume representation would show).
@@ -184,51 +207,49 @@ int vtkMCXXRayRepresentation::RequestData(
       const int association = chosen && chosen->Has(vtkDataObject::FIELD_ASSOCIATION())
         ? chosen->Get(vtkDataObject::FIELD_ASSOCIATION())
         : vtkDataObject::FIELD_ASSOCIATION_POINTS;
-      std::string problem;
-      vtkDataArray* density = ChooseDensityArray(input, coloured, association, problem);
-      // On a parallel server every process indexes its slab together: one
-      // without a density array fails all of them (none waits for it).
-      problem = mcx::FirstErrorOfAll(vtkMultiProcessController::GetGlobalController(), problem);
-      if (!problem.empty())
-      {
-        vtkErrorMacro("Monte Carlo X-Ray: " << problem << ".");
-        return this->Superclass::RequestData(request, inputVector, outputVector);
-      }
-      // The whole extent travels with this process's part, so that the
-      // index and the aggregate know which slab is this process's.
-      int whole[6];
-      vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-      if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-      {
-        inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-      }
-      else
-      {
-        input->GetExtent(whole);
-      }
-      vtkNew<vtkImageData> volume;
-      volume->ShallowCopy(input);
-      this->Slab->SetOutput(volume);
-      this->Slab->SetWholeExtent(whole);
-      if (density->GetName())
-      {
-        this->Index->SetInputArrayToProcess(
-          0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, density->GetName());
-      }
-      else // the active scalars, unnamed
-      {
-        this->Index->SetInputArrayToProcess(
-          0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
-      }
-      this->Aggregate->Update();
-      this->DeliveredIndex = vtkSmartPointer<vtkImageData>::New();
-      this->DeliveredIndex->ShallowCopy(this->Aggregate->GetOutput());
-      // The whole volume's bounds, the same on every process.
-      vtkNew<vtkImageData> wholeVolume;
-      wholeVolume->CopyStructure(input);
-      wholeVolume->SetExtent(whole);
-      wholeVolume->GetBounds(this->DataBounds);
+      density = ChooseDensityArray(input, coloured, association, problem);
     }
+    // On a parallel server every process indexes its slab together: one
+    // that cannot fails all of them (none waits for it).
+    problem = mcx::FirstErrorOfAll(vtkMultiProcessController::GetGlobalController(), problem);
+    if (!problem.empty())
+    {
+      vtkErrorMacro("Monte Carlo X-Ray: " << problem << ".");
+      return this->Superclass::RequestData(request, inputVector, outputVector);
+    }
+    // The whole extent travels with this process's part, so that the
+    // index and the aggregate know which slab is this process's.
+    int whole[6];
+    if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    }
+    else
+    {
+      input->GetExtent(whole);
+    }
+    vtkNew<vtkImageData> volume;
+    volume->ShallowCopy(input);
+    this->Slab->SetOutput(volume);
+    this->Slab->SetWholeExtent(whole);
+    if (density->GetName())
+    {
+      this->Index->SetInputArrayToProcess(
+        0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, density->GetName());
+    }
+    else // the active scalars, unnamed
+    {
+      this->Index->SetInputArrayToProcess(
+        0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+    }
+    this->Aggregate->Update();
+    this->DeliveredIndex = vtkSmartPointer<vtkImageData>::New();
+    this->DeliveredIndex->ShallowCopy(this->Aggregate->GetOutput());
+    // The whole volume's bounds, the same on every process.
+    vtkNew<vtkImageData> wholeVolume;
+    wholeVolume->CopyStructure(input);
+    wholeVolume->SetExtent(whole);
+    wholeVolume->GetBounds(this->DataBounds);
   }
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
@@ -247,7 +268,8 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // cloud the renders draw, so that a large point count makes camera
     // motion use the interactive budget.
     const double cloudKiB = 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
-    const double indexKiB = this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
+    const double indexKiB =
+      this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
     const bool parallel = IsParallelServer();
     if (!parallel || this->ServerRenders())
     {
@@ -322,8 +344,8 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     this->Mapper->SetCompositedByDepth(IsParallelServer() && this->ServerRenders());
     const bool streaming = vtkPVView::GetEnableStreaming() && !IsParallelServer();
     this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime
-        : streaming                             ? this->StillRenderTime
-                                                : 0.0);
+        : streaming                                ? this->StillRenderTime
+                                                   : 0.0);
     this->SetVisibility(this->GetVisibility());
   }
   else if (request == vtkPVRenderView::REQUEST_STREAMING_UPDATE())

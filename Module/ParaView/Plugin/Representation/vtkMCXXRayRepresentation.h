@@ -113,6 +113,9 @@ protected:
   vtkMCXXRayRepresentation();
   ~vtkMCXXRayRepresentation() override;
 
+  /// A vtkMCXXRayRepresentationExecutive: on a parallel server a reader that
+  /// fails on one process still runs RequestData there, which tells the others.
+  vtkExecutive* CreateDefaultExecutive() override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;

@@ -1,0 +1,32 @@
+#include "vtkMCXParaViewIndexExecutive.h"
+
+#include "vtkMCXDensityIndex.h"
+#include "vtkMCXDistributedPrivate.h"
+
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+
+vtkStandardNewMacro(vtkMCXParaViewIndexExecutive);
+
+int vtkMCXParaViewIndexExecutive::ForwardUpstream(vtkInformation* request)
+{
+  const int result = this->Superclass::ForwardUpstream(request);
+  auto* index = vtkMCXDensityIndex::SafeDownCast(this->GetAlgorithm());
+  return this->Failures.Forwarded(
+    request, result, index && mcx::IsDistributed(index->GetController()));
+}
+
+int vtkMCXParaViewIndexExecutive::CallAlgorithm(vtkInformation* request, int direction,
+  vtkInformationVector** inInfo, vtkInformationVector* outInfo)
+{
+  const int result = this->Superclass::CallAlgorithm(request, direction, inInfo, outInfo);
+  vtkMCXAgreeingExecutive::UpstreamFailures::Consumed(request);
+  return result;
+}
+
+void vtkMCXParaViewIndexExecutive::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Failures.Information: " << this->Failures.Information << "\n";
+  os << indent << "Failures.Data: " << this->Failures.Data << "\n";
+}

@@ -1,0 +1,37 @@
+#include "vtkMCXXRayRepresentationExecutive.h"
+
+#include "vtkMCXDistributedPrivate.h"
+
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+
+vtkStandardNewMacro(vtkMCXXRayRepresentationExecutive);
+
+int vtkMCXXRayRepresentationExecutive::ForwardUpstream(vtkInformation* request)
+{
+  if (!this->GetNeedsUpdate())
+  {
+    // ParaView shunts the pass (the representation uses what it has): there
+    // is nothing new to record.
+    return this->Superclass::ForwardUpstream(request);
+  }
+  const int result = this->Superclass::ForwardUpstream(request);
+  return this->Failures.Forwarded(
+    request, result, mcx::IsDistributed(vtkMultiProcessController::GetGlobalController()));
+}
+
+int vtkMCXXRayRepresentationExecutive::CallAlgorithm(vtkInformation* request, int direction,
+  vtkInformationVector** inInfo, vtkInformationVector* outInfo)
+{
+  const int result = this->Superclass::CallAlgorithm(request, direction, inInfo, outInfo);
+  vtkMCXAgreeingExecutive::UpstreamFailures::Consumed(request);
+  return result;
+}
+
+void vtkMCXXRayRepresentationExecutive::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Failures.Information: " << this->Failures.Information << "\n";
+  os << indent << "Failures.Data: " << this->Failures.Data << "\n";
+}

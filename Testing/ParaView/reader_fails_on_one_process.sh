@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# pvbatch on 3 MPI processes whose last one cannot read the volume (its
+# "volume.vti" is missing, then truncated): every process must report that
+# process's failure, from the X-Ray Density Index and from the "Monte Carlo
+# X-Ray" representation, and the run must end (no process waits for another).
+#   reader_fails_on_one_process.sh PLUGIN VOLUME.vti WORK_DIRECTORY
+# Needs a display (run under Testing/with-display) and ParaView's PYTHONPATH;
+# MCXRAY_PVBATCH and MCXRAY_MPIEXEC name the programs if not on PATH.
+set -euo pipefail
+plugin="$(realpath "$1")" volume="$2" work="$3" # each process runs in a folder of its own
+here="$(cd "$(dirname "$0")" && pwd)"
+pvbatch="${MCXRAY_PVBATCH:-pvbatch}"
+mpiexec="${MCXRAY_MPIEXEC:-mpiexec}"
+export HWLOC_COMPONENTS=-gl # Open MPI's hwloc would probe the X displays
+
+rm -rf "$work"
+mkdir -p "$work/readable" "$work/missing" "$work/truncated"
+cp "$volume" "$work/readable/volume.vti"
+head -c 3000 "$volume" >"$work/truncated/volume.vti" # the header and a little data
+
+expect() { # LOG PATTERN: every process's log line matches PATTERN
+  local log="$1" pattern="$2" rank
+  for rank in 0 1 2; do
+    if ! grep -E "\[pvbatch\.$rank +\].*$pattern" "$log" >/dev/null; then
+      echo "FAILED: process $rank did not report: $pattern" >&2
+      failed=1
+    fi
+  done
+}
+
+first_error() { # LOG PATTERN: every process's first error of the plugin matches PATTERN
+  local log="$1" pattern="$2" rank
+  for rank in 0 1 2; do
+    if ! grep -E "\[pvbatch\.$rank +\].*ERR\| vtkMCX" "$log" | head -n 1 | grep -E "$pattern" >/dev/null; then
+      echo "FAILED: process $rank's first error is not: $pattern" >&2
+      failed=1
+    fi
+  done
+}
+
+for case in missing truncated; do
+  log="$work/$case.log"
+  # One more try after a timeout or a lost X display (see
+  # Testing/same_output_for_any_process_count.cmake); nothing else is retried.
+  for attempt in 1 2; do
+    status=0
+    timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe \
+      -np 2 --wdir "$work/readable" "$pvbatch" "$here/pvbatch_reader_fails.py" "$plugin" : \
+      -np 1 --wdir "$work/$case" "$pvbatch" "$here/pvbatch_reader_fails.py" "$plugin" \
+      >"$log" 2>&1 || status=$?
+    if [ "$status" -ne 124 ] && ! grep -q "bad X server connection" "$log"; then
+      break
+    fi
+    cp "$log" "$work/$case-try$attempt.log"
+    echo "WARNING: the run with a $case file timed out or lost its X display (log: $work/$case-try$attempt.log); trying again" >&2
+  done
+  if [ "$status" -ne 0 ]; then
+    echo "FAILED: the run with a $case file ended with status $status:" >&2
+    tail -n 20 "$log" >&2
+    exit 1
+  fi
+  failed=0
+  grep -q "the representation rendered" "$log" || { echo "FAILED: no render ($case)" >&2; failed=1; }
+  first_error "$log" "vtkMCXDensityIndex.*process 2 of 3: The volume's piece could not be read"
+  expect "$log" "vtkMCXDensityIndex.*process 2 of 3: The volume's piece could not be read \(see the reader's error\)\."
+  expect "$log" "Monte Carlo X-Ray: process 2 of 3: the volume's piece could not be read \(see the reader's error\)\."
+  [ "$failed" -eq 0 ] || exit 1
+  echo "a $case file on process 2 of 3: every process reported it and the run ended"
+done
