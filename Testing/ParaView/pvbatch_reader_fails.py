@@ -27,9 +27,11 @@ print("the filters returned; the projector's image has %d points" % image.GetNum
 if image.GetNumberOfPoints() != 0:
     sys.exit("pvbatch_reader_fails.py: an image was made although a process could not read its piece")
 
+# A reader of its own, so that the representation is the first to update it
+# (else the reader's failure is already behind it).
 view = CreateView("RenderView")
 view.ViewSize = [64, 64]
-display = Show(reader, view)
+display = Show(XMLImageDataReader(FileName=["volume.vti"]), view)
 display.SetRepresentationType("Monte Carlo X-Ray")
 Render(view)
 print("the representation rendered")
