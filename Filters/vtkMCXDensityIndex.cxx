@@ -371,7 +371,7 @@ bool vtkMCXDensityIndex::NeedsWideIds(long long numberOfVoxels)
 namespace
 {
 constexpr const char* UnreadablePiece =
-  "The volume's piece could not be read (see the reader's error)";
+  "The volume's piece could not be read (see the reader's error in that process's output)";
 }
 
 vtkExecutive* vtkMCXDensityIndex::CreateDefaultExecutive()

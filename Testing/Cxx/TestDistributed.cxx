@@ -555,7 +555,7 @@ TEST(Distributed, AReaderThatFailsOnOneProcessFailsEveryProcess)
     else
     {
       EXPECT_EQ("process " + std::to_string(processes - 1) + " of " + std::to_string(processes) +
-          ": The volume's piece could not be read (see the reader's error).",
+          ": The volume's piece could not be read (see the reader's error in that process's output).",
         indexErrors->GetErrorText())
         << where;
     }

@@ -62,8 +62,8 @@ for case in missing truncated; do
   failed=0
   grep -q "the representation rendered" "$log" || { echo "FAILED: no render ($case)" >&2; failed=1; }
   first_error "$log" "vtkMCXDensityIndex.*process 2 of 3: The volume's piece could not be read"
-  expect "$log" "vtkMCXDensityIndex.*process 2 of 3: The volume's piece could not be read \(see the reader's error\)\."
-  expect "$log" "Monte Carlo X-Ray: process 2 of 3: the volume's piece could not be read \(see the reader's error\)\."
+  expect "$log" "vtkMCXDensityIndex.*process 2 of 3: The volume's piece could not be read \(see the reader's error in that process's output\)\."
+  expect "$log" "Monte Carlo X-Ray: process 2 of 3: the volume's piece could not be read \(see the reader's error in that process's output\)\."
   [ "$failed" -eq 0 ] || exit 1
   echo "a $case file on process 2 of 3: every process reported it and the run ended"
 done

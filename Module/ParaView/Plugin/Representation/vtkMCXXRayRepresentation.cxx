@@ -194,7 +194,8 @@ int vtkMCXXRayRepresentation::RequestData(
     if (vtkMCXAgreeingExecutive::UpstreamFailed(request) || !input ||
       mcx::NothingRead(input, inInfo) || (distributed && mcx::NothingDescribed(inInfo)))
     {
-      problem = "the volume's piece could not be read (see the reader's error)";
+      problem =
+        "the volume's piece could not be read (see the reader's error in that process's output)";
     }
     else
     {
