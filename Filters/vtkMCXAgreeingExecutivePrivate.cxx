@@ -6,6 +6,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
 #include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 vtkStandardNewMacro(vtkMCXAgreeingExecutive);
 vtkInformationKeyMacro(vtkMCXAgreeingExecutive, UPSTREAM_FAILED, Integer);
@@ -18,9 +19,24 @@ bool vtkMCXAgreeingExecutive::UpstreamFailed(vtkInformation* request)
 int vtkMCXAgreeingExecutive::UpstreamFailures::Forwarded(
   vtkInformation* request, int result, bool distributed)
 {
+  this->Distributed = distributed;
+  if (request->Has(REQUEST_DATA_OBJECT()))
+  {
+    // A reader that cannot make its output (a legacy VTK file missing) fails
+    // here, before any information: the information pass must still meet
+    // the others, and fail.
+    this->DataObject = !result;
+    return distributed ? 1 : result;
+  }
+  if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_UPDATE_EXTENT()))
+  {
+    // An input that failed before cannot take an extent either; the data
+    // pass must still run the algorithm.
+    return distributed ? 1 : result;
+  }
   if (request->Has(REQUEST_INFORMATION()))
   {
-    this->Information = !result;
+    this->Information = this->DataObject || !result;
     this->Data = false;
   }
   else if (request->Has(REQUEST_DATA()))
@@ -67,9 +83,18 @@ int vtkMCXAgreeingExecutive::CallAlgorithm(vtkInformation* request, int directio
   return result;
 }
 
+int vtkMCXAgreeingExecutive::InputTypeIsValid(int port, int index, vtkInformationVector** inInfo)
+{
+  return this->Failures.InputMayBeMissing()
+    ? 1
+    : this->Superclass::InputTypeIsValid(port, index, inInfo);
+}
+
 void vtkMCXAgreeingExecutive::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Failures.Distributed: " << this->Failures.Distributed << "\n";
+  os << indent << "Failures.DataObject: " << this->Failures.DataObject << "\n";
   os << indent << "Failures.Information: " << this->Failures.Information << "\n";
   os << indent << "Failures.Data: " << this->Failures.Data << "\n";
 }

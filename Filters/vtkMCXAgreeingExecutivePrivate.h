@@ -36,15 +36,22 @@ public:
   static bool UpstreamFailed(vtkInformation* request);
 
   /// What an agreeing executive remembers between passes.
-  struct UpstreamFailures
+  struct MONTECARLOXRAYFILTERS_EXPORT UpstreamFailures
   {
+    bool Distributed = false;
+    bool DataObject = false;
     bool Information = false;
     bool Data = false;
-    /// Records the result of forwarding an information or data request
-    /// upstream and marks the request; returns what ForwardUpstream returns:
-    /// success under several processes (the algorithm must run to tell the
-    /// others), the result itself otherwise.
+    /// Records the result of forwarding a data-object, information, update
+    /// extent or data request upstream and marks the information and data
+    /// requests; returns what ForwardUpstream
+    /// returns: success under several processes (the algorithm must run to tell the others), the
+    /// result itself otherwise.
     int Forwarded(vtkInformation* request, int result, bool distributed);
+    /// True when the input's data object could not be made (distributed):
+    /// the executive then takes the missing input as valid, so that the
+    /// information pass still runs the algorithm, which fails with the others.
+    bool InputMayBeMissing() const { return this->Distributed && this->DataObject; }
     /// Clears the mark once the algorithm has run the pass (the request
     /// travels on through other executives, whose algorithms must not read
     /// it). Call after CallAlgorithm.
@@ -55,9 +62,11 @@ protected:
   vtkMCXAgreeingExecutive() = default;
   ~vtkMCXAgreeingExecutive() override = default;
 
+  using Superclass::ForwardUpstream;
   int ForwardUpstream(vtkInformation* request) override;
   int CallAlgorithm(vtkInformation* request, int direction, vtkInformationVector** inInfo,
     vtkInformationVector* outInfo) override;
+  int InputTypeIsValid(int port, int index, vtkInformationVector** inInfo) override;
 
   UpstreamFailures Failures;
 

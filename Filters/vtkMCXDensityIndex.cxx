@@ -555,8 +555,8 @@ int vtkMCXDensityIndex::RequestData(
   std::string problem;
   vtkDataArray* scalars = nullptr;
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  if (inputFailed || !input || mcx::NothingRead(input, inInfo) ||
-    (controller && mcx::NothingDescribed(inInfo)))
+  if (inputFailed || !input ||
+    (controller && (mcx::NothingRead(input, inInfo) || mcx::NothingDescribed(inInfo))))
   {
     problem = UnreadablePiece;
   }

@@ -50,7 +50,8 @@ void EmptyOutputElsewhere(vtkImageData* output, vtkInformation* outInfo);
 /// True when a reader delivered no voxels of the non-empty extent asked of
 /// it (`inInfo`'s update extent): it failed. A failed reader's empty output
 /// comes again, as if current, at the next update, without a failure the
-/// executive could report; distributed, the process must still say so.
+/// executive could report; distributed, the process must still say so
+/// (the index and the representation ask only then).
 /// (Exported: ParaView's representation asks too.)
 MONTECARLOXRAYFILTERS_EXPORT bool NothingRead(vtkImageData* input, vtkInformation* inInfo);
 

@@ -24,9 +24,19 @@ int vtkMCXParaViewIndexExecutive::CallAlgorithm(vtkInformation* request, int dir
   return result;
 }
 
+int vtkMCXParaViewIndexExecutive::InputTypeIsValid(
+  int port, int index, vtkInformationVector** inInfo)
+{
+  return this->Failures.InputMayBeMissing()
+    ? 1
+    : this->Superclass::InputTypeIsValid(port, index, inInfo);
+}
+
 void vtkMCXParaViewIndexExecutive::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Failures.Distributed: " << this->Failures.Distributed << "\n";
+  os << indent << "Failures.DataObject: " << this->Failures.DataObject << "\n";
   os << indent << "Failures.Information: " << this->Failures.Information << "\n";
   os << indent << "Failures.Data: " << this->Failures.Data << "\n";
 }

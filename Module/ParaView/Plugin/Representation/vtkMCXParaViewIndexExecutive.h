@@ -29,9 +29,11 @@ protected:
   vtkMCXParaViewIndexExecutive() = default;
   ~vtkMCXParaViewIndexExecutive() override = default;
 
+  using Superclass::ForwardUpstream;
   int ForwardUpstream(vtkInformation* request) override;
   int CallAlgorithm(vtkInformation* request, int direction, vtkInformationVector** inInfo,
     vtkInformationVector* outInfo) override;
+  int InputTypeIsValid(int port, int index, vtkInformationVector** inInfo) override;
 
   vtkMCXAgreeingExecutive::UpstreamFailures Failures;
 

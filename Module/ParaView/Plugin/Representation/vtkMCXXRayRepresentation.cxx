@@ -191,8 +191,12 @@ int vtkMCXXRayRepresentation::RequestData(
     vtkDataArray* density = nullptr;
     vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
     const bool distributed = mcx::IsDistributed(vtkMultiProcessController::GetGlobalController());
+    if (!input && !distributed)
+    {
+      return this->Superclass::RequestData(request, inputVector, outputVector); // nothing to show
+    }
     if (vtkMCXAgreeingExecutive::UpstreamFailed(request) || !input ||
-      mcx::NothingRead(input, inInfo) || (distributed && mcx::NothingDescribed(inInfo)))
+      (distributed && (mcx::NothingRead(input, inInfo) || mcx::NothingDescribed(inInfo))))
     {
       problem =
         "the volume's piece could not be read (see the reader's error in that process's output)";

@@ -29,9 +29,19 @@ int vtkMCXXRayRepresentationExecutive::CallAlgorithm(vtkInformation* request, in
   return result;
 }
 
+int vtkMCXXRayRepresentationExecutive::InputTypeIsValid(
+  int port, int index, vtkInformationVector** inInfo)
+{
+  return this->Failures.InputMayBeMissing()
+    ? 1
+    : this->Superclass::InputTypeIsValid(port, index, inInfo);
+}
+
 void vtkMCXXRayRepresentationExecutive::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Failures.Distributed: " << this->Failures.Distributed << "\n";
+  os << indent << "Failures.DataObject: " << this->Failures.DataObject << "\n";
   os << indent << "Failures.Information: " << this->Failures.Information << "\n";
   os << indent << "Failures.Data: " << this->Failures.Data << "\n";
 }
