@@ -396,6 +396,11 @@ int vtkMCXDensityIndex::RequestInformation(
       mcx::FirstErrorOfAll(this->Controller, unreadable ? UnreadablePiece : "");
     if (!problem.empty())
     {
+      // The same (empty) volume on every process, whatever each one's input
+      // said: a later request then goes the same way everywhere.
+      const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+      outputVector->GetInformationObject(0)->Set(
+        vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
       vtkErrorMacro(<< problem << ".");
       return 0;
     }

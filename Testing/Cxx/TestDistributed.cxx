@@ -27,6 +27,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
+#include "vtkMCXDistributedPrivate.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkMPIController.h"
 #include "vtkMatrix3x3.h"
@@ -584,6 +585,20 @@ TEST(Distributed, AReaderThatFailsOnOneProcessFailsEveryProcess)
     // (No output at all where the pipeline stopped before making one.)
     vtkImageData* image = projector->GetOutput();
     EXPECT_EQ(0, image ? image->GetNumberOfPoints() : 0) << where;
+    if (processes > 1)
+    {
+      // The index asked again, for this process's slab: every process goes
+      // the same way (the failed index describes the same empty volume
+      // everywhere), so none waits for another, and no index is made.
+      int slab[6];
+      const int whole[6] = { 0, 9, 0, 8, 0, 7 };
+      mcx::ZSlabExtent(whole, controller->GetLocalProcessId(), processes, slab);
+      vtkNew<vtkMCXFirstErrorObserver> againErrors;
+      againErrors->ObserveAlgorithm(index);
+      index->UpdateExtent(slab);
+      againErrors->StopObserving();
+      EXPECT_EQ(0, index->GetOutput()->GetFieldData()->GetNumberOfArrays()) << where;
+    }
   }
 }
 
