@@ -1,6 +1,6 @@
 // The executive of the density index: under several processes a failure
-// upstream (a reader that cannot read this process's piece, or its
-// information) does not stop the index here, because the index must meet the
+// upstream (a reader that cannot make, describe or read this process's
+// piece) does not stop the index here, because the index must meet the
 // other processes to tell them so -- else they would wait for it forever. The
 // executive marks the request (UPSTREAM_FAILED) and the index then fails on
 // every process with this process's message. With one process, failures stop
@@ -44,9 +44,8 @@ public:
     bool Data = false;
     /// Records the result of forwarding a data-object, information, update
     /// extent or data request upstream and marks the information and data
-    /// requests; returns what ForwardUpstream
-    /// returns: success under several processes (the algorithm must run to tell the others), the
-    /// result itself otherwise.
+    /// requests. Returns what ForwardUpstream returns: success under several
+    /// processes (the algorithm must run to tell the others), else the result.
     int Forwarded(vtkInformation* request, int result, bool distributed);
     /// True when the input's data object could not be made (distributed):
     /// the executive then takes the missing input as valid, so that the
