@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # pvbatch on 3 MPI processes whose last one cannot read the volume (its
 # "volume.vti" is missing, then truncated; its legacy "volume.vtk" is
-# missing): every process must report that
-# process's failure, from the X-Ray Density Index and from the "Monte Carlo
-# X-Ray" representation, and the run must end (no process waits for another).
+# missing): every process must report that process's failure from the X-Ray
+# Density Index and, with the XML file, from the "Monte Carlo X-Ray"
+# representation, and the run must end (no process waits for another).
 #   reader_fails_on_one_process.sh PLUGIN VOLUME.vti WORK_DIRECTORY
 # Needs a display (run under Testing/with-display) and ParaView's PYTHONPATH;
-# MCXRAY_PVBATCH and MCXRAY_MPIEXEC name the programs if not on PATH.
+# MCXRAY_PVBATCH and MCXRAY_MPIEXEC name the programs if not on PATH, and
+# MCXRAY_VTK_PYTHON a Python with Debian's VTK (default /usr/bin/python3).
 set -euo pipefail
 plugin="$(realpath "$1")" volume="$2" work="$3" # each process runs in a folder of its own
 here="$(cd "$(dirname "$0")" && pwd)"
