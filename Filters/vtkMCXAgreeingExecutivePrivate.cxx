@@ -67,6 +67,14 @@ void vtkMCXAgreeingExecutive::UpstreamFailures::Consumed(vtkInformation* request
   }
 }
 
+void vtkMCXAgreeingExecutive::UpstreamFailures::PrintSelf(ostream& os, vtkIndent indent) const
+{
+  os << indent << "Failures.Distributed: " << this->Distributed << "\n";
+  os << indent << "Failures.DataObject: " << this->DataObject << "\n";
+  os << indent << "Failures.Information: " << this->Information << "\n";
+  os << indent << "Failures.Data: " << this->Data << "\n";
+}
+
 int vtkMCXAgreeingExecutive::ForwardUpstream(vtkInformation* request)
 {
   const int result = this->Superclass::ForwardUpstream(request);
@@ -93,8 +101,5 @@ int vtkMCXAgreeingExecutive::InputTypeIsValid(int port, int index, vtkInformatio
 void vtkMCXAgreeingExecutive::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Failures.Distributed: " << this->Failures.Distributed << "\n";
-  os << indent << "Failures.DataObject: " << this->Failures.DataObject << "\n";
-  os << indent << "Failures.Information: " << this->Failures.Information << "\n";
-  os << indent << "Failures.Data: " << this->Failures.Data << "\n";
+  this->Failures.PrintSelf(os, indent);
 }

@@ -55,6 +55,8 @@ public:
     /// travels on through other executives, whose algorithms must not read
     /// it). Call after CallAlgorithm.
     static void Consumed(vtkInformation* request);
+    /// Prints the members, for the executives' PrintSelf.
+    void PrintSelf(ostream& os, vtkIndent indent) const;
   };
 
 protected:

@@ -35,8 +35,5 @@ int vtkMCXParaViewIndexExecutive::InputTypeIsValid(
 void vtkMCXParaViewIndexExecutive::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Failures.Distributed: " << this->Failures.Distributed << "\n";
-  os << indent << "Failures.DataObject: " << this->Failures.DataObject << "\n";
-  os << indent << "Failures.Information: " << this->Failures.Information << "\n";
-  os << indent << "Failures.Data: " << this->Failures.Data << "\n";
+  this->Failures.PrintSelf(os, indent);
 }
