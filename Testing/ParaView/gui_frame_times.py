@@ -2,7 +2,7 @@
 camera moves, measured by a script the GUI runs (not part of ctest):
 
     PV_PLUGIN_PATH=build-paraview/lib/paraview-5.11/plugins/MonteCarloXRayPlugin \\
-      xvfb-run -a -s "-screen 0 1280x1024x24" paraview --script=Testing/ParaView/gui_frame_times.py --exit
+      xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" paraview --script=Testing/ParaView/gui_frame_times.py --exit
 
 Shows the bundled CT as an X-ray of 2^24 - 1 points in the GUI's render
 view, then rotates the camera in 20 interactive renders and ends with a still
