@@ -27,7 +27,7 @@ session() {
   port="$(free_port)" || return 1
   log="$prefix-server-$processes.log"
   timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -np "$processes" \
-    "$pvserver" --server-port="$port" >"$log" 2>&1 &
+    "$pvserver" --dr --server-port="$port" >"$log" 2>&1 &
   server=$!
   for _ in $(seq 1 150); do
     grep -q "Accepting connection" "$log" && break
@@ -41,7 +41,7 @@ session() {
     server=""
     return 124
   fi
-  timeout 120 "$pvpython" "$here/pvpython_client_server.py" "$plugin" "$volume" "$port" \
+  timeout 120 "$pvpython" --dr "$here/pvpython_client_server.py" "$plugin" "$volume" "$port" \
     "$prefix-$processes.npy" || status=$?
   if [ "$status" -ne 0 ]; then
     kill "$server" 2>/dev/null || true
@@ -50,6 +50,12 @@ session() {
   wait "$server" || waited=$?
   server=""
   [ "$status" -ne 0 ] || status=$waited
+  # A server process's warning or error fails the session too (the client
+  # sees only the first process's messages).
+  if [ "$status" -eq 0 ] && grep -E "(ERR|WARN)\|" "$log" >&2; then
+    echo "pvserver on $processes processes logged the above" >&2
+    status=1
+  fi
   return "$status"
 }
 

@@ -6,7 +6,9 @@ along z and an oblique one) is fetched to the client and saved. Then the
 slab; the first renders the gathered index): its line integrals (in single
 precision: IceT's render gives the camera's matrices other last bits) and its
 screenshot (FXAA off: ParaView applies it to the composited picture of a
-parallel render only), before and after an opacity edit, are saved too.
+parallel render only), before and after an opacity edit, are saved too, and
+so are they after another edit refined by streaming passes (a budgeted still
+render, then pass after pass up to every point).
 Runs on 1, 2 and 3 processes must save the same bytes.
 
     mpiexec -np N pvbatch pvbatch_distributed.py PLUGIN VOLUME.vti OUTPUT.npy
@@ -68,7 +70,26 @@ for points in ([500.0, 0.0, 0.5, 0.0, 3000.0, 1.0, 0.5, 0.0], [1500.0, 0.0, 0.5,
                  "line integrals %s summing to %g, screenshot grey spread %.1f" % (
                      processes, counted, integrals.shape, integrals.sum(), pixels[:, :, 0].std()))
     shown += [integrals.astype(numpy.float32).ravel(), pixels.ravel()]
+
+# Progressive refinement, as the GUI runs it with streaming on: a still render
+# spends only its budget and each streaming pass adds the next prefix (the
+# first process decides for all whether there is more), up to every point.
+GetSettingsProxy("GeneralSettings").EnableStreaming = 1
+display.XRayStillRenderTime = 0.001
+opacity.Points = [800.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
+Render(view)
+counts = [int(mapper_call(representation, "GetNumberOfAccumulatedSamples"))]
+while view.SMProxy.StreamingUpdate(True) and len(counts) < 40:
+    counts.append(int(mapper_call(representation, "GetNumberOfAccumulatedSamples")))
+if not (counts[0] < 2**22 - 1 and counts[-1] == 2**22 - 1 and
+        all(b > a for a, b in zip(counts, counts[1:]))):
+    sys.exit("pvbatch_distributed.py: streaming on %d processes drew %s points, pass by pass" % (
+        processes, counts))
+screenshot = "%s-streamed.png" % output
+SaveScreenshot(screenshot, view, ImageResolution=[200, 160])
+shown += [line_integral_image(representation).astype(numpy.float32).ravel(), read_png(screenshot).ravel()]
+os.remove(screenshot)
 numpy.save(output, numpy.concatenate([image.ravel() for image in images] + shown))
-print("%d processes, %d samples per image, sums %s; representation: sums %s; wrote %s" % (
-    processes, samples, ", ".join("%.17g" % i.sum() for i in images),
-    ", ".join("%.17g" % shown[i].sum() for i in (0, 2)), output))
+print("%d processes, %d samples per image, sums %s; representation: sums %s; streamed in %d passes; "
+      "wrote %s" % (processes, samples, ", ".join("%.17g" % i.sum() for i in images),
+                    ", ".join("%.17g" % shown[i].sum() for i in (0, 2, 4)), len(counts) - 1, output))

@@ -62,8 +62,8 @@ for case in missing:volume.vti:all truncated:volume.vti:all missing:volume.vtk:f
   for attempt in 1 2; do
     status=0
     timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe \
-      -np 2 --wdir "$work/readable" "$pvbatch" "$here/pvbatch_reader_fails.py" "$plugin" "$file" "$parts" : \
-      -np 1 --wdir "$work/$folder" "$pvbatch" "$here/pvbatch_reader_fails.py" "$plugin" "$file" "$parts" \
+      -np 2 --wdir "$work/readable" "$pvbatch" --dr "$here/pvbatch_reader_fails.py" "$plugin" "$file" "$parts" : \
+      -np 1 --wdir "$work/$folder" "$pvbatch" --dr "$here/pvbatch_reader_fails.py" "$plugin" "$file" "$parts" \
       >"$log" 2>&1 || status=$?
     if [ "$status" -ne 124 ]; then
       break

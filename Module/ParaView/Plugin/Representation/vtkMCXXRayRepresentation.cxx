@@ -278,7 +278,8 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     const bool parallel = IsParallelServer();
     if (!parallel || this->ServerRenders())
     {
-      vtkPVView::SetPiece(inInfo, this, this->DeliveredIndex,
+      vtkPVView::SetPiece(inInfo, this,
+        this->DeliveredIndex ? this->DeliveredIndex.GetPointer() : this->NoIndex.GetPointer(),
         static_cast<unsigned long>(std::min(std::max(cloudKiB, indexKiB), 4.0e9)));
     }
     if (parallel && this->ServerRenders())
@@ -305,10 +306,8 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
       }
     }
     // With streaming on, ParaView asks after each render whether there is
-    // more to show (REQUEST_STREAMING_UPDATE) and renders again if so; on a
-    // parallel server only one process would answer, so a still render
-    // there draws every point.
-    vtkPVRenderView::SetStreamable(inInfo, this, !parallel);
+    // more to show (REQUEST_STREAMING_UPDATE) and renders again if so.
+    vtkPVRenderView::SetStreamable(inInfo, this, true);
     if (vtkMath::AreBoundsInitialized(this->DataBounds))
     {
       vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
@@ -347,7 +346,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     const bool interactive =
       inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
     this->Mapper->SetCompositedByDepth(IsParallelServer() && this->ServerRenders());
-    const bool streaming = vtkPVView::GetEnableStreaming() && !IsParallelServer();
+    const bool streaming = vtkPVView::GetEnableStreaming();
     this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime
         : streaming                                ? this->StillRenderTime
                                                    : 0.0);
@@ -360,10 +359,19 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // A pass that added nothing (this process does not render, or cannot)
     // ends the passes.
     const vtkTypeInt64 count = this->Mapper->GetNumberOfAccumulatedSamples();
-    if (this->Volume->GetVisibility() && !this->Mapper->IsRefinementComplete() &&
-      count != this->StreamedCount)
+    int more = this->Volume->GetVisibility() && !this->Mapper->IsRefinementComplete() &&
+      count != this->StreamedCount;
+    this->StreamedCount = count;
+    // On a parallel server only the first process draws, so it decides for
+    // all: every process then hands ParaView a token, whose delivery (run on
+    // every process) would otherwise move nothing on the others.
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    if (mcx::IsDistributed(controller))
     {
-      this->StreamedCount = count;
+      controller->Broadcast(&more, 1, 0);
+    }
+    if (more)
+    {
       vtkPVRenderView::SetNextStreamedPiece(inInfo, this, this->MorePointsToken);
     }
   }
@@ -533,6 +541,7 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Mapper: " << this->Mapper.GetPointer() << "\n";
   os << indent << "Volume: " << this->Volume.GetPointer() << "\n";
   os << indent << "DeliveredIndex: " << this->DeliveredIndex.GetPointer() << "\n";
+  os << indent << "NoIndex: " << this->NoIndex.GetPointer() << "\n";
   os << indent << "OpacityFunction: " << this->OpacityFunction.GetPointer() << "\n";
   os << indent << "DefaultRamp: " << this->DefaultRamp.GetPointer() << "\n";
   os << indent << "InteractiveRenderTime: " << this->InteractiveRenderTime << "\n";

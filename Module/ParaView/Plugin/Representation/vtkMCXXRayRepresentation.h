@@ -129,6 +129,10 @@ protected:
   vtkNew<vtkMCXXRayMapper> Mapper;
   vtkNew<vtkVolume> Volume;
   vtkSmartPointer<vtkImageData> DeliveredIndex;
+  // Delivered where there is no index (a client of a remote server, a failed
+  // update): ParaView's delivery of streamed pieces needs a data object on
+  // every process that gets them.
+  vtkNew<vtkImageData> NoIndex;
   vtkSmartPointer<vtkPiecewiseFunction> OpacityFunction; // the colour map's, if any
   vtkNew<vtkPiecewiseFunction> DefaultRamp;              // else this, over the densities
   double DataBounds[6];
