@@ -27,7 +27,7 @@ session() {
   port="$(free_port)" || return 1
   log="$prefix-server-$processes.log"
   timeout 120 "$mpiexec" --allow-run-as-root --oversubscribe -np "$processes" \
-    "$pvserver" --dr --server-port="$port" >"$log" 2>&1 &
+    "$pvserver" --server-port="$port" >"$log" 2>&1 &
   server=$!
   for _ in $(seq 1 150); do
     grep -q "Accepting connection" "$log" && break

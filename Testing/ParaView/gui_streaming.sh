@@ -9,7 +9,7 @@ plugins="$1"
 record="$2"
 rm -f "$record"
 PV_PLUGIN_PATH="$plugins" MCX_STREAMING_OUT="$record" setsid Testing/with-display \
-  paraview --dr --enable-streaming --script=Testing/ParaView/gui_streaming.py > "$record.log" 2>&1 &
+  paraview --dr --script=Testing/ParaView/gui_streaming.py > "$record.log" 2>&1 &
 gui=$!
 for _ in $(seq 1 480); do
   grep -q '^done' "$record" 2> /dev/null && break

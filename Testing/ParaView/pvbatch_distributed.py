@@ -87,6 +87,8 @@ if not (counts[0] < 2**22 - 1 and counts[-1] == 2**22 - 1 and
         processes, counts))
 screenshot = "%s-streamed.png" % output
 SaveScreenshot(screenshot, view, ImageResolution=[200, 160])
+if int(mapper_call(representation, "GetNumberOfAccumulatedSamples")) != 2**22 - 1:
+    sys.exit("pvbatch_distributed.py: the screenshot after streaming on %d processes started over" % processes)
 shown += [line_integral_image(representation).astype(numpy.float32).ravel(), read_png(screenshot).ravel()]
 os.remove(screenshot)
 numpy.save(output, numpy.concatenate([image.ravel() for image in images] + shown))

@@ -18,6 +18,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
+#include "vtkPVSession.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -105,6 +106,16 @@ int DataServerProcesses()
 bool IsParallelServer()
 {
   return DataServerProcesses() > 1;
+}
+
+// ParaView asks for streaming passes on the data server only, so a client
+// that renders the X-ray itself (a small one from a remote server) gets no
+// pass after its still render.
+bool ServesData()
+{
+  vtkProcessModule* pm = vtkProcessModule::GetProcessModule();
+  auto* session = pm ? vtkPVSession::SafeDownCast(pm->GetActiveSession()) : nullptr;
+  return !session || session->HasProcessRole(vtkPVSession::DATA_SERVER);
 }
 
 }
@@ -346,7 +357,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     const bool interactive =
       inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
     this->Mapper->SetCompositedByDepth(IsParallelServer() && this->ServerRenders());
-    const bool streaming = vtkPVView::GetEnableStreaming();
+    const bool streaming = vtkPVView::GetEnableStreaming() && ServesData();
     this->Mapper->SetMaximumRenderTime(interactive ? this->InteractiveRenderTime
         : streaming                                ? this->StillRenderTime
                                                    : 0.0);
@@ -356,15 +367,20 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   {
     // More to show while points remain: a token piece makes the view render
     // again (the points are already here; the render adds the next prefix).
-    // A pass that added nothing (this process does not render, or cannot)
-    // ends the passes.
-    const vtkTypeInt64 count = this->Mapper->GetNumberOfAccumulatedSamples();
+    // A pass after which nothing was projected (the first process does not
+    // render, or cannot) ends the passes: the mapper's count of projecting
+    // renders tells, whatever the point counts of earlier sequences were.
+    const vtkTypeInt64 progress =
+      this->Mapper->GetNumberOfRestarts() + this->Mapper->GetNumberOfRefinements();
     int more = this->Volume->GetVisibility() && !this->Mapper->IsRefinementComplete() &&
-      count != this->StreamedCount;
-    this->StreamedCount = count;
+        progress != this->StreamedProgress
+      ? 1
+      : 0;
+    this->StreamedProgress = progress;
     // On a parallel server only the first process draws, so it decides for
-    // all: every process then hands ParaView a token, whose delivery (run on
-    // every process) would otherwise move nothing on the others.
+    // all. ParaView delivers a pass's pieces on every server process (the
+    // keys are gathered from all of them); one without the token would
+    // deliver nothing and warn "Attempted to ShallowCopy from null".
     vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
     if (mcx::IsDistributed(controller))
     {
@@ -547,7 +563,7 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveRenderTime: " << this->InteractiveRenderTime << "\n";
   os << indent << "StillRenderTime: " << this->StillRenderTime << "\n";
   os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
-  os << indent << "StreamedCount: " << this->StreamedCount << "\n";
+  os << indent << "StreamedProgress: " << this->StreamedProgress << "\n";
   os << indent << "ToldServerCannotRender: " << this->ToldServerCannotRender << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "

@@ -139,7 +139,7 @@ protected:
   double InteractiveRenderTime = 0.05;
   double StillRenderTime = 0.5;
   vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
-  vtkTypeInt64 StreamedCount = -1;     // points shown at the last streaming pass
+  vtkTypeInt64 StreamedProgress = -1;  // the mapper's projecting renders at the last streaming pass
   bool ToldServerCannotRender = false; // the warning is given once
 
 private:
