@@ -14,6 +14,28 @@ double LongestComponent(const double a[2])
   return std::max(std::fabs(a[0]), std::fabs(a[1]));
 }
 
+// The smallest box of columns and rows that holds every non-zero share.
+FootprintTable::Support SupportOfShares(const double* shares, int columns, int rows)
+{
+  FootprintTable::Support support;
+  support.Columns[0] = columns;
+  support.Rows[0] = rows;
+  for (int j = 0; j < rows; ++j)
+  {
+    for (int i = 0; i < columns; ++i)
+    {
+      if (shares[j * columns + i] > 0)
+      {
+        support.Columns[0] = std::min(support.Columns[0], i);
+        support.Columns[1] = std::max(support.Columns[1], i);
+        support.Rows[0] = std::min(support.Rows[0], j);
+        support.Rows[1] = std::max(support.Rows[1], j);
+      }
+    }
+  }
+  return support;
+}
+
 // Fraction of the cell [x - h / 2, x + h / 2] inside [-1/2, 1/2], over h.
 double Coverage(double x, double h)
 {
@@ -61,11 +83,6 @@ void FootprintPlan::RandomOffset(const double uniform[3][2], double offset[3]) c
     const double parts = std::ldexp(1.0, halvings);
     offset[k] += (std::floor(uniform[k][1] * parts) + 0.5) / parts - 0.5; // a sub-box's centre
   }
-}
-
-bool FootprintPlan::IsRandom() const
-{
-  return this->Halvings[0] >= 0 || this->Halvings[1] >= 0 || this->Halvings[2] >= 0;
 }
 
 void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions)
@@ -151,13 +168,16 @@ void FootprintTable::Build(
   const int columns = this->Columns(), rows = this->Rows();
   const std::size_t size = static_cast<std::size_t>(columns) * rows;
   this->PhaseCount = 64;
+  this->PhaseBits = 6;
   while (this->PhaseCount > 8 && size * this->PhaseCount * this->PhaseCount > budget)
   {
     this->PhaseCount /= 2;
+    --this->PhaseBits;
   }
   const int Phases = this->PhaseCount;
   this->ShareValues.assign(size * Phases * Phases, 0.0);
   this->IncrementValues.assign(size * Phases * Phases, 0);
+  this->Supports.assign(static_cast<std::size_t>(Phases) * Phases, Support());
   for (int b = 0; b < Phases; ++b)
   {
     for (int a = 0; a < Phases; ++a)
@@ -194,6 +214,7 @@ void FootprintTable::Build(
       // Unsigned arithmetic: a remainder of either sign lands exactly, since
       // the rounding errors (at most 1/2 each) sum to far less than 2^32.
       increments[largest] += one - given;
+      this->Supports[static_cast<std::size_t>(b * Phases + a)] = SupportOfShares(shares, columns, rows);
     }
   }
 }

@@ -62,7 +62,10 @@ struct FootprintPlan
   /// numbers per axis in [0, 1).
   void RandomOffset(const double uniform[3][2], double offset[3]) const;
 
-  bool IsRandom() const;
+  bool IsRandom() const
+  {
+    return this->Halvings[0] >= 0 || this->Halvings[1] >= 0 || this->Halvings[2] >= 0;
+  }
 };
 
 /// The footprint of one plan and one set of projected axes, ready to add:
@@ -90,6 +93,8 @@ public:
   int Columns() const { return 2 * this->PixelReach[0] + 1; }
   int Rows() const { return 2 * this->PixelReach[1] + 1; }
   int Phases() const { return this->PhaseCount; }
+  /// log2 of Phases().
+  int PhaseShift() const { return this->PhaseBits; }
 
   /// Shares and increments of phase (a, b), Rows() x Columns() row-major, for
   /// pixel offsets -Reach..Reach from the centre's pixel.
@@ -97,6 +102,20 @@ public:
   const std::uint64_t* Increments(int a, int b) const
   {
     return this->IncrementValues.data() + this->Offset(a, b);
+  }
+
+  /// The columns and rows (inclusive, 0..Columns() - 1 and 0..Rows() - 1)
+  /// that hold every non-zero share of phase (a, b); the deposit visits
+  /// only these (a kernel's support is narrower than the table, which has
+  /// room for every phase).
+  struct Support
+  {
+    int Columns[2] = { 0, -1 };
+    int Rows[2] = { 0, -1 };
+  };
+  const Support& SupportOf(int a, int b) const
+  {
+    return this->Supports[static_cast<std::size_t>(b * this->PhaseCount + a)];
   }
 
   const FootprintPlan& Plan() const { return this->SplitPlan; }
@@ -110,8 +129,10 @@ private:
   FootprintPlan SplitPlan;
   int PixelReach[2] = { 0, 0 };
   int PhaseCount = 16;
+  int PhaseBits = 4;
   std::vector<double> ShareValues;
   std::vector<std::uint64_t> IncrementValues;
+  std::vector<Support> Supports;
 };
 
 /// G, the pixel-averaged footprint density (see above), on a grid of step

@@ -7,11 +7,12 @@
 // fixed-point increment goes into the calling thread's image. With the
 // footprint deposit (mcxFootprint.h) p is the voxel's centre and the sample
 // adds its kernel's footprint, whose increments add up to exactly the point
-// deposit's one count in parallel views (to rounding in perspective views). Each pixel
-// holds two sums side by side, in one cache line: all samples, and those
-// with k below the split (the first Halton half, which the error estimate
-// compares with the rest). Collect() adds the threads' images up; integer
-// sums make the result independent of the order and the number of threads.
+// deposit's one count in parallel views (to rounding in perspective views). A
+// thread keeps two images (ThreadSums): the samples with k below the split
+// (the first Halton half, which the error estimate compares with the rest)
+// and the rest. Collect() adds the threads' images up into all samples' sums
+// and the first half's; integer sums make the result independent of the
+// order and the number of threads.
 #ifndef mcxSampleAccumulator_h
 #define mcxSampleAccumulator_h
 
@@ -94,6 +95,7 @@ public:
     this->BuiltFor = key;
     std::copy(&axes[0][0], &axes[0][0] + 6, &this->BuiltAxes[0][0]);
     this->Tables.clear();
+    this->InverseDepths.clear();
     this->Perspective = binner.IsPerspective();
     if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double a) { return std::isfinite(a); }))
     {
@@ -113,16 +115,22 @@ public:
       return;
     }
     // From the farthest depth towards the eye.
-    this->First = 1.0 / farthest;
+    const double first = 1.0 / farthest;
     const int count = std::min(MaximumTables,
       2 + static_cast<int>(std::ceil(std::log(farthest / nearest) / std::log(Ratio))));
     this->Tables.resize(static_cast<std::size_t>(count));
+    this->InverseDepths.resize(static_cast<std::size_t>(count));
+    for (int j = 0; j < count; ++j)
+    {
+      this->InverseDepths[static_cast<std::size_t>(j)] =
+        first * std::pow(Ratio, static_cast<double>(j));
+    }
     executor.For(0, count, 1,
       [&](std::int64_t begin, std::int64_t end)
       {
         for (std::int64_t j = begin; j < end; ++j)
         {
-          const double w = this->First * std::pow(Ratio, static_cast<double>(j));
+          const double w = this->InverseDepths[static_cast<std::size_t>(j)];
           double scaled[3][2];
           for (int k = 0; k < 3; ++k)
           {
@@ -143,8 +151,9 @@ public:
   }
 
   /// The table for inverse depth w (0 in parallel views), `u` in [0, 1)
-  /// choosing between the two nearest scales so that the mean is linear in
-  /// log w; null beyond the ladder.
+  /// choosing between the two nearest scales so that the mean scale is w
+  /// (the mean footprint linear in w between them); null beyond the ladder.
+  /// A search, not a logarithm: this runs once per sample.
   const FootprintTable* Select(double w, double u) const
   {
     if (this->Tables.empty())
@@ -155,14 +164,15 @@ public:
     {
       return &this->Tables.front();
     }
-    const double t = std::log(w / this->First) / std::log(Ratio);
-    if (!(t >= 0) || !(t <= static_cast<double>(this->Tables.size() - 1)))
+    const std::vector<double>& scales = this->InverseDepths;
+    if (!(w >= scales.front() && w <= scales.back()))
     {
       return nullptr;
     }
-    std::size_t j = static_cast<std::size_t>(t);
-    j += (u < t - static_cast<double>(j) && j + 1 < this->Tables.size()) ? 1 : 0;
-    return &this->Tables[j];
+    const std::size_t j = static_cast<std::size_t>(
+      std::upper_bound(scales.begin(), scales.end() - 1, w) - scales.begin() - 1);
+    const double fraction = (w - scales[j]) / (scales[j + 1] - scales[j]);
+    return &this->Tables[u < fraction ? j + 1 : j];
   }
 
   bool IsEmpty() const { return this->Tables.empty(); }
@@ -172,8 +182,94 @@ private:
   DepositSettings BuiltFor;
   double BuiltAxes[3][2] = { { 0, 0 }, { 0, 0 }, { 0, 0 } };
   bool Perspective = false;
-  double First = 0.0;
   std::vector<FootprintTable> Tables;
+  std::vector<double> InverseDepths; // of the tables, rising by Ratio
+};
+
+/// One thread's image sums: two images, the samples below the split (the
+/// first Halton half) and the rest, so that a sample adds to one sum per
+/// pixel. Each sum is a 64-bit low word per pixel; the high words are
+/// allocated at the first carry, which in practice never comes (a parallel
+/// view adds 2^32 per sample, so a pixel carries only after 2^32 samples of
+/// one thread in one round): a sample touches 8 bytes per pixel, not 32,
+/// and a thread's image of 256^2 pixels fits in a core's L2 cache.
+class ThreadSums
+{
+public:
+  /// Makes room for `pixels` sums per half, zeroed; keeps zeroed ones of that size.
+  void Allocate(std::size_t pixels)
+  {
+    for (int half = 0; half < 2; ++half)
+    {
+      if (this->Low[half].size() != pixels)
+      {
+        this->Low[half].assign(pixels, 0);
+        this->High[half].clear();
+      }
+    }
+  }
+
+  /// Adds `increment` to pixel `pixel` of half `half` (0: below the split).
+  void Add(int half, std::int64_t pixel, const FixedSum& increment)
+  {
+    std::uint64_t& low = this->Low[half][static_cast<std::size_t>(pixel)];
+    const std::uint64_t part = LowHalf(increment);
+    low += part;
+    const std::uint64_t carry = HighHalf(increment) + (low < part ? 1 : 0);
+    if (carry != 0)
+    {
+      this->AddHigh(half, pixel, carry);
+    }
+  }
+
+  /// The same for an increment below 2^64, on half `half`'s low words
+  /// (LowWords): the footprint's inner loop.
+  void AddWord(int half, std::uint64_t* low, std::int64_t pixel, std::uint64_t increment)
+  {
+    low[pixel] += increment;
+    if (low[pixel] < increment)
+    {
+      this->AddHigh(half, pixel, 1);
+    }
+  }
+
+  std::uint64_t* LowWords(int half) { return this->Low[half].data(); }
+
+  /// Adds both halves to `all` and the first to `firstHalf` (`pixels` each)
+  /// and zeroes the sums for the next round.
+  void CollectInto(std::size_t pixels, FixedSum* all, FixedSum* firstHalf)
+  {
+    if (this->Low[0].size() != pixels)
+    {
+      return;
+    }
+    for (int half = 0; half < 2; ++half)
+    {
+      const std::uint64_t* low = this->Low[half].data();
+      const std::uint64_t* high = this->High[half].empty() ? nullptr : this->High[half].data();
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        const FixedSum sum = high ? (FixedSum(high[p]) << 64) + FixedSum(low[p]) : FixedSum(low[p]);
+        all[p] += sum;
+        firstHalf[p] += half == 0 ? sum : FixedSum(0);
+      }
+      std::fill(this->Low[half].begin(), this->Low[half].end(), 0);
+      this->High[half].clear();
+    }
+  }
+
+private:
+  void AddHigh(int half, std::int64_t pixel, std::uint64_t carry)
+  {
+    if (this->High[half].empty())
+    {
+      this->High[half].assign(this->Low[half].size(), 0);
+    }
+    this->High[half][static_cast<std::size_t>(pixel)] += carry;
+  }
+
+  std::vector<std::uint64_t> Low[2];
+  std::vector<std::uint64_t> High[2];
 };
 
 template <typename Executor>
@@ -207,12 +303,9 @@ public:
     this->DepthLimits = std::move(depthLimits);
     this->Split = 0;
     // Collect() leaves the images zeroed: only another size is reallocated.
-    for (std::vector<FixedSum>& image : this->Images)
+    for (ThreadSums& sums : this->Images)
     {
-      if (image.size() != 2 * this->Pixels)
-      {
-        image.clear();
-      }
+      sums.Allocate(this->Pixels);
     }
   }
 
@@ -305,7 +398,9 @@ public:
         return; // the footprint misses the image (also keeps the casts below defined)
       }
       // The centre's pixel and phase, rounded at random to a tabulated phase.
-      const int phases = table->Phases();
+      // Phases() is a power of two: shifts divide q by it, rounding down
+      // (those of the non-negative q or ~q, whose results C++17 defines).
+      const int phases = table->Phases(), shift = table->PhaseShift();
       std::int64_t cell[2];
       int phase[2];
       const double position[2] = { fx, fy };
@@ -315,44 +410,90 @@ public:
         const double lower = std::floor(t);
         std::int64_t q =
           static_cast<std::int64_t>(lower) + ((1.0 - random.NextOpenClosed()) < t - lower ? 1 : 0);
-        cell[a] = q >= 0 ? q / phases : -((-q + phases - 1) / phases);
+        cell[a] = q >= 0 ? q >> shift : ~(~q >> shift);
         phase[a] = static_cast<int>(q - cell[a] * phases);
       }
       if (cell[0] + rx < 0 || cell[1] + ry < 0 || cell[0] - rx >= width || cell[1] - ry >= height)
       {
         return;
       }
-      const int columns = table->Columns();
-      const double* shares = table->Shares(phase[0], phase[1]);
-      const std::uint64_t* increments = table->Increments(phase[0], phase[1]);
-      const bool perspective = this->Binner->IsPerspective();
       const double depth = this->DepthLimits ? this->Binner->Depth(p) : 0.0;
-      const std::int64_t x0 = std::max<std::int64_t>(0, cell[0] - rx);
-      const std::int64_t x1 = std::min<std::int64_t>(width - 1, cell[0] + rx);
-      const std::int64_t y0 = std::max<std::int64_t>(0, cell[1] - ry);
-      const std::int64_t y1 = std::min<std::int64_t>(height - 1, cell[1] + ry);
-      for (std::int64_t y = y0; y <= y1; ++y)
+      if (k < this->Split)
       {
-        const std::int64_t row = (y - cell[1] + ry) * columns - (cell[0] - rx);
-        for (std::int64_t x = x0; x <= x1; ++x)
-        {
-          const std::int64_t n = row + x;
-          if (perspective ? !(shares[n] > 0) : increments[n] == 0)
-          {
-            continue;
-          }
-          const std::int64_t pixel = x + y * static_cast<std::int64_t>(width);
-          if (!this->DepthLimits || depth < this->DepthLimits[pixel])
-          {
-            this->Add(
-              k, pixel, perspective ? FixedIncrement(f * shares[n]) : FixedSum(increments[n]));
-          }
-        }
+        this->AddFootprint<0>(*table, cell, phase, f, depth);
+      }
+      else
+      {
+        this->AddFootprint<1>(*table, cell, phase, f, depth);
       }
     }
 
   private:
     friend class SampleAccumulator;
+
+    // Adds the table's footprint of phase `phase` in pixel `cell` (f scales
+    // the shares in perspective views) to every pixel of its support in the
+    // image and in front of the pixel's depth limit, in the thread's image
+    // Half (0: the first Halton half). Only the support is visited: the
+    // table has room for every phase, a footprint fills about half of it.
+    template <int Half>
+    void AddFootprint(const FootprintTable& table, const std::int64_t cell[2], const int phase[2],
+      double f, double depth) const
+    {
+      const FootprintTable::Support& support = table.SupportOf(phase[0], phase[1]);
+      const std::int64_t left = cell[0] - table.Reach(0), bottom = cell[1] - table.Reach(1);
+      const std::int64_t x0 = std::max<std::int64_t>(0, left + support.Columns[0]);
+      const std::int64_t x1 =
+        std::min<std::int64_t>(this->Binner->GetWidth() - 1, left + support.Columns[1]);
+      const std::int64_t y0 = std::max<std::int64_t>(0, bottom + support.Rows[0]);
+      const std::int64_t y1 =
+        std::min<std::int64_t>(this->Binner->GetHeight() - 1, bottom + support.Rows[1]);
+      const std::int64_t width = this->Binner->GetWidth();
+      const std::int64_t columns = table.Columns();
+      std::uint64_t* low = this->Sums->LowWords(Half);
+      if (this->Binner->IsPerspective())
+      {
+        // round(2^32 f share), as FixedIncrement(f * share): scaling by 2^32 is exact.
+        const double scale = f * FixedOne;
+        const double* shares = table.Shares(phase[0], phase[1]);
+        for (std::int64_t y = y0; y <= y1; ++y)
+        {
+          const std::int64_t row = (y - bottom) * columns - left;
+          for (std::int64_t x = x0; x <= x1; ++x)
+          {
+            const std::int64_t pixel = x + y * width;
+            if (this->DepthLimits && !(depth < this->DepthLimits[pixel]))
+            {
+              continue;
+            }
+            const double scaled = scale * shares[row + x] + 0.5;
+            if (scaled < 1.8e19)
+            {
+              this->Sums->AddWord(Half, low, pixel, static_cast<std::uint64_t>(scaled));
+            }
+            else
+            {
+              this->Sums->Add(Half, pixel, UInt128FromDouble(scaled));
+            }
+          }
+        }
+        return;
+      }
+      const std::uint64_t* increments = table.Increments(phase[0], phase[1]);
+      for (std::int64_t y = y0; y <= y1; ++y)
+      {
+        const std::int64_t row = (y - bottom) * columns - left;
+        for (std::int64_t x = x0; x <= x1; ++x)
+        {
+          const std::int64_t pixel = x + y * width;
+          if (!this->DepthLimits || depth < this->DepthLimits[pixel])
+          {
+            this->Sums->AddWord(Half, low, pixel, increments[row + x]);
+          }
+        }
+      }
+    }
+
     // p += the voxel matrix times an offset in voxels (the source frame is
     // voxel coordinates for the fused projector, world for a stored cloud).
     void Offset(const double offset[3], double p[3]) const
@@ -366,12 +507,10 @@ public:
 
     void Add(std::uint64_t k, std::int64_t pixel, FixedSum increment) const
     {
-      FixedSum* sums = this->Sums + 2 * pixel;
-      sums[0] += increment;
-      sums[1] += k < this->Split ? increment : FixedSum(0);
+      this->Sums->Add(k < this->Split ? 0 : 1, pixel, increment);
     }
 
-    FixedSum* Sums;
+    ThreadSums* Sums;
     const PixelBinner* Binner;
     const FootprintLadder* Ladder;
     const double* DepthLimits;
@@ -383,13 +522,10 @@ public:
 
   ThreadImage Local()
   {
-    std::vector<FixedSum>& image = this->Images.Local();
-    if (image.size() != 2 * this->Pixels)
-    {
-      image.assign(2 * this->Pixels, FixedSum(0));
-    }
+    ThreadSums& sums = this->Images.Local();
+    sums.Allocate(this->Pixels);
     ThreadImage local;
-    local.Sums = image.data();
+    local.Sums = &sums;
     local.Binner = this->Binner.get();
     local.Ladder = this->Ladder.get();
     local.FootprintKey = this->FootprintKey;
@@ -431,18 +567,9 @@ public:
   /// after every round of deposits.
   void Collect(FixedSum* all, FixedSum* firstHalf)
   {
-    for (std::vector<FixedSum>& image : this->Images)
+    for (ThreadSums& sums : this->Images)
     {
-      if (image.size() != 2 * this->Pixels)
-      {
-        continue;
-      }
-      for (std::size_t p = 0; p < this->Pixels; ++p)
-      {
-        all[p] += image[2 * p];
-        firstHalf[p] += image[2 * p + 1];
-      }
-      std::fill(image.begin(), image.end(), FixedSum(0));
+      sums.CollectInto(this->Pixels, all, firstHalf);
     }
   }
 
@@ -454,7 +581,7 @@ private:
   std::size_t Pixels = 0;
   std::vector<double> DepthLimits;
   std::uint64_t Split = 0;
-  typename Executor::template ThreadLocal<std::vector<FixedSum>> Images;
+  typename Executor::template ThreadLocal<ThreadSums> Images;
 };
 
 } // namespace mcx

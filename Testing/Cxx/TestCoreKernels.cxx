@@ -1,7 +1,8 @@
 // Tests of the plain C++ core without VTK: the portable wide integer against
-// the compiler's, and the executor-driven kernels (counting sort, sample
+// the compiler's, the executor-driven kernels (counting sort, sample
 // accumulation, progressive image, radiograph effects) giving the same
-// result on one thread and on several.
+// result on one thread and on several, a thread's 64-bit sums carrying
+// exactly, and the footprint tables' supports and scale choice.
 #include "mcxCountingSort.h"
 #include "mcxExecutor.h"
 #include "mcxFixedPoint.h"
@@ -255,6 +256,130 @@ TEST(SampleAccumulator, SplitSumsAndThreadIndependence)
   accumulator.Collect(hidden.data(), hiddenFirst.data());
   EXPECT_TRUE(std::all_of(
     hidden.begin(), hidden.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }));
+}
+
+TEST(SampleAccumulator, ThreadSumsCarryPastSixtyFourBits)
+{
+  // A thread keeps 64-bit words and adds the high words at the first carry:
+  // perspective weights up to 1e12 give increments above 2^64, and sums of
+  // many below it carry too. The collected sums are the exact 128-bit ones.
+  mcx::ThreadSums sums;
+  sums.Allocate(3);
+  const mcx::FixedSum big = mcx::FixedIncrement(1e12); // above 2^64
+  const mcx::FixedSum near = mcx::FixedSum(std::uint64_t(3) << 62);
+  mcx::FixedSum expectedAll[3] = { 0, 0, 0 }, expectedFirst[3] = { 0, 0, 0 };
+  for (int i = 0; i < 3; ++i)
+  {
+    sums.Add(0, 1, near); // carries on the second addition
+    expectedAll[1] += near;
+    expectedFirst[1] += near;
+  }
+  sums.Add(1, 1, big);
+  expectedAll[1] += big;
+  std::uint64_t* low = sums.LowWords(1);
+  for (int i = 0; i < 5; ++i)
+  {
+    sums.AddWord(1, low, 2, ~std::uint64_t(0)); // 2^64 - 1, carrying from the second on
+    expectedAll[2] += mcx::FixedSum(~std::uint64_t(0));
+  }
+  sums.Add(1, 0, mcx::FixedOneInteger);
+  expectedAll[0] += mcx::FixedOneInteger;
+  ASSERT_TRUE(mcx::HighHalf(expectedAll[2]) == 4);
+
+  std::vector<mcx::FixedSum> all(3, 0), first(3, 0);
+  sums.CollectInto(3, all.data(), first.data());
+  for (int p = 0; p < 3; ++p)
+  {
+    EXPECT_TRUE(all[p] == expectedAll[p]) << "pixel " << p;
+    EXPECT_TRUE(first[p] == expectedFirst[p]) << "pixel " << p;
+  }
+  // Collected sums start over from zero, high words included.
+  sums.Add(0, 1, mcx::FixedOneInteger);
+  std::vector<mcx::FixedSum> again(3, 0), againFirst(3, 0);
+  sums.CollectInto(3, again.data(), againFirst.data());
+  EXPECT_TRUE(again[1] == mcx::FixedOneInteger);
+  EXPECT_TRUE(againFirst[1] == mcx::FixedOneInteger);
+  EXPECT_TRUE(again[2] == mcx::FixedSum(0));
+}
+
+TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
+{
+  // A voxel about one pixel wide, seen obliquely, and one much smaller: the
+  // deposit visits only a phase's support, so it must hold every non-zero
+  // share, and each of its edges one of them.
+  const double oblique[3][2] = { { 0.8, 0.3 }, { -0.2, 0.9 }, { 0.5, -0.4 } };
+  const double small[3][2] = { { 0.1, 0 }, { 0, 0.1 }, { 0, 0 } };
+  for (const auto* axes : { oblique, small })
+  {
+    mcx::FootprintTable table;
+    table.Build(axes, mcx::FootprintPlan::For(mcx::Kernel::Tent, axes, 16.0));
+    ASSERT_EQ(table.Phases(), 1 << table.PhaseShift());
+    for (int b = 0; b < table.Phases(); ++b)
+    {
+      for (int a = 0; a < table.Phases(); ++a)
+      {
+        const mcx::FootprintTable::Support& support = table.SupportOf(a, b);
+        const double* shares = table.Shares(a, b);
+        bool edges[4] = { false, false, false, false };
+        double inside = 0;
+        for (int j = 0; j < table.Rows(); ++j)
+        {
+          for (int i = 0; i < table.Columns(); ++i)
+          {
+            const double share = shares[j * table.Columns() + i];
+            const bool in = i >= support.Columns[0] && i <= support.Columns[1] &&
+              j >= support.Rows[0] && j <= support.Rows[1];
+            ASSERT_TRUE(in || share == 0) << "phase " << a << ", " << b;
+            inside += in ? share : 0;
+            const bool nonZero = share > 0;
+            edges[0] |= nonZero && i == support.Columns[0];
+            edges[1] |= nonZero && i == support.Columns[1];
+            edges[2] |= nonZero && j == support.Rows[0];
+            edges[3] |= nonZero && j == support.Rows[1];
+          }
+        }
+        EXPECT_NEAR(1.0, inside, 1e-12);
+        EXPECT_TRUE(edges[0] && edges[1] && edges[2] && edges[3]) << "phase " << a << ", " << b;
+      }
+    }
+  }
+}
+
+TEST(FootprintLadder, ScalesAreChosenWithTheMeanInverseDepth)
+{
+  // The ladder's tables lie at inverse depths w_j = w_0 r^j from the
+  // farthest depth; a sample at w between two of them takes the nearer
+  // scale with the probability that makes its mean scale w.
+  const mcx::ProjectionGeometry g = SmallPerspectiveView();
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const mcx::PixelBinner binner(g, origin, identity);
+  mcx::DepositSettings settings;
+  settings.Mode = mcx::Deposit::Footprint;
+  settings.Depths[0] = 40;
+  settings.Depths[1] = 60;
+  mcx::FootprintLadder ladder;
+  ladder.Build(mcx::SerialExecutor(), binner, settings);
+  const double r = mcx::FootprintLadder::Ratio, w0 = 1.0 / 60;
+  const mcx::FootprintTable* first = ladder.Select(w0, 0.5);
+  ASSERT_NE(nullptr, first);
+  EXPECT_EQ(nullptr, ladder.Select(w0 * 0.999, 0.5)); // beyond the farthest
+  EXPECT_EQ(nullptr, ladder.Select(1.0 / 10, 0.5));   // far beyond the nearest
+  for (const double w : { w0 * 1.01, w0 * 1.2, 1.0 / 50, 1.0 / 41 })
+  {
+    const int j = static_cast<int>(std::floor(std::log(w / w0) / std::log(r)));
+    const double below = w0 * std::pow(r, j), above = below * r;
+    const double fraction = (w - below) / (above - below);
+    double mean = 0;
+    const int draws = 1000;
+    for (int i = 0; i < draws; ++i)
+    {
+      const long chosen = ladder.Select(w, (i + 0.5) / draws) - first;
+      ASSERT_TRUE(chosen == j || chosen == j + 1) << "w " << w;
+      mean += (chosen == j ? below : above) / draws;
+    }
+    EXPECT_NEAR(w, mean, 1e-3 * (above - below)) << "fraction " << fraction;
+  }
 }
 
 TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)
