@@ -22,8 +22,8 @@
 // the Monte Carlo error of any affordable sample count). In perspective
 // views the footprint is the central direction's scaled by D / z (tables on
 // a ladder of scales, chosen at random between the two nearest so that the
-// mean is linear in log scale); the change of the footprint's shape with the ray's
-// angle is neglected (bias stated and tested there too).
+// mean scale is the sample's); the change of the footprint's shape with the
+// ray's angle is neglected (bias stated and tested there too).
 #ifndef mcxFootprint_h
 #define mcxFootprint_h
 

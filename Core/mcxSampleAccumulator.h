@@ -191,8 +191,8 @@ private:
 /// pixel. Each sum is a 64-bit low word per pixel; the high words are
 /// allocated at the first carry, which in practice never comes (a parallel
 /// view adds 2^32 per sample, so a pixel carries only after 2^32 samples of
-/// one thread in one round): a sample touches 8 bytes per pixel, not 32,
-/// and a thread's image of 256^2 pixels fits in a core's L2 cache.
+/// one thread in one round): a sample touches 8 bytes per pixel, not 32
+/// (a thread's image of 256^2 pixels takes 1 MB, about a core's L2 cache).
 class ThreadSums
 {
 public:
