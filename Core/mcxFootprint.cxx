@@ -168,11 +168,11 @@ void FootprintTable::Build(
   const int columns = this->Columns(), rows = this->Rows();
   const std::size_t size = static_cast<std::size_t>(columns) * rows;
   this->PhaseCount = 64;
-  this->PhaseBits = 6;
+  this->PhaseShiftBits = 6;
   while (this->PhaseCount > 8 && size * this->PhaseCount * this->PhaseCount > budget)
   {
     this->PhaseCount /= 2;
-    --this->PhaseBits;
+    --this->PhaseShiftBits;
   }
   const int Phases = this->PhaseCount;
   this->ShareValues.assign(size * Phases * Phases, 0.0);
@@ -214,7 +214,8 @@ void FootprintTable::Build(
       // Unsigned arithmetic: a remainder of either sign lands exactly, since
       // the rounding errors (at most 1/2 each) sum to far less than 2^32.
       increments[largest] += one - given;
-      this->Supports[static_cast<std::size_t>(b * Phases + a)] = SupportOfShares(shares, columns, rows);
+      this->Supports[static_cast<std::size_t>(b * Phases + a)] =
+        SupportOfShares(shares, columns, rows);
     }
   }
 }

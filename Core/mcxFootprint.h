@@ -94,7 +94,7 @@ public:
   int Rows() const { return 2 * this->PixelReach[1] + 1; }
   int Phases() const { return this->PhaseCount; }
   /// log2 of Phases().
-  int PhaseShift() const { return this->PhaseBits; }
+  int PhaseShift() const { return this->PhaseShiftBits; }
 
   /// Shares and increments of phase (a, b), Rows() x Columns() row-major, for
   /// pixel offsets -Reach..Reach from the centre's pixel.
@@ -129,7 +129,7 @@ private:
   FootprintPlan SplitPlan;
   int PixelReach[2] = { 0, 0 };
   int PhaseCount = 16;
-  int PhaseBits = 4;
+  int PhaseShiftBits = 4;
   std::vector<double> ShareValues;
   std::vector<std::uint64_t> IncrementValues;
   std::vector<Support> Supports;

@@ -116,8 +116,9 @@ public:
     }
     // From the farthest depth towards the eye.
     const double first = 1.0 / farthest;
-    const int count = std::min(MaximumTables,
-      2 + static_cast<int>(std::ceil(std::log(farthest / nearest) / std::log(Ratio))));
+    // Clamped before the cast: a tiny nearest depth makes the ratio infinite.
+    const int count = static_cast<int>(std::min<double>(
+      MaximumTables, 2 + std::ceil(std::log(farthest / nearest) / std::log(Ratio))));
     this->Tables.resize(static_cast<std::size_t>(count));
     this->InverseDepths.resize(static_cast<std::size_t>(count));
     for (int j = 0; j < count; ++j)
@@ -164,7 +165,7 @@ public:
     {
       return &this->Tables.front();
     }
-    const std::vector<double>& scales = this->InverseDepths;
+    const std::vector<double>& scales = this->InverseDepths; // at least 2 (Build)
     if (!(w >= scales.front() && w <= scales.back()))
     {
       return nullptr;
@@ -189,9 +190,9 @@ private:
 /// One thread's image sums: two images, the samples below the split (the
 /// first Halton half) and the rest, so that a sample adds to one sum per
 /// pixel. Each sum is a 64-bit low word per pixel; the high words are
-/// allocated at the first carry, which in practice never comes (a parallel
-/// view adds 2^32 per sample, so a pixel carries only after 2^32 samples of
-/// one thread in one round): a sample touches 8 bytes per pixel, not 32
+/// allocated at the first carry, which never comes in parallel views (a
+/// sample adds 2^32, so a pixel carries only after 2^32 samples of one
+/// thread in one round) and only near the eye in perspective views: a sample touches 8 bytes per pixel, not 32
 /// (a thread's image of 256^2 pixels takes 1 MB, about a core's L2 cache).
 class ThreadSums
 {
@@ -222,8 +223,8 @@ public:
     }
   }
 
-  /// The same for an increment below 2^64, on half `half`'s low words
-  /// (LowWords): the footprint's inner loop.
+  /// The same for an increment below 2^64, `low` being LowWords(half)
+  /// (fetched once per footprint): the footprint's inner loop.
   void AddWord(int half, std::uint64_t* low, std::int64_t pixel, std::uint64_t increment)
   {
     low[pixel] += increment;
@@ -318,7 +319,7 @@ public:
       !this->Ladder->AnyRandomSplit();
   }
 
-  /// Samples with k < split count in the second sum as well.
+  /// Samples with k < split count in the first half's sums as well.
   void SetSplit(std::uint64_t split) { this->Split = split; }
 
   std::size_t NumberOfPixels() const { return this->Pixels; }
@@ -435,7 +436,7 @@ public:
     // the shares in perspective views) to every pixel of its support in the
     // image and in front of the pixel's depth limit, in the thread's image
     // Half (0: the first Halton half). Only the support is visited: the
-    // table has room for every phase, a footprint fills about half of it.
+    // table has room for every phase, a footprint fills only part of it.
     template <int Half>
     void AddFootprint(const FootprintTable& table, const std::int64_t cell[2], const int phase[2],
       double f, double depth) const

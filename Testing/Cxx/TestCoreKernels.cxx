@@ -300,6 +300,17 @@ TEST(SampleAccumulator, ThreadSumsCarryPastSixtyFourBits)
   EXPECT_TRUE(again[1] == mcx::FixedOneInteger);
   EXPECT_TRUE(againFirst[1] == mcx::FixedOneInteger);
   EXPECT_TRUE(again[2] == mcx::FixedSum(0));
+
+  // Another image size after a carry: high words of the new size.
+  sums.Add(1, 2, near);
+  sums.Add(1, 2, near);
+  sums.Allocate(5);
+  sums.Add(1, 4, near);
+  sums.Add(1, 4, near);
+  std::vector<mcx::FixedSum> larger(5, 0), largerFirst(5, 0);
+  sums.CollectInto(5, larger.data(), largerFirst.data());
+  EXPECT_TRUE(larger[4] == near + near);
+  EXPECT_TRUE(larger[2] == mcx::FixedSum(0));
 }
 
 TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
@@ -308,8 +319,8 @@ TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
   // deposit visits only a phase's support, so it must hold every non-zero
   // share, and each of its edges one of them.
   const double oblique[3][2] = { { 0.8, 0.3 }, { -0.2, 0.9 }, { 0.5, -0.4 } };
-  const double small[3][2] = { { 0.1, 0 }, { 0, 0.1 }, { 0, 0 } };
-  for (const auto* axes : { oblique, small })
+  const double tiny[3][2] = { { 0.1, 0 }, { 0, 0.1 }, { 0, 0 } };
+  for (const auto* axes : { oblique, tiny })
   {
     mcx::FootprintTable table;
     table.Build(axes, mcx::FootprintPlan::For(mcx::Kernel::Tent, axes, 16.0));
@@ -330,6 +341,7 @@ TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
             const bool in = i >= support.Columns[0] && i <= support.Columns[1] &&
               j >= support.Rows[0] && j <= support.Rows[1];
             ASSERT_TRUE(in || share == 0) << "phase " << a << ", " << b;
+            ASSERT_TRUE(in || table.Increments(a, b)[j * table.Columns() + i] == 0);
             inside += in ? share : 0;
             const bool nonZero = share > 0;
             edges[0] |= nonZero && i == support.Columns[0];
@@ -343,6 +355,46 @@ TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
       }
     }
   }
+}
+
+TEST(FootprintTable, CentresLeftOfTheImageFallInTheirPixel)
+{
+  // A voxel centre left of the image (negative pixel coordinate) deposits
+  // what the same centre 8 pixels further right does, shifted back by 8:
+  // its cell is rounded down, not towards zero. Dyadic positions keep the
+  // sub-pixel phase exact; the same k draws the same random numbers.
+  mcx::ProjectionGeometry g;
+  g.Size[0] = 24;
+  g.Size[1] = 8;
+  g.Origin[0] = g.Origin[1] = 0.5; // pixel i covers [i, i + 1)
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  mcx::DepositSettings settings;
+  settings.Mode = mcx::Deposit::Footprint;
+  std::vector<mcx::FixedSum> images[2];
+  const double x[2] = { -0.375, 7.625 };
+  for (int n = 0; n < 2; ++n)
+  {
+    mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
+    accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
+    const double centre[3] = { x[n], 3.5, 0.0 };
+    accumulator.Local().Deposit(5, centre);
+    images[n].assign(24 * 8, 0);
+    std::vector<mcx::FixedSum> first(24 * 8, 0);
+    accumulator.Collect(images[n].data(), first.data());
+  }
+  mcx::FixedSum seen = 0;
+  for (int row = 0; row < 8; ++row)
+  {
+    for (int column = 0; column < 16; ++column)
+    {
+      EXPECT_TRUE(images[0][row * 24 + column] == images[1][row * 24 + column + 8])
+        << "pixel " << column << ", " << row;
+      seen += images[0][row * 24 + column];
+    }
+  }
+  // A tent of one pixel reaches 1.5 pixels right of the centre.
+  EXPECT_TRUE(mcx::FixedSum(0) < seen && seen < mcx::FixedOneInteger);
 }
 
 TEST(FootprintLadder, ScalesAreChosenWithTheMeanInverseDepth)
@@ -365,6 +417,10 @@ TEST(FootprintLadder, ScalesAreChosenWithTheMeanInverseDepth)
   ASSERT_NE(nullptr, first);
   EXPECT_EQ(nullptr, ladder.Select(w0 * 0.999, 0.5)); // beyond the farthest
   EXPECT_EQ(nullptr, ladder.Select(1.0 / 10, 0.5));   // far beyond the nearest
+  // On a ladder value: that table; on the last, the last (no table beyond).
+  EXPECT_EQ(first + 3, ladder.Select(w0 * std::pow(r, 3.0), 0.0));
+  const int last = 2 + static_cast<int>(std::ceil(std::log(60.0 / 40.0) / std::log(r))) - 1;
+  EXPECT_EQ(first + last, ladder.Select(w0 * std::pow(r, static_cast<double>(last)), 1 - 1e-16));
   for (const double w : { w0 * 1.01, w0 * 1.2, 1.0 / 50, 1.0 / 41 })
   {
     const int j = static_cast<int>(std::floor(std::log(w / w0) / std::log(r)));
