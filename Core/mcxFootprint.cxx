@@ -167,14 +167,13 @@ void FootprintTable::Build(
   }
   const int columns = this->Columns(), rows = this->Rows();
   const std::size_t size = static_cast<std::size_t>(columns) * rows;
-  this->PhaseCount = 64;
-  this->PhaseShiftBits = 6;
-  while (this->PhaseCount > 8 && size * this->PhaseCount * this->PhaseCount > budget)
+  this->PhaseShiftBits = 6; // 64 phases, down to 8
+  while (this->PhaseShiftBits > 3 &&
+    size * static_cast<std::size_t>(this->Phases() * this->Phases()) > budget)
   {
-    this->PhaseCount /= 2;
     --this->PhaseShiftBits;
   }
-  const int Phases = this->PhaseCount;
+  const int Phases = this->Phases();
   this->ShareValues.assign(size * Phases * Phases, 0.0);
   this->IncrementValues.assign(size * Phases * Phases, 0);
   this->Supports.assign(static_cast<std::size_t>(Phases) * Phases, Support());

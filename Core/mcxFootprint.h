@@ -92,7 +92,7 @@ public:
   int Reach(int a) const { return this->PixelReach[a]; }
   int Columns() const { return 2 * this->PixelReach[0] + 1; }
   int Rows() const { return 2 * this->PixelReach[1] + 1; }
-  int Phases() const { return this->PhaseCount; }
+  int Phases() const { return 1 << this->PhaseShiftBits; }
   /// log2 of Phases().
   int PhaseShift() const { return this->PhaseShiftBits; }
 
@@ -115,7 +115,7 @@ public:
   };
   const Support& SupportOf(int a, int b) const
   {
-    return this->Supports[static_cast<std::size_t>(b * this->PhaseCount + a)];
+    return this->Supports[static_cast<std::size_t>(b * this->Phases() + a)];
   }
 
   const FootprintPlan& Plan() const { return this->SplitPlan; }
@@ -123,13 +123,12 @@ public:
 private:
   std::size_t Offset(int a, int b) const
   {
-    return static_cast<std::size_t>(b * this->PhaseCount + a) * this->Columns() * this->Rows();
+    return static_cast<std::size_t>(b * this->Phases() + a) * this->Columns() * this->Rows();
   }
 
   FootprintPlan SplitPlan;
   int PixelReach[2] = { 0, 0 };
-  int PhaseCount = 16;
-  int PhaseShiftBits = 4;
+  int PhaseShiftBits = 4; // Phases() = 2^PhaseShiftBits
   std::vector<double> ShareValues;
   std::vector<std::uint64_t> IncrementValues;
   std::vector<Support> Supports;

@@ -192,8 +192,9 @@ private:
 /// pixel. Each sum is a 64-bit low word per pixel; the high words are
 /// allocated at the first carry, which never comes in parallel views (a
 /// sample adds 2^32, so a pixel carries only after 2^32 samples of one
-/// thread in one round) and only near the eye in perspective views: a sample touches 8 bytes per pixel, not 32
-/// (a thread's image of 256^2 pixels takes 1 MB, about a core's L2 cache).
+/// thread in one round) and only near the eye in perspective views. A
+/// sample touches 8 bytes per pixel, not 32 (a thread's image of 256^2
+/// pixels takes 1 MB, about a core's L2 cache).
 class ThreadSums
 {
 public:
