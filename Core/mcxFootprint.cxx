@@ -36,6 +36,54 @@ FootprintTable::Support SupportOfShares(const double* shares, int columns, int r
   return support;
 }
 
+// The linear interpolant of a line of n nodes (stride step) at index c: 0
+// outside [0, n - 1), as FootprintDensity::Evaluate reads its grid.
+double Interpolate(const double* line, int n, std::size_t step, double c)
+{
+  if (!(c >= 0) || !(c < n - 1))
+  {
+    return 0.0;
+  }
+  const int k = static_cast<int>(c);
+  const double t = c - k;
+  return (1 - t) * line[k * step] + t * line[(k + 1) * step];
+}
+
+// Replaces each node c of a line (n nodes, stride step) by the mean of its
+// linear interpolant (0 outside [0, n - 1)) over [c - radius, c + radius]:
+// (F(c + radius) - F(c - radius)) / (2 radius), F the antiderivative, with
+// P_k the trapezoids below node k and F(k + t) = P_k + v_k t + (v_{k+1} - v_k) t^2 / 2.
+void MeanOverIntervals(double* line, int n, std::size_t step, double radius)
+{
+  std::vector<double> v(static_cast<std::size_t>(n)), prefix(static_cast<std::size_t>(n), 0.0);
+  for (int k = 0; k < n; ++k)
+  {
+    v[k] = line[k * step];
+  }
+  for (int k = 1; k < n; ++k)
+  {
+    prefix[k] = prefix[k - 1] + 0.5 * (v[k - 1] + v[k]);
+  }
+  const auto antiderivative = [&](double c)
+  {
+    if (!(c > 0))
+    {
+      return 0.0;
+    }
+    if (c >= n - 1)
+    {
+      return prefix[n - 1];
+    }
+    const int k = static_cast<int>(c);
+    const double t = c - k;
+    return prefix[k] + t * (v[k] + 0.5 * t * (v[k + 1] - v[k]));
+  };
+  for (int k = 0; k < n; ++k)
+  {
+    line[k * step] = (antiderivative(k + radius) - antiderivative(k - radius)) / (2.0 * radius);
+  }
+}
+
 // Fraction of the cell [x - h / 2, x + h / 2] inside [-1/2, 1/2], over h.
 double Coverage(double x, double h)
 {
@@ -110,11 +158,11 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
     this->Half[0] += 0.5 * std::fabs(s[0]);
     this->Half[1] += 0.5 * std::fabs(s[1]);
   }
-  // About `subdivisions` nodes across the footprint's longer side, 4 to 64
+  // About `subdivisions` nodes across the footprint's longer side, 4 to 128
   // per pixel: the grid's blur (about a quarter of a step) stays a small
   // fraction of the footprint however small the voxel.
   const double longer = 2.0 * std::max(this->Half[0], this->Half[1]);
-  this->Q = static_cast<int>(std::min(64.0, std::max(4.0, std::ceil(subdivisions / longer))));
+  this->Q = static_cast<int>(std::min(128.0, std::max(4.0, std::ceil(subdivisions / longer))));
   const double h = 1.0 / this->Q;
   for (int a = 0; a < 2; ++a)
   {
@@ -130,27 +178,70 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
         Coverage((i - this->N[0]) * h, h) * Coverage((j - this->N[1]) * h, h);
     }
   }
-  // Convolution with each segment: the mean of f shifted along it, by the
-  // midpoint rule at spacing below h / 2, f interpolated bilinearly.
-  std::vector<double> g(f.size());
+  // Convolution with each segment: the mean of f shifted along it.
+  std::vector<double> scratch;
   this->Values.swap(f);
   for (const auto& s : segments)
   {
-    const int n = 2 * static_cast<int>(std::ceil(LongestComponent(s.data()) * this->Q));
-    for (int j = 0; j < height; ++j)
+    this->Convolve(s.data(), scratch);
+  }
+}
+
+void FootprintDensity::Convolve(const double s[2], std::vector<double>& scratch)
+{
+  // Along image axis a (the segment's longer component), across it b. Node
+  // (i, j) is i along a, j along b (index units, step 1 / Q pixel).
+  const int a = std::fabs(s[0]) >= std::fabs(s[1]) ? 0 : 1, b = 1 - a;
+  const int width = 2 * this->N[0] + 1;
+  const int na = 2 * this->N[a] + 1, nb = 2 * this->N[b] + 1;
+  const std::size_t stepA = a == 0 ? 1 : static_cast<std::size_t>(width);
+  const std::size_t stepB = a == 0 ? static_cast<std::size_t>(width) : 1;
+  const double radius = 0.5 * std::fabs(s[a]) * this->Q;
+  if (radius < 1e-6)
+  {
+    // The mean over so short an interval is the interpolant's value to
+    // about radius^2 (1e-12), and its antiderivatives' difference would
+    // cancel in rounding: the segment changes nothing.
+    return;
+  }
+  // A component a billion times smaller moves the footprint by less than
+  // 1e-9 pixel: such a segment is along a, and convolved in place.
+  if (std::fabs(s[b]) <= 1e-9 * std::fabs(s[a]))
+  {
+    for (int j = 0; j < nb; ++j)
     {
-      for (int i = 0; i < width; ++i)
-      {
-        double sum = 0.0;
-        for (int m = 0; m < n; ++m)
-        {
-          const double u = (m + 0.5) / n - 0.5;
-          sum += this->Evaluate((i - this->N[0]) * h - u * s[0], (j - this->N[1]) * h - u * s[1]);
-        }
-        g[static_cast<std::size_t>(j) * width + i] = sum / n;
-      }
+      MeanOverIntervals(this->Values.data() + j * stepB, na, stepA, radius);
     }
-    this->Values.swap(g);
+    return;
+  }
+  // Sheared frame: b' = b - r (i - N[a]), r = s[b] / s[a] (|r| <= 1), in
+  // which the segment runs along a. Column i of the sheared copy holds nodes
+  // b' = j' - E, j' = 0..nb + 2E - 1, wide enough for every node of the grid.
+  const double r = s[b] / s[a];
+  const int E = static_cast<int>(std::ceil(std::fabs(r) * this->N[a])) + 1;
+  const int nbs = nb + 2 * E;
+  scratch.assign(static_cast<std::size_t>(na) * nbs, 0.0);
+  for (int i = 0; i < na; ++i)
+  {
+    const double shift = r * (i - this->N[a]) - E;
+    const double* column = this->Values.data() + i * stepA;
+    for (int j = 0; j < nbs; ++j)
+    {
+      scratch[static_cast<std::size_t>(i) * nbs + j] = Interpolate(column, nb, stepB, j + shift);
+    }
+  }
+  for (int j = 0; j < nbs; ++j)
+  {
+    MeanOverIntervals(scratch.data() + j, na, static_cast<std::size_t>(nbs), radius);
+  }
+  for (int i = 0; i < na; ++i)
+  {
+    const double shift = E - r * (i - this->N[a]);
+    const double* column = scratch.data() + static_cast<std::size_t>(i) * nbs;
+    for (int j = 0; j < nb; ++j)
+    {
+      this->Values[i * stepA + j * stepB] = Interpolate(column, nbs, 1, j + shift);
+    }
   }
 }
 

@@ -17,8 +17,8 @@
 // successive convolutions and read by bilinear interpolation; each sample's
 // values are renormalised to its exact weight, so mass is conserved.
 //
-// Bias: interpolation and the convolution's quadrature err by O(Q^-2) of G's
-// curvature (measured in the tests against the exact reference: far below
+// Bias: the grid's interpolations (reading it, shearing it) err by O(Q^-2)
+// of G's curvature (measured in the tests against the exact reference: far below
 // the Monte Carlo error of any affordable sample count). In perspective
 // views the footprint is the central direction's scaled by D / z (tables on
 // a ladder of scales, chosen at random between the two nearest so that the
@@ -86,7 +86,7 @@ public:
   /// whose shape changes fastest with the phase. `subdivisions`: the density
   /// grid's steps across the footprint (FootprintDensity::Build).
   void Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget = 1 << 17,
-    int subdivisions = 160);
+    int subdivisions = 200);
 
   /// Pixels reached beyond the centre's pixel along image axis a.
   int Reach(int a) const { return this->PixelReach[a]; }
@@ -135,13 +135,16 @@ private:
 };
 
 /// G, the pixel-averaged footprint density (see above), on a grid of step
-/// 1 / Q pixel (about `subdivisions` steps across the footprint, 4 to 64 per
+/// 1 / Q pixel (about `subdivisions` steps across the footprint, 4 to 128 per
 /// pixel): built by successive convolutions of the unit square with the
-/// plan's segments, read by bilinear interpolation.
+/// plan's segments, read by bilinear interpolation. A segment along an image
+/// axis is convolved exactly, by the antiderivative of the interpolant along
+/// the rows or columns (O(1) per node); an oblique one the same way after a
+/// shear that turns it along an axis (each shear interpolates linearly).
 class FootprintDensity
 {
 public:
-  void Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions = 160);
+  void Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions = 200);
 
   /// G at offset (dx, dy) pixels from the voxel centre, 0 outside.
   double Evaluate(double dx, double dy) const
@@ -164,6 +167,9 @@ public:
   double HalfExtent(int a) const { return this->Half[a]; }
 
 private:
+  // Values = Values convolved with the segment s (pixels), scratch reused.
+  void Convolve(const double s[2], std::vector<double>& scratch);
+
   int Q = 8;
   int N[2] = { 0, 0 }; // nodes -N..N per axis
   double Half[2] = { 0, 0 };

@@ -139,7 +139,7 @@ public:
             scaled[k][1] = axes[k][1] * w;
           }
           this->Tables[static_cast<std::size_t>(j)].Build(
-            scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach), 1 << 15, 64);
+            scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach), 1 << 15, 160);
         }
       });
   }

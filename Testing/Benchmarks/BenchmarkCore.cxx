@@ -1,9 +1,11 @@
 // Throughput of the core stages on 2 cores, next to memcpy bandwidth
 // measured in the same run: index (voxels/s), stored point-cloud sampling
 // (points/s) and off-line sampling + projection in an oblique perspective
-// view (samples/s), on the bundled CT and on a 256^3 real volume.
+// view (samples/s), on the bundled CT and on a 256^3 real volume; the
+// footprint table of a parallel view (tables/s).
 //
 // Run through Testing/Benchmarks/run-benchmarks, which reports medians.
+#include "mcxFootprint.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
@@ -161,6 +163,26 @@ void RadiographEffects(benchmark::State& state)
   state.SetLabel("pixels");
 }
 
+// The footprint table of a parallel view (what a camera change with a
+// footprint cloud rebuilds before it deposits): a voxel about one pixel
+// wide (tent), seen along an axis (0) or obliquely (1). A perspective view
+// builds a ladder of such tables, coarser, in parallel.
+void FootprintTable(benchmark::State& state)
+{
+  const double axis[3][2] = { { 0.96, 0 }, { 0, 0.96 }, { 0, 0 } };
+  const double oblique[3][2] = { { 0.8, 0.3 }, { -0.2, 0.9 }, { 0.5, -0.4 } };
+  const auto& axes = state.range(0) == 0 ? axis : oblique;
+  const mcx::FootprintPlan plan = mcx::FootprintPlan::For(mcx::Kernel::Tent, axes, 16.0);
+  for (auto _ : state)
+  {
+    mcx::FootprintTable table;
+    table.Build(axes, plan);
+    benchmark::DoNotOptimize(table.Increments(0, 0));
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.SetLabel("tables");
+}
+
 void Memcpy(benchmark::State& state)
 {
   const std::size_t bytes = std::size_t(1) << 28;
@@ -188,5 +210,6 @@ BENCHMARK(OfflinePerspective)
   ->Unit(benchmark::kMillisecond)
   ->UseRealTime();
 BENCHMARK(RadiographEffects)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(FootprintTable)->DenseRange(0, 1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 BENCHMARK_MAIN();

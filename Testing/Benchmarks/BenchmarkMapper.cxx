@@ -2,7 +2,8 @@
 // Testing/with-display): frames per second for a camera change with 1 M,
 // 4 M and 16 M points at 256^2 and 512^2 (each frame projects every point),
 // and the latency from a TF edit to the complete image of 4 M points (and
-// of 256 K and 1 M footprint points). The
+// of 256 K and 1 M footprint points); camera changes with 256 K and 1 M
+// footprint points (each frame builds new footprint tables). The
 // paper (one 2 GHz core, 256^2): 21.28, 5.32 and 1.39 fps; 2.28 s per TF edit.
 #include "mcxHeadScene.h"
 
@@ -79,6 +80,26 @@ void FootprintTransferFunctionEdit(benchmark::State& state)
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * ((1 << state.range(0)) - 1)));
   state.SetLabel("points");
 }
+
+// A camera change with the footprint deposit: every frame takes a new
+// footprint table (a ladder of them in perspective), seen obliquely (20
+// degrees of elevation), and projects every point. Arguments: sample
+// exponent, image size, perspective (0/1).
+void FootprintCameraChange(benchmark::State& state)
+{
+  Scene scene(
+    static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), state.range(2) != 0);
+  scene.Sampler->SetDepositToFootprint();
+  scene.Renderer->GetActiveCamera()->Elevation(20);
+  scene.Window->Render();
+  for (auto _ : state)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(1);
+    scene.Window->Render();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * ((1 << state.range(0)) - 1)));
+  state.SetLabel("points");
+}
 }
 
 BENCHMARK(CameraChange)
@@ -88,6 +109,11 @@ BENCHMARK(CameraChange)
 BENCHMARK(TransferFunctionEdit)->Arg(256)->Arg(512)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(FootprintTransferFunctionEdit)
   ->ArgsProduct({ { 18, 20 }, { 256 } })
+  ->Unit(benchmark::kMillisecond)
+  ->UseRealTime();
+
+BENCHMARK(FootprintCameraChange)
+  ->ArgsProduct({ { 18, 20 }, { 256 }, { 0, 1 } })
   ->Unit(benchmark::kMillisecond)
   ->UseRealTime();
 
