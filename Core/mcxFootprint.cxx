@@ -53,13 +53,18 @@ double Interpolate(const double* line, int n, std::size_t step, double c)
 // linear interpolant (0 outside [0, n - 1)) over [c - radius, c + radius]:
 // (F(c + radius) - F(c - radius)) / (2 radius), F the antiderivative, with
 // P_k the trapezoids below node k and F(k + t) = P_k + v_k t + (v_{k+1} - v_k) t^2 / 2.
-void MeanOverIntervals(double* line, int n, std::size_t step, double radius)
+// `buffer` (2 n values: the line and P) is reused from line to line.
+void MeanOverIntervals(
+  double* line, int n, std::size_t step, double radius, std::vector<double>& buffer)
 {
-  std::vector<double> v(static_cast<std::size_t>(n)), prefix(static_cast<std::size_t>(n), 0.0);
+  buffer.resize(2 * static_cast<std::size_t>(n));
+  double* v = buffer.data();
+  double* prefix = v + n;
   for (int k = 0; k < n; ++k)
   {
     v[k] = line[k * step];
   }
+  prefix[0] = 0.0;
   for (int k = 1; k < n; ++k)
   {
     prefix[k] = prefix[k - 1] + 0.5 * (v[k - 1] + v[k]);
@@ -81,6 +86,33 @@ void MeanOverIntervals(double* line, int n, std::size_t step, double radius)
   for (int k = 0; k < n; ++k)
   {
     line[k * step] = (antiderivative(k + radius) - antiderivative(k - radius)) / (2.0 * radius);
+  }
+}
+
+// One line layout: `lines` lines of `count` nodes, line i starting at
+// i * lineStep, its nodes `step` apart.
+struct LineLayout
+{
+  int Lines;
+  int Count;
+  std::size_t LineStep;
+  std::size_t Step;
+};
+
+// Node j of line i of `to` = the interpolant of line i of `from` at index
+// j + slope * i + intercept: a shear of the grid (lines of both run along
+// the same axis, index for index).
+void ShearLines(const double* from, const LineLayout& in, double* to, const LineLayout& out,
+  double slope, double intercept)
+{
+  for (int i = 0; i < in.Lines; ++i)
+  {
+    const double shift = slope * i + intercept;
+    for (int j = 0; j < out.Count; ++j)
+    {
+      to[i * out.LineStep + j * out.Step] =
+        Interpolate(from + i * in.LineStep, in.Count, in.Step, j + shift);
+    }
   }
 }
 
@@ -135,6 +167,15 @@ void FootprintPlan::RandomOffset(const double uniform[3][2], double offset[3]) c
 
 void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions)
 {
+  if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double v) { return std::isfinite(v); }))
+  {
+    // No density (0 everywhere) rather than casts of infinities; the ladder
+    // keeps no table for such axes and deposits points instead.
+    this->N[0] = this->N[1] = 0;
+    this->Half[0] = this->Half[1] = 0.5;
+    this->Values.assign(1, 0.0);
+    return;
+  }
   // The deposited part: the tent is two uniform segments along its axis, a
   // box (or sub-box) one.
   std::vector<std::array<double, 2>> segments;
@@ -158,9 +199,10 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
     this->Half[0] += 0.5 * std::fabs(s[0]);
     this->Half[1] += 0.5 * std::fabs(s[1]);
   }
-  // About `subdivisions` nodes across the footprint's longer side, 4 to 128
-  // per pixel: the grid's blur (about a quarter of a step) stays a small
-  // fraction of the footprint however small the voxel.
+  // About `subdivisions` steps across the footprint's longer side, 4 to 128
+  // per pixel: the grid's blur (a fraction of a step from the interpolation
+  // that reads it, and from the two of each oblique segment's shears) stays
+  // a small fraction of the footprint however small the voxel.
   const double longer = 2.0 * std::max(this->Half[0], this->Half[1]);
   this->Q = static_cast<int>(std::min(128.0, std::max(4.0, std::ceil(subdivisions / longer))));
   const double h = 1.0 / this->Q;
@@ -179,15 +221,16 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
     }
   }
   // Convolution with each segment: the mean of f shifted along it.
-  std::vector<double> scratch;
+  std::vector<double> sheared, line;
   this->Values.swap(f);
   for (const auto& s : segments)
   {
-    this->Convolve(s.data(), scratch);
+    this->Convolve(s.data(), sheared, line);
   }
 }
 
-void FootprintDensity::Convolve(const double s[2], std::vector<double>& scratch)
+void FootprintDensity::Convolve(
+  const double s[2], std::vector<double>& sheared, std::vector<double>& line)
 {
   // Along image axis a (the segment's longer component), across it b. Node
   // (i, j) is i along a, j along b (index units, step 1 / Q pixel).
@@ -199,50 +242,38 @@ void FootprintDensity::Convolve(const double s[2], std::vector<double>& scratch)
   const double radius = 0.5 * std::fabs(s[a]) * this->Q;
   if (radius < 1e-6)
   {
-    // The mean over so short an interval is the interpolant's value to
-    // about radius^2 (1e-12), and its antiderivatives' difference would
-    // cancel in rounding: the segment changes nothing.
+    // The mean over so short an interval moves a node by about radius / 4
+    // times the interpolant's change of slope there (under 1e-6 of the
+    // values), while its antiderivatives' difference would cancel in
+    // rounding: the segment is left out.
     return;
   }
   // A component a billion times smaller moves the footprint by less than
-  // 1e-9 pixel: such a segment is along a, and convolved in place.
+  // 1e-9 of the segment's length: such a segment is along a, convolved in place.
   if (std::fabs(s[b]) <= 1e-9 * std::fabs(s[a]))
   {
     for (int j = 0; j < nb; ++j)
     {
-      MeanOverIntervals(this->Values.data() + j * stepB, na, stepA, radius);
+      MeanOverIntervals(this->Values.data() + j * stepB, na, stepA, radius, line);
     }
     return;
   }
   // Sheared frame: b' = b - r (i - N[a]), r = s[b] / s[a] (|r| <= 1), in
-  // which the segment runs along a. Column i of the sheared copy holds nodes
-  // b' = j' - E, j' = 0..nb + 2E - 1, wide enough for every node of the grid.
+  // which the segment runs along a. Line i of the sheared copy holds
+  // b' = j' - margin for j' = 0..nb + 2 margin - 1: every node of the grid,
+  // whatever its shift.
   const double r = s[b] / s[a];
-  const int E = static_cast<int>(std::ceil(std::fabs(r) * this->N[a])) + 1;
-  const int nbs = nb + 2 * E;
-  scratch.assign(static_cast<std::size_t>(na) * nbs, 0.0);
-  for (int i = 0; i < na; ++i)
+  const int margin = static_cast<int>(std::ceil(std::fabs(r) * this->N[a])) + 1;
+  const int shearedCount = nb + 2 * margin;
+  sheared.assign(static_cast<std::size_t>(na) * shearedCount, 0.0);
+  const LineLayout grid = { na, nb, stepA, stepB };
+  const LineLayout copy = { na, shearedCount, static_cast<std::size_t>(shearedCount), 1 };
+  ShearLines(this->Values.data(), grid, sheared.data(), copy, r, -r * this->N[a] - margin);
+  for (int j = 0; j < shearedCount; ++j)
   {
-    const double shift = r * (i - this->N[a]) - E;
-    const double* column = this->Values.data() + i * stepA;
-    for (int j = 0; j < nbs; ++j)
-    {
-      scratch[static_cast<std::size_t>(i) * nbs + j] = Interpolate(column, nb, stepB, j + shift);
-    }
+    MeanOverIntervals(sheared.data() + j, na, copy.LineStep, radius, line);
   }
-  for (int j = 0; j < nbs; ++j)
-  {
-    MeanOverIntervals(scratch.data() + j, na, static_cast<std::size_t>(nbs), radius);
-  }
-  for (int i = 0; i < na; ++i)
-  {
-    const double shift = E - r * (i - this->N[a]);
-    const double* column = scratch.data() + static_cast<std::size_t>(i) * nbs;
-    for (int j = 0; j < nb; ++j)
-    {
-      this->Values[i * stepA + j * stepB] = Interpolate(column, nbs, 1, j + shift);
-    }
-  }
+  ShearLines(sheared.data(), copy, this->Values.data(), grid, -r, r * this->N[a] + margin);
 }
 
 void FootprintTable::Build(

@@ -167,8 +167,9 @@ public:
   double HalfExtent(int a) const { return this->Half[a]; }
 
 private:
-  // Values = Values convolved with the segment s (pixels), scratch reused.
-  void Convolve(const double s[2], std::vector<double>& scratch);
+  // Values = Values convolved with the segment s (pixels); the buffers are
+  // reused from segment to segment.
+  void Convolve(const double s[2], std::vector<double>& sheared, std::vector<double>& line);
 
   int Q = 8;
   int N[2] = { 0, 0 }; // nodes -N..N per axis

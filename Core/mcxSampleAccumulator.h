@@ -74,6 +74,11 @@ public:
   /// At most a depth ratio of 2^6 is tabulated; nearer samples (an eye in
   /// or next to the volume) are deposited as points.
   static constexpr int MaximumTables = 48;
+  /// Each of the ladder's tables: its density grid's steps across the
+  /// footprint and its size budget (FootprintTable::Build), below a parallel
+  /// view's single table (many are built per camera change).
+  static constexpr int TableSubdivisions = 160;
+  static constexpr std::size_t TableBudget = 1 << 15;
 
   /// Builds the tables on `executor`, unless they are those of the same axes
   /// and settings (a TF edit or a refinement changes neither: tables are
@@ -138,8 +143,9 @@ public:
             scaled[k][0] = axes[k][0] * w;
             scaled[k][1] = axes[k][1] * w;
           }
-          this->Tables[static_cast<std::size_t>(j)].Build(
-            scaled, FootprintPlan::For(settings.Reconstruction, scaled, reach), 1 << 15, 160);
+          this->Tables[static_cast<std::size_t>(j)].Build(scaled,
+            FootprintPlan::For(settings.Reconstruction, scaled, reach), TableBudget,
+            TableSubdivisions);
         }
       });
   }

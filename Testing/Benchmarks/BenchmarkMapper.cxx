@@ -97,7 +97,8 @@ void FootprintCameraChange(benchmark::State& state)
     scene.Renderer->GetActiveCamera()->Azimuth(1);
     scene.Window->Render();
   }
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * ((1 << state.range(0)) - 1)));
+  const double points = static_cast<double>(scene.Mapper->GetNumberOfAccumulatedSamples());
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * points));
   state.SetLabel("points");
 }
 }
