@@ -326,6 +326,7 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
   sampler->SetTransferFunction(tf);
   sampler->SetSampleExponent(m);
   sampler->SetDepositToFootprint();
+  sampler->ReusePointsOn(); // as the viewer's pipeline: the mapper is the cloud's only consumer
   vtkNew<vtkMCXXRayMapper> mapper;
   mapper->SetInputConnection(sampler->GetOutputPort());
   mapper->ProgressiveRefinementOff();
