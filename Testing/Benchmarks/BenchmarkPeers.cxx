@@ -311,11 +311,12 @@ struct EditResult
   double Errors[2] = { 1, 1 }; // without and with the edit
 };
 
-// A stored footprint cloud of 2^m - 1 points drawn by the mapper in a 256^2
-// window with the cone-beam camera, progressive refinement off (every render
-// projects every point): the median time of a TF edit to the complete image;
-// the error of each of the two TFs' clouds, projected off line (the mapper's
-// image is the projector's, bit for bit: TestMapper).
+// A stored footprint cloud of 2^m - 1 points (refilled in place, as the
+// viewer's) drawn by the mapper in a 256^2 window with the cone-beam camera,
+// progressive refinement off (every render projects every point): the median
+// time of a TF edit to the complete image; the error of each of the two TFs'
+// clouds, projected off line (the mapper's image is the projector's, bit for
+// bit: TestMapper).
 EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
   vtkCamera* camera, int size, int m, vtkImageData* reference, int repetitions)
 {
