@@ -85,8 +85,10 @@ struct RotationShift
 template <typename IdType>
 struct SampleSource
 {
-  /// Output points written as one contiguous run in GenerateForStorage.
-  static constexpr std::uint64_t StorageTile = 64;
+  /// GenerateForStorage's blocks: at most 2^StorageBits ranks per run read
+  /// and points per run written; StorageRun MonteCarlo points per item.
+  static constexpr unsigned StorageBits = 6;
+  static constexpr std::uint64_t StorageRun = 4096;
 
   const IdType* SortedIds = nullptr;
   const std::int64_t* LevelOffsets = nullptr; // NumberOfLevels + 1 entries
@@ -164,57 +166,65 @@ struct SampleSource
   /// Work items of GenerateForStorage.
   std::uint64_t NumberOfStorageItems() const
   {
-    const unsigned high = this->Exponent - this->Exponent / 2;
-    const std::uint64_t tile = std::min<std::uint64_t>(StorageTile, std::uint64_t(1) << high);
-    return this->Exponent == 0 ? 0 : (std::uint64_t(1) << high) / tile;
+    if (this->Exponent == 0)
+    {
+      return 0;
+    }
+    if (this->Method == Strategy::MonteCarlo)
+    {
+      return (this->NumberOfSamples() + StorageRun - 1) / StorageRun;
+    }
+    return std::uint64_t(1) << (this->Exponent - 2 * this->StorageBlockBits());
   }
 
   /// The same samples as Generate, in an order that keeps both the reads of
   /// sorted ids and the writes of output indices in short contiguous runs
-  /// (for stored point clouds). With m = h + l (l = m / 2), the rank
-  /// j = i + 1 = (a << l) | b has output position k + 1 = (rev_l(b) << h) | rev_h(a);
-  /// item t covers rev_h(a) in [t T, t T + T) for every b: for each b the
-  /// writes are T consecutive points, and for each a the reads are 2^l
-  /// consecutive ids, visited as T interleaved streams. MonteCarlo items are
-  /// plain ranges of output indices.
+  /// (for stored point clouds). The rank j = i + 1 and the output position
+  /// k + 1 are each other's m-bit reversal; with j = (a << (c + q)) |
+  /// (mid << q) | b (a and b of q bits, mid of c = m - 2q bits),
+  /// k + 1 = (rev(b) << (c + q)) | (rev(mid) << q) | rev(a). Item t is the
+  /// block rev(mid) = t: 2^q runs of 2^q consecutive ranks read (one per a),
+  /// 2^q runs of 2^q consecutive points written (one per b), and the next
+  /// item writes right after them. A block touches 2^(q+1) pages whatever m
+  /// is: looping over every b per item instead (2^(m/2) pages) thrashed the
+  /// TLB from m = 22 on, 8 times slower per point. MonteCarlo items are
+  /// plain runs of output indices.
   template <typename Sink>
   void GenerateForStorage(std::uint64_t itemBegin, std::uint64_t itemEnd, Sink& sink) const
   {
-    const unsigned low = this->Exponent / 2;
-    const unsigned high = this->Exponent - low;
-    const std::uint64_t tile = std::min<std::uint64_t>(StorageTile, std::uint64_t(1) << high);
     if (this->Method == Strategy::MonteCarlo)
     {
-      const std::uint64_t perItem = tile << low;
-      this->GenerateInOutputOrder(
-        itemBegin * perItem, std::min(this->NumberOfSamples(), itemEnd * perItem), sink);
+      this->GenerateInOutputOrder(itemBegin * StorageRun,
+        std::min(this->NumberOfSamples(), itemEnd * StorageRun), sink);
       return;
     }
+    const unsigned q = this->StorageBlockBits();
+    const unsigned middle = this->Exponent - 2 * q;
+    const std::uint64_t side = std::uint64_t(1) << q;
     const double step =
       std::ldexp(this->Cumulative[this->NumberOfLevels], -static_cast<int>(this->Exponent));
     const std::uint64_t key = SeedKey(this->Seed);
     const RotationShift shift(this->Seed);
     for (std::uint64_t t = itemBegin; t < itemEnd; ++t)
     {
-      std::uint64_t firstRank[StorageTile];
-      for (std::uint64_t n = 0; n < tile; ++n)
+      const std::uint64_t rankMiddle = ReverseLowBits(t, middle) << q;
+      for (std::uint64_t a = 0; a < side; ++a)
       {
-        firstRank[n] = ReverseLowBits(t * tile + n, high) << low;
-      }
-      for (std::uint64_t b = 0; b < (std::uint64_t(1) << low); ++b)
-      {
-        const std::uint64_t reversedB = ReverseLowBits(b, low) << high;
-        for (std::uint64_t n = 0; n < tile; ++n)
+        const std::uint64_t runStart = (a << (middle + q)) | rankMiddle; // j of b = 0
+        const std::uint64_t outputLow = (t << q) | ReverseLowBits(a, q);
+        // Consecutive ranks: one search per run, then a walk (as Generate).
+        const std::uint64_t first = runStart == 0 ? 1 : 0; // j = 0 is no sample
+        std::int64_t c = this->FindLevel(static_cast<double>(runStart | first) * step);
+        for (std::uint64_t b = first; b < side; ++b)
         {
-          const std::uint64_t j = firstRank[n] | b; // j = i + 1
-          if (j == 0)
+          const double target = static_cast<double>(runStart | b) * step;
+          while (c < this->NumberOfLevels && target > this->Cumulative[c])
           {
-            continue;
+            ++c;
           }
-          const std::uint64_t k = (reversedB | (t * tile + n)) - 1;
-          const double target = static_cast<double>(j) * step;
+          const std::uint64_t k = ((ReverseLowBits(b, q) << (middle + q)) | outputLow) - 1;
           CounterRandom random(key, k);
-          this->Emit(k, target, this->FindLevel(target), random, shift, sink);
+          this->Emit(k, target, c, random, shift, sink);
         }
       }
     }
@@ -325,6 +335,9 @@ struct SampleSource
   }
 
 private:
+  /// q of GenerateForStorage's blocks: StorageBits, or m / 2 for small m.
+  unsigned StorageBlockBits() const { return std::min(StorageBits, this->Exponent / 2); }
+
   /// Smallest c in [1, NumberOfLevels] with target <= Cumulative[c]
   /// (level c - 1): a guide-table start, then a short walk.
   std::int64_t FindLevel(double target) const

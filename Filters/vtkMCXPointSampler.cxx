@@ -141,6 +141,7 @@ int vtkMCXPointSampler::RequestData(
   double integral = 0.0;
   if (!mcx::PrepareSampling(this, "sample", input, this->TransferFunction, view, table, integral))
   {
+    this->KeptPoints = nullptr;
     output->Initialize(); // no stale cloud of an earlier request
     return 0;
   }
@@ -148,15 +149,16 @@ int vtkMCXPointSampler::RequestData(
   const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
   const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
   const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
-  if (!mcx::CheckMemory(this, 3.0 * (pointType == VTK_DOUBLE ? 8 : 4) * static_cast<double>(count),
-        "A cloud of " + std::to_string(count) + " points"))
+  vtkSmartPointer<vtkPoints> points = this->ReusablePoints(output, pointType, count);
+  this->KeptPoints = nullptr; // an old cloud is not held while a new one is allocated
+  if (!points &&
+    !mcx::CheckMemory(this, 3.0 * (pointType == VTK_DOUBLE ? 8 : 4) * static_cast<double>(count),
+      "A cloud of " + std::to_string(count) + " points"))
   {
     output->Initialize();
     return 0;
   }
-  vtkSmartPointer<vtkPoints> points = output->GetPoints();
-  if (this->ReusePoints && points && points->GetDataType() == pointType &&
-    points->GetNumberOfPoints() == count)
+  if (points)
   {
     points->Modified();
   }
@@ -203,6 +205,10 @@ int vtkMCXPointSampler::RequestData(
   }
 
   output->SetPoints(points);
+  if (this->ReusePoints)
+  {
+    this->KeptPoints = points;
+  }
   // Only what the cloud's consumers read: not the index's arrays (the
   // pipeline passes the input's field data on; SortedVoxelIds alone is 4
   // bytes per voxel).
@@ -234,6 +240,23 @@ int vtkMCXPointSampler::RequestData(
   return 1;
 }
 
+vtkPoints* vtkMCXPointSampler::ReusablePoints(
+  vtkPolyData* output, int type, vtkIdType count) const
+{
+  vtkPoints* kept = this->KeptPoints;
+  if (!this->ReusePoints || !kept || kept->GetDataType() != type ||
+    kept->GetNumberOfPoints() != count || !kept->GetData())
+  {
+    return nullptr;
+  }
+  // The executive usually empties the output before RequestData; when it
+  // has not, the output's reference is the old cloud's own.
+  const int holders = 1 + (output->GetPoints() == kept ? 1 : 0);
+  return kept->GetReferenceCount() == holders && kept->GetData()->GetReferenceCount() == 1
+    ? kept
+    : nullptr;
+}
+
 void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -244,5 +267,7 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Deposit: " << this->Deposit << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ReusePoints: " << this->ReusePoints << "\n";
+  os << indent << "KeptPoints: " << (this->KeptPoints ? this->KeptPoints->GetNumberOfPoints() : 0)
+     << " points\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
 }

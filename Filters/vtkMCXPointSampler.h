@@ -26,6 +26,7 @@
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // for KeptPoints
 
 class vtkInformationDoubleVectorKey;
 class vtkPiecewiseFunction;
@@ -152,12 +153,18 @@ public:
 
   ///@{
   /**
-   * Rewrite the previous output's points in place when their type and
-   * count fit (default off): a TF edit then fills memory that is already
-   * mapped instead of allocating the cloud again. Turn it on only where
-   * nothing keeps the previous output's points (a shallow copy, a reference
-   * from Python) that must not change: an interactive pipeline whose
-   * consumer is the mapper, as in the viewer and the ParaView representation.
+   * Keep the cloud's points between executions and refill them in place
+   * when their type and count fit and nothing else holds them (default
+   * off): a TF edit then fills memory that is already mapped. Allocating
+   * the cloud again costs little below glibc's 32 MiB mmap limit (the heap
+   * recycles the block) but above it the block is unmapped and faulted in
+   * again page by page: 2^22 points took 10 times as long to regenerate.
+   * Points that something else still holds (a shallow copy, a reference
+   * from Python, their array taken out) are never rewritten: the cloud then
+   * gets new ones. The price: the sampler holds the last cloud's memory
+   * even after the pipeline releases its output. Interactive pipelines
+   * whose consumer is the mapper turn it on (the viewer, the ParaView
+   * representation).
    */
   vtkSetMacro(ReusePoints, bool);
   vtkGetMacro(ReusePoints, bool);
@@ -197,8 +204,14 @@ protected:
   vtkTypeInt64 Seed = 0;
   bool ReusePoints = false;
   int OutputPointsPrecision = SINGLE_PRECISION;
+  /// The last cloud's points, kept for ReusePoints.
+  vtkSmartPointer<vtkPoints> KeptPoints;
 
 private:
+  /// KeptPoints when ReusePoints allows to refill them: of `type` and
+  /// `count`, held by nothing but this filter and `output`; else null.
+  vtkPoints* ReusablePoints(vtkPolyData* output, int type, vtkIdType count) const;
+
   vtkMCXPointSampler(const vtkMCXPointSampler&) = delete;
   void operator=(const vtkMCXPointSampler&) = delete;
 };

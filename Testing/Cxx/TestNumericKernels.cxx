@@ -260,7 +260,7 @@ TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
   for (auto method :
     { mcx::Strategy::Hybrid, mcx::Strategy::MonteCarlo, mcx::Strategy::QuasiMonteCarlo })
   {
-    for (unsigned m : { 1u, 2u, 3u, 5u, 12u, 13u })
+    for (unsigned m : { 1u, 2u, 3u, 5u, 12u, 13u, 14u, 15u, 17u })
     {
       mcx::SampleSource<std::uint32_t> source;
       source.SortedIds = ids.data();
@@ -286,8 +286,9 @@ TEST(SampleGenerator, EveryVisitingOrderGivesTheSameSamples)
           source.Generate(0, count, sink);
         else if (o == 1)
           source.GenerateInOutputOrder(0, count, sink);
-        else
-          source.GenerateForStorage(0, source.NumberOfStorageItems(), sink);
+        else // item by item, last first: items are independent of how threads split them
+          for (std::uint64_t t = source.NumberOfStorageItems(); t-- > 0;)
+            source.GenerateForStorage(t, t + 1, sink);
       }
       for (int o = 0; o < 3; ++o)
       {

@@ -12,6 +12,9 @@
 #include "vtkPolyData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPoints.h"
+#include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtksys/SystemTools.hxx"
@@ -19,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
 {
@@ -74,6 +78,81 @@ TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
   offline->Update();
   EXPECT_EQ(2, offlineRuns.Count);
   EXPECT_EQ(1, indexRuns.Count);
+}
+
+namespace
+{
+std::vector<double> Coordinates(vtkPoints* points)
+{
+  std::vector<double> values(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    points->GetPoint(i, values.data() + 3 * i);
+  }
+  return values;
+}
+}
+
+TEST(Pipeline, ReusePointsRefillsOnlyACloudThatNothingElseHolds)
+{
+  const int dims[3] = { 12, 10, 8 };
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkPiecewiseFunction> tf;
+  tf->AddPoint(0, 0);
+  tf->AddPoint(400, 1);
+  auto makeSampler = [&](bool reuse)
+  {
+    vtkSmartPointer<vtkMCXPointSampler> sampler = vtkSmartPointer<vtkMCXPointSampler>::New();
+    sampler->SetInputConnection(index->GetOutputPort());
+    sampler->SetTransferFunction(tf);
+    sampler->SetSampleExponent(10);
+    sampler->SetReusePoints(reuse);
+    return sampler;
+  };
+  auto reusing = makeSampler(true);
+  auto fresh = makeSampler(false); // the reference: new points every time
+  reusing->Update();
+
+  // Nothing else holds the cloud: a TF edit refills the same points, and
+  // they are the cloud a sampler without reuse makes.
+  vtkWeakPointer<vtkPoints> first = reusing->GetOutput()->GetPoints();
+  const void* memory = first->GetVoidPointer(0);
+  tf->AddPoint(200, 0.2);
+  reusing->Update();
+  fresh->Update();
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first.Get(), reusing->GetOutput()->GetPoints());
+  EXPECT_EQ(memory, reusing->GetOutput()->GetPoints()->GetVoidPointer(0));
+  EXPECT_EQ(Coordinates(fresh->GetOutput()->GetPoints()),
+    Coordinates(reusing->GetOutput()->GetPoints()));
+
+  // Points held elsewhere, or their array alone, are never rewritten.
+  vtkSmartPointer<vtkPoints> held = reusing->GetOutput()->GetPoints();
+  const std::vector<double> heldValues = Coordinates(held);
+  tf->AddPoint(200, 0.6);
+  reusing->Update();
+  EXPECT_NE(held.Get(), reusing->GetOutput()->GetPoints());
+  EXPECT_EQ(heldValues, Coordinates(held));
+  vtkSmartPointer<vtkDataArray> heldArray = reusing->GetOutput()->GetPoints()->GetData();
+  const std::vector<double> arrayValues = Coordinates(reusing->GetOutput()->GetPoints());
+  tf->AddPoint(200, 0.1);
+  reusing->Update();
+  EXPECT_NE(heldArray.Get(), reusing->GetOutput()->GetPoints()->GetData());
+  vtkNew<vtkPoints> view;
+  view->SetData(heldArray);
+  EXPECT_EQ(arrayValues, Coordinates(view));
+  fresh->Update();
+  EXPECT_EQ(Coordinates(fresh->GetOutput()->GetPoints()),
+    Coordinates(reusing->GetOutput()->GetPoints()));
+
+  // Without reuse the sampler keeps no old cloud alive.
+  vtkWeakPointer<vtkPoints> old = fresh->GetOutput()->GetPoints();
+  tf->AddPoint(300, 0.5);
+  fresh->Update();
+  EXPECT_FALSE(old);
 }
 
 TEST(Pipeline, TheIndexTravelsThroughAVTKFile)
