@@ -296,15 +296,16 @@ void FootprintTable::Build(
     --this->PhaseShiftBits;
   }
   const int Phases = this->Phases();
-  this->ShareValues.assign(size * Phases * Phases, 0.0);
-  this->IncrementValues.assign(size * Phases * Phases, 0);
-  this->Supports.assign(static_cast<std::size_t>(Phases) * Phases, Support());
+  this->ShareValues.clear();
+  this->IncrementValues.clear();
+  this->Blocks.assign(static_cast<std::size_t>(Phases) * Phases, Block());
+  // Each phase in the whole frame first, then its support kept.
+  std::vector<double> shares(size);
+  std::vector<std::uint64_t> increments(size);
   for (int b = 0; b < Phases; ++b)
   {
     for (int a = 0; a < Phases; ++a)
     {
-      double* shares = this->ShareValues.data() + this->Offset(a, b);
-      std::uint64_t* increments = this->IncrementValues.data() + this->Offset(a, b);
       double sum = 0.0;
       for (int j = 0; j < rows; ++j)
       {
@@ -316,6 +317,8 @@ void FootprintTable::Build(
           sum += v;
         }
       }
+      Block& block = this->Blocks[this->Phase(a, b)];
+      block.Offset = this->ShareValues.size();
       if (!(sum > 0))
       {
         continue;
@@ -335,8 +338,16 @@ void FootprintTable::Build(
       // Unsigned arithmetic: a remainder of either sign lands exactly, since
       // the rounding errors (at most 1/2 each) sum to far less than 2^32.
       increments[largest] += one - given;
-      this->Supports[static_cast<std::size_t>(b * Phases + a)] =
-        SupportOfShares(shares, columns, rows);
+      block.Extent = SupportOfShares(shares.data(), columns, rows);
+      for (int j = block.Extent.Rows[0]; j <= block.Extent.Rows[1]; ++j)
+      {
+        const std::size_t first = static_cast<std::size_t>(j) * columns + block.Extent.Columns[0];
+        const std::size_t last = static_cast<std::size_t>(j) * columns + block.Extent.Columns[1];
+        this->ShareValues.insert(
+          this->ShareValues.end(), shares.begin() + first, shares.begin() + last + 1);
+        this->IncrementValues.insert(
+          this->IncrementValues.end(), increments.begin() + first, increments.begin() + last + 1);
+      }
     }
   }
 }

@@ -96,42 +96,51 @@ public:
   /// log2 of Phases().
   int PhaseShift() const { return this->PhaseShiftBits; }
 
-  /// Shares and increments of phase (a, b), Rows() x Columns() row-major, for
-  /// pixel offsets -Reach..Reach from the centre's pixel.
-  const double* Shares(int a, int b) const { return this->ShareValues.data() + this->Offset(a, b); }
-  const std::uint64_t* Increments(int a, int b) const
-  {
-    return this->IncrementValues.data() + this->Offset(a, b);
-  }
-
   /// The columns and rows (inclusive, 0..Columns() - 1 and 0..Rows() - 1)
-  /// that hold every non-zero share of phase (a, b); the deposit visits
-  /// only these (a kernel's support is narrower than the table, which has
-  /// room for every phase).
+  /// that hold every non-zero share of phase (a, b): only these are stored
+  /// and visited (a kernel's support is narrower than the table's frame,
+  /// which has room for every phase). Empty (Columns[1] < Columns[0]) for a
+  /// phase without shares.
   struct Support
   {
     int Columns[2] = { 0, -1 };
     int Rows[2] = { 0, -1 };
+    int Width() const { return this->Columns[1] - this->Columns[0] + 1; }
+    int Height() const { return this->Rows[1] - this->Rows[0] + 1; }
   };
-  const Support& SupportOf(int a, int b) const
+  const Support& SupportOf(int a, int b) const { return this->Blocks[this->Phase(a, b)].Extent; }
+
+  /// Shares and increments of phase (a, b) over its support, Height() rows
+  /// of Width() values: entry (i, j) is that of the pixel
+  /// (i + Columns[0] - Reach(0), j + Rows[0] - Reach(1)) from the centre's.
+  /// Stored only over the supports, the tables of a perspective ladder take
+  /// half the cache they took in the whole frame.
+  const double* Shares(int a, int b) const
   {
-    return this->Supports[static_cast<std::size_t>(b * this->Phases() + a)];
+    return this->ShareValues.data() + this->Blocks[this->Phase(a, b)].Offset;
+  }
+  const std::uint64_t* Increments(int a, int b) const
+  {
+    return this->IncrementValues.data() + this->Blocks[this->Phase(a, b)].Offset;
   }
 
   const FootprintPlan& Plan() const { return this->SplitPlan; }
 
 private:
-  std::size_t Offset(int a, int b) const
+  std::size_t Phase(int a, int b) const { return static_cast<std::size_t>(b * this->Phases() + a); }
+
+  struct Block
   {
-    return static_cast<std::size_t>(b * this->Phases() + a) * this->Columns() * this->Rows();
-  }
+    Support Extent;
+    std::size_t Offset = 0; // of its first value in ShareValues and IncrementValues
+  };
 
   FootprintPlan SplitPlan;
   int PixelReach[2] = { 0, 0 };
   int PhaseShiftBits = 4; // Phases() = 2^PhaseShiftBits
   std::vector<double> ShareValues;
   std::vector<std::uint64_t> IncrementValues;
-  std::vector<Support> Supports;
+  std::vector<Block> Blocks;
 };
 
 /// G, the pixel-averaged footprint density (see above), on a grid of step

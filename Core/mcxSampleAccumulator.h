@@ -32,6 +32,25 @@
 namespace mcx
 {
 
+/// Hints that the cache line holding `address` is about to be written or
+/// read (no effect where the compiler offers no prefetch).
+inline void PrefetchForWriting(const void* address)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address, 1, 3);
+#else
+  (void)address;
+#endif
+}
+inline void PrefetchForReading(const void* address)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address, 0, 3);
+#else
+  (void)address;
+#endif
+}
+
 /// How samples are deposited; the default is the paper's point deposit.
 struct DepositSettings
 {
@@ -131,6 +150,7 @@ public:
       this->InverseDepths[static_cast<std::size_t>(j)] =
         first * std::pow(Ratio, static_cast<double>(j));
     }
+    this->BuildGuide();
     executor.For(0, count, 1,
       [&](std::int64_t begin, std::int64_t end)
       {
@@ -176,16 +196,24 @@ public:
     {
       return nullptr;
     }
-    // The last j with scales[j] <= w, below the last scale: a branch-free
-    // bisection (a select per step, no mispredicted branch per sample).
-    const double* lower = scales.data();
-    for (std::size_t n = scales.size() - 1; n > 1;)
+    // The last j with scales[j] <= w, below the last scale: the guide's
+    // bucket holds at most one scale, so a branch-free step up (or down,
+    // where rounding chose the next bucket) finds it; the loops after them
+    // only make sure (a bisection, its chain of dependent loads, cost more
+    // than the rest of the choice).
+    const std::size_t last = scales.size() - 2;
+    const double bucket = (w - scales.front()) * this->GuideScale;
+    std::size_t j = this->Guide[std::min(this->Guide.size() - 1, static_cast<std::size_t>(bucket))];
+    j -= j > 0 && scales[j] > w ? 1 : 0;
+    j += j < last && scales[j + 1] <= w ? 1 : 0;
+    while (j > 0 && scales[j] > w)
     {
-      const std::size_t half = n / 2;
-      lower = lower[half] <= w ? lower + half : lower;
-      n -= half;
+      --j;
     }
-    const std::size_t j = static_cast<std::size_t>(lower - scales.data());
+    while (j < last && scales[j + 1] <= w)
+    {
+      ++j;
+    }
     const double fraction = (w - scales[j]) / (scales[j + 1] - scales[j]);
     return &this->Tables[u < fraction ? j + 1 : j];
   }
@@ -193,12 +221,37 @@ public:
   bool IsEmpty() const { return this->Tables.empty(); }
 
 private:
+  // Guide[b]: the last j below the last scale with InverseDepths[j] at or
+  // below bucket b's lower end; the buckets are narrower than the smallest
+  // step between scales, so that each holds at most one scale.
+  void BuildGuide()
+  {
+    const std::vector<double>& scales = this->InverseDepths;
+    const double span = scales.back() - scales.front();
+    const double step = scales[1] - scales[0]; // the smallest: the steps grow by Ratio
+    const std::size_t buckets = static_cast<std::size_t>(std::ceil(span / step)) + 1;
+    this->GuideScale = static_cast<double>(buckets) / span;
+    this->Guide.assign(buckets, 0);
+    std::size_t j = 0;
+    for (std::size_t b = 0; b < buckets; ++b)
+    {
+      const double lower = scales.front() + static_cast<double>(b) / this->GuideScale;
+      while (j + 2 < scales.size() && scales[j + 1] <= lower)
+      {
+        ++j;
+      }
+      this->Guide[b] = j;
+    }
+  }
+
   bool Built = false;
   DepositSettings BuiltFor;
   double BuiltAxes[3][2] = { { 0, 0 }, { 0, 0 }, { 0, 0 } };
   bool Perspective = false;
   std::vector<FootprintTable> Tables;
   std::vector<double> InverseDepths; // of the tables, rising by Ratio
+  std::vector<std::size_t> Guide;
+  double GuideScale = 0.0; // buckets per unit of inverse depth
 };
 
 /// One thread's image sums: two images, the samples below the split (the
@@ -372,11 +425,39 @@ public:
     /// plan has one, drawn from the footprint stream of sample k).
     void DepositFootprint(std::uint64_t k, const double centre[3]) const
     {
+      PreparedFootprint footprint;
+      if (this->PrepareFootprint(k, centre, footprint))
+      {
+        this->AddFootprint(footprint);
+      }
+    }
+
+    /// A footprint located and ready to add (PrepareFootprint).
+    struct PreparedFootprint
+    {
+      const double* Shares = nullptr;             // of its phase, over its support
+      const std::uint64_t* Increments = nullptr;  // the same, in fixed point
+      std::int64_t Entries = 0;                   // of either
+      std::int64_t Origin[2] = { 0, 0 };          // the pixel of their first entry
+      std::int64_t Stride = 0;                    // entries per row
+      std::int64_t Columns[2] = { 0, -1 };        // the image's pixels it reaches, inclusive
+      std::int64_t Rows[2] = { 0, -1 };
+      double F = 1.0;     // the perspective scale of the shares
+      double Depth = 0.0; // along the view, for the depth limits
+      bool FirstHalf = false;
+    };
+
+    /// Everything of DepositFootprint but the pixel updates: true when a
+    /// footprint is left to add (AddFootprint); false when the sample misses
+    /// the image or was deposited as a point (beyond the tabulated depths).
+    bool PrepareFootprint(
+      std::uint64_t k, const double centre[3], PreparedFootprint& footprint) const
+    {
       CounterRandom random(this->FootprintKey, k);
       double fx, fy, f, w;
       if (!this->Binner->Locate(centre, fx, fy, f, w))
       {
-        return;
+        return false;
       }
       const FootprintTable* table = this->Ladder->Select(w, 1.0 - random.NextOpenClosed());
       double p[3] = { centre[0], centre[1], centre[2] };
@@ -390,7 +471,7 @@ public:
             KernelOffsetFromUniform(this->Reconstruction, 1.0 - random.NextOpenClosed());
         }
         this->DepositPoint(k, p);
-        return;
+        return false;
       }
       if (table->Plan().IsRandom())
       {
@@ -404,14 +485,14 @@ public:
         this->Offset(offset, p);
         if (!this->Binner->Locate(p, fx, fy, f, w))
         {
-          return;
+          return false;
         }
       }
       const int rx = table->Reach(0), ry = table->Reach(1);
       const int width = this->Binner->GetWidth(), height = this->Binner->GetHeight();
       if (!(fx > -rx - 1.0 && fy > -ry - 1.0 && fx < width + rx + 1.0 && fy < height + ry + 1.0))
       {
-        return; // the footprint misses the image (also keeps the casts below defined)
+        return false; // the footprint misses the image (also keeps the casts below defined)
       }
       // The centre's pixel and phase, rounded at random to a tabulated phase.
       // Phases() is a power of two: shifts divide q by it, rounding down
@@ -431,86 +512,154 @@ public:
       }
       if (cell[0] + rx < 0 || cell[1] + ry < 0 || cell[0] - rx >= width || cell[1] - ry >= height)
       {
-        return;
+        return false;
       }
-      const double depth = this->DepthLimits ? this->Binner->Depth(p) : 0.0;
-      if (k < this->Split)
+      // Only the phase's support, within the image: the table has room for
+      // every phase, a footprint fills only part of it.
+      const FootprintTable::Support& support = table->SupportOf(phase[0], phase[1]);
+      const std::int64_t left = cell[0] - rx, bottom = cell[1] - ry;
+      footprint.Columns[0] = std::max<std::int64_t>(0, left + support.Columns[0]);
+      footprint.Columns[1] = std::min<std::int64_t>(width - 1, left + support.Columns[1]);
+      footprint.Rows[0] = std::max<std::int64_t>(0, bottom + support.Rows[0]);
+      footprint.Rows[1] = std::min<std::int64_t>(height - 1, bottom + support.Rows[1]);
+      footprint.Origin[0] = left + support.Columns[0];
+      footprint.Origin[1] = bottom + support.Rows[0];
+      footprint.Stride = support.Width();
+      footprint.Entries = static_cast<std::int64_t>(support.Width()) * support.Height();
+      footprint.Shares = table->Shares(phase[0], phase[1]);
+      footprint.Increments = table->Increments(phase[0], phase[1]);
+      footprint.F = f;
+      footprint.Depth = this->DepthLimits ? this->Binner->Depth(p) : 0.0;
+      footprint.FirstHalf = k < this->Split;
+      return true;
+    }
+
+    /// Asks for the cache lines that AddFootprint(footprint) will touch, so
+    /// that a stored cloud, whose samples reach the image at random (Halton
+    /// order), does not wait for them one footprint at a time.
+    void Prefetch(const PreparedFootprint& footprint) const
+    {
+      const std::int64_t width = this->Binner->GetWidth();
+      const std::uint64_t* low = this->Sums->LowWords(footprint.FirstHalf ? 0 : 1);
+      for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
       {
-        this->AddFootprint<0>(*table, cell, phase, f, depth);
+        const std::int64_t first = y * width + footprint.Columns[0];
+        const std::int64_t last = y * width + footprint.Columns[1];
+        for (std::int64_t pixel = first; pixel <= last; pixel += 8) // 8 sums per 64-byte line
+        {
+          PrefetchForWriting(low + pixel);
+        }
+        PrefetchForWriting(low + last);
+        if (this->DepthLimits)
+        {
+          PrefetchForReading(this->DepthLimits + first);
+          PrefetchForReading(this->DepthLimits + last);
+        }
+      }
+      const char* values = this->Binner->IsPerspective()
+        ? reinterpret_cast<const char*>(footprint.Shares)
+        : reinterpret_cast<const char*>(footprint.Increments);
+      for (std::int64_t byte = 0; byte < 8 * footprint.Entries; byte += 64)
+      {
+        PrefetchForReading(values + byte);
+      }
+    }
+
+    /// Adds a prepared footprint to the thread's image.
+    void AddFootprint(const PreparedFootprint& footprint) const
+    {
+      if (footprint.FirstHalf)
+      {
+        this->AddFootprint<0>(footprint);
       }
       else
       {
-        this->AddFootprint<1>(*table, cell, phase, f, depth);
+        this->AddFootprint<1>(footprint);
       }
     }
 
   private:
     friend class SampleAccumulator;
 
-    // Adds the table's footprint of phase `phase` in pixel `cell` (f scales
-    // the shares in perspective views) to every pixel of its support in the
-    // image and in front of the pixel's depth limit, in the thread's image
-    // Half (0: the first Halton half). Only the support is visited: the
-    // table has room for every phase, a footprint fills only part of it.
+    // Adds the footprint's table entries of its phase to every pixel it
+    // reaches that lies in front of the pixel's depth limit (f scales the
+    // shares in perspective views), in the thread's image Half (0: the
+    // first Halton half).
     template <int Half>
-    void AddFootprint(const FootprintTable& table, const std::int64_t cell[2], const int phase[2],
-      double f, double depth) const
+    void AddFootprint(const PreparedFootprint& footprint) const
     {
-      const FootprintTable::Support& support = table.SupportOf(phase[0], phase[1]);
-      const std::int64_t left = cell[0] - table.Reach(0), bottom = cell[1] - table.Reach(1);
-      const std::int64_t x0 = std::max<std::int64_t>(0, left + support.Columns[0]);
-      const std::int64_t x1 =
-        std::min<std::int64_t>(this->Binner->GetWidth() - 1, left + support.Columns[1]);
-      const std::int64_t y0 = std::max<std::int64_t>(0, bottom + support.Rows[0]);
-      const std::int64_t y1 =
-        std::min<std::int64_t>(this->Binner->GetHeight() - 1, bottom + support.Rows[1]);
+      const std::int64_t x0 = footprint.Columns[0], x1 = footprint.Columns[1];
       const std::int64_t width = this->Binner->GetWidth();
-      const std::int64_t columns = table.Columns();
-      std::uint64_t* low = this->Sums->LowWords(Half);
+      const double depth = footprint.Depth;
+      // Locals, not members: the rare carry calls out of the loop, after
+      // which members would be read again for every pixel.
+      ThreadSums& sums = *this->Sums;
+      std::uint64_t* low = sums.LowWords(Half);
+      const double* limits = this->DepthLimits;
+      // The pixels of the support, the depth test hoisted out of the loop.
+      auto visit = [&](auto add)
+      {
+        for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
+        {
+          const std::int64_t row = (y - footprint.Origin[1]) * footprint.Stride - footprint.Origin[0];
+          const std::int64_t first = y * width;
+          if (limits)
+          {
+            for (std::int64_t x = x0; x <= x1; ++x)
+            {
+              if (depth < limits[first + x])
+              {
+                add(first + x, row + x);
+              }
+            }
+          }
+          else
+          {
+            for (std::int64_t x = x0; x <= x1; ++x)
+            {
+              add(first + x, row + x);
+            }
+          }
+        }
+      };
       if (this->Binner->IsPerspective())
       {
         // round(2^32 f share), as FixedIncrement(f * share): scaling by 2^32 is exact.
-        const double scale = f * FixedOne;
-        const double* shares = table.Shares(phase[0], phase[1]);
-        for (std::int64_t y = y0; y <= y1; ++y)
+        const double scale = footprint.F * FixedOne;
+        const double* shares = footprint.Shares;
+        if (scale < 9.2e18 - 1.0)
         {
-          const std::int64_t row = (y - bottom) * columns - left;
-          for (std::int64_t x = x0; x <= x1; ++x)
-          {
-            const std::int64_t pixel = x + y * width;
-            if (this->DepthLimits && !(depth < this->DepthLimits[pixel]))
+          // Shares are at most 1: every increment fits the signed cast (the
+          // same values as below, without a test per pixel).
+          visit(
+            [&](std::int64_t pixel, std::int64_t entry)
             {
-              continue;
-            }
-            const double scaled = scale * shares[row + x] + 0.5;
+              sums.AddWord(Half, low, pixel,
+                static_cast<std::uint64_t>(static_cast<std::int64_t>(scale * shares[entry] + 0.5)));
+            });
+          return;
+        }
+        visit(
+          [&](std::int64_t pixel, std::int64_t entry)
+          {
+            const double scaled = scale * shares[entry] + 0.5;
             if (scaled < 9.2e18)
             {
               // Through a signed cast: one instruction where an unsigned
               // one branches on 2^63 (the same truncation in this range).
-              this->Sums->AddWord(
+              sums.AddWord(
                 Half, low, pixel, static_cast<std::uint64_t>(static_cast<std::int64_t>(scaled)));
             }
             else
             {
-              this->Sums->Add(Half, pixel, UInt128FromDouble(scaled));
+              sums.Add(Half, pixel, UInt128FromDouble(scaled));
             }
-          }
-        }
+          });
         return;
       }
-      const std::uint64_t* increments = table.Increments(phase[0], phase[1]);
-      for (std::int64_t y = y0; y <= y1; ++y)
-      {
-        const std::int64_t row = (y - bottom) * columns - left;
-        for (std::int64_t x = x0; x <= x1; ++x)
-        {
-          const std::int64_t pixel = x + y * width;
-          if (!this->DepthLimits || depth < this->DepthLimits[pixel])
-          {
-            this->Sums->AddWord(Half, low, pixel, increments[row + x]);
-          }
-        }
-      }
+      const std::uint64_t* increments = footprint.Increments;
+      visit([&](std::int64_t pixel, std::int64_t entry)
+        { sums.AddWord(Half, low, pixel, increments[entry]); });
     }
 
     // p += the voxel matrix times an offset in voxels (the source frame is
@@ -556,16 +705,53 @@ public:
   }
 
   /// Deposits points [begin, end) of a stored cloud (x, y, z each), point i
-  /// being sample i, in the calling thread.
+  /// being sample i, in the calling thread. Footprints are prepared
+  /// Lookahead samples before they are added, their cache lines asked for
+  /// in between: in Halton order successive samples reach the image at
+  /// random, and waiting for each footprint's lines took most of the time.
+  /// The sums are integers: the order of the additions leaves them unchanged.
   template <typename Real>
   void DepositRange(const Real* points, std::uint64_t begin, std::uint64_t end)
   {
     const ThreadImage image = this->Local();
-    for (std::uint64_t i = begin; i < end; ++i)
+    auto point = [points](std::uint64_t i, double p[3])
     {
-      const double p[3] = { static_cast<double>(points[3 * i]),
-        static_cast<double>(points[3 * i + 1]), static_cast<double>(points[3 * i + 2]) };
-      image.Deposit(i, p);
+      for (int r = 0; r < 3; ++r)
+      {
+        p[r] = static_cast<double>(points[3 * i + r]);
+      }
+    };
+    if (!this->Ladder)
+    {
+      for (std::uint64_t i = begin; i < end; ++i)
+      {
+        double p[3];
+        point(i, p);
+        image.DepositPoint(i, p);
+      }
+      return;
+    }
+    constexpr std::uint64_t Lookahead = 8;
+    typename ThreadImage::PreparedFootprint ring[Lookahead];
+    bool pending[Lookahead] = {};
+    for (std::uint64_t i = begin; i < end + Lookahead; ++i)
+    {
+      const std::uint64_t slot = i % Lookahead;
+      if (pending[slot]) // sample i - Lookahead
+      {
+        image.AddFootprint(ring[slot]);
+        pending[slot] = false;
+      }
+      if (i < end)
+      {
+        double p[3];
+        point(i, p);
+        pending[slot] = image.PrepareFootprint(i, p, ring[slot]);
+        if (pending[slot])
+        {
+          image.Prefetch(ring[slot]);
+        }
+      }
     }
   }
 

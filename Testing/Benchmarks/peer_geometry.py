@@ -1,11 +1,12 @@
 """The peer benchmark's cone-beam geometry (BenchmarkPeers, plastimatch's
 gantry 0: SAD 1000 mm, SID 1500 mm, a 600 mm square detector, the source at
-+x of the volume's centre) and its HU map, for the Python scripts of this
-folder. Import it after the build's Python package is on sys.path."""
++x of the volume's centre), its HU map and its large volume's upsampling,
+for the Python scripts of this folder. Import it after the build's Python package is on sys.path."""
 import math
 
 from mcxray import MonteCarloXRayIO as io
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+from vtkmodules.vtkImagingCore import vtkImageInterpolator, vtkImageResize
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 from vtkmodules.vtkRenderingCore import vtkCamera
 
@@ -20,6 +21,21 @@ def read(path):
     reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
+
+
+def upsample(volume, least):
+    """Linear resizing until the voxel count reaches least, the same bounds
+    (BenchmarkPeers' Upsample, which makes its large volume)."""
+    dims = volume.GetDimensions()
+    factor = (least / volume.GetNumberOfPoints()) ** (1 / 3) * (1 + 1e-3)
+    linear = vtkImageInterpolator()
+    linear.SetInterpolationModeToLinear()
+    resize = vtkImageResize()
+    resize.SetInputData(volume)
+    resize.SetInterpolator(linear)
+    resize.SetOutputDimensions(*[math.ceil(d * factor) for d in dims])
+    resize.Update()
+    return resize.GetOutput()
 
 
 def transfer_function(nodes):

@@ -315,9 +315,11 @@ TEST(SampleAccumulator, ThreadSumsCarryPastSixtyFourBits)
 
 TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
 {
-  // A voxel about one pixel wide, seen obliquely, and one much smaller: the
-  // deposit visits only a phase's support, so it must hold every non-zero
-  // share, and each of its edges one of them.
+  // A voxel about one pixel wide, seen obliquely, and one much smaller: a
+  // phase's shares are stored and visited over its support only, so the
+  // support must hold every non-zero share (the stored shares sum to one,
+  // the stored increments to exactly 2^32, shares being non-negative) and
+  // each of its edges one of them.
   const double oblique[3][2] = { { 0.8, 0.3 }, { -0.2, 0.9 }, { 0.5, -0.4 } };
   const double tiny[3][2] = { { 0.1, 0 }, { 0, 0.1 }, { 0, 0 } };
   for (const auto* axes : { oblique, tiny })
@@ -330,27 +332,32 @@ TEST(FootprintTable, EachPhasesSupportHoldsEveryShareAndIsTight)
       for (int a = 0; a < table.Phases(); ++a)
       {
         const mcx::FootprintTable::Support& support = table.SupportOf(a, b);
+        ASSERT_TRUE(support.Columns[0] >= 0 && support.Columns[1] < table.Columns() &&
+          support.Rows[0] >= 0 && support.Rows[1] < table.Rows() && support.Width() > 0 &&
+          support.Height() > 0)
+          << "phase " << a << ", " << b;
         const double* shares = table.Shares(a, b);
+        const std::uint64_t* increments = table.Increments(a, b);
         bool edges[4] = { false, false, false, false };
         double inside = 0;
-        for (int j = 0; j < table.Rows(); ++j)
+        std::uint64_t given = 0;
+        for (int j = 0; j < support.Height(); ++j)
         {
-          for (int i = 0; i < table.Columns(); ++i)
+          for (int i = 0; i < support.Width(); ++i)
           {
-            const double share = shares[j * table.Columns() + i];
-            const bool in = i >= support.Columns[0] && i <= support.Columns[1] &&
-              j >= support.Rows[0] && j <= support.Rows[1];
-            ASSERT_TRUE(in || share == 0) << "phase " << a << ", " << b;
-            ASSERT_TRUE(in || table.Increments(a, b)[j * table.Columns() + i] == 0);
-            inside += in ? share : 0;
+            const double share = shares[j * support.Width() + i];
+            ASSERT_GE(share, 0.0);
+            inside += share;
+            given += increments[j * support.Width() + i];
             const bool nonZero = share > 0;
-            edges[0] |= nonZero && i == support.Columns[0];
-            edges[1] |= nonZero && i == support.Columns[1];
-            edges[2] |= nonZero && j == support.Rows[0];
-            edges[3] |= nonZero && j == support.Rows[1];
+            edges[0] |= nonZero && i == 0;
+            edges[1] |= nonZero && i == support.Width() - 1;
+            edges[2] |= nonZero && j == 0;
+            edges[3] |= nonZero && j == support.Height() - 1;
           }
         }
         EXPECT_NEAR(1.0, inside, 1e-12);
+        EXPECT_EQ(std::uint64_t(1) << 32, given) << "phase " << a << ", " << b;
         EXPECT_TRUE(edges[0] && edges[1] && edges[2] && edges[3]) << "phase " << a << ", " << b;
       }
     }
