@@ -81,8 +81,10 @@ class FootprintTable
 public:
   /// axes[k]: voxel edge vector k (spacing times direction) projected on the
   /// detector, in pixels along image axes 0 and 1.
-  /// The phases are the most of 64, 32, 16 or 8 per pixel whose tables hold
-  /// at most `budget` values (at least 8): fine phases for small footprints,
+  /// The phases are the most of 64, 32, 16 or 8 per pixel whose tables, in
+  /// the whole frame (Columns() x Rows() a phase), would hold at most
+  /// `budget` values (at least 8; the supports stored take less): fine
+  /// phases for small footprints,
   /// whose shape changes fastest with the phase. `subdivisions`: the density
   /// grid's steps across the footprint (FootprintDensity::Build).
   void Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget = 1 << 17,

@@ -522,6 +522,10 @@ public:
       footprint.Columns[1] = std::min<std::int64_t>(width - 1, left + support.Columns[1]);
       footprint.Rows[0] = std::max<std::int64_t>(0, bottom + support.Rows[0]);
       footprint.Rows[1] = std::min<std::int64_t>(height - 1, bottom + support.Rows[1]);
+      if (footprint.Columns[0] > footprint.Columns[1] || footprint.Rows[0] > footprint.Rows[1])
+      {
+        return false; // the support misses the image, or the phase has no shares
+      }
       footprint.Origin[0] = left + support.Columns[0];
       footprint.Origin[1] = bottom + support.Rows[0];
       footprint.Stride = support.Width();
@@ -627,10 +631,11 @@ public:
         // round(2^32 f share), as FixedIncrement(f * share): scaling by 2^32 is exact.
         const double scale = footprint.F * FixedOne;
         const double* shares = footprint.Shares;
-        if (scale < 9.2e18 - 1.0)
+        if (scale < 9.2e18)
         {
-          // Shares are at most 1: every increment fits the signed cast (the
-          // same values as below, without a test per pixel).
+          // Shares are at most 1, so scale * share + 0.5 stays below 9.2e18
+          // (doubles there are 1024 apart): every increment fits the signed
+          // cast, the same values as below without a test per pixel.
           visit(
             [&](std::int64_t pixel, std::int64_t entry)
             {

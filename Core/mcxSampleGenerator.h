@@ -180,10 +180,10 @@ struct SampleSource
   /// The same samples as Generate, in an order that keeps both the reads of
   /// sorted ids and the writes of output indices in short contiguous runs
   /// (for stored point clouds). The rank j = i + 1 and the output position
-  /// k + 1 are each other's m-bit reversal; with j = (a << (c + q)) |
-  /// (mid << q) | b (a and b of q bits, mid of c = m - 2q bits),
-  /// k + 1 = (rev(b) << (c + q)) | (rev(mid) << q) | rev(a). Item t is the
-  /// block rev(mid) = t: 2^q runs of 2^q consecutive ranks read (one per a),
+  /// k + 1 are each other's m-bit reversal; with j = (a << (middle + q)) |
+  /// (r << q) | b (a and b of q bits, r of middle = m - 2q bits),
+  /// k + 1 = (rev(b) << (middle + q)) | (rev(r) << q) | rev(a). Item t is the
+  /// block rev(r) = t: 2^q runs of 2^q consecutive ranks read (one per a),
   /// 2^q runs of 2^q consecutive points written (one per b), and the next
   /// item writes right after them. A block touches 2^(q+1) pages whatever m
   /// is: looping over every b per item instead (2^(m/2) pages) thrashed the

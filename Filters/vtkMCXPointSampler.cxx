@@ -84,6 +84,19 @@ void vtkMCXPointSampler::SetNumberOfSamples(vtkTypeInt64 n)
   this->SetSampleExponent(static_cast<int>(mcx::ExponentForSampleCount(n)));
 }
 
+void vtkMCXPointSampler::SetReusePoints(bool reuse)
+{
+  if (!reuse)
+  {
+    this->KeptPoints = nullptr; // not an output change: no Modified()
+  }
+  if (reuse != this->ReusePoints)
+  {
+    this->ReusePoints = reuse;
+    this->Modified();
+  }
+}
+
 vtkTypeInt64 vtkMCXPointSampler::GetNumberOfSamples()
 {
   return static_cast<vtkTypeInt64>(mcx::SampleCount(static_cast<unsigned>(this->SampleExponent)));

@@ -158,15 +158,15 @@ public:
    * off): a TF edit then fills memory that is already mapped. Allocating
    * the cloud again costs little below glibc's 32 MiB mmap limit (the heap
    * recycles the block) but above it the block is unmapped and faulted in
-   * again page by page: 2^22 points took 10 times as long to regenerate.
-   * Points that something else still holds (a shallow copy, a reference
-   * from Python, their array taken out) are never rewritten: the cloud then
-   * gets new ones. The price: the sampler holds the last cloud's memory
-   * even after the pipeline releases its output. Interactive pipelines
-   * whose consumer is the mapper turn it on (the viewer, the ParaView
-   * representation).
+   * again page by page: regenerating 2^22 points then took about 5 times
+   * as long. Points that something else still holds (a shallow copy, a
+   * reference from Python, their array taken out) are never rewritten: the
+   * cloud then gets new ones. The price: while it is on, the sampler holds
+   * the last cloud's memory even after the pipeline releases its output
+   * (turning it off lets go). Interactive pipelines whose consumer is the
+   * mapper turn it on (the viewer, the ParaView representation).
    */
-  vtkSetMacro(ReusePoints, bool);
+  virtual void SetReusePoints(bool reuse);
   vtkGetMacro(ReusePoints, bool);
   vtkBooleanMacro(ReusePoints, bool);
   ///@}

@@ -560,6 +560,18 @@ TEST(FootprintLadder, ScalesAreChosenWithTheMeanInverseDepth)
     }
     EXPECT_NEAR(w, mean, 1e-3 * (above - below)) << "fraction " << fraction;
   }
+  EXPECT_EQ(nullptr, ladder.Select(std::nan(""), 0.5));
+
+  // The shortest ladder: one depth, two scales (the guide's fewest buckets).
+  settings.Depths[0] = settings.Depths[1] = 50;
+  mcx::FootprintLadder shortest;
+  shortest.Build(mcx::SerialExecutor(), binner, settings);
+  const mcx::FootprintTable* near = shortest.Select(1.0 / 50, 0.5);
+  ASSERT_NE(nullptr, near);
+  EXPECT_EQ(near + 1, shortest.Select(1.0 / 50 * r, 1 - 1e-16)); // the last scale, as built
+  EXPECT_EQ(near, shortest.Select(1.0 / 50 * (1 + 0.25 * (r - 1)), 0.5)); // fraction 1/4
+  EXPECT_EQ(near + 1, shortest.Select(1.0 / 50 * (1 + 0.25 * (r - 1)), 0.2));
+  EXPECT_EQ(nullptr, shortest.Select(1.0 / 50 * r * 1.001, 0.5));
 }
 
 TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)

@@ -148,11 +148,15 @@ TEST(Pipeline, ReusePointsRefillsOnlyACloudThatNothingElseHolds)
   EXPECT_EQ(Coordinates(fresh->GetOutput()->GetPoints()),
     Coordinates(reusing->GetOutput()->GetPoints()));
 
-  // Without reuse the sampler keeps no old cloud alive.
+  // Without reuse the sampler keeps no old cloud alive, nor after reuse is turned off.
   vtkWeakPointer<vtkPoints> old = fresh->GetOutput()->GetPoints();
+  vtkWeakPointer<vtkPoints> kept = reusing->GetOutput()->GetPoints();
+  reusing->ReusePointsOff();
   tf->AddPoint(300, 0.5);
   fresh->Update();
+  reusing->Update();
   EXPECT_FALSE(old);
+  EXPECT_FALSE(kept);
 }
 
 TEST(Pipeline, TheIndexTravelsThroughAVTKFile)
