@@ -435,12 +435,12 @@ public:
     /// A footprint located and ready to add (PrepareFootprint).
     struct PreparedFootprint
     {
-      const double* Shares = nullptr;             // of its phase, over its support
-      const std::uint64_t* Increments = nullptr;  // the same, in fixed point
-      std::int64_t Entries = 0;                   // of either
-      std::int64_t Origin[2] = { 0, 0 };          // the pixel of their first entry
-      std::int64_t Stride = 0;                    // entries per row
-      std::int64_t Columns[2] = { 0, -1 };        // the image's pixels it reaches, inclusive
+      const double* Shares = nullptr;            // of its phase, over its support
+      const std::uint64_t* Increments = nullptr; // the same, in fixed point
+      std::int64_t Entries = 0;                  // of either
+      std::int64_t Origin[2] = { 0, 0 };         // the pixel of their first entry
+      std::int64_t Stride = 0;                   // entries per row
+      std::int64_t Columns[2] = { 0, -1 };       // the image's pixels it reaches, inclusive
       std::int64_t Rows[2] = { 0, -1 };
       double F = 1.0;     // the perspective scale of the shares
       double Depth = 0.0; // along the view, for the depth limits
@@ -605,7 +605,8 @@ public:
       {
         for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
         {
-          const std::int64_t row = (y - footprint.Origin[1]) * footprint.Stride - footprint.Origin[0];
+          const std::int64_t row =
+            (y - footprint.Origin[1]) * footprint.Stride - footprint.Origin[0];
           const std::int64_t first = y * width;
           if (limits)
           {
@@ -713,8 +714,8 @@ public:
   /// being sample i, in the calling thread. Footprints are prepared
   /// Lookahead samples before they are added, their cache lines asked for
   /// in between: in Halton order successive samples reach the image at
-  /// random, and waiting for each footprint's lines took most of the time.
-  /// The sums are integers: the order of the additions leaves them unchanged.
+  /// random (3 to 5 % of a TF edit on the CT body). The sums are integers:
+  /// the order of the additions leaves them unchanged.
   template <typename Real>
   void DepositRange(const Real* points, std::uint64_t begin, std::uint64_t end)
   {

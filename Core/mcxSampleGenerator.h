@@ -194,8 +194,8 @@ struct SampleSource
   {
     if (this->Method == Strategy::MonteCarlo)
     {
-      this->GenerateInOutputOrder(itemBegin * StorageRun,
-        std::min(this->NumberOfSamples(), itemEnd * StorageRun), sink);
+      this->GenerateInOutputOrder(
+        itemBegin * StorageRun, std::min(this->NumberOfSamples(), itemEnd * StorageRun), sink);
       return;
     }
     const unsigned q = this->StorageBlockBits();

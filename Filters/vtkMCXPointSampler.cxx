@@ -253,8 +253,7 @@ int vtkMCXPointSampler::RequestData(
   return 1;
 }
 
-vtkPoints* vtkMCXPointSampler::ReusablePoints(
-  vtkPolyData* output, int type, vtkIdType count) const
+vtkPoints* vtkMCXPointSampler::ReusablePoints(vtkPolyData* output, int type, vtkIdType count) const
 {
   vtkPoints* kept = this->KeptPoints;
   if (!this->ReusePoints || !kept || kept->GetDataType() != type ||

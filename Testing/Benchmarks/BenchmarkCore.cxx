@@ -104,7 +104,7 @@ void StoredPointCloud(benchmark::State& state)
   sampler->SetTransferFunction(v.TF);
   sampler->SetSampleExponent(static_cast<int>(state.range(1)));
   sampler->ReusePointsOn(); // a TF edit in an interactive pipeline: nothing keeps the old cloud
-  sampler->Update();         // the first cloud, allocated: not a TF edit
+  sampler->Update();        // the first cloud, allocated: not a TF edit
   for (auto _ : state)
   {
     sampler->Modified();

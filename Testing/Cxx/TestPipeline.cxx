@@ -8,11 +8,11 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
-#include "vtkPointData.h"
-#include "vtkPolyData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 #include "vtkXMLImageDataReader.h"
@@ -126,8 +126,8 @@ TEST(Pipeline, ReusePointsRefillsOnlyACloudThatNothingElseHolds)
   ASSERT_TRUE(first);
   EXPECT_EQ(first.Get(), reusing->GetOutput()->GetPoints());
   EXPECT_EQ(memory, reusing->GetOutput()->GetPoints()->GetVoidPointer(0));
-  EXPECT_EQ(Coordinates(fresh->GetOutput()->GetPoints()),
-    Coordinates(reusing->GetOutput()->GetPoints()));
+  EXPECT_EQ(
+    Coordinates(fresh->GetOutput()->GetPoints()), Coordinates(reusing->GetOutput()->GetPoints()));
 
   // Points held elsewhere, or their array alone, are never rewritten.
   vtkSmartPointer<vtkPoints> held = reusing->GetOutput()->GetPoints();
@@ -145,8 +145,8 @@ TEST(Pipeline, ReusePointsRefillsOnlyACloudThatNothingElseHolds)
   view->SetData(heldArray);
   EXPECT_EQ(arrayValues, Coordinates(view));
   fresh->Update();
-  EXPECT_EQ(Coordinates(fresh->GetOutput()->GetPoints()),
-    Coordinates(reusing->GetOutput()->GetPoints()));
+  EXPECT_EQ(
+    Coordinates(fresh->GetOutput()->GetPoints()), Coordinates(reusing->GetOutput()->GetPoints()));
 
   // Without reuse the sampler keeps no old cloud alive, nor after reuse is turned off.
   vtkWeakPointer<vtkPoints> old = fresh->GetOutput()->GetPoints();
