@@ -204,7 +204,8 @@ TEST(PointSampler, ATFEditNeverChangesPointsSomeoneStillHolds)
   {
     EXPECT_EQ(before[a], after[a]);
   }
-  // Unheld points are refilled in place, and hold the new samples.
+  // Once let go, the next cloud holds the new samples (refilling in place, with
+  // ReusePoints on, is Pipeline.ReusePointsRefillsOnlyACloudThatNothingElseHolds).
   vtkPoints* current = sampler->GetOutput()->GetPoints();
   held = nullptr;
   double expected[3];
