@@ -80,9 +80,10 @@ public:
     }
   }
 
-  /// Pixel index (i + Width * j) and increment of a point, or false when it
-  /// misses the image or lies nearer than the near plane (perspective).
-  bool Bin(const double p[3], std::int64_t& pixel, FixedSum& increment) const
+  /// Pixel index (i + Width * j) and increment of a point of weight
+  /// `weight` (one count times it), or false when it misses the image or
+  /// lies nearer than the near plane (perspective).
+  bool Bin(const double p[3], std::int64_t& pixel, FixedSum& increment, double weight = 1.0) const
   {
     double fx, fy, f, inverseDepth;
     if (!this->Locate(p, fx, fy, f, inverseDepth) ||
@@ -90,7 +91,7 @@ public:
     {
       return false;
     }
-    increment = this->Perspective ? FixedIncrement(f) : FixedOneInteger;
+    increment = this->Perspective || weight != 1.0 ? FixedIncrement(f * weight) : FixedOneInteger;
     pixel = static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * this->Width;
     return true;
   }

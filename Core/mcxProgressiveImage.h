@@ -42,9 +42,11 @@ public:
     this->FirstHalfCount = 0;
   }
 
-  /// Adds points [Count(), target) of `points` (x, y, z each) to the image.
-  template <typename Real>
-  void Advance(const Executor& executor, const Real* points, std::uint64_t target)
+  /// Adds points [Count(), target) of `points` (x, y, z each) to the image,
+  /// each `weights[i]` times (null: once; see SampleAccumulator::DepositRange).
+  template <typename Real, typename Weight = float>
+  void Advance(const Executor& executor, const Real* points, std::uint64_t target,
+    const Weight* weights = nullptr)
   {
     if (target <= this->Counted)
     {
@@ -60,7 +62,7 @@ public:
       this->FirstHalfCount = half;
     }
     this->Accumulator.SetSplit(splitsHere ? half : 0);
-    this->Accumulator.DepositPoints(executor, points, this->Counted, target);
+    this->Accumulator.DepositPoints(executor, points, this->Counted, target, weights);
     this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data());
     this->Counted = target;
   }
@@ -90,8 +92,8 @@ public:
   template <typename Value>
   void ToValues(double sampleWeight, Value* values) const
   {
-    FixedSumsToValues(
-      this->Total.data(), this->Total.size(), sampleWeight, this->Geometry.BeamCrossSection(), values);
+    FixedSumsToValues(this->Total.data(), this->Total.size(), sampleWeight,
+      this->Geometry.BeamCrossSection(), values);
   }
 
 private:

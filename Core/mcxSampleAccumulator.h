@@ -27,6 +27,8 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace mcx
@@ -49,6 +51,30 @@ inline void PrefetchForReading(const void* address)
 #else
   (void)address;
 #endif
+}
+
+/// The largest weight of a point of a weighted cloud: a point adds at most
+/// 2^40 counts of 2^32 each, so no pixel's 128-bit sum comes near overflow.
+constexpr double MaximumPointWeight = 1099511627776.0; // 2^40
+
+/// Empty when each of the `count` weights is finite and in [0,
+/// MaximumPointWeight] (what the deposits take); else why not, naming the
+/// first point that is not.
+template <typename Weight>
+std::string PointWeightProblem(const Weight* weights, std::uint64_t count)
+{
+  for (std::uint64_t i = 0; i < count; ++i)
+  {
+    const double w = static_cast<double>(weights[i]);
+    if (!(w >= 0.0 && w <= MaximumPointWeight)) // NaN too
+    {
+      std::ostringstream message;
+      message << "point " << i << " has the weight " << w
+              << " (weights must be finite and in [0, 2^40])";
+      return message.str();
+    }
+  }
+  return std::string();
 }
 
 /// How samples are deposited; the default is the paper's point deposit.
@@ -409,12 +435,13 @@ public:
       }
     }
 
-    /// One count (times the perspective weight) where p lands.
-    void DepositPoint(std::uint64_t k, const double p[3]) const
+    /// One count (times the perspective weight and the point's `weight`)
+    /// where p lands.
+    void DepositPoint(std::uint64_t k, const double p[3], double weight = 1.0) const
     {
       std::int64_t pixel;
       FixedSum increment;
-      if (this->Binner->Bin(p, pixel, increment) &&
+      if (this->Binner->Bin(p, pixel, increment, weight) &&
         (!this->DepthLimits || this->Binner->Depth(p) < this->DepthLimits[pixel]))
       {
         this->Add(k, pixel, increment);
@@ -442,16 +469,25 @@ public:
       std::int64_t Stride = 0;                   // entries per row
       std::int64_t Columns[2] = { 0, -1 };       // the image's pixels it reaches, inclusive
       std::int64_t Rows[2] = { 0, -1 };
-      double F = 1.0;     // the perspective scale of the shares
+      double F = 1.0;     // the perspective scale of the shares, times the point's weight
       double Depth = 0.0; // along the view, for the depth limits
       bool FirstHalf = false;
+      bool Weighted = false; // a weight other than 1: the shares scaled by F in any view
     };
+
+    /// Whether AddFootprint scales the shares (by F) rather than adding the
+    /// parallel view's exact integer increments.
+    bool ScalesShares(const PreparedFootprint& footprint) const
+    {
+      return this->Binner->IsPerspective() || footprint.Weighted;
+    }
 
     /// Everything of DepositFootprint but the pixel updates: true when a
     /// footprint is left to add (AddFootprint); false when the sample misses
     /// the image or was deposited as a point (beyond the tabulated depths).
-    bool PrepareFootprint(
-      std::uint64_t k, const double centre[3], PreparedFootprint& footprint) const
+    /// `weight` (finite, >= 0) scales the footprint.
+    bool PrepareFootprint(std::uint64_t k, const double centre[3], PreparedFootprint& footprint,
+      double weight = 1.0) const
     {
       CounterRandom random(this->FootprintKey, k);
       double fx, fy, f, w;
@@ -470,7 +506,7 @@ public:
           coordinate +=
             KernelOffsetFromUniform(this->Reconstruction, 1.0 - random.NextOpenClosed());
         }
-        this->DepositPoint(k, p);
+        this->DepositPoint(k, p, weight);
         return false;
       }
       if (table->Plan().IsRandom())
@@ -532,7 +568,8 @@ public:
       footprint.Entries = static_cast<std::int64_t>(support.Width()) * support.Height();
       footprint.Shares = table->Shares(phase[0], phase[1]);
       footprint.Increments = table->Increments(phase[0], phase[1]);
-      footprint.F = f;
+      footprint.F = f * weight;
+      footprint.Weighted = weight != 1.0;
       footprint.Depth = this->DepthLimits ? this->Binner->Depth(p) : 0.0;
       footprint.FirstHalf = k < this->Split;
       return true;
@@ -560,7 +597,7 @@ public:
           PrefetchForReading(this->DepthLimits + last);
         }
       }
-      const char* values = this->Binner->IsPerspective()
+      const char* values = this->ScalesShares(footprint)
         ? reinterpret_cast<const char*>(footprint.Shares)
         : reinterpret_cast<const char*>(footprint.Increments);
       for (std::int64_t byte = 0; byte < 8 * footprint.Entries; byte += 64)
@@ -586,9 +623,9 @@ public:
     friend class SampleAccumulator;
 
     // Adds the footprint's table entries of its phase to every pixel it
-    // reaches that lies in front of the pixel's depth limit (f scales the
-    // shares in perspective views), in the thread's image Half (0: the
-    // first Halton half).
+    // reaches that lies in front of the pixel's depth limit (F scales the
+    // shares in perspective views and for weighted points), in the
+    // thread's image Half (0: the first Halton half).
     template <int Half>
     void AddFootprint(const PreparedFootprint& footprint) const
     {
@@ -627,9 +664,9 @@ public:
           }
         }
       };
-      if (this->Binner->IsPerspective())
+      if (this->ScalesShares(footprint))
       {
-        // round(2^32 f share), as FixedIncrement(f * share): scaling by 2^32 is exact.
+        // round(2^32 F share), as FixedIncrement(F * share): scaling by 2^32 is exact.
         const double scale = footprint.F * FixedOne;
         const double* shares = footprint.Shares;
         if (scale < 9.2e18)
@@ -711,13 +748,16 @@ public:
   }
 
   /// Deposits points [begin, end) of a stored cloud (x, y, z each), point i
-  /// being sample i, in the calling thread. Footprints are prepared
-  /// Lookahead samples before they are added, their cache lines asked for
-  /// in between: in Halton order successive samples reach the image at
-  /// random (3 to 5 % of a TF edit on the CT body). The sums are integers:
-  /// the order of the additions leaves them unchanged.
-  template <typename Real>
-  void DepositRange(const Real* points, std::uint64_t begin, std::uint64_t end)
+  /// being sample i, in the calling thread; point i counts weights[i] times
+  /// (finite, >= 0: see PointWeightProblem; null: once each; weight 0 is
+  /// skipped). Footprints are prepared Lookahead samples before they are
+  /// added, their cache lines asked for in between: in Halton order
+  /// successive samples reach the image at random (3 to 5 % of a TF edit on
+  /// the CT body). The sums are integers: the order of the additions leaves
+  /// them unchanged.
+  template <typename Real, typename Weight = float>
+  void DepositRange(
+    const Real* points, std::uint64_t begin, std::uint64_t end, const Weight* weights = nullptr)
   {
     const ThreadImage image = this->Local();
     auto point = [points](std::uint64_t i, double p[3])
@@ -727,13 +767,19 @@ public:
         p[r] = static_cast<double>(points[3 * i + r]);
       }
     };
+    auto weightOf = [weights](std::uint64_t i)
+    { return weights ? static_cast<double>(weights[i]) : 1.0; };
     if (!this->Ladder)
     {
       for (std::uint64_t i = begin; i < end; ++i)
       {
-        double p[3];
-        point(i, p);
-        image.DepositPoint(i, p);
+        const double weight = weightOf(i);
+        if (weight != 0.0)
+        {
+          double p[3];
+          point(i, p);
+          image.DepositPoint(i, p, weight);
+        }
       }
       return;
     }
@@ -750,9 +796,14 @@ public:
       }
       if (i < end)
       {
+        const double weight = weightOf(i);
+        if (weight == 0.0)
+        {
+          continue;
+        }
         double p[3];
         point(i, p);
-        pending[slot] = image.PrepareFootprint(i, p, ring[slot]);
+        pending[slot] = image.PrepareFootprint(i, p, ring[slot], weight);
         if (pending[slot])
         {
           image.Prefetch(ring[slot]);
@@ -762,14 +813,16 @@ public:
   }
 
   /// The same, in parallel on `executor`.
-  template <typename Real>
-  void DepositPoints(
-    const Executor& executor, const Real* points, std::uint64_t begin, std::uint64_t end)
+  template <typename Real, typename Weight = float>
+  void DepositPoints(const Executor& executor, const Real* points, std::uint64_t begin,
+    std::uint64_t end, const Weight* weights = nullptr)
   {
     executor.For(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end),
       std::int64_t(1) << 15,
-      [&](std::int64_t b, std::int64_t e) {
-        this->DepositRange(points, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e));
+      [&](std::int64_t b, std::int64_t e)
+      {
+        this->DepositRange(
+          points, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e), weights);
       });
   }
 

@@ -4,9 +4,11 @@
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 
 #include <cmath>
+#include <string>
 
 namespace mcx
 {
@@ -103,6 +105,42 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
   }
   SupportDepthRange(geometry, world, settings.Depths);
   return settings;
+}
+
+vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid)
+{
+  valid = true;
+  vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName());
+  if (!weights)
+  {
+    return nullptr;
+  }
+  std::string problem;
+  const vtkIdType points = cloud->GetNumberOfPoints();
+  const int type = weights->GetDataType();
+  if ((type != VTK_FLOAT && type != VTK_DOUBLE) || weights->GetNumberOfComponents() != 1 ||
+    weights->GetNumberOfTuples() != points)
+  {
+    problem = "it must be one float or double component per point, not " +
+      std::to_string(weights->GetNumberOfComponents()) + " " + weights->GetDataTypeAsString() +
+      " component(s) of " + std::to_string(weights->GetNumberOfTuples()) + " tuples for " +
+      std::to_string(points) + " points";
+  }
+  else
+  {
+    problem = WithPointWeights(weights,
+      [points](const auto* values)
+      { return PointWeightProblem(values, static_cast<std::uint64_t>(points)); });
+  }
+  if (!problem.empty())
+  {
+    vtkErrorWithObjectMacro(self,
+      "The cloud's " << vtkMCXPointSampler::PointWeightName()
+                     << " array cannot be used: " << problem << ".");
+    valid = false;
+    return nullptr;
+  }
+  return weights;
 }
 
 } // namespace mcx

@@ -6,7 +6,10 @@
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleAccumulator.h"
+#include "vtkDataArray.h" // for WithPointWeights
 
+class vtkDataArray;
+class vtkObject;
 class vtkPolyData;
 
 namespace mcx
@@ -25,6 +28,27 @@ MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* c
   const ProjectionGeometry& geometry, const double origin[3], const double matrix[9],
   double footprintReach);
 
+/// The cloud's point weights (point-data array
+/// vtkMCXPointSampler::PointWeightName()): null without them; valid false
+/// (and reported on `self`) when the array is not one float or double
+/// component per point, each finite and in [0, MaximumPointWeight].
+MONTECARLOXRAYFILTERS_EXPORT vtkDataArray* CloudPointWeights(
+  vtkObject* self, vtkPolyData* cloud, bool& valid);
+
+/// Calls deposit(weights) with the array's values as a float or double
+/// pointer, or a null float pointer for no array (as CloudPointWeights
+/// returns it: checked).
+template <typename Deposit>
+auto WithPointWeights(vtkDataArray* weights, const Deposit& deposit)
+{
+  if (!weights)
+  {
+    return deposit(static_cast<const float*>(nullptr));
+  }
+  return weights->GetDataType() == VTK_FLOAT
+    ? deposit(static_cast<const float*>(weights->GetVoidPointer(0)))
+    : deposit(static_cast<const double*>(weights->GetVoidPointer(0)));
+}
 } // namespace mcx
 
 #endif

@@ -94,6 +94,14 @@ public:
   static const char* SupportCornersName() { return "SupportCorners"; }
   ///@}
 
+  /**
+   * The name of an optional point-data array of a cloud's consumers
+   * (vtkMCXProjector, vtkMCXXRayMapper): point i counts PointWeight[i] times
+   * (one float or double component, each finite and in [0, 2^40]; 0 skips
+   * the point). Without it every point counts once.
+   */
+  static const char* PointWeightName() { return "PointWeight"; }
+
   ///@{
   /**
    * Transfer function from data values to g (any non-negative unit); it is

@@ -87,6 +87,12 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   {
     return false;
   }
+  bool weightsValid = true;
+  vtkDataArray* weights = mcx::CloudPointWeights(self, cloud, weightsValid);
+  if (!weightsValid)
+  {
+    return false;
+  }
   projection.SampleWeight = FieldValue(fd, vtkMCXPointSampler::SampleWeightName(), 0.0);
   projection.Integral = FieldValue(fd, vtkMCXPointSampler::IntegralName(), 0.0);
   projection.Count = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
@@ -101,8 +107,13 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
   auto deposit = [&](const auto* coordinates)
   {
-    return mcx::BatchedFor(self, projection.Count, 0.0, 1.0,
-      [&](std::uint64_t b, std::uint64_t e) { accumulator.DepositRange(coordinates, b, e); });
+    return mcx::WithPointWeights(weights,
+      [&](const auto* pointWeights)
+      {
+        return mcx::BatchedFor(self, projection.Count, 0.0, 1.0,
+          [&](std::uint64_t b, std::uint64_t e)
+          { accumulator.DepositRange(coordinates, b, e, pointWeights); });
+      });
   };
   if (projection.Count > 0)
   {
@@ -247,13 +258,14 @@ private:
       {
         const Accumulator::ThreadImage image = accumulator.Local();
         auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
-        std::size_t r = static_cast<std::size_t>(
-          std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
+        std::size_t r =
+          static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
         for (; r < runs.size() && b < e; ++r)
         {
           const std::uint64_t runBegin = ends[r] - (runs[r].second - runs[r].first);
           const std::uint64_t stop = std::min(e, ends[r]);
-          source.Generate(runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
+          source.Generate(
+            runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
           b = stop;
         }
       });
@@ -340,7 +352,8 @@ bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeEx
     self->GetTargetRelativeError() > 0 || self->GetTargetQuantizationLevels() > 0;
   projection = !sampler.IsEmpty() && targeted
     ? ProjectToTarget(sampler, geometry, self->GetTargetRelativeError(),
-        self->GetTargetQuantizationLevels(), static_cast<unsigned>(self->GetMaximumSampleExponent()))
+        self->GetTargetQuantizationLevels(),
+        static_cast<unsigned>(self->GetMaximumSampleExponent()))
     : sampler.Project(m, 0.0, 1.0);
   return true;
 }
@@ -451,8 +464,8 @@ int vtkMCXProjector::RequestData(
   }
   // Distributed, the image is process 0's output and the others' are empty
   // (as parallel VTK and ParaView expect of a result that is one dataset).
-  const bool elsewhere = vtkImageData::SafeDownCast(input) && mcx::IsDistributed(this->Controller) &&
-    this->Controller->GetLocalProcessId() != 0;
+  const bool elsewhere = vtkImageData::SafeDownCast(input) &&
+    mcx::IsDistributed(this->Controller) && this->Controller->GetLocalProcessId() != 0;
   if (!projection.Completed) // aborted on every process: every one runs again next time
   {
     output->Initialize();

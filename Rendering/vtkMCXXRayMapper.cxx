@@ -192,7 +192,10 @@ struct vtkMCXXRayMapper::vtkInternals
   bool HasImage = false;
 
   // What the image on screen was made from.
-  vtkPolyData* Cloud = nullptr; // compared only, never dereferenced
+  vtkPolyData* Cloud = nullptr;    // compared only, never dereferenced
+  vtkDataArray* Weights = nullptr; // the input's checked PointWeight (null: none), set each render
+  vtkDataArray* CheckedWeights = nullptr; // compared only, never dereferenced
+  vtkMTimeType CheckedWeightsTime = 0;
   vtkMTimeType CloudTime = 0;
   double FootprintReach = 0.0; // of the image on screen
   mcx::ProjectionGeometry Geometry;
@@ -258,7 +261,26 @@ struct vtkMCXXRayMapper::vtkInternals
     {
       return nullptr;
     }
-    return cloud;
+    return this->UpdateWeights(self, cloud) ? cloud : nullptr;
+  }
+
+  // The input's point weights for this render: checked once per array
+  // version (a scan of every weight), not on every progressive frame.
+  bool UpdateWeights(vtkMCXXRayMapper* self, vtkPolyData* cloud)
+  {
+    vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName());
+    if (weights && weights == this->CheckedWeights &&
+      weights->GetMTime() == this->CheckedWeightsTime &&
+      weights->GetNumberOfTuples() == cloud->GetNumberOfPoints())
+    {
+      this->Weights = weights;
+      return true;
+    }
+    bool valid = true;
+    this->Weights = mcx::CloudPointWeights(self, cloud, valid);
+    this->CheckedWeights = this->Weights;
+    this->CheckedWeightsTime = this->Weights ? this->Weights->GetMTime() : 0;
+    return valid;
   }
 
   // Stage 2: the view of this render; false when there is nothing to draw
@@ -336,8 +358,7 @@ struct vtkMCXXRayMapper::vtkInternals
     this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
     // A new input needs a new source; so does a new view while the last
     // source showed nothing (the camera had not reached the volume yet).
-    this->WindowSourceKept =
-      this->WindowSourceKept && !newInput && !this->AutomaticWindowPending;
+    this->WindowSourceKept = this->WindowSourceKept && !newInput && !this->AutomaticWindowPending;
     return true;
   }
 
@@ -378,7 +399,8 @@ struct vtkMCXXRayMapper::vtkInternals
     if (this->Effects.Any())
     {
       float* v = values.data();
-      this->Effects.ApplyToImage(mcx::SMPExecutor(), static_cast<std::int64_t>(values.size()),
+      this->Effects.ApplyToImage(
+        mcx::SMPExecutor(), static_cast<std::int64_t>(values.size()),
         [v](std::int64_t p) { return static_cast<double>(v[p]); }, v);
     }
     return ChooseAutomaticWindow(values, this->WindowSourceSize[0], this->WindowSourceSize[1],
@@ -434,16 +456,20 @@ struct vtkMCXXRayMapper::vtkInternals
   {
     const std::uint64_t current = this->Image.Count();
     const auto start = std::chrono::steady_clock::now();
-    if (points->GetDataType() == VTK_FLOAT)
-    {
-      this->Image.Advance(
-        mcx::SMPExecutor(), static_cast<const float*>(points->GetVoidPointer(0)), target);
-    }
-    else
-    {
-      this->Image.Advance(
-        mcx::SMPExecutor(), static_cast<const double*>(points->GetVoidPointer(0)), target);
-    }
+    mcx::WithPointWeights(this->Weights,
+      [&](const auto* weights)
+      {
+        if (points->GetDataType() == VTK_FLOAT)
+        {
+          this->Image.Advance(mcx::SMPExecutor(),
+            static_cast<const float*>(points->GetVoidPointer(0)), target, weights);
+        }
+        else
+        {
+          this->Image.Advance(mcx::SMPExecutor(),
+            static_cast<const double*>(points->GetVoidPointer(0)), target, weights);
+        }
+      });
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::uint64_t added = target - current;
@@ -718,8 +744,8 @@ double* vtkMCXXRayMapper::GetBounds()
     {
       for (int a = 0; a < 3; ++a)
       {
-        const double x = support->GetComponent(
-          (3 * c + a) / support->GetNumberOfComponents(), (3 * c + a) % support->GetNumberOfComponents());
+        const double x = support->GetComponent((3 * c + a) / support->GetNumberOfComponents(),
+          (3 * c + a) % support->GetNumberOfComponents());
         this->Bounds[2 * a] = c == 0 ? x : std::min(this->Bounds[2 * a], x);
         this->Bounds[2 * a + 1] = c == 0 ? x : std::max(this->Bounds[2 * a + 1], x);
       }
@@ -740,8 +766,7 @@ bool vtkMCXXRayMapper::TakeFilm(vtkRenderer* renderer, vtkVolume* volume)
     // Each render of the renderer starts without film; the callback keeps
     // no pointer to this mapper.
     vtkNew<vtkCallbackCommand> reset;
-    reset->SetCallback(
-      [](vtkObject* caller, unsigned long, void*, void*)
+    reset->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
       { static_cast<vtkRenderer*>(caller)->GetInformation()->Set(FILM_LAID(), 0); });
     renderer->AddObserver(vtkCommand::StartEvent, reset);
     info->Set(FILM_RESET_INSTALLED(), 1);

@@ -19,6 +19,7 @@
 #include <map>
 #include <mutex>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -572,6 +573,117 @@ TEST(FootprintLadder, ScalesAreChosenWithTheMeanInverseDepth)
   EXPECT_EQ(near, shortest.Select(1.0 / 50 * (1 + 0.25 * (r - 1)), 0.5)); // fraction 1/4
   EXPECT_EQ(near + 1, shortest.Select(1.0 / 50 * (1 + 0.25 * (r - 1)), 0.2));
   EXPECT_EQ(nullptr, shortest.Select(1.0 / 50 * r * 1.001, 0.5));
+}
+
+namespace
+{
+// The sums of points [begin, end) of `cloud`, with `weights` or none.
+template <typename Executor>
+std::vector<mcx::FixedSum> WeightedSums(const mcx::ProjectionGeometry& g,
+  const mcx::DepositSettings& settings, const std::vector<float>& cloud, std::uint64_t begin,
+  std::uint64_t end, const float* weights)
+{
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  mcx::SampleAccumulator<Executor> accumulator;
+  accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
+  accumulator.SetSplit(mcx::FirstHalfSize(cloud.size() / 3));
+  accumulator.DepositPoints(Executor(), cloud.data(), begin, end, weights);
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  std::vector<mcx::FixedSum> sums(2 * pixels, 0);
+  accumulator.Collect(sums.data(), sums.data() + pixels);
+  return sums;
+}
+}
+
+TEST(SampleAccumulator, WeightedPointsAddTheirWeightTimesTheirDeposit)
+{
+  // Point i of a weighted cloud adds weights[i] times what it adds alone
+  // (the same footprint phase and scale: they come from its index), up to
+  // the rounding of each pixel's increment; weight 1 is the unweighted
+  // deposit bit for bit and weight 0 adds nothing; any number of threads
+  // gives the same sums.
+  const std::uint64_t count = 1500;
+  const std::vector<float> cloud = RandomCloud(count);
+  std::vector<float> weights(count), ones(count, 1.0f), zeros(count, 0.0f);
+  for (std::uint64_t i = 0; i < count; ++i)
+  {
+    weights[i] = 0.75f * static_cast<float>(i % 4) + (i % 7 == 0 ? 1e-3f : 0.0f);
+  }
+  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
+  mcx::ProjectionGeometry parallel = perspective;
+  parallel.Perspective = false;
+  for (const bool footprint : { false, true })
+  {
+    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
+    {
+      ASSERT_EQ("", g.Validate());
+      mcx::DepositSettings settings;
+      if (footprint)
+      {
+        settings.Mode = mcx::Deposit::Footprint;
+        settings.Depths[0] = 40; // the cloud lies at depths 50 +- 9 (points beyond: points)
+        settings.Depths[1] = 60;
+      }
+      const std::string what = std::string(footprint ? "footprint" : "point") +
+        (g.Perspective ? ", perspective" : ", parallel");
+      using Serial = mcx::SerialExecutor;
+      const auto plain = WeightedSums<Serial>(g, settings, cloud, 0, count, nullptr);
+      EXPECT_TRUE(plain == WeightedSums<Serial>(g, settings, cloud, 0, count, ones.data())) << what;
+      const auto none = WeightedSums<Serial>(g, settings, cloud, 0, count, zeros.data());
+      EXPECT_TRUE(std::all_of(
+        none.begin(), none.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }))
+        << what;
+
+      const auto weighted = WeightedSums<Serial>(g, settings, cloud, 0, count, weights.data());
+      EXPECT_TRUE(
+        weighted == WeightedSums<ThreadExecutor>(g, settings, cloud, 0, count, weights.data()))
+        << what;
+      const std::size_t entries = weighted.size(); // both halves
+      std::vector<double> expected(entries, 0.0), slack(entries, 0.0);
+      double mass = 0.0;
+      for (std::uint64_t i = 0; i < count; ++i)
+      {
+        const auto alone = WeightedSums<Serial>(g, settings, cloud, i, i + 1, nullptr);
+        for (std::size_t e = 0; e < entries; ++e)
+        {
+          if (alone[e] != mcx::FixedSum(0))
+          {
+            expected[e] += weights[i] * mcx::ToDouble(alone[e]);
+            slack[e] += 0.5 * weights[i] + 0.5; // w round(x) against round(w x)
+          }
+        }
+        mass += weights[i] > 0 ? 1.0 : 0.0;
+      }
+      ASSERT_GT(mass, count / 2.0);
+      std::size_t outside = 0, reached = 0;
+      for (std::size_t e = 0; e < entries; ++e)
+      {
+        outside +=
+          std::fabs(mcx::ToDouble(weighted[e]) - expected[e]) > slack[e] + 1e-6 * expected[e] ? 1
+                                                                                              : 0;
+        reached += expected[e] > 0 ? 1 : 0;
+      }
+      EXPECT_EQ(0u, outside) << what;
+      EXPECT_GT(reached, entries / 4) << what;
+    }
+  }
+}
+
+TEST(SampleAccumulator, PointWeightProblemNamesTheFirstBadWeight)
+{
+  const double fine[] = { 0.0, 1.0, 0.25, mcx::MaximumPointWeight };
+  EXPECT_EQ("", mcx::PointWeightProblem(fine, 4));
+  for (const double bad :
+    { -1e-30, std::nan(""), HUGE_VAL, -HUGE_VAL, 2 * mcx::MaximumPointWeight })
+  {
+    const double weights[] = { 1.0, 2.0, bad, -5.0 };
+    const std::string problem = mcx::PointWeightProblem(weights, 4);
+    EXPECT_NE(std::string::npos, problem.find("point 2 has the weight")) << problem;
+  }
+  const float negative[] = { 3.0f, -0.5f };
+  EXPECT_NE(
+    std::string::npos, mcx::PointWeightProblem(negative, 2).find("point 1 has the weight -0.5"));
 }
 
 TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)

@@ -5,6 +5,7 @@
 // pictures match the baselines.
 #include "mcxHeadScene.h"
 #include "mcxTestHelpers.h"
+#include "vtkMCXFirstErrorObserver.h"
 #include "vtkMCXProjector.h"
 #include "vtkMCXRadiograph.h"
 #include "vtkMCXXRayMapper.h"
@@ -416,6 +417,73 @@ TEST(Mapper, FootprintCloudRefinesLikeTheOfflineProjector)
       scene.Window->Render();
     }
     EXPECT_EQ((1 << 16) - 1, scene.Mapper->GetNumberOfAccumulatedSamples());
+  }
+}
+
+TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)
+{
+  // A cloud's PointWeight array scales each point's deposit: on screen as
+  // off line, bit for bit, points and footprints; a change of the weights
+  // alone starts the image over (weights 2 double it, up to each pixel's
+  // rounding); a bad weight is one error line, and nothing is drawn from it.
+  Scene scene(14);
+  scene.Mapper->ProgressiveRefinementOff();
+  for (const bool footprint : { false, true })
+  {
+    scene.Sampler->SetDeposit(
+      footprint ? vtkMCXPointSampler::FOOTPRINT : vtkMCXPointSampler::POINT);
+    scene.Sampler->Update();
+    vtkNew<vtkPolyData> cloud;
+    cloud->DeepCopy(scene.Sampler->GetOutput());
+    const vtkIdType n = cloud->GetNumberOfPoints();
+    scene.Mapper->SetInputDataObject(cloud);
+    scene.Window->Render();
+    auto unweighted = scene.OnScreen();
+
+    vtkNew<vtkFloatArray> weights;
+    weights->SetName(vtkMCXPointSampler::PointWeightName());
+    weights->SetNumberOfValues(n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      weights->SetValue(i, 0.5f * static_cast<float>(i % 5));
+    }
+    cloud->GetPointData()->AddArray(weights);
+    scene.Window->Render();
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputData(cloud);
+    projector->SetCamera(scene.Renderer->GetActiveCamera());
+    projector->SetImageSize(160, 128);
+    projector->Update();
+    auto weighted = scene.OnScreen();
+    EXPECT_EQ(0, DifferingPixels(weighted, projector->GetOutput())) << footprint;
+    EXPECT_GT(DifferingPixels(weighted, unweighted), 1000) << footprint;
+
+    const vtkTypeInt64 restarts = scene.Mapper->GetNumberOfRestarts();
+    weights->Fill(2.0);
+    weights->Modified();
+    scene.Window->Render();
+    EXPECT_EQ(restarts + 1, scene.Mapper->GetNumberOfRestarts()) << footprint;
+    auto twice = scene.OnScreen();
+    vtkDataArray* doubled = mcxtest::LineIntegral(twice);
+    vtkDataArray* once = mcxtest::LineIntegral(unweighted);
+    const double peak = mcxtest::MaximumAbsolute(once);
+    ASSERT_GT(peak, 0.0);
+    for (vtkIdType p = 0; p < once->GetNumberOfTuples(); ++p)
+    {
+      ASSERT_NEAR(2 * once->GetTuple1(p), doubled->GetTuple1(p), 1e-6 * peak) << "pixel " << p;
+    }
+
+    weights->SetValue(3, -1.0f);
+    weights->Modified();
+    vtkNew<vtkMCXFirstErrorObserver> errors;
+    const unsigned long observer = scene.Mapper->AddObserver(vtkCommand::ErrorEvent, errors);
+    const vtkTypeInt64 draws = scene.Mapper->GetNumberOfDraws();
+    scene.Window->Render();
+    scene.Mapper->RemoveObserver(observer);
+    EXPECT_EQ("The cloud's PointWeight array cannot be used: point 3 has the weight -1 (weights "
+              "must be finite and in [0, 2^40]).",
+      errors->GetErrorText());
+    EXPECT_EQ(draws, scene.Mapper->GetNumberOfDraws());
   }
 }
 
@@ -937,7 +1005,8 @@ TEST(Mapper, BoundsAreTheSupportEvenForAnEmptyCloud)
   }
   scene.Renderer->ResetCamera();
   const double* position = scene.Renderer->GetActiveCamera()->GetPosition();
-  EXPECT_TRUE(std::isfinite(position[0]) && std::isfinite(position[1]) && std::isfinite(position[2]));
+  EXPECT_TRUE(
+    std::isfinite(position[0]) && std::isfinite(position[1]) && std::isfinite(position[2]));
 }
 
 TEST(Mapper, FilmKeepsOtherXRaysAndTranslucentProps)
