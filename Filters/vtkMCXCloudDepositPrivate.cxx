@@ -107,6 +107,12 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
   return settings;
 }
 
+bool IsEveryVoxelCloud(vtkPolyData* cloud)
+{
+  return Field(cloud->GetFieldData(), vtkMCXPointSampler::StrategyName(),
+           vtkMCXPointSampler::HYBRID) == vtkMCXPointSampler::EVERY_VOXEL;
+}
+
 vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid)
 {
   valid = true;

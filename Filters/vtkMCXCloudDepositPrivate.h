@@ -28,6 +28,11 @@ MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* c
   const ProjectionGeometry& geometry, const double origin[3], const double matrix[9],
   double footprintReach);
 
+/// True for a vtkMCXPointSampler EVERY_VOXEL cloud (field Strategy): each
+/// voxel once, weighted, so the halves of its points are no two estimates
+/// of one image and its error is not estimated (NaN).
+MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
+
 /// The cloud's point weights (point-data array
 /// vtkMCXPointSampler::PointWeightName()): null without them; valid false
 /// (and reported on `self`) when the array is not one float or double

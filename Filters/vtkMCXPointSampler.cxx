@@ -1,9 +1,11 @@
 #include "vtkMCXPointSampler.h"
 
+#include "mcxEveryVoxelOrder.h"
 #include "mcxProjectionGeometry.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXSMPExecutorPrivate.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -15,13 +17,17 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkMCXPointSampler);
 
@@ -67,7 +73,122 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
     self, source.NumberOfStorageItems(), 0.05, 1.0,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
+
+// The voxels' world positions, point k of voxel ids[k]: its centre (the
+// footprint deposit) or the centre plus a kernel offset drawn from the
+// seed's stream of point k.
+template <typename IdType, typename Real>
+bool EveryVoxelPositions(vtkAlgorithm* self, const mcx::IndexView& view,
+  const std::vector<IdType>& ids, mcx::Kernel kernel, bool centres, vtkTypeUInt64 seed,
+  Real* points)
+{
+  const mcx::VoxelDecoder<IdType> decoder(
+    static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  const std::uint64_t key = mcx::SeedKey(seed);
+  return mcx::BatchedFor(self, ids.size(), 0.5, 1.0,
+    [&](std::uint64_t b, std::uint64_t e)
+    {
+      for (std::uint64_t k = b; k < e; ++k)
+      {
+        std::uint64_t voxel[3];
+        decoder.Decode(ids[k], voxel[0], voxel[1], voxel[2]);
+        double p[3];
+        mcx::CounterRandom random(key, k);
+        for (int a = 0; a < 3; ++a)
+        {
+          p[a] = static_cast<double>(voxel[a]) +
+            (centres ? 0.0 : mcx::KernelOffsetFromUniform(kernel, 1.0 - random.NextOpenClosed()));
+        }
+        Real* x = points + 3 * k;
+        for (int r = 0; r < 3; ++r)
+        {
+          x[r] = static_cast<Real>(
+            origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
+        }
+      }
+    });
 }
+
+// What every cloud's consumers read (the pipeline passes the input's field
+// data on: only these, not the index's arrays; SortedVoxelIds alone is 4
+// bytes per voxel). exponent < 0: no SampleExponent (an every-voxel cloud).
+void WriteCloudFields(vtkMCXPointSampler* self, const mcx::IndexView& view, double integral,
+  vtkIdType count, int exponent, vtkFieldData* fd)
+{
+  fd->Initialize();
+  mcx::AddFieldValue(fd, vtkMCXPointSampler::SampleWeightName(),
+    count > 0 ? integral / static_cast<double>(count) : 0.0);
+  mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), integral);
+  if (exponent >= 0)
+  {
+    mcx::AddFieldValue(
+      fd, vtkMCXPointSampler::SampleExponentName(), static_cast<long long>(exponent));
+  }
+  mcx::AddFieldValue(
+    fd, vtkMCXPointSampler::DepositName(), static_cast<long long>(self->GetDeposit()));
+  mcx::AddFieldValue(
+    fd, vtkMCXPointSampler::KernelName(), static_cast<long long>(self->GetKernel()));
+  mcx::AddFieldValue(
+    fd, vtkMCXPointSampler::StrategyName(), static_cast<long long>(self->GetStrategy()));
+  mcx::AddFieldValue(fd, vtkMCXPointSampler::SeedName(), static_cast<long long>(self->GetSeed()));
+  double origin[3], axes[9];
+  view.SourceToWorld(origin, axes);
+  vtkNew<vtkDoubleArray> voxelAxes;
+  voxelAxes->SetName(vtkMCXPointSampler::VoxelAxesName());
+  voxelAxes->SetNumberOfValues(9);
+  std::copy(axes, axes + 9, voxelAxes->GetPointer(0));
+  fd->AddArray(voxelAxes);
+  double corners[24];
+  mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction,
+    mcx::KernelRadius(static_cast<mcx::Kernel>(self->GetKernel())), corners);
+  vtkNew<vtkDoubleArray> support;
+  support->SetName(vtkMCXPointSampler::SupportCornersName());
+  support->SetNumberOfValues(24);
+  std::copy(corners, corners + 24, support->GetPointer(0));
+  fd->AddArray(support);
+}
+}
+
+// The voxels of an every-voxel cloud and what they were made for.
+struct vtkMCXPointSampler::EveryVoxelCloud
+{
+  vtkDataArray* Ids = nullptr; // the index's sorted ids: compared only, never dereferenced
+  vtkMTimeType IdsTime = 0;
+  double World[12] = { 0 }; // the index's source-to-world origin and matrix
+  std::vector<char> Kept;   // per level
+  int PointType = VTK_FLOAT;
+  int Deposit = POINT;
+  int Kernel = TENT;
+  vtkTypeInt64 Seed = 0;
+  vtkSmartPointer<vtkPoints> Points;
+  std::vector<std::uint32_t> Levels; // of each point
+
+  void Describe(const mcx::IndexView& view, const std::vector<char>& kept,
+    const vtkMCXPointSampler* sampler, int pointType)
+  {
+    this->Ids = view.Ids;
+    this->IdsTime = view.Ids->GetMTime();
+    view.SourceToWorld(this->World, this->World + 3);
+    this->Kept = kept;
+    this->PointType = pointType;
+    this->Deposit = sampler->Deposit;
+    this->Kernel = sampler->Kernel;
+    this->Seed = sampler->Seed;
+  }
+
+  bool Fits(const mcx::IndexView& view, const std::vector<char>& kept,
+    const vtkMCXPointSampler* sampler, int pointType) const
+  {
+    EveryVoxelCloud wanted;
+    wanted.Describe(view, kept, sampler, pointType);
+    return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
+      std::equal(this->World, this->World + 12, wanted.World) && this->Kept == wanted.Kept &&
+      this->PointType == wanted.PointType && this->Deposit == wanted.Deposit &&
+      this->Kernel == wanted.Kernel && this->Seed == wanted.Seed;
+  }
+};
 
 vtkMCXPointSampler::vtkMCXPointSampler()
 {
@@ -89,6 +210,7 @@ void vtkMCXPointSampler::SetReusePoints(bool reuse)
   if (!reuse)
   {
     this->KeptPoints = nullptr; // not an output change: no Modified()
+    this->KeptVoxels.reset();
   }
   if (reuse != this->ReusePoints)
   {
@@ -149,6 +271,11 @@ int vtkMCXPointSampler::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (this->Strategy == EVERY_VOXEL)
+  {
+    return this->RequestEveryVoxel(input, output);
+  }
+  this->KeptVoxels.reset();
   mcx::IndexView view;
   mcx::TransferTable table;
   double integral = 0.0;
@@ -222,35 +349,118 @@ int vtkMCXPointSampler::RequestData(
   {
     this->KeptPoints = points;
   }
-  // Only what the cloud's consumers read: not the index's arrays (the
-  // pipeline passes the input's field data on; SortedVoxelIds alone is 4
-  // bytes per voxel).
-  vtkFieldData* fd = output->GetFieldData();
-  fd->Initialize();
-  mcx::AddFieldValue(
-    fd, SampleWeightName(), count > 0 ? integral / static_cast<double>(count) : 0.0);
-  mcx::AddFieldValue(fd, IntegralName(), integral);
-  mcx::AddFieldValue(fd, SampleExponentName(), static_cast<long long>(m));
-  mcx::AddFieldValue(fd, DepositName(), static_cast<long long>(this->Deposit));
-  mcx::AddFieldValue(fd, KernelName(), static_cast<long long>(this->Kernel));
-  mcx::AddFieldValue(fd, StrategyName(), static_cast<long long>(this->Strategy));
-  mcx::AddFieldValue(fd, SeedName(), static_cast<long long>(this->Seed));
-  double origin[3], axes[9];
-  view.SourceToWorld(origin, axes);
-  vtkNew<vtkDoubleArray> voxelAxes;
-  voxelAxes->SetName(VoxelAxesName());
-  voxelAxes->SetNumberOfValues(9);
-  std::copy(axes, axes + 9, voxelAxes->GetPointer(0));
-  fd->AddArray(voxelAxes);
-  double corners[24];
-  mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction,
-    mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners);
-  vtkNew<vtkDoubleArray> support;
-  support->SetName(SupportCornersName());
-  support->SetNumberOfValues(24);
-  std::copy(corners, corners + 24, support->GetPointer(0));
-  fd->AddArray(support);
+  WriteCloudFields(this, view, integral, count, static_cast<int>(m), output->GetFieldData());
   return 1;
+}
+
+int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* output)
+{
+  this->KeptPoints = nullptr;
+  std::unique_ptr<EveryVoxelCloud> cloud = std::move(this->KeptVoxels);
+  mcx::IndexView view;
+  mcx::TransferTable table;
+  double integral = 0.0;
+  if (!mcx::PrepareSampling(this, "sample", input, this->TransferFunction, view, table, integral))
+  {
+    output->Initialize(); // no stale cloud of an earlier request
+    return 0;
+  }
+  // Each level's weight as the table took it (negative and NaN: 0).
+  std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
+  std::vector<char> kept(weights.size(), 0);
+  vtkIdType count = 0;
+  for (std::size_t l = 0; l < weights.size(); ++l)
+  {
+    weights[l] = weights[l] > 0 ? weights[l] : 0.0;
+    const std::int64_t voxels = view.LevelOffsets[l + 1] - view.LevelOffsets[l];
+    kept[l] = weights[l] > 0 && voxels > 0 ? 1 : 0;
+    count += kept[l] ? voxels : 0;
+  }
+  const vtkIdType largest = (vtkIdType(1) << MaximumPointCloudExponent) - 1;
+  if (count > largest)
+  {
+    vtkErrorMacro("Every voxel: " << count << " voxels of non-zero weight exceed the " << largest
+                                  << " points of the largest cloud; sample them instead.");
+    output->Initialize();
+    return 0;
+  }
+  const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
+  if (!cloud || !cloud->Fits(view, kept, this, pointType))
+  {
+    cloud.reset(); // not held while a new one is made
+    const double voxels =
+      static_cast<double>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2];
+    const double idBytes = view.WideIds ? 8.0 : 4.0;
+    if (!mcx::CheckMemory(this,
+          static_cast<double>(count) * (3.0 * (pointType == VTK_DOUBLE ? 8 : 4) + 4 + 4 + idBytes) +
+            4.0 * voxels,
+          "A cloud of every voxel's " + std::to_string(count) + " points"))
+    {
+      output->Initialize();
+      return 0;
+    }
+    cloud.reset(new EveryVoxelCloud);
+    cloud->Describe(view, kept, this, pointType);
+    if (!this->MakeEveryVoxelPoints(view, kept, *cloud))
+    {
+      output->Initialize();
+      return 1; // aborted
+    }
+  }
+
+  // Point k counts weight(level) / mean weight: the weights sum to count.
+  vtkNew<vtkFloatArray> pointWeights;
+  pointWeights->SetName(PointWeightName());
+  pointWeights->SetNumberOfValues(count);
+  const double total = table.WeightSum();
+  const double scale = total > 0 ? static_cast<double>(count) / total : 0.0;
+  float* w = pointWeights->GetPointer(0);
+  const std::uint32_t* levels = cloud->Levels.data();
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType k = b; k < e; ++k)
+      {
+        w[k] = static_cast<float>(weights[levels[k]] * scale);
+      }
+    });
+  output->SetPoints(cloud->Points);
+  output->GetPointData()->AddArray(pointWeights);
+  WriteCloudFields(this, view, integral, count, -1, output->GetFieldData());
+  if (this->ReusePoints)
+  {
+    this->KeptVoxels = std::move(cloud);
+  }
+  return 1;
+}
+
+bool vtkMCXPointSampler::MakeEveryVoxelPoints(
+  const mcx::IndexView& view, const std::vector<char>& kept, EveryVoxelCloud& cloud)
+{
+  const std::int64_t voxels =
+    static_cast<std::int64_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2];
+  const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
+  const bool centres = this->Deposit == FOOTPRINT;
+  const auto seed = static_cast<vtkTypeUInt64>(this->Seed);
+  auto make = [&](auto id)
+  {
+    using IdType = decltype(id);
+    mcx::EveryVoxelOrder<IdType> order;
+    order.Build(mcx::SMPExecutor(), view.IdPointer<IdType>(), view.LevelOffsets,
+      view.NumberOfLevels, kept, voxels);
+    this->UpdateProgress(0.5);
+    auto points = vtkSmartPointer<vtkPoints>::New();
+    points->SetDataType(cloud.PointType);
+    points->SetNumberOfPoints(static_cast<vtkIdType>(order.Size()));
+    void* raw = points->GetVoidPointer(0);
+    const bool completed = cloud.PointType == VTK_DOUBLE
+      ? EveryVoxelPositions(this, view, order.Ids, kernel, centres, seed, static_cast<double*>(raw))
+      : EveryVoxelPositions(this, view, order.Ids, kernel, centres, seed, static_cast<float*>(raw));
+    cloud.Points = points;
+    cloud.Levels = std::move(order.Levels);
+    return completed;
+  };
+  return view.WideIds ? make(std::uint64_t(0)) : make(std::uint32_t(0));
 }
 
 vtkPoints* vtkMCXPointSampler::ReusablePoints(vtkPolyData* output, int type, vtkIdType count) const

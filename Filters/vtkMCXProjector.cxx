@@ -50,9 +50,14 @@ struct Projection
   double Integral = 0.0;
   bool Completed = true;
   bool FallsAsInverseM = false; // see mcx::FootprintErrorCalibration
+  bool EveryVoxel = false;      // not estimated: see mcx::IsEveryVoxelCloud
 
   double EstimatedError() const
   {
+    if (this->EveryVoxel)
+    {
+      return std::nan("");
+    }
     return (this->FallsAsInverseM ? mcx::FootprintErrorCalibration : 1.0) *
       mcx::EstimateRelativeError(this->Sums, this->Count);
   }
@@ -104,6 +109,7 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   Accumulator accumulator;
   accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
   projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
+  projection.EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
   accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
   auto deposit = [&](const auto* coordinates)
   {

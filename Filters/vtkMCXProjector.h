@@ -14,7 +14,9 @@
  * "EstimatedRelativeError": the relative RMS error of the image estimated
  * from the samples themselves, by comparing the images of the first half of
  * the samples (for Hybrid, the coarser Halton run) and of the second half
- * (0 for an empty image, NaN for 1 or 2 samples).
+ * (0 for an empty image, NaN for 1 or 2 samples, and NaN for a cloud of
+ * every voxel, vtkMCXPointSampler::EVERY_VOXEL, which has no voxel-choice
+ * error to estimate).
  *
  * Deposit (index input; a footprint cloud from vtkMCXPointSampler brings its
  * own, and FootprintReach applies to it too): with FOOTPRINT each sample adds its voxel's

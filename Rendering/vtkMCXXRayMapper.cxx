@@ -203,6 +203,7 @@ struct vtkMCXXRayMapper::vtkInternals
   std::vector<float> Depth;
   double ScaledIntegral = 0.0; // the cloud's integral times |det| of the prop matrix
   std::uint64_t NumberOfPoints = 0;
+  bool EveryVoxel = false; // the input is an every-voxel cloud: no error estimate
   bool AutomaticWindowPending = true;
   double AutomaticWindow = 1.0;
   double AutomaticLevel = 0.5;
@@ -351,6 +352,7 @@ struct vtkMCXXRayMapper::vtkInternals
     this->Depth = std::move(view.Depth);
     vtkPoints* points = cloud->GetPoints();
     this->NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
+    this->EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
     this->ScaledIntegral =
       cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0) *
       std::fabs(vtkMatrix4x4::Determinant(m));
@@ -628,7 +630,8 @@ bool vtkMCXXRayMapper::IsRefinementComplete()
 
 double vtkMCXXRayMapper::GetEstimatedRelativeError()
 {
-  return this->Internals->HasImage ? this->Internals->Image.EstimateRelativeError() : std::nan("");
+  const vtkInternals& in = *this->Internals;
+  return in.HasImage && !in.EveryVoxel ? in.Image.EstimateRelativeError() : std::nan("");
 }
 
 void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
@@ -652,7 +655,7 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   mcx::AddFieldValue(
     output->GetFieldData(), vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(count));
   mcx::AddFieldValue(output->GetFieldData(), vtkMCXProjectorBase::EstimatedRelativeErrorName(),
-    in.Image.EstimateRelativeError());
+    this->GetEstimatedRelativeError());
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)

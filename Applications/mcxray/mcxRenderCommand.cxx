@@ -37,8 +37,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iomanip>
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -72,7 +72,11 @@ options:
   --quantization-levels L
                         choose the sample count by the paper's criterion: the
                         mean pixel deviation below one of L grey levels
-  --method M            hybrid (default), mc, qmc, or reference (exact, slow)
+  --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
+                        non-zero weight once, weighted by the TF: no sampling
+                        noise, a stored cloud as large as those voxels; implies
+                        --stored-points, replaces --samples), or reference
+                        (exact, slow)
   --kernel K            tent (trilinear, default) or box (nearest neighbour)
   --deposit D           footprint (default: each sample adds its voxel's kernel
                         integrated over every pixel it reaches; about 4 to 50
@@ -139,20 +143,22 @@ double Seconds(std::chrono::steady_clock::time_point since)
 // footprint deposit costs about 4 times as much per sample).
 void WarnOfLongRuns(const Settings& settings)
 {
-  if (settings.Quiet || settings.Method == "reference" || settings.TargetError > 0 ||
-    settings.QuantizationLevels > 0)
+  if (settings.Quiet || settings.Method == "reference" || settings.Method == "every-voxel" ||
+    settings.TargetError > 0 || settings.QuantizationLevels > 0)
   {
     return;
   }
-  const int threads = settings.Threads > 0 ? settings.Threads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  const int threads =
+    settings.Threads > 0 ? settings.Threads : vtkSMPTools::GetEstimatedNumberOfThreads();
   const double rate = 5.0e7 * std::max(1, threads) / (settings.Deposit == "footprint" ? 4.0 : 1.0);
   const double seconds = static_cast<double>(settings.Samples) / rate;
   if (seconds > 60.0)
   {
     std::ostringstream line;
     line << "mcxray: warning: " << settings.Samples << " samples take about "
-         << std::setprecision(3) << (seconds > 7200 ? seconds / 3600 : seconds / 60) << (seconds > 7200 ? " hours" : " minutes")
-         << " on " << threads << " threads; Ctrl-C stops the run and writes nothing";
+         << std::setprecision(3) << (seconds > 7200 ? seconds / 3600 : seconds / 60)
+         << (seconds > 7200 ? " hours" : " minutes") << " on " << threads
+         << " threads; Ctrl-C stops the run and writes nothing";
     std::cerr << line.str() << std::endl;
   }
 }
@@ -160,12 +166,20 @@ void WarnOfLongRuns(const Settings& settings)
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
 {
-  if (!IsSamplingMethod(settings.Method) && settings.Method != "reference")
+  if (!IsCloudMethod(settings.Method) && settings.Method != "reference")
   {
-    Fail("unknown --method '" + settings.Method + "' (expected hybrid, mc, qmc or reference)");
+    Fail("unknown --method '" + settings.Method +
+      "' (expected hybrid, mc, qmc, every-voxel or reference)");
   }
   CheckKernel(settings.Kernel);
   CheckDeposit(settings.Deposit);
+  if (settings.Method == "every-voxel" &&
+    (settings.TargetError > 0 || settings.QuantizationLevels > 0 ||
+      settings.Samples != DefaultSamples))
+  {
+    Fail("every-voxel takes each voxel of non-zero weight once: leave out --samples, "
+         "--target-error and --quantization-levels");
+  }
   if ((settings.TargetError > 0 || settings.QuantizationLevels > 0) &&
     (settings.StoredPoints || settings.Method == "reference"))
   {
@@ -328,9 +342,10 @@ private:
     std::ostringstream line;
     line << "index:       " << seconds << " s (" << this->Levels()->GetNumberOfTuples()
          << " density levels, " << static_cast<double>(dims[0]) * dims[1] * dims[2] / seconds / 1e6
-         << " M voxels/s" << (controller ? "; the first of " + std::to_string(NumberOfProcesses()) +
-                                  " processes' z-slabs: " + std::to_string(dims[2]) + " slices"
-                                          : std::string())
+         << " M voxels/s"
+         << (controller ? "; the first of " + std::to_string(NumberOfProcesses()) +
+                  " processes' z-slabs: " + std::to_string(dims[2]) + " slices"
+                        : std::string())
          << ")";
     this->Log(line.str());
   }
@@ -481,10 +496,18 @@ private:
       const double samples = fields->GetArray(vtkMCXProjectorBase::SampleCountName())->GetTuple1(0);
       line << (this->Options.StoredPoints ? "projection:  "
                                           : "sampling + projection (off-line, fused): ")
-           << seconds << " s (" << static_cast<long long>(samples) << " samples, "
-           << samples / seconds / 1e6 << " M samples/s, estimated relative RMS error "
-           << fields->GetArray(vtkMCXProjectorBase::EstimatedRelativeErrorName())->GetTuple1(0)
-           << ")";
+           << seconds << " s (" << static_cast<long long>(samples);
+      if (this->Options.Method == "every-voxel")
+      {
+        line << " voxels, each once: no sampling error to estimate)";
+      }
+      else
+      {
+        line << " samples, " << samples / seconds / 1e6
+             << " M samples/s, estimated relative RMS error "
+             << fields->GetArray(vtkMCXProjectorBase::EstimatedRelativeErrorName())->GetTuple1(0)
+             << ")";
+      }
     }
     this->Log(line.str());
     int size[3];
@@ -567,6 +590,7 @@ int RunRender(int argc, char* argv[])
   // Under MPI the first process alone prints and writes.
   settings.Quiet = settings.Quiet || !IsFirstProcess();
   CheckCombinations(settings);
+  settings.StoredPoints = settings.StoredPoints || settings.Method == "every-voxel";
   ErrorCapture capture;
   if (settings.Threads > 0)
   {

@@ -12,11 +12,17 @@ bool IsSamplingMethod(const std::string& method)
   return method == "hybrid" || method == "mc" || method == "qmc";
 }
 
+bool IsCloudMethod(const std::string& method)
+{
+  return IsSamplingMethod(method) || method == "every-voxel";
+}
+
 int StrategyOf(const std::string& method)
 {
-  return method == "mc" ? vtkMCXPointSampler::MONTE_CARLO
-    : method == "qmc"   ? vtkMCXPointSampler::QUASI_MONTE_CARLO
-                        : vtkMCXPointSampler::HYBRID;
+  return method == "mc"       ? vtkMCXPointSampler::MONTE_CARLO
+    : method == "qmc"         ? vtkMCXPointSampler::QUASI_MONTE_CARLO
+    : method == "every-voxel" ? vtkMCXPointSampler::EVERY_VOXEL
+                              : vtkMCXPointSampler::HYBRID;
 }
 
 void CheckKernel(const std::string& kernel)

@@ -11,8 +11,8 @@
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxVolumeReader.h"
-#include "vtkMCXMemoryCheckPrivate.h"
 #include "mcxXRayViewer.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -47,7 +47,9 @@ INPUT   a volume, as for mcxray render (default: the bundled CT head).
 options:
   --tf SPEC          initial transfer function (as for mcxray render; default raw)
   --samples N        points in the cloud, rounded up to 2^m - 1 (default 4194303)
-  --method M         hybrid (default), mc or qmc
+  --method M         hybrid (default), mc, qmc or every-voxel (each voxel of
+                     non-zero weight once, weighted: no sampling noise; replaces
+                     --samples, and + and - do nothing)
   --kernel K         tent (default) or box
   --deposit D        footprint (default) or point (see mcxray render --help)
   --seed N           seed of the pseudo-random parts (default 0)
@@ -76,9 +78,14 @@ const long long DefaultSamples = (1LL << 22) - 1;
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
 {
-  if (!IsSamplingMethod(settings.Method))
+  if (!IsCloudMethod(settings.Method))
   {
-    Fail("unknown --method '" + settings.Method + "' for view (expected hybrid, mc or qmc)");
+    Fail("unknown --method '" + settings.Method +
+      "' for view (expected hybrid, mc, qmc or every-voxel)");
+  }
+  if (settings.Method == "every-voxel" && settings.Samples != DefaultSamples)
+  {
+    Fail("every-voxel takes each voxel of non-zero weight once: leave out --samples");
   }
   CheckKernel(settings.Kernel);
   CheckDeposit(settings.Deposit);

@@ -13,6 +13,7 @@
 #include "vtkMCXXRayMapper.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -204,15 +205,22 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
   vtkMCXXRayMapper* mapper = this->Mapper;
   std::ostringstream text;
   text.precision(3);
-  const long long total = static_cast<long long>(this->Sampler->GetNumberOfSamples());
+  const bool everyVoxel = this->Sampler->GetStrategy() == vtkMCXPointSampler::EVERY_VOXEL;
+  const long long total = everyVoxel
+    ? static_cast<long long>(this->Sampler->GetOutput()->GetNumberOfPoints())
+    : static_cast<long long>(this->Sampler->GetNumberOfSamples());
   text << Thousands(mapper->GetNumberOfAccumulatedSamples()) << " of " << Thousands(total)
-       << " samples   ";
+       << (everyVoxel ? " voxels   " : " samples   ");
   if (withFrameTime)
   {
     text << this->LastFrameSeconds * 1000.0 << " ms/frame   ";
   }
   const double error = mapper->GetEstimatedRelativeError();
-  if (std::isfinite(error))
+  if (everyVoxel)
+  {
+    text << "each voxel once";
+  }
+  else if (std::isfinite(error))
   {
     text << "est. error " << 100.0 * error << " %";
   }

@@ -74,6 +74,9 @@ struct VolumeCase
   std::string File;
   double LeastVoxels; // upsample (linear) until the volume has at least these; 0: as read
   bool GPUPeer;       // VTK's GPU ray cast beside (its 3D texture must fit)
+  // The TF edit of an every-voxel cloud too: not where the voxels far
+  // outnumber the samples that reach 2 % (the upsampled volume's 400 M).
+  bool EveryVoxelEdit;
 };
 
 // plastimatch's geometry: gantry 0 puts the source at +x of the isocentre,
@@ -130,8 +133,8 @@ Run Render(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera, int
   std::vector<double> seconds;
   for (int repetition = 0; repetition < 3; ++repetition)
   {
-    auto projector = mcxbench::MakeProjector(
-      index, tf, camera, size, m, vtkMCXPointSampler::HYBRID, deposit);
+    auto projector =
+      mcxbench::MakeProjector(index, tf, camera, size, m, vtkMCXPointSampler::HYBRID, deposit);
     const Clock::time_point start = Clock::now();
     projector->Update();
     seconds.push_back(Since(start));
@@ -309,16 +312,18 @@ struct EditResult
 {
   double MedianMilliseconds = 0;
   double Errors[2] = { 1, 1 }; // without and with the edit
+  vtkIdType Points = 0;
 };
 
-// A stored footprint cloud of 2^m - 1 points (refilled in place, as the
-// viewer's) drawn by the mapper in a 256^2 window with the cone-beam camera,
-// progressive refinement off (every render projects every point): the median
+// A stored footprint cloud of 2^m - 1 points, or of every voxel
+// (`strategy`), refilled in place as the viewer's, drawn by the mapper in a
+// 256^2 window with the cone-beam camera, progressive refinement off (every
+// render projects every point): the median
 // time of a TF edit to the complete image; the error of each of the two TFs'
 // clouds, projected off line (the mapper's image is the projector's, bit for
 // bit: TestMapper).
 EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
-  vtkCamera* camera, int size, int m, vtkImageData* reference, int repetitions)
+  vtkCamera* camera, int size, int m, int strategy, vtkImageData* reference, int repetitions)
 {
   EditResult result;
   const double baseValue = tf->GetValue(EditDensity);
@@ -326,6 +331,7 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
   sampler->SetInputConnection(index->GetOutputPort());
   sampler->SetTransferFunction(tf);
   sampler->SetSampleExponent(m);
+  sampler->SetStrategy(strategy);
   sampler->SetDepositToFootprint();
   sampler->ReusePointsOn(); // as the viewer's pipeline: the mapper is the cloud's only consumer
   vtkNew<vtkMCXXRayMapper> mapper;
@@ -351,6 +357,7 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
     milliseconds.push_back(1000 * Since(start));
   }
   result.MedianMilliseconds = mcxbench::Median(milliseconds);
+  result.Points = sampler->GetOutput()->GetNumberOfPoints();
 
   for (int edited = 0; edited < 2; ++edited)
   {
@@ -366,8 +373,7 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
     projector->SetCamera(camera);
     projector->SetImageSize(size, size);
     projector->Update();
-    result.Errors[edited] =
-      mcxbench::RelativeRMS(mcxbench::Values(projector->GetOutput()), exact);
+    result.Errors[edited] = mcxbench::RelativeRMS(mcxbench::Values(projector->GetOutput()), exact);
   }
   ToggleEdit(tf, false, baseValue);
   return result;
@@ -397,15 +403,15 @@ int main(int argc, char* argv[])
   const std::vector<int> sizes = quick ? std::vector<int>{ 64 } : std::vector<int>{ 256, 512 };
   // Sample exponents swept per deposit: from a first one until the last
   // target is reached or the cap.
-  const std::array<int, 2> pointRange = quick ? std::array<int, 2>{ 14, 18 }
-                                              : std::array<int, 2>{ 18, 30 };
-  const std::array<int, 2> footprintRange = quick ? std::array<int, 2>{ 10, 16 }
-                                                  : std::array<int, 2>{ 14, 26 };
+  const std::array<int, 2> pointRange =
+    quick ? std::array<int, 2>{ 14, 18 } : std::array<int, 2>{ 18, 30 };
+  const std::array<int, 2> footprintRange =
+    quick ? std::array<int, 2>{ 10, 16 } : std::array<int, 2>{ 14, 26 };
   const std::vector<VolumeCase> cases = {
-    { "CT body", data + "/ct_body_totalseg.nii.gz", 0, true },
-    { "CT chest", data + "/ct_chest_cta_totalseg.nii.gz", 0, true },
+    { "CT body", data + "/ct_body_totalseg.nii.gz", 0, true, true },
+    { "CT chest", data + "/ct_chest_cta_totalseg.nii.gz", 0, true, true },
     { quick ? "CT chest upsampled past 8 M voxels" : "CT chest upsampled past 400 M voxels",
-      data + "/ct_chest_cta_totalseg.nii.gz", quick ? 8.0e6 : 4.0e8, false },
+      data + "/ct_chest_cta_totalseg.nii.gz", quick ? 8.0e6 : 4.0e8, false, false },
   };
 
   std::ofstream volumes(output + "/volumes.csv");
@@ -417,7 +423,7 @@ int main(int argc, char* argv[])
              "footprint_seconds,footprint_error,plastimatch_exact_seconds,plastimatch_error,"
              "footprint_speedup\n";
   std::ofstream edits(output + "/tf-edit.csv");
-  edits << "volume,size,footprint_samples,median_ms,error,error_after_edit\n";
+  edits << "volume,size,cloud,points,median_ms,error,error_after_edit\n";
 
   int nonsense = 0; // failed peers, non-finite errors: the run must fail loudly
   for (const VolumeCase& c : cases)
@@ -530,14 +536,25 @@ int main(int argc, char* argv[])
         }
       }
       // The interactive path at the smallest size: the footprint count that
-      // reached 2 %.
+      // reached 2 %, and every voxel of non-zero weight once (where they
+      // are fewer than 2^30 points).
       if (size == sizes.front())
       {
         const int m = static_cast<int>(std::lround(std::log2(reached[1][0].Samples + 1)));
-        const EditResult edit =
-          MeasureTransferFunctionEdit(index, tf, camera, size, m, reference, quick ? 3 : 9);
-        edits << Quoted(c.Name) << ',' << size << ',' << reached[1][0].Samples << ','
-              << edit.MedianMilliseconds << ',' << edit.Errors[0] << ',' << edit.Errors[1] << '\n';
+        for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+        {
+          if (strategy == vtkMCXPointSampler::EVERY_VOXEL && !c.EveryVoxelEdit)
+          {
+            continue;
+          }
+          const EditResult edit = MeasureTransferFunctionEdit(
+            index, tf, camera, size, m, strategy, reference, quick ? 3 : 9);
+          edits << Quoted(c.Name) << ',' << size << ','
+                << (strategy == vtkMCXPointSampler::HYBRID ? "sampled" : "every voxel") << ','
+                << edit.Points << ',' << edit.MedianMilliseconds << ',' << edit.Errors[0] << ','
+                << edit.Errors[1] << '\n';
+          nonsense += std::isfinite(edit.Errors[0]) && std::isfinite(edit.Errors[1]) ? 0 : 1;
+        }
       }
       std::cout << "  " << size << "^2 done" << std::endl;
     }

@@ -4,6 +4,7 @@
 // result on one thread and on several, a thread's 64-bit sums carrying
 // exactly, and the footprint tables' supports and scale choice.
 #include "mcxCountingSort.h"
+#include "mcxEveryVoxelOrder.h"
 #include "mcxExecutor.h"
 #include "mcxFixedPoint.h"
 #include "mcxProgressiveImage.h"
@@ -18,6 +19,7 @@
 #include <list>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <random>
 #include <string>
 #include <thread>
@@ -173,6 +175,94 @@ TEST(Executor, CountingSortIsTheSameOnOneThreadAndOnSeveral)
   EXPECT_EQ(serialOffsets, threadedOffsets);
   EXPECT_EQ(serial, threaded);
   EXPECT_GT(leftSerial, 0);
+}
+
+TEST(EveryVoxelOrder, EachKeptVoxelOnceInSpreadRunsOfNeighbours)
+{
+  // Voxels of random levels, some levels dropped: the order holds each
+  // voxel of a kept level exactly once with its level, in runs of up to
+  // RunLength voxels ascending in id order, whatever the executor; any
+  // prefix of whole runs is spread over the volume (van der Corput order:
+  // each eighth of the kept voxels holds an eighth of the prefix within 3
+  // runs; measured: at most 2).
+  for (const std::int64_t n :
+    { std::int64_t(0), std::int64_t(1), std::int64_t(130), std::int64_t(200003) })
+  {
+    const std::int64_t levels = 9;
+    std::mt19937 random(static_cast<unsigned>(n) + 5);
+    std::vector<int> level(static_cast<std::size_t>(n));
+    for (int& l : level)
+    {
+      l = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
+    }
+    std::vector<std::int64_t> offsets;
+    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(n));
+    mcx::CountingSortByBin<std::uint32_t>(
+      mcx::SerialExecutor(), n, levels,
+      [&](std::int64_t id)
+      { return static_cast<std::int64_t>(level[static_cast<std::size_t>(id)]); },
+      offsets, sorted.data());
+    const std::vector<char> kept = { 1, 0, 1, 1, 0, 1, 1, 1, 1 };
+    mcx::EveryVoxelOrder<std::uint32_t> serial, threaded;
+    serial.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, kept, n);
+    threaded.Build(ThreadExecutor(), sorted.data(), offsets.data(), levels, kept, n);
+    EXPECT_EQ(serial.Ids, threaded.Ids) << n;
+    EXPECT_EQ(serial.Levels, threaded.Levels) << n;
+
+    std::vector<int> seen(static_cast<std::size_t>(n), 0);
+    for (std::uint64_t k = 0; k < serial.Size(); ++k)
+    {
+      const std::uint32_t id = serial.Ids[k];
+      ASSERT_LT(id, static_cast<std::uint64_t>(n));
+      ++seen[id];
+      ASSERT_EQ(level[id], static_cast<int>(serial.Levels[k])) << "point " << k;
+    }
+    std::uint64_t expected = 0;
+    for (std::int64_t id = 0; id < n; ++id)
+    {
+      const int l = level[static_cast<std::size_t>(id)];
+      const bool wanted = l >= 0 && kept[static_cast<std::size_t>(l)];
+      expected += wanted ? 1 : 0;
+      ASSERT_EQ(wanted ? 1 : 0, seen[static_cast<std::size_t>(id)]) << "voxel " << id;
+    }
+    ASSERT_EQ(expected, serial.Size());
+
+    // Runs: ascending ids within each run of RunLength points (the short
+    // last run may sit anywhere, so runs are told apart by their breaks).
+    const std::uint64_t run = mcx::EveryVoxelOrder<std::uint32_t>::RunLength;
+    std::uint64_t breaks = 0;
+    for (std::uint64_t k = 1; k < serial.Size(); ++k)
+    {
+      breaks += serial.Ids[k] < serial.Ids[k - 1] ? 1 : 0;
+    }
+    const std::uint64_t runs = (serial.Size() + run - 1) / run;
+    EXPECT_LE(breaks, runs > 0 ? runs - 1 : 0) << n;
+    if (runs >= 1000)
+    {
+      EXPECT_GE(breaks, runs / 2) << n; // the runs are permuted, not left in id order
+      // Each point's rank among the kept voxels in id order.
+      std::vector<std::uint64_t> rank(static_cast<std::size_t>(n), 0);
+      for (std::uint64_t r = 0, id = 0; id < static_cast<std::uint64_t>(n); ++id)
+      {
+        rank[id] = r;
+        r += seen[id];
+      }
+      const std::uint64_t size = serial.Size();
+      for (const std::uint64_t prefixRuns : { std::uint64_t(64), std::uint64_t(200), runs / 3 })
+      {
+        const std::uint64_t prefix = prefixRuns * run;
+        std::vector<double> eighths(8, 0.0);
+        for (std::uint64_t k = 0; k < prefix; ++k)
+        {
+          eighths[static_cast<std::size_t>(8 * rank[serial.Ids[k]] / size)] += 1;
+        }
+        for (double count : eighths)
+        {
+          EXPECT_NEAR(static_cast<double>(prefix) / 8, count, 3.0 * run) << prefixRuns << " runs";
+        }
+      }
+    }
+  }
 }
 
 namespace

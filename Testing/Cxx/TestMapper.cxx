@@ -64,6 +64,11 @@ struct Scene : mcxtest::HeadScene
     {
       prefix->GetPoints()->Resize(n);
       prefix->GetPoints()->SetNumberOfPoints(n);
+      if (vtkDataArray* weights = prefix->GetPointData()->GetArray("PointWeight"))
+      {
+        weights->Resize(n);
+        weights->SetNumberOfTuples(n);
+      }
       const double integral = mcxtest::FieldValue(cloud, "Integral");
       vtkDoubleArray::SafeDownCast(prefix->GetFieldData()->GetArray("SampleWeight"))
         ->SetValue(0, integral / static_cast<double>(n));
@@ -418,6 +423,39 @@ TEST(Mapper, FootprintCloudRefinesLikeTheOfflineProjector)
     }
     EXPECT_EQ((1 << 16) - 1, scene.Mapper->GetNumberOfAccumulatedSamples());
   }
+}
+
+TEST(Mapper, EveryVoxelCloudRefinesLikeTheOfflineProjector)
+{
+  // The sampler's EVERY_VOXEL cloud: every progressive prefix on screen is
+  // the off-line projector's image of that prefix, bit for bit, and the
+  // complete image is that of every voxel of non-zero weight; its error is
+  // not estimated (NaN) on screen as off line.
+  Scene scene(16);
+  scene.Sampler->SetDepositToFootprint();
+  scene.Sampler->SetStrategyToEveryVoxel();
+  scene.Mapper->AutomaticWindowLevelOff();
+  scene.Mapper->SetInitialSampleExponent(10);
+  scene.Window->SetDesiredUpdateRate(1e6); // one level per render
+  scene.Window->Render();
+  const vtkIdType voxels = scene.Sampler->GetOutput()->GetNumberOfPoints();
+  ASSERT_GT(voxels, 100000);
+  int steps = 0;
+  while (steps++ < 40)
+  {
+    const vtkTypeInt64 count = scene.Mapper->GetNumberOfAccumulatedSamples();
+    auto offline = scene.Offline(count);
+    ASSERT_EQ(0, DifferingPixels(scene.OnScreen(), offline)) << count << " points";
+    EXPECT_TRUE(std::isnan(scene.Mapper->GetEstimatedRelativeError()));
+    EXPECT_TRUE(std::isnan(mcxtest::FieldValue(offline, "EstimatedRelativeError")));
+    if (scene.Mapper->IsRefinementComplete())
+    {
+      break;
+    }
+    scene.Window->Render();
+  }
+  EXPECT_GT(steps, 3);
+  EXPECT_EQ(voxels, scene.Mapper->GetNumberOfAccumulatedSamples());
 }
 
 TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)

@@ -7,12 +7,14 @@
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 #include "vtkXMLImageDataReader.h"
@@ -21,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -82,6 +85,16 @@ TEST(Pipeline, EachChangeReExecutesOnlyWhatItAffects)
 
 namespace
 {
+std::vector<double> Values(vtkDataArray* array)
+{
+  std::vector<double> values(static_cast<std::size_t>(array->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+  {
+    values[static_cast<std::size_t>(i)] = array->GetTuple1(i);
+  }
+  return values;
+}
+
 std::vector<double> Coordinates(vtkPoints* points)
 {
   std::vector<double> values(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
@@ -157,6 +170,107 @@ TEST(Pipeline, ReusePointsRefillsOnlyACloudThatNothingElseHolds)
   reusing->Update();
   EXPECT_FALSE(old);
   EXPECT_FALSE(kept);
+}
+
+namespace
+{
+// Checks an every-voxel cloud of `volume` under `tf`: each voxel of
+// non-zero weight once, at its centre, with the weight TF / mean TF.
+void ExpectEveryVoxelOnce(vtkPolyData* cloud, vtkImageData* volume, vtkPiecewiseFunction* tf)
+{
+  vtkDataArray* values = volume->GetPointData()->GetScalars();
+  double total = 0;
+  vtkIdType count = 0;
+  for (vtkIdType v = 0; v < volume->GetNumberOfPoints(); ++v)
+  {
+    const double w = std::max(0.0, tf->GetValue(values->GetTuple1(v)));
+    total += w;
+    count += w > 0 ? 1 : 0;
+  }
+  ASSERT_EQ(count, cloud->GetNumberOfPoints());
+  vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName());
+  ASSERT_NE(nullptr, weights);
+  ASSERT_EQ(count, weights->GetNumberOfTuples());
+  std::vector<int> seen(static_cast<std::size_t>(volume->GetNumberOfPoints()), 0);
+  double sum = 0;
+  for (vtkIdType k = 0; k < count; ++k)
+  {
+    const vtkIdType v = volume->FindPoint(cloud->GetPoint(k));
+    ASSERT_GE(v, 0);
+    ++seen[static_cast<std::size_t>(v)];
+    double centre[3];
+    volume->GetPoint(v, centre);
+    for (int a = 0; a < 3; ++a)
+    {
+      ASSERT_NEAR(centre[a], cloud->GetPoint(k)[a], 1e-4) << "point " << k;
+    }
+    const double expected = tf->GetValue(values->GetTuple1(v)) * count / total;
+    ASSERT_NEAR(expected, weights->GetTuple1(k), 1e-6 * expected) << "point " << k;
+    sum += weights->GetTuple1(k);
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n <= 1; }));
+  EXPECT_NEAR(static_cast<double>(count), sum, 1e-5 * count);
+  EXPECT_EQ(nullptr, cloud->GetFieldData()->GetArray("SampleExponent"));
+  EXPECT_DOUBLE_EQ(
+    mcxtest::FieldValue(cloud, "Integral") / count, mcxtest::FieldValue(cloud, "SampleWeight"));
+}
+}
+
+TEST(Pipeline, EveryVoxelTFEditsKeepTheVoxelsAndRewriteTheWeights)
+{
+  // EVERY_VOXEL: a TF edit that keeps the same voxels keeps the points
+  // (ReusePoints) and writes new weights; one that zeroes some voxels makes
+  // a cloud of the others; the cloud is the same for one thread and two;
+  // without reuse no old cloud is kept.
+  const int dims[3] = { 12, 10, 8 };
+  auto volume = mcxtest::MakeVolume(
+    VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
+  const double spacing[3] = { 0.7, 1.1, 2.0 };
+  volume->SetSpacing(spacing);
+  volume->SetOrigin(-3, 4, 10);
+  vtkNew<vtkMCXDensityIndex> index;
+  index->SetInputData(volume);
+  vtkNew<vtkPiecewiseFunction> tf;
+  tf->AddPoint(0, 0);
+  tf->AddPoint(400, 1);
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(index->GetOutputPort());
+  sampler->SetTransferFunction(tf);
+  sampler->SetStrategyToEveryVoxel();
+  sampler->SetDepositToFootprint();
+  sampler->ReusePointsOn();
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&]() { sampler->Update(); });
+  vtkPolyData* cloud = sampler->GetOutput();
+  ExpectEveryVoxelOnce(cloud, volume, tf);
+  ASSERT_GT(cloud->GetNumberOfPoints(), 100);
+  const std::vector<double> oneThread = Coordinates(cloud->GetPoints());
+  const std::vector<double> oneThreadWeights =
+    Values(cloud->GetPointData()->GetArray("PointWeight"));
+  sampler->Modified();
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { sampler->Update(); });
+  EXPECT_EQ(oneThread, Coordinates(cloud->GetPoints()));
+  EXPECT_EQ(oneThreadWeights, Values(cloud->GetPointData()->GetArray("PointWeight")));
+
+  vtkWeakPointer<vtkPoints> first = cloud->GetPoints();
+  tf->AddPoint(200, 0.9);
+  sampler->Update();
+  EXPECT_EQ(first.Get(), sampler->GetOutput()->GetPoints());
+  ExpectEveryVoxelOnce(sampler->GetOutput(), volume, tf);
+
+  tf->AddPoint(150, 0);
+  tf->AddPoint(0, 0);
+  sampler->Update();
+  EXPECT_NE(first.Get(), sampler->GetOutput()->GetPoints());
+  ExpectEveryVoxelOnce(sampler->GetOutput(), volume, tf);
+  EXPECT_LT(
+    sampler->GetOutput()->GetNumberOfPoints(), static_cast<vtkIdType>(oneThread.size() / 3));
+
+  vtkWeakPointer<vtkPoints> kept = sampler->GetOutput()->GetPoints();
+  sampler->ReusePointsOff();
+  tf->AddPoint(200, 0.5);
+  sampler->Update();
+  EXPECT_FALSE(kept);
+  ExpectEveryVoxelOnce(sampler->GetOutput(), volume, tf);
 }
 
 TEST(Pipeline, TheIndexTravelsThroughAVTKFile)

@@ -16,6 +16,7 @@ CONSTANTS = {
     "Hybrid": mcxray.vtkMCXPointSampler.HYBRID,
     "Monte Carlo": mcxray.vtkMCXPointSampler.MONTE_CARLO,
     "Quasi-Monte Carlo": mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO,
+    "Every voxel": mcxray.vtkMCXPointSampler.EVERY_VOXEL,
     "Tent (trilinear)": mcxray.vtkMCXPointSampler.TENT,
     "Box (nearest)": mcxray.vtkMCXPointSampler.BOX,
     "Point": mcxray.vtkMCXPointSampler.POINT,

@@ -283,7 +283,10 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // The size that decides on interactive (LOD) renders is that of the
     // cloud the renders draw, so that a large point count makes camera
     // motion use the interactive budget.
-    const double cloudKiB = 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
+    // An every-voxel cloud holds at most each voxel once, with its weight.
+    const double cloudKiB = this->Sampler->GetStrategy() == vtkMCXPointSampler::EVERY_VOXEL
+      ? (this->DeliveredIndex ? 16.0 * this->DeliveredIndex->GetNumberOfPoints() / 1024.0 : 0.0)
+      : 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
     const double indexKiB =
       this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
     const bool parallel = IsParallelServer();
