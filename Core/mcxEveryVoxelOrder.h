@@ -41,15 +41,32 @@ struct EveryVoxelOrder
   std::uint64_t Size() const { return this->Ids.size(); }
 
   /// Orders the voxels of the levels l with kept[l] != 0, from the index's
-  /// ids sorted by level (levelOffsets: numberOfLevels + 1 entries; ids
-  /// below numberOfVoxels).
+  /// ids sorted by level (levelOffsets: numberOfLevels + 1 entries, fewer
+  /// than 2^32 - 1 levels). False, and no order, when those ids are not
+  /// distinct voxel ids below numberOfVoxels (an index read from a damaged
+  /// file).
   template <typename Executor>
-  void Build(const Executor& executor, const IdType* sortedIds, const std::int64_t* levelOffsets,
+  bool Build(const Executor& executor, const IdType* sortedIds, const std::int64_t* levelOffsets,
     std::int64_t numberOfLevels, const std::vector<char>& kept, std::int64_t numberOfVoxels)
   {
+    this->Ids.clear();
+    this->Levels.clear();
     const std::uint32_t none = ~std::uint32_t(0);
+    if (numberOfLevels >= static_cast<std::int64_t>(none))
+    {
+      return false;
+    }
     std::vector<std::uint32_t> levelOf(static_cast<std::size_t>(numberOfVoxels), none);
-    // Each voxel's level, kept levels only (every slot written by one item).
+    // Each voxel's level, kept levels only (every slot written by one item
+    // when the ids are distinct; repeated ones show below as a short count).
+    std::uint64_t expected = 0;
+    for (std::int64_t l = 0; l < numberOfLevels; ++l)
+    {
+      expected += kept[static_cast<std::size_t>(l)]
+        ? static_cast<std::uint64_t>(levelOffsets[l + 1] - levelOffsets[l])
+        : 0;
+    }
+    std::vector<char> outside(static_cast<std::size_t>(numberOfLevels), 0);
     executor.For(0, numberOfLevels, 1,
       [&](std::int64_t l0, std::int64_t l1)
       {
@@ -59,11 +76,21 @@ struct EveryVoxelOrder
           {
             for (std::int64_t slot = levelOffsets[l]; slot < levelOffsets[l + 1]; ++slot)
             {
-              levelOf[static_cast<std::size_t>(sortedIds[slot])] = static_cast<std::uint32_t>(l);
+              const std::uint64_t id = static_cast<std::uint64_t>(sortedIds[slot]);
+              if (id >= static_cast<std::uint64_t>(numberOfVoxels))
+              {
+                outside[static_cast<std::size_t>(l)] = 1;
+                break;
+              }
+              levelOf[static_cast<std::size_t>(id)] = static_cast<std::uint32_t>(l);
             }
           }
         }
       });
+    if (std::find(outside.begin(), outside.end(), 1) != outside.end())
+    {
+      return false;
+    }
     // The kept voxels in id order: counted per chunk, then written.
     const std::int64_t chunks = (numberOfVoxels + Chunk - 1) / Chunk;
     std::vector<std::uint64_t> start(static_cast<std::size_t>(chunks) + 1, 0);
@@ -90,6 +117,10 @@ struct EveryVoxelOrder
       });
     std::partial_sum(start.begin(), start.end(), start.begin());
     const std::uint64_t size = start.back();
+    if (size != expected)
+    {
+      return false; // repeated ids
+    }
     std::vector<IdType> inIdOrder(static_cast<std::size_t>(size));
     executor.For(0, chunks, 1,
       [&](std::int64_t c0, std::int64_t c1)
@@ -101,7 +132,7 @@ struct EveryVoxelOrder
         }
       });
     // The runs in bit-reversed order (van der Corput, skipping reversals
-    // of U or more): slot j holds run runOf[j] at offset at[j].
+    // of `runs` or more): slot j holds run runOf[j] at offset at[j].
     this->Ids.resize(static_cast<std::size_t>(size));
     this->Levels.resize(static_cast<std::size_t>(size));
     const std::uint64_t runs = (size + RunLength - 1) / RunLength;
@@ -139,6 +170,7 @@ struct EveryVoxelOrder
           }
         }
       });
+    return true;
   }
 };
 

@@ -40,6 +40,8 @@ public:
     this->FirstHalf.assign(pixels, 0);
     this->Counted = 0;
     this->FirstHalfCount = 0;
+    this->Weights = 0;
+    this->Weighted = false;
   }
 
   /// Adds points [Count(), target) of `points` (x, y, z each) to the image,
@@ -63,11 +65,24 @@ public:
     }
     this->Accumulator.SetSplit(splitsHere ? half : 0);
     this->Accumulator.DepositPoints(executor, points, this->Counted, target, weights);
+    if (weights)
+    {
+      this->Weights += PointWeightSum(executor, weights, this->Counted, target);
+      this->Weighted = true;
+    }
     this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data());
     this->Counted = target;
   }
 
   std::uint64_t Count() const { return this->Counted; }
+
+  /// The points the image holds, counted with their weights: Count() for an
+  /// unweighted cloud, else the sum of the weights so far (the image of a
+  /// prefix then carries the cloud's integral whatever its mean weight).
+  double CountedWeight() const
+  {
+    return this->Weighted ? ToDouble(this->Weights) / FixedOne : static_cast<double>(this->Counted);
+  }
   std::size_t NumberOfPixels() const { return this->Total.size(); }
   const ProjectionGeometry& GetGeometry() const { return this->Geometry; }
 
@@ -103,6 +118,8 @@ private:
   std::vector<FixedSum> FirstHalf;
   std::uint64_t Counted = 0;
   std::uint64_t FirstHalfCount = 0;
+  FixedSum Weights = 0; // of the points counted, when weighted
+  bool Weighted = false;
 };
 
 } // namespace mcx

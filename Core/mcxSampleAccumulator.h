@@ -77,6 +77,32 @@ std::string PointWeightProblem(const Weight* weights, std::uint64_t count)
   return std::string();
 }
 
+/// The sum of weights [begin, end) in fixed point (each rounded to 2^-32, as
+/// FixedIncrement): exact, so the same for any split of the work, and the
+/// sums of consecutive ranges add up to the sum of their union.
+template <typename Executor, typename Weight>
+FixedSum PointWeightSum(
+  const Executor& executor, const Weight* weights, std::uint64_t begin, std::uint64_t end)
+{
+  typename Executor::template ThreadLocal<FixedSum> sums;
+  executor.For(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end),
+    std::int64_t(1) << 16,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      FixedSum& sum = sums.Local();
+      for (std::int64_t i = b; i < e; ++i)
+      {
+        sum += FixedIncrement(static_cast<double>(weights[i]));
+      }
+    });
+  FixedSum total = 0;
+  for (const FixedSum& sum : sums)
+  {
+    total += sum;
+  }
+  return total;
+}
+
 /// How samples are deposited; the default is the paper's point deposit.
 struct DepositSettings
 {

@@ -8,7 +8,6 @@
 #include "mcxSampleAccumulator.h"
 #include "vtkDataArray.h" // for WithPointWeights
 
-class vtkDataArray;
 class vtkObject;
 class vtkPolyData;
 

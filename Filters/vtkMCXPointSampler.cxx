@@ -276,6 +276,9 @@ int vtkMCXPointSampler::RequestData(
     return this->RequestEveryVoxel(input, output);
   }
   this->KeptVoxels.reset();
+  // A sampled cloud's points count once each (an output the executive did
+  // not empty may still hold an every-voxel cloud's weights).
+  output->GetPointData()->RemoveArray(PointWeightName());
   mcx::IndexView view;
   mcx::TransferTable table;
   double integral = 0.0;
@@ -392,7 +395,8 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
       static_cast<double>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2];
     const double idBytes = view.WideIds ? 8.0 : 4.0;
     if (!mcx::CheckMemory(this,
-          static_cast<double>(count) * (3.0 * (pointType == VTK_DOUBLE ? 8 : 4) + 4 + 4 + idBytes) +
+          static_cast<double>(count) *
+              (3.0 * (pointType == VTK_DOUBLE ? 8 : 4) + 4 + 4 + 2 * idBytes) +
             4.0 * voxels,
           "A cloud of every voxel's " + std::to_string(count) + " points"))
     {
@@ -401,7 +405,15 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
     }
     cloud.reset(new EveryVoxelCloud);
     cloud->Describe(view, kept, this, pointType);
-    if (!this->MakeEveryVoxelPoints(view, kept, *cloud))
+    bool completed = true;
+    if (!this->MakeEveryVoxelPoints(view, kept, *cloud, completed))
+    {
+      vtkErrorMacro("Cannot sample every voxel: the index's sorted ids are not distinct voxel ids "
+                    "of its volume (a damaged index).");
+      output->Initialize();
+      return 0;
+    }
+    if (!completed)
     {
       output->Initialize();
       return 1; // aborted
@@ -434,8 +446,8 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
   return 1;
 }
 
-bool vtkMCXPointSampler::MakeEveryVoxelPoints(
-  const mcx::IndexView& view, const std::vector<char>& kept, EveryVoxelCloud& cloud)
+bool vtkMCXPointSampler::MakeEveryVoxelPoints(const mcx::IndexView& view,
+  const std::vector<char>& kept, EveryVoxelCloud& cloud, bool& completed)
 {
   const std::int64_t voxels =
     static_cast<std::int64_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2];
@@ -446,19 +458,22 @@ bool vtkMCXPointSampler::MakeEveryVoxelPoints(
   {
     using IdType = decltype(id);
     mcx::EveryVoxelOrder<IdType> order;
-    order.Build(mcx::SMPExecutor(), view.IdPointer<IdType>(), view.LevelOffsets,
-      view.NumberOfLevels, kept, voxels);
+    if (!order.Build(mcx::SMPExecutor(), view.IdPointer<IdType>(), view.LevelOffsets,
+          view.NumberOfLevels, kept, voxels))
+    {
+      return false;
+    }
     this->UpdateProgress(0.5);
     auto points = vtkSmartPointer<vtkPoints>::New();
     points->SetDataType(cloud.PointType);
     points->SetNumberOfPoints(static_cast<vtkIdType>(order.Size()));
     void* raw = points->GetVoidPointer(0);
-    const bool completed = cloud.PointType == VTK_DOUBLE
+    completed = cloud.PointType == VTK_DOUBLE
       ? EveryVoxelPositions(this, view, order.Ids, kernel, centres, seed, static_cast<double*>(raw))
       : EveryVoxelPositions(this, view, order.Ids, kernel, centres, seed, static_cast<float*>(raw));
     cloud.Points = points;
     cloud.Levels = std::move(order.Levels);
-    return completed;
+    return true;
   };
   return view.WideIds ? make(std::uint64_t(0)) : make(std::uint32_t(0));
 }
@@ -490,6 +505,9 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ReusePoints: " << this->ReusePoints << "\n";
   os << indent << "KeptPoints: " << (this->KeptPoints ? this->KeptPoints->GetNumberOfPoints() : 0)
+     << " points\n";
+  os << indent << "KeptVoxels: "
+     << (this->KeptVoxels ? static_cast<vtkIdType>(this->KeptVoxels->Levels.size()) : 0)
      << " points\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
 }

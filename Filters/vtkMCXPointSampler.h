@@ -19,7 +19,8 @@
  *
  * The cost is O(M) and independent of the voxel count; a TF change
  * re-executes this filter only, never the index. The same seed gives the same
- * points for any number of threads.
+ * points for any number of threads. The EVERY_VOXEL strategy takes each voxel
+ * of non-zero weight once instead, weighted (see SetStrategy).
  */
 #ifndef vtkMCXPointSampler_h
 #define vtkMCXPointSampler_h
@@ -108,7 +109,10 @@ public:
    * The name of an optional point-data array of a cloud's consumers
    * (vtkMCXProjector, vtkMCXXRayMapper): point i counts PointWeight[i] times
    * (one float or double component, each finite and in [0, 2^40]; 0 skips
-   * the point). Without it every point counts once.
+   * the point), and the points deposited carry the cloud's Integral
+   * together: a point of weight w carries Integral w / (the sum of the
+   * weights deposited), in the mapper's prefixes too, and the SampleWeight
+   * field is not read. Without it every point counts once.
    */
   static const char* PointWeightName() { return "PointWeight"; }
 
@@ -143,10 +147,11 @@ public:
    * PointWeightName()), so the image has no voxel-choice noise; the cost of
    * a TF edit grows with those voxels, not with M. It pays where they are
    * fewer than the samples a target error needs (footprint deposit, 2 % at
-   * 256^2: about 2 M samples for the 1.25 M such voxels of the bundled CT
-   * body). The points are the voxels in runs of 64 neighbours in voxel-id
-   * order, the runs in a golden-ratio order, so any prefix is spread over
-   * the volume (the mapper's progressive refinement). With ReusePoints on,
+   * 256^2: about 2 M samples for the 1.25 M such voxels of the shared data's
+   * CT body). The points are the voxels in runs of 64 neighbours in
+   * voxel-id order, the runs in base-2 van der Corput (bit-reversed) order,
+   * so any prefix is spread over the volume (the mapper's progressive
+   * refinement). With ReusePoints on,
    * a TF edit that keeps the same voxels rewrites only the weights. The
    * output has no SampleExponent field.
    */
@@ -249,9 +254,10 @@ protected:
 private:
   /// RequestData of EVERY_VOXEL.
   int RequestEveryVoxel(vtkImageData* input, vtkPolyData* output);
-  /// The every-voxel cloud's points and levels (false: aborted).
-  bool MakeEveryVoxelPoints(
-    const mcx::IndexView& view, const std::vector<char>& kept, EveryVoxelCloud& cloud);
+  /// The every-voxel cloud's points and levels; false when the index's ids
+  /// are not distinct voxel ids, `completed` false when aborted.
+  bool MakeEveryVoxelPoints(const mcx::IndexView& view, const std::vector<char>& kept,
+    EveryVoxelCloud& cloud, bool& completed);
 
   /// KeptPoints when ReusePoints allows to refill them: of `type` and
   /// `count`, held by nothing but this filter and `output`; else null.

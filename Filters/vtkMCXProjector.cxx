@@ -127,6 +127,17 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
       ? deposit(static_cast<const float*>(points->GetVoidPointer(0)))
       : deposit(static_cast<const double*>(points->GetVoidPointer(0)));
   }
+  if (weights)
+  {
+    // Weighted points carry the integral together, whatever their mean
+    // weight (as the mapper's prefixes do).
+    const double carried =
+      mcx::ToDouble(mcx::WithPointWeights(weights,
+        [&](const auto* values)
+        { return mcx::PointWeightSum(mcx::SMPExecutor(), values, 0, projection.Count); })) /
+      mcx::FixedOne;
+    projection.SampleWeight = carried > 0 ? projection.Integral / carried : 0.0;
+  }
   CollectSums(accumulator, projection);
   return true;
 }

@@ -429,10 +429,12 @@ struct vtkMCXXRayMapper::vtkInternals
     return true;
   }
 
+  // What one point of weight 1 carries: the integral over the points so far
+  // (counted with their weights, PointWeight).
   double SampleWeight() const
   {
-    const std::uint64_t count = this->Image.Count();
-    return count > 0 ? this->ScaledIntegral / static_cast<double>(count) : 0.0;
+    const double carried = this->Image.CountedWeight();
+    return carried > 0 ? this->ScaledIntegral / carried : 0.0;
   }
 
   // The number of points the image should hold after this render: the next

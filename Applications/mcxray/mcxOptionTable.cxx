@@ -61,7 +61,11 @@ const Option Options[] = {
     [](Settings& s, const Argument&) { s.Radiograph.NegativeLog = true; } },
   { "--tf", Both, true, [](Settings& s, const Argument& a) { s.TF = a.Value; } },
   { "--samples", Both, true,
-    [](Settings& s, const Argument& a) { s.Samples = ParseInteger(a.Value, a.Name, 1); } },
+    [](Settings& s, const Argument& a)
+    {
+      s.Samples = ParseInteger(a.Value, a.Name, 1);
+      s.SamplesGiven = true;
+    } },
   { "--target-error", Render, true,
     [](Settings& s, const Argument& a)
     { s.TargetError = ParseOpenUnitFraction(a.Value, a.Name); } },

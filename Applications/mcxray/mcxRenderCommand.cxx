@@ -174,8 +174,7 @@ void CheckCombinations(const Settings& settings)
   CheckKernel(settings.Kernel);
   CheckDeposit(settings.Deposit);
   if (settings.Method == "every-voxel" &&
-    (settings.TargetError > 0 || settings.QuantizationLevels > 0 ||
-      settings.Samples != DefaultSamples))
+    (settings.TargetError > 0 || settings.QuantizationLevels > 0 || settings.SamplesGiven))
   {
     Fail("every-voxel takes each voxel of non-zero weight once: leave out --samples, "
          "--target-error and --quantization-levels");

@@ -18,12 +18,13 @@ struct Settings
   std::string Input; // empty: the bundled CT
   std::string TF = "raw";
   long long Samples = 0; // each command sets its default before parsing
+  bool SamplesGiven = false;
   std::string Method = "hybrid";
   std::string Kernel = "tent";
   std::string Deposit = "footprint";
   unsigned long long Seed = 0;
-  int Threads = 0; // 0: all cores
-  double MemoryLimit = 0.0;  // bytes; 0: the machine's physical memory
+  int Threads = 0;            // 0: all cores
+  double MemoryLimit = 0.0;   // bytes; 0: the machine's physical memory
   double ReadTimeout = 300.0; // seconds the volume reader may take
   int DicomSeries = 0;        // --series: a DICOM folder's series (1, 2, ...); 0: its only one
   bool SizeGiven = false;

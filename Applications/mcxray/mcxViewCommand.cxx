@@ -83,7 +83,7 @@ void CheckCombinations(const Settings& settings)
     Fail("unknown --method '" + settings.Method +
       "' for view (expected hybrid, mc, qmc or every-voxel)");
   }
-  if (settings.Method == "every-voxel" && settings.Samples != DefaultSamples)
+  if (settings.Method == "every-voxel" && settings.SamplesGiven)
   {
     Fail("every-voxel takes each voxel of non-zero weight once: leave out --samples");
   }

@@ -308,11 +308,15 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
     }
     case '+':
     case '=':
-      viewer->Sampler->SetSampleExponent(
-        std::min(MaximumViewerExponent, viewer->Sampler->GetSampleExponent() + 1));
-      break;
     case '-':
-      viewer->Sampler->SetSampleExponent(std::max(10, viewer->Sampler->GetSampleExponent() - 1));
+      // An every-voxel cloud has no sample count to change.
+      handled = viewer->Sampler->GetStrategy() != vtkMCXPointSampler::EVERY_VOXEL;
+      if (handled)
+      {
+        const int step = key == '-' ? -1 : 1;
+        viewer->Sampler->SetSampleExponent(std::max(
+          10, std::min(MaximumViewerExponent, viewer->Sampler->GetSampleExponent() + step)));
+      }
       break;
     default:
       handled = false;

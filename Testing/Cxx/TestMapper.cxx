@@ -460,10 +460,12 @@ TEST(Mapper, EveryVoxelCloudRefinesLikeTheOfflineProjector)
 
 TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)
 {
-  // A cloud's PointWeight array scales each point's deposit: on screen as
-  // off line, bit for bit, points and footprints; a change of the weights
-  // alone starts the image over (weights 2 double it, up to each pixel's
-  // rounding); a bad weight is one error line, and nothing is drawn from it.
+  // A cloud's PointWeight array scales each point's deposit, and the points
+  // carry the cloud's integral together: on screen as off line, bit for
+  // bit, points and footprints; a change of the weights alone starts the
+  // image over (weights 2 everywhere give the unweighted image, up to each
+  // pixel's rounding); a bad weight is one error line, and nothing is drawn
+  // from it.
   Scene scene(14);
   scene.Mapper->ProgressiveRefinementOff();
   for (const bool footprint : { false, true })
@@ -508,7 +510,7 @@ TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)
     ASSERT_GT(peak, 0.0);
     for (vtkIdType p = 0; p < once->GetNumberOfTuples(); ++p)
     {
-      ASSERT_NEAR(2 * once->GetTuple1(p), doubled->GetTuple1(p), 1e-6 * peak) << "pixel " << p;
+      ASSERT_NEAR(once->GetTuple1(p), doubled->GetTuple1(p), 1e-6 * peak) << "pixel " << p;
     }
 
     weights->SetValue(3, -1.0f);

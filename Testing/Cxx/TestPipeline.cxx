@@ -246,10 +246,16 @@ TEST(Pipeline, EveryVoxelTFEditsKeepTheVoxelsAndRewriteTheWeights)
   const std::vector<double> oneThread = Coordinates(cloud->GetPoints());
   const std::vector<double> oneThreadWeights =
     Values(cloud->GetPointData()->GetArray("PointWeight"));
-  sampler->Modified();
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { sampler->Update(); });
-  EXPECT_EQ(oneThread, Coordinates(cloud->GetPoints()));
-  EXPECT_EQ(oneThreadWeights, Values(cloud->GetPointData()->GetArray("PointWeight")));
+  vtkNew<vtkMCXPointSampler> twoThreads; // a sampler of its own: nothing kept to reuse
+  twoThreads->SetInputConnection(index->GetOutputPort());
+  twoThreads->SetTransferFunction(tf);
+  twoThreads->SetStrategyToEveryVoxel();
+  twoThreads->SetDepositToFootprint();
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { twoThreads->Update(); });
+  EXPECT_NE(cloud->GetPoints(), twoThreads->GetOutput()->GetPoints());
+  EXPECT_EQ(oneThread, Coordinates(twoThreads->GetOutput()->GetPoints()));
+  EXPECT_EQ(
+    oneThreadWeights, Values(twoThreads->GetOutput()->GetPointData()->GetArray("PointWeight")));
 
   vtkWeakPointer<vtkPoints> first = cloud->GetPoints();
   tf->AddPoint(200, 0.9);

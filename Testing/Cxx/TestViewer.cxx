@@ -194,3 +194,38 @@ TEST(Viewer, ScriptedSession)
   EXPECT_EQ(19, viewer.GetSampler()->GetSampleExponent());
   EXPECT_EQ(6, samplerRuns.Count);
 }
+
+TEST(Viewer, EveryVoxelSession)
+{
+  // --method every-voxel: the overlay counts voxels and shows no error
+  // estimate; + and - leave the cloud alone; a preset reruns the sampler
+  // once, for a cloud of the voxels it keeps.
+  mcxapp::ViewerOptions options;
+  options.Strategy = vtkMCXPointSampler::EVERY_VOXEL;
+  options.TransferFunction = "bone";
+  options.Size[0] = options.Size[1] = Size;
+  options.OffScreen = true;
+  mcxapp::XRayViewer viewer(BundledCT(), options);
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  mcxtest::ExecutionCounter samplerRuns(viewer.GetSampler());
+  viewer.RefineUntilComplete();
+  const vtkIdType bone = viewer.GetSampler()->GetOutput()->GetNumberOfPoints();
+  ASSERT_GT(bone, 1000);
+  EXPECT_EQ(bone, viewer.GetMapper()->GetNumberOfAccumulatedSamples());
+  const std::string overlay = viewer.OverlayText();
+  EXPECT_NE(std::string::npos, overlay.find(" voxels ")) << overlay;
+  EXPECT_NE(std::string::npos, overlay.find("each voxel once")) << overlay;
+  EXPECT_EQ(std::string::npos, overlay.find("est. error")) << overlay;
+  EXPECT_GT(MeanBrightness(viewer.GetRenderWindow()), 1.0);
+  Press(interactor, '+');
+  Press(interactor, '-');
+  EXPECT_EQ(1, samplerRuns.Count);
+  Press(interactor, '3'); // soft tissue: other voxels
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(2, samplerRuns.Count);
+  EXPECT_NE(bone, viewer.GetSampler()->GetOutput()->GetNumberOfPoints());
+  EXPECT_EQ(viewer.GetSampler()->GetOutput()->GetNumberOfPoints(),
+    viewer.GetMapper()->GetNumberOfAccumulatedSamples());
+}
