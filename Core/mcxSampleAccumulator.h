@@ -84,21 +84,27 @@ template <typename Executor, typename Weight>
 FixedSum PointWeightSum(
   const Executor& executor, const Weight* weights, std::uint64_t begin, std::uint64_t end)
 {
-  typename Executor::template ThreadLocal<FixedSum> sums;
+  // A class with a zero default: a thread-local built-in integer would be
+  // default-initialised (vtkSMPThreadLocal copies such an exemplar).
+  struct Sum
+  {
+    FixedSum Value = 0;
+  };
+  typename Executor::template ThreadLocal<Sum> sums;
   executor.For(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end),
     std::int64_t(1) << 16,
     [&](std::int64_t b, std::int64_t e)
     {
-      FixedSum& sum = sums.Local();
+      FixedSum& sum = sums.Local().Value;
       for (std::int64_t i = b; i < e; ++i)
       {
         sum += FixedIncrement(static_cast<double>(weights[i]));
       }
     });
   FixedSum total = 0;
-  for (const FixedSum& sum : sums)
+  for (const Sum& sum : sums)
   {
-    total += sum;
+    total += sum.Value;
   }
   return total;
 }

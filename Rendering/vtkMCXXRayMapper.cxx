@@ -365,9 +365,17 @@ struct vtkMCXXRayMapper::vtkInternals
   }
 
   // The points the automatic window is taken from: the smallest prefix of
-  // 2^k - 1 points with at least 4 per pixel (64 per 4 x 4 block), or all.
+  // 2^k - 1 points with at least 4 per pixel (64 per 4 x 4 block), or all
+  // (always all of an every-voxel cloud).
   std::uint64_t WindowPrefix(const int size[2]) const
   {
+    if (this->EveryVoxel)
+    {
+      // Its prefixes are runs of neighbours, brighter where a run lands:
+      // their top percentile would set too wide a window. The whole cloud
+      // costs one pass over its voxels, as a TF edit does.
+      return this->NumberOfPoints;
+    }
     const double wanted = 4.0 * size[0] * size[1];
     std::uint64_t prefix = 1;
     while (static_cast<double>(prefix) < wanted && prefix < this->NumberOfPoints)

@@ -16,9 +16,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <list>
 #include <map>
 #include <mutex>
+#include <new>
 #include <numeric>
 #include <random>
 #include <string>
@@ -758,6 +760,68 @@ TEST(SampleAccumulator, WeightedPointsAddTheirWeightTimesTheirDeposit)
       EXPECT_GT(reached, entries / 4) << what;
     }
   }
+}
+
+namespace
+{
+// The serial executor with thread-local values made as vtkSMPThreadLocal
+// makes them: default-initialised over storage that is not zero.
+struct PoisonedExecutor : mcx::SerialExecutor
+{
+  template <typename T>
+  class ThreadLocal
+  {
+  public:
+    ThreadLocal() { std::memset(this->Storage, 0xA5, sizeof(T)); }
+    ~ThreadLocal()
+    {
+      if (this->Made)
+      {
+        this->Value()->~T();
+      }
+    }
+    T& Local()
+    {
+      if (!this->Made)
+      {
+        new (this->Storage) T;
+        this->Made = true;
+      }
+      return *this->Value();
+    }
+    T* begin() { return this->Made ? this->Value() : nullptr; }
+    T* end() { return this->Made ? this->Value() + 1 : nullptr; }
+
+  private:
+    T* Value() { return reinterpret_cast<T*>(this->Storage); }
+    alignas(T) unsigned char Storage[sizeof(T)];
+    bool Made = false;
+  };
+};
+}
+
+TEST(SampleAccumulator, PointWeightSumIsExactForAnySplit)
+{
+  // The fixed-point sum of weights: the same for any executor (also one
+  // whose thread-local values start as garbage), and the sums of two
+  // consecutive ranges add up to that of their union.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> weight(0.0f, 5.0f);
+  std::vector<float> weights(300001);
+  double reference = 0;
+  for (float& w : weights)
+  {
+    w = weight(random);
+    reference += w;
+  }
+  const std::uint64_t n = weights.size();
+  const mcx::FixedSum serial = mcx::PointWeightSum(mcx::SerialExecutor(), weights.data(), 0, n);
+  EXPECT_TRUE(serial == mcx::PointWeightSum(ThreadExecutor(), weights.data(), 0, n));
+  EXPECT_TRUE(serial == mcx::PointWeightSum(PoisonedExecutor(), weights.data(), 0, n));
+  EXPECT_TRUE(serial ==
+    mcx::PointWeightSum(ThreadExecutor(), weights.data(), 0, 1234) +
+      mcx::PointWeightSum(ThreadExecutor(), weights.data(), 1234, n));
+  EXPECT_NEAR(reference, mcx::ToDouble(serial) / mcx::FixedOne, 1e-9 * reference);
 }
 
 TEST(SampleAccumulator, PointWeightProblemNamesTheFirstBadWeight)
