@@ -111,6 +111,46 @@ bool EveryVoxelPositions(vtkAlgorithm* self, const mcx::IndexView& view,
     });
 }
 
+// Each level's weight as the table takes it (negative and NaN: 0) and
+// whether an every-voxel cloud keeps its voxels; returns how many it keeps.
+vtkIdType KeepLevels(
+  const mcx::IndexView& view, std::vector<double>& weights, std::vector<char>& kept)
+{
+  kept.assign(weights.size(), 0);
+  vtkIdType count = 0;
+  for (std::size_t l = 0; l < weights.size(); ++l)
+  {
+    weights[l] = weights[l] > 0 ? weights[l] : 0.0;
+    const std::int64_t voxels = view.LevelOffsets[l + 1] - view.LevelOffsets[l];
+    kept[l] = weights[l] > 0 && voxels > 0 ? 1 : 0;
+    count += kept[l] ? voxels : 0;
+  }
+  return count;
+}
+
+// An every-voxel cloud's PointWeight: point k, of level levels[k], counts
+// weights[level] / the mean weight (total / points), so the weights sum to
+// the point count.
+vtkSmartPointer<vtkFloatArray> PointWeights(
+  const std::vector<std::uint32_t>& levels, const std::vector<double>& weights, double total)
+{
+  const vtkIdType count = static_cast<vtkIdType>(levels.size());
+  auto pointWeights = vtkSmartPointer<vtkFloatArray>::New();
+  pointWeights->SetName(vtkMCXPointSampler::PointWeightName());
+  pointWeights->SetNumberOfValues(count);
+  const double scale = total > 0 ? static_cast<double>(count) / total : 0.0;
+  float* w = pointWeights->GetPointer(0);
+  vtkSMPTools::For(0, count,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType k = b; k < e; ++k)
+      {
+        w[k] = static_cast<float>(weights[levels[static_cast<std::size_t>(k)]] * scale);
+      }
+    });
+  return pointWeights;
+}
+
 // What every cloud's consumers read (the pipeline passes the input's field
 // data on: only these, not the index's arrays; SortedVoxelIds alone is 4
 // bytes per voxel). exponent < 0: no SampleExponent (an every-voxel cloud).
@@ -368,17 +408,9 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
     output->Initialize(); // no stale cloud of an earlier request
     return 0;
   }
-  // Each level's weight as the table took it (negative and NaN: 0).
   std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
-  std::vector<char> kept(weights.size(), 0);
-  vtkIdType count = 0;
-  for (std::size_t l = 0; l < weights.size(); ++l)
-  {
-    weights[l] = weights[l] > 0 ? weights[l] : 0.0;
-    const std::int64_t voxels = view.LevelOffsets[l + 1] - view.LevelOffsets[l];
-    kept[l] = weights[l] > 0 && voxels > 0 ? 1 : 0;
-    count += kept[l] ? voxels : 0;
-  }
+  std::vector<char> kept;
+  const vtkIdType count = KeepLevels(view, weights, kept);
   const vtkIdType largest = (vtkIdType(1) << MaximumPointCloudExponent) - 1;
   if (count > largest)
   {
@@ -420,24 +452,8 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
     }
   }
 
-  // Point k counts weight(level) / mean weight: the weights sum to count.
-  vtkNew<vtkFloatArray> pointWeights;
-  pointWeights->SetName(PointWeightName());
-  pointWeights->SetNumberOfValues(count);
-  const double total = table.WeightSum();
-  const double scale = total > 0 ? static_cast<double>(count) / total : 0.0;
-  float* w = pointWeights->GetPointer(0);
-  const std::uint32_t* levels = cloud->Levels.data();
-  vtkSMPTools::For(0, count,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      for (vtkIdType k = b; k < e; ++k)
-      {
-        w[k] = static_cast<float>(weights[levels[k]] * scale);
-      }
-    });
   output->SetPoints(cloud->Points);
-  output->GetPointData()->AddArray(pointWeights);
+  output->GetPointData()->AddArray(PointWeights(cloud->Levels, weights, table.WeightSum()));
   WriteCloudFields(this, view, integral, count, -1, output->GetFieldData());
   if (this->ReusePoints)
   {
