@@ -47,6 +47,18 @@ vtkInformationKeyRestrictedMacro(vtkMCXPointSampler, SUPPORT_CORNERS, DoubleVect
 
 namespace
 {
+// x = origin + matrix p: a point in voxel coordinates stored in world
+// coordinates (IndexView::SourceToWorld).
+template <typename Real>
+void StoreInWorld(const double origin[3], const double matrix[9], const double p[3], Real* x)
+{
+  for (int r = 0; r < 3; ++r)
+  {
+    x[r] = static_cast<Real>(
+      origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
+  }
+}
+
 template <typename IdType, typename Real>
 bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::TransferTable& table,
   mcx::Strategy strategy, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m, bool centres,
@@ -61,14 +73,7 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
   auto store = [&](std::uint64_t k, const double p[3])
-  {
-    Real* x = points + 3 * k;
-    for (int r = 0; r < 3; ++r)
-    {
-      x[r] = static_cast<Real>(
-        origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
-    }
-  };
+  { StoreInWorld(origin, matrix, p, points + 3 * k); };
   return mcx::BatchedFor(
     self, source.NumberOfStorageItems(), 0.05, 1.0,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
@@ -101,12 +106,7 @@ bool EveryVoxelPositions(vtkAlgorithm* self, const mcx::IndexView& view,
           p[a] = static_cast<double>(voxel[a]) +
             (centres ? 0.0 : mcx::KernelOffsetFromUniform(kernel, 1.0 - random.NextOpenClosed()));
         }
-        Real* x = points + 3 * k;
-        for (int r = 0; r < 3; ++r)
-        {
-          x[r] = static_cast<Real>(
-            origin[r] + matrix[3 * r] * p[0] + matrix[3 * r + 1] * p[1] + matrix[3 * r + 2] * p[2]);
-        }
+        StoreInWorld(origin, matrix, p, points + 3 * k);
       }
     });
 }

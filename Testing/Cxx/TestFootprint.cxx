@@ -104,6 +104,20 @@ struct Scene
     return reference->GetOutput();
   }
 
+  // A stored footprint cloud of this scene: 2^m - 1 sampled points, or
+  // every voxel (EVERY_VOXEL: m unused); not yet updated.
+  vtkSmartPointer<vtkMCXPointSampler> FootprintCloud(
+    int m, int strategy = vtkMCXPointSampler::HYBRID) const
+  {
+    auto sampler = vtkSmartPointer<vtkMCXPointSampler>::New();
+    sampler->SetInputConnection(this->Index->GetOutputPort());
+    sampler->SetTransferFunction(this->TF);
+    sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    sampler->SetStrategy(strategy);
+    sampler->SetSampleExponent(m);
+    return sampler;
+  }
+
   vtkSmartPointer<vtkImageData> Footprint(vtkCamera* camera, int size, int m, int seed = 1,
     int strategy = vtkMCXPointSampler::HYBRID) const
   {
@@ -284,11 +298,7 @@ TEST(Footprint, StoredCloudHoldsVoxelCentresAndProjectsAlike)
   // projector's accuracy.
   Scene scene(
     "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(scene.Index->GetOutputPort());
-  sampler->SetTransferFunction(scene.TF);
-  sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
-  sampler->SetSampleExponent(20);
+  auto sampler = scene.FootprintCloud(20);
   sampler->Update();
   vtkPolyData* cloud = sampler->GetOutput();
   const double* spacing = scene.Volume->GetSpacing();
@@ -362,11 +372,7 @@ TEST(Footprint, SplitKernelsAreTheSameForStoredCloudsAndFusedSamples)
   auto camera = scene.Camera(1);
   auto reference = scene.Reference(camera, 200);
   const double fused = mcxtest::RelativeRMS(scene.Footprint(camera, 200, 18, 1), reference);
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(scene.Index->GetOutputPort());
-  sampler->SetTransferFunction(scene.TF);
-  sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
-  sampler->SetSampleExponent(18);
+  auto sampler = scene.FootprintCloud(18);
   sampler->SetSeed(2);
   vtkNew<vtkMCXProjector> projector;
   projector->SetInputConnection(sampler->GetOutputPort());
@@ -388,11 +394,7 @@ TEST(Footprint, StoredCloudsTakeTheProjectorsReach)
     "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
   auto camera = scene.Camera(1);
   auto reference = scene.Reference(camera, 128);
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(scene.Index->GetOutputPort());
-  sampler->SetTransferFunction(scene.TF);
-  sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
-  sampler->SetSampleExponent(18);
+  auto sampler = scene.FootprintCloud(18);
   auto project = [&](double reach)
   {
     vtkNew<vtkMCXProjector> projector;
@@ -428,11 +430,7 @@ TEST(Footprint, EveryVoxelOnceIsNearTheReference)
   // (EVERY_VOXEL), whose error is not estimated.
   Scene scene(
     "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
-  vtkNew<vtkMCXPointSampler> sampler;
-  sampler->SetInputConnection(scene.Index->GetOutputPort());
-  sampler->SetTransferFunction(scene.TF);
-  sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
-  sampler->SetSampleExponent(4);
+  auto sampler = scene.FootprintCloud(4);
   sampler->Update();
 
   vtkImageData* volume = scene.Volume;
@@ -464,11 +462,7 @@ TEST(Footprint, EveryVoxelOnceIsNearTheReference)
     weights->SetValue(
       i, static_cast<float>(weights->GetValue(i) * (static_cast<double>(n) / total)));
   }
-  vtkNew<vtkMCXPointSampler> everyVoxel;
-  everyVoxel->SetInputConnection(scene.Index->GetOutputPort());
-  everyVoxel->SetTransferFunction(scene.TF);
-  everyVoxel->SetDepositToFootprint();
-  everyVoxel->SetStrategyToEveryVoxel();
+  auto everyVoxel = scene.FootprintCloud(0, vtkMCXPointSampler::EVERY_VOXEL);
   everyVoxel->Update();
   EXPECT_EQ(nonzero, everyVoxel->GetOutput()->GetNumberOfPoints());
   // The sampled cloud it is compared with has more points: 2^m - 1 >= nonzero.
