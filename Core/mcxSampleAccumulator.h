@@ -454,16 +454,17 @@ public:
   class ThreadImage
   {
   public:
-    /// Deposits sample k at p by the accumulator's deposit.
-    void Deposit(std::uint64_t k, const double p[3]) const
+    /// Deposits sample k at p by the accumulator's deposit, counting
+    /// `weight` times (finite, >= 0).
+    void Deposit(std::uint64_t k, const double p[3], double weight = 1.0) const
     {
       if (this->Ladder)
       {
-        this->DepositFootprint(k, p);
+        this->DepositFootprint(k, p, weight);
       }
       else
       {
-        this->DepositPoint(k, p);
+        this->DepositPoint(k, p, weight);
       }
     }
 
@@ -481,11 +482,12 @@ public:
     }
 
     /// The footprint of the voxel centred at p (its random part, if the
-    /// plan has one, drawn from the footprint stream of sample k).
-    void DepositFootprint(std::uint64_t k, const double centre[3]) const
+    /// plan has one, drawn from the footprint stream of sample k), scaled
+    /// by `weight`.
+    void DepositFootprint(std::uint64_t k, const double centre[3], double weight = 1.0) const
     {
       PreparedFootprint footprint;
-      if (this->PrepareFootprint(k, centre, footprint))
+      if (this->PrepareFootprint(k, centre, footprint, weight))
       {
         this->AddFootprint(footprint);
       }

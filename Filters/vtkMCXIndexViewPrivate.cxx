@@ -154,6 +154,20 @@ std::vector<double> IndexView::EvaluateTransferFunction(vtkPiecewiseFunction* tf
   return weights;
 }
 
+std::int64_t IndexView::KeepLevels(std::vector<double>& weights, std::vector<char>& kept) const
+{
+  kept.assign(weights.size(), 0);
+  std::int64_t count = 0;
+  for (std::size_t l = 0; l < weights.size(); ++l)
+  {
+    weights[l] = weights[l] > 0 ? weights[l] : 0.0;
+    const std::int64_t voxels = this->LevelOffsets[l + 1] - this->LevelOffsets[l];
+    kept[l] = weights[l] > 0 && voxels > 0 ? 1 : 0;
+    count += kept[l] ? voxels : 0;
+  }
+  return count;
+}
+
 namespace
 {
 // The table of the view's levels, then the outcome told on the algorithm:

@@ -58,6 +58,12 @@ struct IndexView
   /// without a TF, the level value itself.
   std::vector<double> EvaluateTransferFunction(vtkPiecewiseFunction* tf) const;
 
+  /// Each level's TF weight as the table takes it (`weights`, from
+  /// EvaluateTransferFunction: negative and NaN become 0), whether an
+  /// every-voxel image keeps the level's voxels (a non-zero weight, voxels
+  /// in the level), and how many voxels it keeps in the whole volume.
+  std::int64_t KeepLevels(std::vector<double>& weights, std::vector<char>& kept) const;
+
   /// Evaluates the TF into the sampling table and the integral of g (TF
   /// units times world volume). Returns why no image can be made, or "";
   /// warning tells about values replaced by zero or an all-zero TF.

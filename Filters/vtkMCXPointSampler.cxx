@@ -1,6 +1,7 @@
 #include "vtkMCXPointSampler.h"
 
 #include "mcxEveryVoxelOrder.h"
+#include "mcxEveryVoxelSource.h"
 #include "mcxProjectionGeometry.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
@@ -100,52 +101,35 @@ bool EveryVoxelPositions(vtkAlgorithm* self, const mcx::IndexView& view,
         std::uint64_t voxel[3];
         decoder.Decode(ids[k], voxel[0], voxel[1], voxel[2]);
         double p[3];
-        mcx::CounterRandom random(key, k);
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] = static_cast<double>(voxel[a]) +
-            (centres ? 0.0 : mcx::KernelOffsetFromUniform(kernel, 1.0 - random.NextOpenClosed()));
-        }
+        mcx::EveryVoxelPoint(voxel, kernel, centres, key, k, p);
         StoreInWorld(origin, matrix, p, points + 3 * k);
       }
     });
 }
 
-// Each level's weight as the table takes it (negative and NaN: 0) and
-// whether an every-voxel cloud keeps its voxels; returns how many it keeps.
-vtkIdType KeepLevels(
-  const mcx::IndexView& view, std::vector<double>& weights, std::vector<char>& kept)
-{
-  kept.assign(weights.size(), 0);
-  vtkIdType count = 0;
-  for (std::size_t l = 0; l < weights.size(); ++l)
-  {
-    weights[l] = weights[l] > 0 ? weights[l] : 0.0;
-    const std::int64_t voxels = view.LevelOffsets[l + 1] - view.LevelOffsets[l];
-    kept[l] = weights[l] > 0 && voxels > 0 ? 1 : 0;
-    count += kept[l] ? voxels : 0;
-  }
-  return count;
-}
-
 // An every-voxel cloud's PointWeight: point k, of level levels[k], counts
-// weights[level] / the mean weight (total / points), so the weights sum to
-// the point count.
+// the level's weight over the mean weight (mcx::EveryVoxelWeight), so the
+// weights sum to the point count.
 vtkSmartPointer<vtkFloatArray> PointWeights(
   const std::vector<std::uint32_t>& levels, const std::vector<double>& weights, double total)
 {
   const vtkIdType count = static_cast<vtkIdType>(levels.size());
+  std::vector<float> perLevel(weights.size());
+  for (std::size_t l = 0; l < weights.size(); ++l)
+  {
+    perLevel[l] =
+      static_cast<float>(mcx::EveryVoxelWeight(weights[l], static_cast<double>(count), total));
+  }
   auto pointWeights = vtkSmartPointer<vtkFloatArray>::New();
   pointWeights->SetName(vtkMCXPointSampler::PointWeightName());
   pointWeights->SetNumberOfValues(count);
-  const double scale = total > 0 ? static_cast<double>(count) / total : 0.0;
   float* w = pointWeights->GetPointer(0);
   vtkSMPTools::For(0, count,
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType k = b; k < e; ++k)
       {
-        w[k] = static_cast<float>(weights[levels[static_cast<std::size_t>(k)]] * scale);
+        w[k] = perLevel[levels[static_cast<std::size_t>(k)]];
       }
     });
   return pointWeights;
@@ -410,7 +394,7 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
   }
   std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
   std::vector<char> kept;
-  const vtkIdType count = KeepLevels(view, weights, kept);
+  const vtkIdType count = static_cast<vtkIdType>(view.KeepLevels(weights, kept));
   const vtkIdType largest = (vtkIdType(1) << MaximumPointCloudExponent) - 1;
   if (count > largest)
   {

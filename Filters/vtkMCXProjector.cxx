@@ -1,6 +1,7 @@
 #include "vtkMCXProjector.h"
 
 #include "mcxErrorEstimate.h"
+#include "mcxEveryVoxelSource.h"
 #include "mcxFixedPoint.h"
 #include "mcxSampleAccumulator.h"
 #include "vtkMCXBatchedForPrivate.h"
@@ -162,13 +163,16 @@ public:
   /// can be made (on every process, when distributed).
   bool Prepare(vtkImageData* index, vtkPiecewiseFunction* tf)
   {
-    if (this->Controller)
+    const bool prepared = this->Controller
+      ? mcx::PrepareDistributedSampling(this->Self, "project", index, tf, this->Controller,
+          this->WholeExtent, this->Levels, this->View, this->Table, this->Integral)
+      : mcx::PrepareSampling(
+          this->Self, "project", index, tf, this->View, this->Table, this->Integral);
+    if (prepared && this->EveryVoxel)
     {
-      return mcx::PrepareDistributedSampling(this->Self, "project", index, tf, this->Controller,
-        this->WholeExtent, this->Levels, this->View, this->Table, this->Integral);
+      this->WeighEveryVoxel(tf);
     }
-    return mcx::PrepareSampling(
-      this->Self, "project", index, tf, this->View, this->Table, this->Integral);
+    return prepared;
   }
 
   bool IsEmpty() const { return this->Table.IsEmpty(); }
@@ -181,21 +185,69 @@ public:
     projection.Integral = this->Integral;
     projection.SampleWeight =
       projection.Count > 0 ? this->Integral / static_cast<double>(projection.Count) : 0.0;
+    this->Run(projection,
+      [&](Accumulator& accumulator)
+      {
+        accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
+        if (m == 0)
+        {
+          return true;
+        }
+        return this->View.WideIds
+          ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
+          : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
+      });
+    return projection;
+  }
+
+  /// The image of every voxel of non-zero weight once (EveryVoxel), each
+  /// weighted by its level's weight over the mean: the points carry the
+  /// integral together, as a stored every-voxel cloud's do.
+  Projection ProjectEveryVoxel() const
+  {
+    Projection projection;
+    projection.EveryVoxel = true;
+    projection.Count = static_cast<std::uint64_t>(this->KeptVoxels);
+    projection.Integral = this->Integral;
+    double carried = 0.0; // the weights' fixed-point sum over the whole volume, in counts
+    for (std::int64_t l = 0; l < this->View.NumberOfLevels; ++l)
+    {
+      carried += static_cast<double>(this->View.LevelOffsets[l + 1] - this->View.LevelOffsets[l]) *
+        mcx::ToDouble(mcx::FixedIncrement(this->VoxelWeights[static_cast<std::size_t>(l)]));
+    }
+    carried /= mcx::FixedOne;
+    projection.SampleWeight = carried > 0 ? this->Integral / carried : 0.0;
+    this->Run(projection,
+      [&](Accumulator& accumulator)
+      {
+        return this->View.WideIds ? this->DepositEveryVoxel<std::uint64_t>(accumulator)
+                                  : this->DepositEveryVoxel<std::uint32_t>(accumulator);
+      });
+    return projection;
+  }
+
+  mcx::Strategy Method = mcx::Strategy::Hybrid;
+  bool EveryVoxel = false; // EVERY_VOXEL instead of Method (set before Prepare)
+  mcx::Kernel Reconstruction = mcx::Kernel::Tent;
+  std::uint64_t Seed = 0;
+  mcx::Deposit DepositMode = mcx::Deposit::Point;
+  double FootprintReach = 16.0;
+
+private:
+  // Deposits into a new accumulator for the view, then collects the sums
+  // into the projection (added over the processes when distributed).
+  template <typename Deposit>
+  void Run(Projection& projection, Deposit&& deposit) const
+  {
     Accumulator accumulator;
     double origin[3], matrix[9];
     this->View.SourceToWorld(origin, matrix);
     accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), this->Settings());
     projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
-    accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
     std::string error;
     try
     {
-      if (m > 0)
-      {
-        projection.Completed = this->View.WideIds
-          ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
-          : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
-      }
+      projection.Completed = deposit(accumulator);
       CollectSums(accumulator, projection);
     }
     catch (const std::bad_alloc&)
@@ -224,16 +276,56 @@ public:
     {
       throw std::runtime_error(error);
     }
-    return projection;
   }
 
-  mcx::Strategy Method = mcx::Strategy::Hybrid;
-  mcx::Kernel Reconstruction = mcx::Kernel::Tent;
-  std::uint64_t Seed = 0;
-  mcx::Deposit DepositMode = mcx::Deposit::Point;
-  double FootprintReach = 16.0;
+  // Each level's every-voxel weight (the TF's over the mean of the kept
+  // voxels', 0 for a level kept out) and the whole volume's kept voxels.
+  void WeighEveryVoxel(vtkPiecewiseFunction* tf)
+  {
+    std::vector<double> weights = this->View.EvaluateTransferFunction(tf);
+    std::vector<char> kept;
+    this->KeptVoxels = this->View.KeepLevels(weights, kept);
+    const double total = this->Table.WeightSum();
+    this->VoxelWeights.assign(weights.size(), 0.0);
+    for (std::size_t l = 0; l < weights.size(); ++l)
+    {
+      this->VoxelWeights[l] = kept[l]
+        ? mcx::EveryVoxelWeight(weights[l], static_cast<double>(this->KeptVoxels), total)
+        : 0.0;
+    }
+  }
 
-private:
+  // This process's kept voxels, each deposited once (ProjectEveryVoxel).
+  template <typename IdType>
+  bool DepositEveryVoxel(Accumulator& accumulator) const
+  {
+    mcx::EveryVoxelSource<IdType> source;
+    source.SortedIds = this->View.IdPointer<IdType>();
+    source.SlotOffsets = this->View.PieceOffsets ? this->View.PieceOffsets : this->View.LevelOffsets;
+    source.NumberOfLevels = this->View.NumberOfLevels;
+    source.Weights = this->VoxelWeights.data();
+    source.Decoder = mcx::VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->View.Dimensions[0]),
+      static_cast<std::uint64_t>(this->View.Dimensions[1]));
+    std::copy(this->View.PieceStart, this->View.PieceStart + 3, source.PieceStart);
+    for (int a = 0; a < 2; ++a)
+    {
+      source.WholeDimensions[a] =
+        static_cast<std::uint64_t>(this->View.Extent[2 * a + 1] - this->View.Extent[2 * a] + 1);
+    }
+    source.Reconstruction = this->Reconstruction;
+    source.Centres = this->DepositMode == mcx::Deposit::Footprint;
+    source.Seed = this->Seed;
+    source.Prepare();
+    accumulator.SetSplit(0); // no halves: nothing to estimate
+    return mcx::BatchedFor(this->Self, source.Size(), 0.0, 1.0,
+      [&](std::uint64_t b, std::uint64_t e)
+      {
+        const Accumulator::ThreadImage image = accumulator.Local();
+        source.Generate(b, e,
+          [&](std::uint64_t k, const double p[3], double weight) { image.Deposit(k, p, weight); });
+      });
+  }
+
   // The deposit, with the support's depth range (perspective footprints).
   mcx::DepositSettings Settings() const
   {
@@ -296,6 +388,8 @@ private:
   mcx::IndexView View;
   mcx::TransferTable Table;
   double Integral = 0.0;
+  std::vector<double> VoxelWeights; // per level, with EveryVoxel
+  std::int64_t KeptVoxels = 0;      // in the whole volume, with EveryVoxel
 };
 
 // The sample count a target asks for, measured on a projection.
@@ -353,20 +447,34 @@ bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeEx
   {
     return ProjectCloud(self, cloud, geometry, self->GetFootprintReach(), projection);
   }
+  const bool targeted =
+    self->GetTargetRelativeError() > 0 || self->GetTargetQuantizationLevels() > 0;
   IndexProjection sampler(self, geometry, self->GetController(), wholeExtent);
-  if (!sampler.Prepare(vtkImageData::SafeDownCast(input), self->GetTransferFunction()))
+  sampler.EveryVoxel = self->GetStrategy() == vtkMCXPointSampler::EVERY_VOXEL;
+  if (sampler.EveryVoxel && targeted)
   {
+    vtkErrorWithObjectMacro(self,
+      "Cannot project: every voxel is taken once (Strategy EVERY_VOXEL), so there is no sample "
+      "count for TargetRelativeError or TargetQuantizationLevels to choose; set them to 0.");
     return false;
   }
-  sampler.Method = static_cast<mcx::Strategy>(self->GetStrategy());
+  sampler.Method = sampler.EveryVoxel ? mcx::Strategy::Hybrid
+                                      : static_cast<mcx::Strategy>(self->GetStrategy());
   sampler.Reconstruction = static_cast<mcx::Kernel>(self->GetKernel());
   sampler.Seed = static_cast<std::uint64_t>(self->GetSeed());
   sampler.DepositMode = static_cast<mcx::Deposit>(self->GetDeposit());
   sampler.FootprintReach = self->GetFootprintReach();
+  if (!sampler.Prepare(vtkImageData::SafeDownCast(input), self->GetTransferFunction()))
+  {
+    return false;
+  }
+  if (sampler.EveryVoxel)
+  {
+    projection = sampler.ProjectEveryVoxel();
+    return true;
+  }
   // Under a target SampleExponent is ignored (0 included).
   const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(self->GetSampleExponent());
-  const bool targeted =
-    self->GetTargetRelativeError() > 0 || self->GetTargetQuantizationLevels() > 0;
   projection = !sampler.IsEmpty() && targeted
     ? ProjectToTarget(sampler, geometry, self->GetTargetRelativeError(),
         self->GetTargetQuantizationLevels(),

@@ -14,9 +14,10 @@
  * "EstimatedRelativeError": the relative RMS error of the image estimated
  * from the samples themselves, by comparing the images of the first half of
  * the samples (for Hybrid, the coarser Halton run) and of the second half
- * (0 for an empty image, NaN for 1 or 2 samples, and NaN for a cloud of
- * every voxel, vtkMCXPointSampler::EVERY_VOXEL, which has no voxel-choice
- * error to estimate).
+ * (0 for an empty image, NaN for 1 or 2 samples, and NaN for an image of
+ * every voxel, a cloud of vtkMCXPointSampler::EVERY_VOXEL or Strategy
+ * EVERY_VOXEL here, which has no voxel-choice error to estimate; its
+ * "SampleCount" is the number of voxels).
  *
  * Deposit (index input; a footprint cloud from vtkMCXPointSampler brings its
  * own, and FootprintReach applies to it too): with FOOTPRINT each sample adds its voxel's
@@ -59,13 +60,16 @@ public:
   /**
    * With an index input: M = 2^SampleExponent - 1 samples (default m = 24),
    * the sampling strategy (vtkMCXPointSampler::HYBRID, MONTE_CARLO,
-   * QUASI_MONTE_CARLO) and the seed. Ignored for a point-cloud input.
+   * QUASI_MONTE_CARLO, or EVERY_VOXEL: each voxel of non-zero weight once,
+   * weighted by its TF weight over the mean, never stored; SampleExponent
+   * and the target controls do not apply) and the seed. Ignored for a
+   * point-cloud input.
    */
   vtkSetClampMacro(SampleExponent, int, 0, vtkMCXPointSampler::LargestSampleExponent);
   vtkGetMacro(SampleExponent, int);
   void SetNumberOfSamples(vtkTypeInt64 n);
   vtkTypeInt64 GetNumberOfSamples();
-  vtkSetClampMacro(Strategy, int, 0, 2);
+  vtkSetClampMacro(Strategy, int, vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL);
   vtkGetMacro(Strategy, int);
   vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(Seed, vtkTypeInt64);

@@ -74,9 +74,8 @@ options:
                         mean pixel deviation below one of L grey levels
   --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
                         non-zero weight once, weighted by the TF: no sampling
-                        noise, a stored cloud as large as those voxels; implies
-                        --stored-points, replaces --samples), or reference
-                        (exact, slow)
+                        noise; replaces --samples; with --stored-points, a cloud
+                        as large as those voxels), or reference (exact, slow)
   --kernel K            tent (trilinear, default) or box (nearest neighbour)
   --deposit D           footprint (default: each sample adds its voxel's kernel
                         integrated over every pixel it reaches; about 4 to 50
@@ -589,7 +588,6 @@ int RunRender(int argc, char* argv[])
   // Under MPI the first process alone prints and writes.
   settings.Quiet = settings.Quiet || !IsFirstProcess();
   CheckCombinations(settings);
-  settings.StoredPoints = settings.StoredPoints || settings.Method == "every-voxel";
   ErrorCapture capture;
   if (settings.Threads > 0)
   {

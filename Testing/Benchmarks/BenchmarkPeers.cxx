@@ -74,9 +74,10 @@ struct VolumeCase
   std::string File;
   double LeastVoxels; // upsample (linear) until the volume has at least these; 0: as read
   bool GPUPeer;       // VTK's GPU ray cast beside (its 3D texture must fit)
-  // The TF edit of an every-voxel cloud too: not where the voxels far
-  // outnumber the samples that reach 2 % (the upsampled volume's 400 M).
-  bool EveryVoxelEdit;
+  // Every voxel once too (the fused DRR and the TF edit of a cloud): not
+  // where the voxels far outnumber the samples that reach 2 % (the
+  // upsampled volume's 400 M).
+  bool EveryVoxel;
 };
 
 // plastimatch's geometry: gantry 0 puts the source at +x of the isocentre,
@@ -127,18 +128,17 @@ struct Run
 };
 
 Run Render(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera, int size, int m,
-  int deposit, vtkImageData* reference)
+  int deposit, vtkImageData* reference, int strategy = vtkMCXPointSampler::HYBRID)
 {
   Run run;
   std::vector<double> seconds;
   for (int repetition = 0; repetition < 3; ++repetition)
   {
-    auto projector =
-      mcxbench::MakeProjector(index, tf, camera, size, m, vtkMCXPointSampler::HYBRID, deposit);
+    auto projector = mcxbench::MakeProjector(index, tf, camera, size, m, strategy, deposit);
     const Clock::time_point start = Clock::now();
     projector->Update();
     seconds.push_back(Since(start));
-    run.Samples = static_cast<double>(projector->GetNumberOfSamples());
+    run.Samples = mcxbench::FieldValue(projector->GetOutput(), "SampleCount");
     run.Error = mcxbench::RelativeRMS(mcxbench::Values(projector->GetOutput()), reference);
     if (seconds.back() > 1.0)
     {
@@ -516,6 +516,16 @@ int main(int argc, char* argv[])
           reached[d][t] = found[d][t] ? reached[d][t] : last; // capped: the last run
         }
       }
+      if (c.EveryVoxel)
+      {
+        // The fused DRR of every voxel once: one run, no sample count.
+        const Run every = Render(
+          index, tf, camera, size, 0, vtkMCXPointSampler::FOOTPRINT, reference,
+          vtkMCXPointSampler::EVERY_VOXEL);
+        peers << Quoted(c.Name) << ',' << size << ",MonteCarloXRay,every voxel footprint,"
+              << every.Samples << ',' << every.Seconds << ',' << every.Error << '\n';
+        nonsense += std::isfinite(every.Error) && every.Seconds > 0 ? 0 : 1;
+      }
       for (int t = 0; t < 2; ++t)
       {
         targets << Quoted(c.Name) << ',' << size << ',' << Targets[t];
@@ -543,7 +553,7 @@ int main(int argc, char* argv[])
         const int m = static_cast<int>(std::lround(std::log2(reached[1][0].Samples + 1)));
         for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
         {
-          if (strategy == vtkMCXPointSampler::EVERY_VOXEL && !c.EveryVoxelEdit)
+          if (strategy == vtkMCXPointSampler::EVERY_VOXEL && !c.EveryVoxel)
           {
             continue;
           }

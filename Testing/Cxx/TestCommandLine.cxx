@@ -91,13 +91,16 @@ TEST(CommandLine, RealCTFromDiskMatchesTheExactReference)
 
 TEST(CommandLine, EveryVoxelIsNearTheExactReference)
 {
-  // --method every-voxel: each voxel of non-zero weight once, weighted (a
-  // stored cloud). Its error is the footprint's random rounding alone: less
-  // than half that of a sampled footprint cloud of as many points (measured:
-  // a tenth, 35 833 bone voxels at 64^2); the log says it is not estimated.
+  // --method every-voxel: each voxel of non-zero weight once, weighted, by
+  // the off-line projector (fused: nothing stored) and as a stored cloud
+  // (--stored-points). The error is the footprint's random rounding alone:
+  // less than half that of a sampled footprint cloud of as many points
+  // (measured: a tenth, 35 833 bone voxels at 64^2), either way; the log
+  // says it is not estimated.
   const std::string input = SharedData("ct_body_totalseg.nii.gz");
   MCXTEST_NEED_FILE(input);
   const std::string every = Temporary("cli_body_every_voxel.vti");
+  const std::string stored = Temporary("cli_body_every_voxel_stored.vti");
   const std::string sampled = Temporary("cli_body_every_voxel_sampled.vti");
   const std::string exact = Temporary("cli_body_every_voxel_reference.vti");
   const std::string common = " --view +y --tf bone --size 64x64 --output ";
@@ -106,6 +109,11 @@ TEST(CommandLine, EveryVoxelIsNearTheExactReference)
   const std::string said = "voxels, each once: no sampling error to estimate";
   const std::size_t at = a.Output.find(said);
   ASSERT_NE(std::string::npos, at) << a.Output;
+  EXPECT_NE(std::string::npos, a.Output.find("(off-line, fused)")) << a.Output;
+  Result d =
+    RunCLI("render " + input + " --method every-voxel --stored-points" + common + stored);
+  ASSERT_EQ(0, d.Status) << d.Errors;
+  EXPECT_NE(std::string::npos, d.Output.find("stored points")) << d.Output;
   const std::size_t open = a.Output.rfind('(', at);
   const long long voxels = std::atoll(a.Output.c_str() + open + 1);
   ASSERT_GT(voxels, 1000) << a.Output;
@@ -116,13 +124,17 @@ TEST(CommandLine, EveryVoxelIsNearTheExactReference)
     RunCLI("render " + input + " --method reference --tolerance 1e-4 --quiet" + common + exact);
   ASSERT_EQ(0, c.Status) << c.Errors;
   auto reference = Read(exact);
-  auto estimate = Read(every);
-  const double error = mcxtest::RelativeRMS(estimate, reference);
   const double sampledError = mcxtest::RelativeRMS(Read(sampled), reference);
-  std::cout << voxels << " voxels once: " << error << "; as many sampled points: " << sampledError
-            << std::endl;
-  EXPECT_LT(error, 0.5 * sampledError);
-  EXPECT_TRUE(std::isnan(mcxtest::FieldValue(estimate, "EstimatedRelativeError")));
+  for (const std::string& file : { every, stored })
+  {
+    auto estimate = Read(file);
+    const double error = mcxtest::RelativeRMS(estimate, reference);
+    std::cout << file << ": " << voxels << " voxels once: " << error
+              << "; as many sampled points: " << sampledError << std::endl;
+    EXPECT_LT(error, 0.5 * sampledError) << file;
+    EXPECT_EQ(voxels, mcxtest::FieldValue(estimate, "SampleCount")) << file;
+    EXPECT_TRUE(std::isnan(mcxtest::FieldValue(estimate, "EstimatedRelativeError"))) << file;
+  }
 }
 
 TEST(CommandLine, AxisViewsFollowTheContract)
@@ -575,7 +587,8 @@ TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
 {
   // mpirun -np N mcxray render ...: each process renders its z-slab and the
   // first writes the image, byte for byte the one process's file, for point
-  // and footprint deposits in a parallel view and a cone-beam radiograph.
+  // and footprint deposits in a parallel view and a cone-beam radiograph,
+  // sampled and every voxel once.
   // (No hwloc probing of X displays: the render tests' Xvfb servers come
   // and go, and one that goes kills the probing process. Open MPI's own
   // allocations show as leaks in a sanitized build.)
@@ -583,7 +596,8 @@ TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
     std::string(MCXRAY_MPIEXEC) + " --allow-run-as-root --oversubscribe -np ";
   const std::string runs[] = { "--samples 262143 --size 96x80",
     "--samples 262143 --size 96x80 --deposit point --view -y --tf bone",
-    "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --gantry 30 --tf mu" };
+    "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --gantry 30 --tf mu",
+    "--method every-voxel --sad 700 --sid 1100 --detector 90x70 --tf mu" };
   for (const std::string& arguments : runs)
   {
     const std::string single = Temporary("mpirun-single.vti");
