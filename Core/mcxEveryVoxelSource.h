@@ -3,7 +3,7 @@
 // a stored every-voxel cloud (mcxEveryVoxelOrder.h orders those) are made of
 // the same pieces here.
 //
-// A voxel of level l counts Weights[l] = (the level's TF weight) / (the mean
+// A voxel of level l counts LevelWeights[l] = (the level's TF weight) / (the mean
 // weight of the kept voxels), so that the weights add up to the number of
 // voxels kept and the image is normalised as a sampled one is (Integral /
 // the sum of the weights deposited). The fused deposit numbers each voxel by
@@ -43,19 +43,21 @@ inline void EveryVoxelPoint(const std::uint64_t voxel[3], Kernel kernel, bool ce
 /// nothing weighs anything).
 inline double EveryVoxelWeight(double levelWeight, double kept, double weightSum)
 {
-  return weightSum > 0 ? levelWeight * (kept / weightSum) : 0.0;
+  // The level's share first: at most 1, so the weight stays finite (at most
+  // `kept`) however small the mean weight is.
+  return weightSum > 0 ? (levelWeight / weightSum) * kept : 0.0;
 }
 
 template <typename IdType>
 struct EveryVoxelSource
 {
-  /// The ids sorted by level (the index's, or a piece's), SlotOffsets[l] to
-  /// SlotOffsets[l + 1] being level l's; Weights per level (EveryVoxelWeight,
+  /// The ids sorted by level (the index's, or a piece's), LevelOffsets[l] to
+  /// LevelOffsets[l + 1] being level l's; LevelWeights (EveryVoxelWeight,
   /// 0 for a level that keeps none).
   const IdType* SortedIds = nullptr;
-  const std::int64_t* SlotOffsets = nullptr;
+  const std::int64_t* LevelOffsets = nullptr;
   std::int64_t NumberOfLevels = 0;
-  const double* Weights = nullptr;
+  const double* LevelWeights = nullptr;
   /// Decodes the ids (of a piece's extent); PieceStart is its first voxel in
   /// the whole volume, WholeDimensions the volume's (x and y).
   VoxelDecoder<IdType> Decoder;
@@ -65,7 +67,7 @@ struct EveryVoxelSource
   bool Centres = false;
   std::uint64_t Seed = 0;
 
-  /// Finds the kept levels' slots; call it once the fields are set.
+  /// Finds the kept levels' ids; call it once the fields are set.
   void Prepare()
   {
     this->Levels.clear();
@@ -73,8 +75,8 @@ struct EveryVoxelSource
     std::uint64_t total = 0;
     for (std::int64_t l = 0; l < this->NumberOfLevels; ++l)
     {
-      const std::int64_t count = this->SlotOffsets[l + 1] - this->SlotOffsets[l];
-      if (this->Weights[l] > 0 && count > 0)
+      const std::int64_t count = this->LevelOffsets[l + 1] - this->LevelOffsets[l];
+      if (this->LevelWeights[l] > 0 && count > 0)
       {
         total += static_cast<std::uint64_t>(count);
         this->Levels.push_back(l);
@@ -83,10 +85,10 @@ struct EveryVoxelSource
     }
   }
 
-  /// The voxels this source emits (of the kept levels, in its slots).
+  /// The voxels this source emits (the kept levels' ids it holds).
   std::uint64_t Size() const { return this->Ends.empty() ? 0 : this->Ends.back(); }
 
-  /// Emits voxels [begin, end) of the kept levels' slots, laid end to end,
+  /// Emits voxels [begin, end) of the kept levels' ids, laid end to end,
   /// as sink(k, p, weight): k the voxel's id in the whole volume, p its point
   /// in the whole volume's voxel coordinates (EveryVoxelPoint).
   template <typename Sink>
@@ -100,8 +102,8 @@ struct EveryVoxelSource
       const std::int64_t level = this->Levels[r];
       const std::uint64_t runBegin = r == 0 ? 0 : this->Ends[r - 1];
       const std::uint64_t stop = std::min(end, this->Ends[r]);
-      const IdType* ids = this->SortedIds + this->SlotOffsets[level] - runBegin;
-      const double weight = this->Weights[level];
+      const IdType* ids = this->SortedIds + this->LevelOffsets[level] - runBegin;
+      const double weight = this->LevelWeights[level];
       for (std::uint64_t i = begin; i < stop; ++i)
       {
         std::uint64_t voxel[3];
@@ -121,8 +123,8 @@ struct EveryVoxelSource
   }
 
 private:
-  std::vector<std::int64_t> Levels; // the kept levels with slots here
-  std::vector<std::uint64_t> Ends;  // the cumulative slot counts of those levels
+  std::vector<std::int64_t> Levels; // the kept levels with ids here
+  std::vector<std::uint64_t> Ends;  // the cumulative id counts of those levels
 };
 
 } // namespace mcx

@@ -114,10 +114,10 @@ vtkSmartPointer<vtkFloatArray> PointWeights(
   const std::vector<std::uint32_t>& levels, const std::vector<double>& weights, double total)
 {
   const vtkIdType count = static_cast<vtkIdType>(levels.size());
-  std::vector<float> perLevel(weights.size());
+  std::vector<float> levelWeights(weights.size());
   for (std::size_t l = 0; l < weights.size(); ++l)
   {
-    perLevel[l] =
+    levelWeights[l] =
       static_cast<float>(mcx::EveryVoxelWeight(weights[l], static_cast<double>(count), total));
   }
   auto pointWeights = vtkSmartPointer<vtkFloatArray>::New();
@@ -129,7 +129,7 @@ vtkSmartPointer<vtkFloatArray> PointWeights(
     {
       for (vtkIdType k = b; k < e; ++k)
       {
-        w[k] = perLevel[levels[static_cast<std::size_t>(k)]];
+        w[k] = levelWeights[levels[static_cast<std::size_t>(k)]];
       }
     });
   return pointWeights;

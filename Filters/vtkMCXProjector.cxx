@@ -55,7 +55,7 @@ struct Projection
 
   double EstimatedError() const
   {
-    if (this->EveryVoxel)
+    if (this->EveryVoxel && this->Count > 0) // an empty image is exactly known (0, below)
     {
       return std::nan("");
     }
@@ -209,11 +209,14 @@ public:
     projection.EveryVoxel = true;
     projection.Count = static_cast<std::uint64_t>(this->KeptVoxels);
     projection.Integral = this->Integral;
-    double carried = 0.0; // the weights' fixed-point sum over the whole volume, in counts
+    // The weights' sum over the whole volume, each weight rounded to fixed
+    // point as the deposits take it (summed in double: the same on every
+    // process), in counts.
+    double carried = 0.0;
     for (std::int64_t l = 0; l < this->View.NumberOfLevels; ++l)
     {
       carried += static_cast<double>(this->View.LevelOffsets[l + 1] - this->View.LevelOffsets[l]) *
-        mcx::ToDouble(mcx::FixedIncrement(this->VoxelWeights[static_cast<std::size_t>(l)]));
+        mcx::ToDouble(mcx::FixedIncrement(this->LevelWeights[static_cast<std::size_t>(l)]));
     }
     carried /= mcx::FixedOne;
     projection.SampleWeight = carried > 0 ? this->Integral / carried : 0.0;
@@ -226,7 +229,8 @@ public:
     return projection;
   }
 
-  mcx::Strategy Method = mcx::Strategy::Hybrid;
+  mcx::Strategy Method =
+    mcx::Strategy::Hybrid; // with EveryVoxel: Hybrid, which no voxel choice uses
   bool EveryVoxel = false; // EVERY_VOXEL instead of Method (set before Prepare)
   mcx::Kernel Reconstruction = mcx::Kernel::Tent;
   std::uint64_t Seed = 0;
@@ -286,10 +290,10 @@ private:
     std::vector<char> kept;
     this->KeptVoxels = this->View.KeepLevels(weights, kept);
     const double total = this->Table.WeightSum();
-    this->VoxelWeights.assign(weights.size(), 0.0);
+    this->LevelWeights.assign(weights.size(), 0.0);
     for (std::size_t l = 0; l < weights.size(); ++l)
     {
-      this->VoxelWeights[l] = kept[l]
+      this->LevelWeights[l] = kept[l]
         ? mcx::EveryVoxelWeight(weights[l], static_cast<double>(this->KeptVoxels), total)
         : 0.0;
     }
@@ -301,9 +305,10 @@ private:
   {
     mcx::EveryVoxelSource<IdType> source;
     source.SortedIds = this->View.IdPointer<IdType>();
-    source.SlotOffsets = this->View.PieceOffsets ? this->View.PieceOffsets : this->View.LevelOffsets;
+    source.LevelOffsets =
+      this->View.PieceOffsets ? this->View.PieceOffsets : this->View.LevelOffsets;
     source.NumberOfLevels = this->View.NumberOfLevels;
-    source.Weights = this->VoxelWeights.data();
+    source.LevelWeights = this->LevelWeights.data();
     source.Decoder = mcx::VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->View.Dimensions[0]),
       static_cast<std::uint64_t>(this->View.Dimensions[1]));
     std::copy(this->View.PieceStart, this->View.PieceStart + 3, source.PieceStart);
@@ -388,7 +393,7 @@ private:
   mcx::IndexView View;
   mcx::TransferTable Table;
   double Integral = 0.0;
-  std::vector<double> VoxelWeights; // per level, with EveryVoxel
+  std::vector<double> LevelWeights; // per level, with EveryVoxel
   std::int64_t KeptVoxels = 0;      // in the whole volume, with EveryVoxel
 };
 
@@ -458,8 +463,8 @@ bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeEx
       "count for TargetRelativeError or TargetQuantizationLevels to choose; set them to 0.");
     return false;
   }
-  sampler.Method = sampler.EveryVoxel ? mcx::Strategy::Hybrid
-                                      : static_cast<mcx::Strategy>(self->GetStrategy());
+  sampler.Method =
+    sampler.EveryVoxel ? mcx::Strategy::Hybrid : static_cast<mcx::Strategy>(self->GetStrategy());
   sampler.Reconstruction = static_cast<mcx::Kernel>(self->GetKernel());
   sampler.Seed = static_cast<std::uint64_t>(self->GetSeed());
   sampler.DepositMode = static_cast<mcx::Deposit>(self->GetDeposit());
@@ -557,6 +562,11 @@ int vtkMCXProjector::RequestData(
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!this->FrameOnInputData(input, inputVector[0]->GetInformationObject(0)))
+  {
+    output->Initialize();
+    return 0;
+  }
   const mcx::ProjectionGeometry& geometry = this->Internals->Geometry;
 
   int wholeExtent[6] = { 0, -1, 0, -1, 0, -1 };

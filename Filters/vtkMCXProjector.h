@@ -16,8 +16,8 @@
  * the samples (for Hybrid, the coarser Halton run) and of the second half
  * (0 for an empty image, NaN for 1 or 2 samples, and NaN for an image of
  * every voxel, a cloud of vtkMCXPointSampler::EVERY_VOXEL or Strategy
- * EVERY_VOXEL here, which has no voxel-choice error to estimate; its
- * "SampleCount" is the number of voxels).
+ * EVERY_VOXEL here, which has no voxel-choice error to estimate, unless it
+ * is empty; its "SampleCount" is the number of voxels).
  *
  * Deposit (index input; a footprint cloud from vtkMCXPointSampler brings its
  * own, and FootprintReach applies to it too): with FOOTPRINT each sample adds its voxel's
@@ -62,8 +62,8 @@ public:
    * the sampling strategy (vtkMCXPointSampler::HYBRID, MONTE_CARLO,
    * QUASI_MONTE_CARLO, or EVERY_VOXEL: each voxel of non-zero weight once,
    * weighted by its TF weight over the mean, never stored; SampleExponent
-   * and the target controls do not apply) and the seed. Ignored for a
-   * point-cloud input.
+   * is unused and the target controls must be 0, else an error) and the
+   * seed. Ignored for a point-cloud input.
    */
   vtkSetClampMacro(SampleExponent, int, 0, vtkMCXPointSampler::LargestSampleExponent);
   vtkGetMacro(SampleExponent, int);
@@ -133,7 +133,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int SampleExponent = 24;
-  int Strategy = 0;
+  int Strategy = vtkMCXPointSampler::HYBRID;
   vtkTypeInt64 Seed = 0;
   int Deposit = vtkMCXPointSampler::POINT;
   double FootprintReach = 16.0;

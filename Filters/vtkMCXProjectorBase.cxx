@@ -9,17 +9,22 @@
 #include "vtkMCXProjectorBaseInternals.h"
 
 #include "vtkCamera.h"
+#include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 vtkCxxSetObjectMacro(vtkMCXProjectorBase, Camera, vtkCamera);
 vtkCxxSetObjectMacro(vtkMCXProjectorBase, TransferFunction, vtkPiecewiseFunction);
@@ -50,47 +55,83 @@ vtkMTimeType vtkMCXProjectorBase::GetMTime()
   return t;
 }
 
-int vtkMCXProjectorBase::RequestInformation(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+namespace
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  mcx::ProjectionGeometry g;
-  std::string problem;
-  // The corners of the volume's support, when the input tells them.
-  double corners[24];
-  bool framed = false;
+// The corners of the volume's support as the pipeline information tells
+// them (a cloud's SUPPORT_CORNERS, else an image's extent and placement).
+bool InformationCorners(vtkInformation* inInfo, double kernelRadius, double corners[24])
+{
   if (inInfo->Has(vtkMCXPointSampler::SUPPORT_CORNERS()))
   {
     inInfo->Get(vtkMCXPointSampler::SUPPORT_CORNERS(), corners);
-    framed = true;
+    return true;
   }
-  else
+  return mcx::SupportCornersFromInformation(inInfo, kernelRadius, corners);
+}
+
+// The same corners as the input data tell them: an image's whole extent
+// (a process's piece is part of it) with the data's own origin, spacing and
+// direction, or a cloud's SupportCorners field.
+bool DataCorners(
+  vtkDataObject* input, vtkInformation* inInfo, double kernelRadius, double corners[24])
+{
+  if (auto* image = vtkImageData::SafeDownCast(input))
   {
-    framed = mcx::SupportCornersFromInformation(
-      inInfo, mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners);
+    int extent[6];
+    image->GetExtent(extent);
+    if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+    }
+    if (extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4])
+    {
+      return false;
+    }
+    mcx::ComputeSupportCorners(extent, image->GetOrigin(), image->GetSpacing(),
+      image->GetDirectionMatrix()->GetData(), kernelRadius, corners);
+    return true;
   }
-  if (this->Camera)
+  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+  vtkDataArray* support = fd ? fd->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
+  if (!support || support->GetNumberOfComponents() * support->GetNumberOfTuples() != 24)
   {
-    problem = mcx::GeometryFromCamera(this->Camera, this->ImageSize, this->PixelSpacing, 0.0, g);
+    return false;
+  }
+  for (vtkIdType i = 0; i < 24; ++i)
+  {
+    corners[i] = support->GetComponent(
+      i / support->GetNumberOfComponents(), static_cast<int>(i % support->GetNumberOfComponents()));
+  }
+  return true;
+}
+}
+
+std::string vtkMCXProjectorBase::vtkInternals::ComputeGeometry(
+  const vtkMCXProjectorBase& self, const double* corners, mcx::ProjectionGeometry& g, double& depth)
+{
+  std::string problem;
+  const bool framed = corners != nullptr;
+  if (self.Camera)
+  {
+    problem = mcx::GeometryFromCamera(self.Camera, self.ImageSize, self.PixelSpacing, 0.0, g);
   }
   else
   {
     for (int a = 0; a < 3; ++a)
     {
-      g.U[a] = this->DetectorAxisU[a];
-      g.V[a] = this->DetectorAxisV[a];
+      g.U[a] = self.DetectorAxisU[a];
+      g.V[a] = self.DetectorAxisV[a];
     }
     vtkMath::Cross(g.U, g.V, g.W);
     const bool explicitImage =
-      this->ImageSize[0] > 0 && this->ImageSize[1] > 0 && this->PixelSpacing > 0;
+      self.ImageSize[0] > 0 && self.ImageSize[1] > 0 && self.PixelSpacing > 0;
     if (!framed && !explicitImage)
     {
       problem = "the input carries no volume extent to frame the image; set ImageSize and "
                 "PixelSpacing, or a camera";
     }
     else if (framed &&
-      !mcx::FrameCorners(g, corners, this->ImageSize, this->PixelSpacing, this->DefaultImageSize))
+      !mcx::FrameCorners(g, corners, self.ImageSize, self.PixelSpacing, self.DefaultImageSize))
     {
       problem = "the volume cannot be framed in this view";
     }
@@ -98,15 +139,15 @@ int vtkMCXProjectorBase::RequestInformation(
     {
       for (int k = 0; k < 2; ++k)
       {
-        g.Size[k] = this->ImageSize[k];
-        g.Spacing[k] = this->PixelSpacing;
+        g.Size[k] = self.ImageSize[k];
+        g.Spacing[k] = self.PixelSpacing;
       }
     }
-    if (problem.empty() && (!framed || !this->CenterOnVolume))
+    if (problem.empty() && (!framed || !self.CenterOnVolume))
     {
       for (int k = 0; k < 2; ++k)
       {
-        g.Origin[k] = this->DetectorCenter[k] - 0.5 * (g.Size[k] - 1) * g.Spacing[k];
+        g.Origin[k] = self.DetectorCenter[k] - 0.5 * (g.Size[k] - 1) * g.Spacing[k];
       }
     }
   }
@@ -114,12 +155,36 @@ int vtkMCXProjectorBase::RequestInformation(
   {
     problem = g.Validate();
   }
-  std::string failure = !problem.empty() ? "Invalid projection: " + problem
-                                          : mcx::MemoryProblem(static_cast<double>(g.Size[0]) *
-                                                g.Size[1] * mcx::ProjectionBytesPerPixel(),
-                                              "An image of " + std::to_string(g.Size[0]) + " x " +
-                                                std::to_string(g.Size[1]) + " pixels");
-  failure = this->AgreeOnFailure(inInfo, failure);
+  if (!problem.empty())
+  {
+    return "Invalid projection: " + problem;
+  }
+  // The detector plane's depth: the camera's focal plane, else the support's centre.
+  depth = self.Camera ? vtkMath::Dot(self.Camera->GetFocalPoint(), g.W) : 0.0;
+  if (!self.Camera && framed)
+  {
+    for (int c = 0; c < 8; ++c)
+    {
+      depth += vtkMath::Dot(corners + 3 * c, g.W) / 8.0;
+    }
+  }
+  return mcx::MemoryProblem(
+    static_cast<double>(g.Size[0]) * g.Size[1] * mcx::ProjectionBytesPerPixel(),
+    "An image of " + std::to_string(g.Size[0]) + " x " + std::to_string(g.Size[1]) + " pixels");
+}
+
+int vtkMCXProjectorBase::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInternals& in = *this->Internals;
+  in.Framed = InformationCorners(
+    inInfo, mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), in.Corners);
+  mcx::ProjectionGeometry g;
+  double depth = 0.0;
+  const std::string failure = this->AgreeOnFailure(
+    inInfo, vtkInternals::ComputeGeometry(*this, in.Framed ? in.Corners : nullptr, g, depth));
   // A failed request leaves no stale image of an earlier one behind.
   vtkImageData* output = vtkImageData::GetData(outputVector);
   if (!failure.empty())
@@ -128,18 +193,8 @@ int vtkMCXProjectorBase::RequestInformation(
     output->Initialize();
     return 0;
   }
-  this->Internals->Geometry = g;
-  // The detector plane's depth: the camera's focal plane, else the support's centre.
-  double depth = this->Camera ? vtkMath::Dot(this->Camera->GetFocalPoint(), g.W) : 0.0;
-  if (!this->Camera && framed)
-  {
-    depth = 0.0;
-    for (int c = 0; c < 8; ++c)
-    {
-      depth += vtkMath::Dot(corners + 3 * c, g.W) / 8.0;
-    }
-  }
-  this->Internals->PlaneDepth = depth;
+  in.Geometry = g;
+  in.PlaneDepth = depth;
   const int extent[6] = { 0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0 };
   double origin[3], direction[9];
   this->OutputPlacement(origin, direction);
@@ -150,6 +205,36 @@ int vtkMCXProjectorBase::RequestInformation(
   outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
   return 1;
+}
+
+bool vtkMCXProjectorBase::FrameOnInputData(vtkDataObject* input, vtkInformation* inInfo)
+{
+  // A camera frames the image itself. Without one the volume frames it, and
+  // the information may not have told where the volume lies: ParaView's
+  // input post filter and VTK 9.1's pass-through filters drop the
+  // DIRECTION key (a NIfTI volume in LPS came out mostly off the image).
+  vtkInternals& in = *this->Internals;
+  double corners[24];
+  if (this->Camera ||
+    !DataCorners(
+      input, inInfo, mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners) ||
+    (in.Framed && std::equal(corners, corners + 24, in.Corners)))
+  {
+    return true;
+  }
+  mcx::ProjectionGeometry g;
+  double depth = 0.0;
+  const std::string failure = vtkInternals::ComputeGeometry(*this, corners, g, depth);
+  if (!failure.empty())
+  {
+    vtkErrorMacro(<< failure << ".");
+    return false;
+  }
+  in.Framed = true;
+  std::copy(corners, corners + 24, in.Corners);
+  in.Geometry = g;
+  in.PlaneDepth = depth;
+  return true;
 }
 
 std::string vtkMCXProjectorBase::AgreeOnFailure(vtkInformation*, const std::string& failure)
@@ -212,9 +297,9 @@ void vtkMCXProjectorBase::OutputPlacement(double origin[3], double direction[9])
     direction[3 * r + 1] = g.V[r];
     direction[3 * r + 2] = normal[r];
     const double depth = this->Internals->PlaneDepth;
-    const double onAxis = g.Perspective ? g.Eye[r] + g.FocalDistance * g.W[r]
-                                        : depth * (g.W[r] + g.Obliquity[0] * g.U[r] +
-                                                    g.Obliquity[1] * g.V[r]);
+    const double onAxis = g.Perspective
+      ? g.Eye[r] + g.FocalDistance * g.W[r]
+      : depth * (g.W[r] + g.Obliquity[0] * g.U[r] + g.Obliquity[1] * g.V[r]);
     origin[r] = onAxis + g.Origin[0] * g.U[r] + g.Origin[1] * g.V[r];
   }
 }

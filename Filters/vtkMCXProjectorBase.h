@@ -59,7 +59,11 @@ public:
   /**
    * Explicit parallel detector only: when CenterOnVolume is on (default) the
    * image is centred on the projected support of g; when off, on
-   * DetectorCenter (detector-plane coordinates, default 0, 0).
+   * DetectorCenter (detector-plane coordinates, default 0, 0). The support
+   * is where the input data place the volume, also when a filter upstream
+   * left the direction out of the pipeline information (ParaView's input
+   * post filter does; the image's information then told the unturned
+   * framing, and the image itself is framed again on the data).
    */
   vtkSetVector2Macro(DetectorCenter, double);
   vtkGetVector2Macro(DetectorCenter, double);
@@ -138,6 +142,7 @@ protected:
   ~vtkMCXProjectorBase() override;
 
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
   /**
    * The failure of a request as all the processes that share the work see
    * it (the first one's, or "" when none failed); this one process's by
@@ -146,6 +151,14 @@ protected:
    */
   virtual std::string AgreeOnFailure(vtkInformation* inInfo, const std::string& failure);
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * Frames the image again (no camera) when the input data place the volume
+   * elsewhere than its information said, as when a filter upstream dropped
+   * the DIRECTION key; call it first in RequestData. False (reported) when
+   * the data's volume cannot be framed.
+   */
+  bool FrameOnInputData(vtkDataObject* input, vtkInformation* inInfo);
 
   /** Gives the output its extent, origin and spacing and a zeroed LineIntegral array. */
   vtkDoubleArray* AllocateLineIntegral(vtkImageData* output);
@@ -165,8 +178,9 @@ protected:
   vtkPiecewiseFunction* TransferFunction = nullptr;
   int Kernel = 0;
 
-  // The geometry computed by the last RequestInformation; defined in
-  // vtkMCXProjectorBaseInternals.h for the subclasses.
+  // The geometry computed by the last RequestInformation (or
+  // FrameOnInputData); defined in vtkMCXProjectorBaseInternals.h for the
+  // subclasses.
   struct vtkInternals;
   vtkInternals* Internals;
 

@@ -131,6 +131,12 @@ int vtkMCXReferenceProjector::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkImageData* output = vtkImageData::GetData(outputVector);
+  if (!this->FrameOnInputData(
+        vtkImageData::GetData(inputVector[0]), inputVector[0]->GetInformationObject(0)))
+  {
+    output->Initialize();
+    return 0;
+  }
   mcx::IndexView view;
   mcx::TransferTable table;
   double integral = 0.0;

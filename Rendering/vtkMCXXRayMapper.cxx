@@ -641,7 +641,9 @@ bool vtkMCXXRayMapper::IsRefinementComplete()
 double vtkMCXXRayMapper::GetEstimatedRelativeError()
 {
   const vtkInternals& in = *this->Internals;
-  return in.HasImage && !in.EveryVoxel ? in.Image.EstimateRelativeError() : std::nan("");
+  // Every voxel once: nothing to estimate, unless nothing was drawn (0).
+  return in.HasImage && !(in.EveryVoxel && in.Image.Count() > 0) ? in.Image.EstimateRelativeError()
+                                                                 : std::nan("");
 }
 
 void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)

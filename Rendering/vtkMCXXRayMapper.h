@@ -208,7 +208,8 @@ public:
   /**
    * Estimated relative RMS error of the image on screen, from its two
    * Halton halves (as vtkMCXProjector's EstimatedRelativeError); NaN before
-   * the first render and for a cloud of every voxel (not estimated).
+   * the first render and for a non-empty cloud of every voxel (not
+   * estimated).
    */
   double GetEstimatedRelativeError();
 

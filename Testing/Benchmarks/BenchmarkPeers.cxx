@@ -519,9 +519,8 @@ int main(int argc, char* argv[])
       if (c.EveryVoxel)
       {
         // The fused DRR of every voxel once: one run, no sample count.
-        const Run every = Render(
-          index, tf, camera, size, 0, vtkMCXPointSampler::FOOTPRINT, reference,
-          vtkMCXPointSampler::EVERY_VOXEL);
+        const Run every = Render(index, tf, camera, size, 0, vtkMCXPointSampler::FOOTPRINT,
+          reference, vtkMCXPointSampler::EVERY_VOXEL);
         peers << Quoted(c.Name) << ',' << size << ",MonteCarloXRay,every voxel footprint,"
               << every.Samples << ',' << every.Seconds << ',' << every.Error << '\n';
         nonsense += std::isfinite(every.Error) && every.Seconds > 0 ? 0 : 1;

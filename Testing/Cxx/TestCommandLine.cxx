@@ -110,8 +110,7 @@ TEST(CommandLine, EveryVoxelIsNearTheExactReference)
   const std::size_t at = a.Output.find(said);
   ASSERT_NE(std::string::npos, at) << a.Output;
   EXPECT_NE(std::string::npos, a.Output.find("(off-line, fused)")) << a.Output;
-  Result d =
-    RunCLI("render " + input + " --method every-voxel --stored-points" + common + stored);
+  Result d = RunCLI("render " + input + " --method every-voxel --stored-points" + common + stored);
   ASSERT_EQ(0, d.Status) << d.Errors;
   EXPECT_NE(std::string::npos, d.Output.find("stored points")) << d.Output;
   const std::size_t open = a.Output.rfind('(', at);

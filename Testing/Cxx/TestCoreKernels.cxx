@@ -5,6 +5,7 @@
 // exactly, and the footprint tables' supports and scale choice.
 #include "mcxCountingSort.h"
 #include "mcxEveryVoxelOrder.h"
+#include "mcxEveryVoxelSource.h"
 #include "mcxExecutor.h"
 #include "mcxFixedPoint.h"
 #include "mcxProgressiveImage.h"
@@ -177,6 +178,98 @@ TEST(Executor, CountingSortIsTheSameOnOneThreadAndOnSeveral)
   EXPECT_EQ(serialOffsets, threadedOffsets);
   EXPECT_EQ(serial, threaded);
   EXPECT_GT(leftSerial, 0);
+}
+
+TEST(EveryVoxelSource, EachKeptVoxelOnceByItsIdOnTheWholeAndOnAnyPieces)
+{
+  // A 7 x 5 x 6 volume of random levels (some voxels not indexed), two
+  // levels of zero weight: the source emits each voxel of a kept level
+  // once, numbered by its id, at its point (centre plus the kernel offset
+  // of stream id) with its level's weight, for any split of [0, Size()).
+  // z-slab pieces, one of them empty, emit together exactly what the whole
+  // volume does.
+  const std::uint64_t nx = 7, ny = 5, nz = 6, layer = nx * ny;
+  const std::int64_t levels = 6;
+  std::mt19937 random(11);
+  std::vector<int> level(static_cast<std::size_t>(layer * nz));
+  for (int& l : level)
+  {
+    l = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
+  }
+  const std::vector<double> weights = { 0.5, 0.0, 2.0, 1.25, 0.0, 3.0 };
+  struct Emitted
+  {
+    double P[3];
+    double Weight;
+  };
+  // What the source of z-slab [z0, z1) emits, by voxel number, in chunks
+  // of random length.
+  auto emit = [&](std::uint64_t z0, std::uint64_t z1, std::map<std::uint64_t, Emitted>& out)
+  {
+    const std::int64_t count = static_cast<std::int64_t>((z1 - z0) * layer);
+    std::vector<std::int64_t> offsets;
+    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(count));
+    mcx::CountingSortByBin<std::uint32_t>(
+      mcx::SerialExecutor(), count, levels,
+      [&](std::int64_t id)
+      { return static_cast<std::int64_t>(level[static_cast<std::size_t>(z0 * layer) + id]); },
+      offsets, sorted.data());
+    mcx::EveryVoxelSource<std::uint32_t> source;
+    source.SortedIds = sorted.data();
+    source.LevelOffsets = offsets.data();
+    source.NumberOfLevels = levels;
+    source.LevelWeights = weights.data();
+    source.Decoder = mcx::VoxelDecoder<std::uint32_t>(nx, ny);
+    source.PieceStart[2] = z0;
+    source.WholeDimensions[0] = nx;
+    source.WholeDimensions[1] = ny;
+    source.Centres = false;
+    source.Seed = 3;
+    source.Prepare();
+    for (std::uint64_t b = 0; b < source.Size();)
+    {
+      const std::uint64_t e = std::min(source.Size(), b + 1 + random() % 40);
+      source.Generate(b, e,
+        [&](std::uint64_t k, const double p[3], double weight)
+        {
+          EXPECT_EQ(0u, out.count(k)) << "voxel " << k << " twice";
+          out[k] = Emitted{ { p[0], p[1], p[2] }, weight };
+        });
+      b = e;
+    }
+  };
+  std::map<std::uint64_t, Emitted> whole, pieces;
+  emit(0, nz, whole);
+  for (const auto& slab :
+    { std::make_pair(0, 2), std::make_pair(2, 3), std::make_pair(3, 3), std::make_pair(3, 6) })
+  {
+    emit(slab.first, slab.second, pieces);
+  }
+  std::size_t expected = 0;
+  for (std::uint64_t id = 0; id < layer * nz; ++id)
+  {
+    const int l = level[static_cast<std::size_t>(id)];
+    const bool kept = l >= 0 && weights[static_cast<std::size_t>(l)] > 0;
+    expected += kept ? 1 : 0;
+    ASSERT_EQ(kept ? 1u : 0u, whole.count(id)) << "voxel " << id;
+    if (!kept)
+    {
+      continue;
+    }
+    const Emitted& w = whole[id];
+    EXPECT_EQ(weights[static_cast<std::size_t>(l)], w.Weight) << "voxel " << id;
+    const double centre[3] = { static_cast<double>(id % nx), static_cast<double>((id / nx) % ny),
+      static_cast<double>(id / layer) };
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_LT(std::abs(w.P[a] - centre[a]), 1.0) << "voxel " << id; // the tent's support
+      EXPECT_EQ(w.P[a], pieces[id].P[a]) << "voxel " << id;
+    }
+    EXPECT_EQ(w.Weight, pieces[id].Weight) << "voxel " << id;
+  }
+  EXPECT_EQ(expected, whole.size());
+  EXPECT_EQ(expected, pieces.size());
+  EXPECT_GT(expected, 60u);
 }
 
 TEST(EveryVoxelOrder, EachKeptVoxelOnceInSpreadRunsOfNeighbours)

@@ -238,11 +238,17 @@ TEST(Distributed, MoreProcessesThanSlicesAndZeroWeightPieces)
   auto tf = Ramp(99, 110);
   for (const bool perspective : { false, true })
   {
-    Settings settings;
-    settings.Perspective = perspective;
-    settings.Deposit = vtkMCXPointSampler::FOOTPRINT;
-    ExpectSameImage(Project(port, tf, settings, nullptr), Project(port, tf, settings, Controller()),
-      perspective ? "two slices, perspective" : "two slices, parallel");
+    for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+    {
+      Settings settings;
+      settings.Perspective = perspective;
+      settings.Deposit = vtkMCXPointSampler::FOOTPRINT;
+      settings.Strategy = strategy;
+      ExpectSameImage(Project(port, tf, settings, nullptr),
+        Project(port, tf, settings, Controller()),
+        std::string(perspective ? "two slices, perspective" : "two slices, parallel") +
+          " strategy " + std::to_string(strategy));
+    }
   }
 }
 

@@ -247,10 +247,10 @@ TEST(Footprint, ImagesAreBitIdenticalForOneAndTwoThreads)
     vtkSmartPointer<vtkImageData> one, two;
     for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
     {
-      vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 },
-        [&]() { one = scene.Footprint(camera, 96, 18, 9, strategy); });
-      vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 },
-        [&]() { two = scene.Footprint(camera, 96, 18, 9, strategy); });
+      vtkSMPTools::LocalScope(
+        vtkSMPTools::Config{ 1 }, [&]() { one = scene.Footprint(camera, 96, 18, 9, strategy); });
+      vtkSMPTools::LocalScope(
+        vtkSMPTools::Config{ 2 }, [&]() { two = scene.Footprint(camera, 96, 18, 9, strategy); });
       vtkDataArray* a = mcxtest::LineIntegral(one);
       vtkDataArray* b = mcxtest::LineIntegral(two);
       ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());

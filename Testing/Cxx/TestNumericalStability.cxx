@@ -68,7 +68,7 @@ vtkSmartPointer<vtkMCXProjectorBase> NewProjector(bool reference, int m = 18)
 // Index -> projector (Monte Carlo or reference) with an explicit parallel
 // detector along -y (U = x, V = z), framed on the volume.
 Outcome Project(vtkImageData* volume, vtkPiecewiseFunction* tf, bool reference, int m = 18,
-  int size = 24, vtkCamera* camera = nullptr)
+  int size = 24, vtkCamera* camera = nullptr, int strategy = vtkMCXPointSampler::HYBRID)
 {
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
@@ -83,6 +83,7 @@ Outcome Project(vtkImageData* volume, vtkPiecewiseFunction* tf, bool reference, 
   {
     auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
     monteCarlo->SetSampleExponent(m);
+    monteCarlo->SetStrategy(strategy);
     projector = monteCarlo;
   }
   projector->SetInputConnection(index->GetOutputPort());
@@ -178,10 +179,12 @@ vtkSmartPointer<vtkImageData> Phantom(int type = VTK_SHORT)
 
 TEST(TransferFunctions, ZeroEverywhereGivesAnEmptyImageAndAWarning)
 {
+  // Sampled, exact, and every voxel once (which then keeps no voxel).
   auto zero = Ramp(-1e6, 0, 1e6, 0);
-  for (bool reference : { false, true })
+  for (int variant = 0; variant < 3; ++variant)
   {
-    const Outcome run = Project(Phantom(), zero, reference);
+    const Outcome run = Project(Phantom(), zero, variant == 1, 18, 24, nullptr,
+      variant == 2 ? vtkMCXPointSampler::EVERY_VOXEL : vtkMCXPointSampler::HYBRID);
     EXPECT_TRUE(run.Errors.empty());
     EXPECT_NE(std::string::npos, run.Warnings.find("zero over the whole volume")) << run.Warnings;
     EXPECT_EQ(0.0, mcxtest::LineIntegral(run.Image)->GetRange()[1]);

@@ -2,8 +2,8 @@
 // Monte Carlo bound, conservation of the integral, Halton prefixes,
 // perspective views, and bit-identical images for any thread count.
 #include "mcxTestHelpers.h"
-#include "vtkMCXFirstErrorObserver.h"
 #include "vtkMCXDensityIndex.h"
+#include "vtkMCXFirstErrorObserver.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
 #include "vtkMCXReferenceProjector.h"
@@ -11,12 +11,19 @@
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageAlgorithm.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMCXProjectorBase.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeUInt64Array.h"
 
 #include <gtest/gtest.h>
@@ -213,19 +220,24 @@ TEST(Projection, EveryVoxelTakesNoTarget)
   // Every voxel once leaves no sample count to choose: a target is one
   // error line, and no image.
   Scene scene;
-  vtkNew<vtkMCXProjector> projector;
-  scene.Configure(projector.Get(), nullptr, 16);
-  projector->SetStrategy(vtkMCXPointSampler::EVERY_VOXEL);
-  projector->SetTargetRelativeError(0.02);
-  vtkNew<vtkMCXFirstErrorObserver> errors;
-  errors->ObserveAlgorithm(projector);
-  projector->Update();
-  errors->StopObserving();
-  EXPECT_EQ("Cannot project: every voxel is taken once (Strategy EVERY_VOXEL), so there is no "
-            "sample count for TargetRelativeError or TargetQuantizationLevels to choose; set them "
-            "to 0.",
-    errors->GetErrorText());
-  EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints());
+  for (const bool quantization : { false, true })
+  {
+    vtkNew<vtkMCXProjector> projector;
+    scene.Configure(projector.Get(), nullptr, 16);
+    projector->SetStrategy(vtkMCXPointSampler::EVERY_VOXEL);
+    projector->SetTargetRelativeError(quantization ? 0.0 : 0.02);
+    projector->SetTargetQuantizationLevels(quantization ? 256 : 0);
+    vtkNew<vtkMCXFirstErrorObserver> errors;
+    errors->ObserveAlgorithm(projector);
+    projector->Update();
+    errors->StopObserving();
+    EXPECT_EQ("Cannot project: every voxel is taken once (Strategy EVERY_VOXEL), so there is no "
+              "sample count for TargetRelativeError or TargetQuantizationLevels to choose; set "
+              "them to 0.",
+      errors->GetErrorText())
+      << quantization;
+    EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints()) << quantization;
+  }
 }
 
 TEST(Projection, HaltonPrefixHasTheErrorOfItsOwnSize)
@@ -395,6 +407,123 @@ TEST(Projection, ConstantSlabHasAnalyticLineIntegrals)
     }
     EXPECT_NEAR(7.0, image->GetOrigin()[0] + 1.5, 1e-12);
     EXPECT_NEAR(7.5, image->GetOrigin()[1] + 1.0, 1e-12);
+  }
+}
+
+namespace
+{
+// Passes its input image on but, like ParaView's input post filter
+// (vtkPVPostFilter) and VTK 9.1's default information, leaves the
+// DIRECTION key out of its output information.
+class DirectionDroppingFilter : public vtkImageAlgorithm
+{
+public:
+  static DirectionDroppingFilter* New();
+  vtkTypeMacro(DirectionDroppingFilter, vtkImageAlgorithm);
+
+protected:
+  int RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    outInfo->CopyEntry(inInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+    outInfo->CopyEntry(inInfo, vtkDataObject::ORIGIN());
+    outInfo->CopyEntry(inInfo, vtkDataObject::SPACING());
+    outInfo->Remove(vtkDataObject::DIRECTION());
+    return 1;
+  }
+  int RequestData(vtkInformation*, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override
+  {
+    vtkImageData::GetData(outputVector)->ShallowCopy(vtkImageData::GetData(inputVector[0]));
+    return 1;
+  }
+};
+vtkStandardNewMacro(DirectionDroppingFilter);
+}
+
+TEST(Projection, TheVolumeFramesTheImageWhereTheDataPlaceIt)
+{
+  // A volume turned by its direction matrix (x and y reversed, as a NIfTI
+  // volume in LPS), its information stripped of DIRECTION on the way to
+  // the index (ParaView inserts such a filter before every input): the
+  // image is still framed on the volume, the same bit for bit as with the
+  // full information, for the fused projector, a stored cloud and the exact
+  // one. (Framed from the information alone, 21 of its 24 columns were
+  // empty.)
+  Scene scene;
+  const double flip[9] = { -1, 0, 0, 0, -1, 0, 0, 0, 1 };
+  scene.Volume->SetDirectionMatrix(flip);
+  scene.Volume->SetOrigin(40, 30, -12);
+  vtkNew<DirectionDroppingFilter> dropping;
+  dropping->SetInputData(scene.Volume);
+  vtkNew<vtkMCXDensityIndex> strippedIndex;
+  strippedIndex->SetInputConnection(dropping->GetOutputPort());
+  strippedIndex->UpdateInformation();
+  ASSERT_FALSE(strippedIndex->GetOutputInformation(0)->Has(vtkDataObject::DIRECTION()));
+  auto sampler = [&](vtkAlgorithm* index)
+  {
+    auto cloud = vtkSmartPointer<vtkMCXPointSampler>::New();
+    cloud->SetInputConnection(index->GetOutputPort());
+    cloud->SetTransferFunction(scene.TF);
+    cloud->SetSampleExponent(14);
+    return cloud;
+  };
+  auto fullCloud = sampler(scene.Index);
+  auto strippedCloud = sampler(strippedIndex);
+  for (int kind = 0; kind < 3; ++kind)
+  {
+    vtkSmartPointer<vtkImageData> images[2];
+    for (int stripped = 0; stripped < 2; ++stripped)
+    {
+      vtkAlgorithm* index = stripped ? strippedIndex.Get() : scene.Index.Get();
+      vtkSmartPointer<vtkMCXProjectorBase> projector;
+      if (kind == 2)
+      {
+        auto exact = vtkSmartPointer<vtkMCXReferenceProjector>::New();
+        exact->SetRelativeTolerance(1e-2);
+        projector = exact;
+      }
+      else
+      {
+        auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
+        monteCarlo->SetSampleExponent(14);
+        projector = monteCarlo;
+      }
+      scene.Configure(projector.Get(), nullptr, 24);
+      projector->SetInputConnection(kind == 1
+          ? (stripped ? strippedCloud : fullCloud)->GetOutputPort()
+          : index->GetOutputPort());
+      projector->Update();
+      images[stripped] = projector->GetOutput();
+    }
+    vtkDataArray* a = mcxtest::LineIntegral(images[0]);
+    vtkDataArray* b = mcxtest::LineIntegral(images[1]);
+    ASSERT_NE(nullptr, b) << "kind " << kind;
+    for (vtkDataArray* values : { a, b })
+    {
+      int emptyColumns = 0;
+      for (int column = 0; column < 24; ++column)
+      {
+        double sum = 0;
+        for (int row = 0; row < 24; ++row)
+        {
+          sum += values->GetTuple1(row * 24 + column);
+        }
+        emptyColumns += sum == 0 ? 1 : 0;
+      }
+      EXPECT_EQ(0, emptyColumns) << "kind " << kind << (values == b ? " stripped" : " full");
+    }
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      ASSERT_EQ(a->GetTuple1(i), b->GetTuple1(i)) << "kind " << kind << " pixel " << i;
+    }
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      EXPECT_EQ(images[0]->GetOrigin()[axis], images[1]->GetOrigin()[axis]) << "kind " << kind;
+      EXPECT_EQ(images[0]->GetSpacing()[axis], images[1]->GetSpacing()[axis]) << "kind " << kind;
+    }
   }
 }
 

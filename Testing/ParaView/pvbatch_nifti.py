@@ -1,10 +1,13 @@
 """pvbatch test of NIfTI in ParaView with the plugin: OpenDataFile picks the
 plugin's reader for .nii.gz, which places the volume as the header's sform
 says (voxel (i, j, k) at srow . (i, j, k, 1), parsed here from the file), as
-mcxray does. (Scaling by scl_slope and scl_inter is tested on files written
-for it in Python.Readers and TestReaders; this file has none.)
+mcxray does, and the X-Ray Projector frames its image on the volume there.
+(Scaling by scl_slope and scl_inter is tested on files written for it in
+Python.Readers and TestReaders; this file has none.)
 
-    pvbatch pvbatch_nifti.py PLUGIN VOLUME.nii.gz
+    pvbatch pvbatch_nifti.py PLUGIN VOLUME.nii.gz TURNED.nii.gz
+
+TURNED is a volume whose sform turns it (the projector's check).
 """
 import gzip
 import os
@@ -18,7 +21,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import check, failures  # noqa: E402
 
-plugin, path = sys.argv[1:3]
+plugin, path, turned_path = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
 
 with gzip.open(path, "rb") as f:
@@ -44,6 +47,29 @@ values = vtk_to_numpy(volume.GetPointData().GetScalars())
 check((slope == 0.0 or (slope, intercept) == (1.0, 0.0)) == (values.dtype != numpy.float64),
       "values of type %s for scl_slope %g, scl_inter %g" % (values.dtype, slope, intercept))
 
+# The X-Ray Projector frames its image on the volume where the data place
+# it, though ParaView's input post filter drops the DIRECTION key from the
+# index's information: every sample lands in the image, so the pixels add
+# up to the integral (mostly off the image when framed as if unturned).
+turned = OpenDataFile(turned_path)
+matrix = servermanager.Fetch(turned).GetDirectionMatrix()
+direction = [matrix.GetElement(r, c) for r in range(3) for c in range(3)]
+check(direction != [1, 0, 0, 0, 1, 0, 0, 0, 1], "%s is not turned" % turned_path)
+index = XRayDensityIndex(Input=turned)
+index.Density = ["POINTS", turned.PointData.keys()[0]]
+projector = XRayProjector(Input=index)
+projector.DetectorAxisU = [0, 1, 0]
+projector.DetectorAxisV = [0, 0, 1]
+projector.ImageSize = [64, 64]
+projector.SampleExponent = 18
+projector.UpdatePipeline()
+image = servermanager.Fetch(projector)
+integrals = vtk_to_numpy(image.GetPointData().GetArray("LineIntegral"))
+area = image.GetSpacing()[0] * image.GetSpacing()[1]
+integral = image.GetFieldData().GetArray("Integral").GetTuple1(0)
+check(abs(integrals.sum() * area / integral - 1.0) < 1e-9,
+      "the image holds %.4f of the integral" % (integrals.sum() * area / integral))
+
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
-print("ParaView reads NIfTI where mcxray places it")
+print("ParaView reads NIfTI where mcxray places it, and frames its X-rays there")
