@@ -207,7 +207,7 @@ public:
   {
     Projection projection;
     projection.EveryVoxel = true;
-    projection.Count = static_cast<std::uint64_t>(this->KeptVoxels);
+    projection.Count = static_cast<std::uint64_t>(this->KeptVoxelCount);
     projection.Integral = this->Integral;
     // The weights' sum over the whole volume, each weight rounded to fixed
     // point as the deposits take it (summed in double: the same on every
@@ -288,13 +288,13 @@ private:
   {
     std::vector<double> weights = this->View.EvaluateTransferFunction(tf);
     std::vector<char> kept;
-    this->KeptVoxels = this->View.KeepLevels(weights, kept);
+    this->KeptVoxelCount = this->View.KeepLevels(weights, kept);
     const double total = this->Table.WeightSum();
     this->LevelWeights.assign(weights.size(), 0.0);
     for (std::size_t l = 0; l < weights.size(); ++l)
     {
       this->LevelWeights[l] = kept[l]
-        ? mcx::EveryVoxelWeight(weights[l], static_cast<double>(this->KeptVoxels), total)
+        ? mcx::EveryVoxelWeight(weights[l], static_cast<double>(this->KeptVoxelCount), total)
         : 0.0;
     }
   }
@@ -394,7 +394,7 @@ private:
   mcx::TransferTable Table;
   double Integral = 0.0;
   std::vector<double> LevelWeights; // per level, with EveryVoxel
-  std::int64_t KeptVoxels = 0;      // in the whole volume, with EveryVoxel
+  std::int64_t KeptVoxelCount = 0;  // in the whole volume, with EveryVoxel
 };
 
 // The sample count a target asks for, measured on a projection.
