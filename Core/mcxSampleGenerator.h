@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -115,6 +116,14 @@ struct SampleSource
   const std::int64_t* PieceOffsets = nullptr;
   const std::int64_t* PieceFirstRank = nullptr;
   std::uint64_t PieceStart[3] = { 0, 0, 0 };
+  /// A view order (mcxViewOrder.h) instead of the index, whole volume only:
+  /// SortedIds and LevelOffsets are then its ids and bin offsets, the table
+  /// draws its bins, and sample k of slot s in bin b carries the weight
+  /// LevelRatio[BinFirstLevel[b] + LevelInBin[s]] to sinks that take one,
+  /// sink(k, p, weight) (1 for every sample otherwise).
+  const std::uint16_t* LevelInBin = nullptr;
+  const std::int64_t* BinFirstLevel = nullptr;
+  const double* LevelRatio = nullptr;
 
   std::uint64_t NumberOfSamples() const { return SampleCount(this->Exponent); }
 
@@ -417,7 +426,16 @@ private:
         p[a] = static_cast<double>(fixed) * 0x1.0p-21;
       }
     }
-    sink(k, p);
+    if constexpr (std::is_invocable_v<Sink&, std::uint64_t, const double*, double>)
+    {
+      sink(k, p,
+        this->LevelInBin ? this->LevelRatio[this->BinFirstLevel[c - 1] + this->LevelInBin[slot]]
+                         : 1.0);
+    }
+    else
+    {
+      sink(k, p);
+    }
   }
 };
 

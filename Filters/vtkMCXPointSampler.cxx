@@ -2,12 +2,16 @@
 
 #include "mcxEveryVoxelOrder.h"
 #include "mcxEveryVoxelSource.h"
+#include "mcxPixelBinner.h"
 #include "mcxProjectionGeometry.h"
+#include "mcxViewOrder.h"
 #include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXCameraGeometryPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXSMPExecutorPrivate.h"
 
+#include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -77,6 +81,38 @@ bool GeneratePoints(vtkAlgorithm* self, const mcx::IndexView& view, const mcx::T
   { StoreInWorld(origin, matrix, p, points + 3 * k); };
   return mcx::BatchedFor(
     self, source.NumberOfStorageItems(), 0.05, 1.0,
+    [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
+}
+
+// GeneratePoints for a view order: the bins are the table's levels, and
+// each point's weight (w / the bin's mean w) goes to weights[k].
+template <typename IdType, typename Real>
+bool GenerateViewOrderedPoints(vtkAlgorithm* self, const mcx::IndexView& view,
+  const mcx::ViewOrder<IdType>& order, const mcx::TransferTable& binTable,
+  const std::vector<double>& levelRatios, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m,
+  bool centres, Real* points, float* weights)
+{
+  mcx::SampleSource<IdType> source = view.MakeSource<IdType>(binTable);
+  source.SortedIds = order.Ids.data();
+  source.LevelOffsets = order.BinOffsets.data();
+  source.NumberOfLevels = order.NumberOfBins();
+  source.LevelInBin = order.LevelInBin.data();
+  source.BinFirstLevel = order.BinFirstLevel.data();
+  source.LevelRatio = levelRatios.data();
+  source.Centres = centres;
+  source.Method = mcx::Strategy::Hybrid;
+  source.Reconstruction = kernel;
+  source.Seed = seed;
+  source.Exponent = m;
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  auto store = [&](std::uint64_t k, const double p[3], double weight)
+  {
+    StoreInWorld(origin, matrix, p, points + 3 * k);
+    weights[k] = static_cast<float>(weight);
+  };
+  return mcx::BatchedFor(
+    self, source.NumberOfStorageItems(), 0.55, 1.0,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
 
@@ -214,6 +250,54 @@ struct vtkMCXPointSampler::EveryVoxelCloud
   }
 };
 
+// SetOrderingView's copy of the camera's geometry.
+struct vtkMCXPointSampler::OrderingView
+{
+  mcx::ProjectionGeometry Geometry;
+};
+
+namespace
+{
+bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometry& b)
+{
+  auto same = [](const auto* x, const auto* y, int n) { return std::equal(x, x + n, y); };
+  return a.Perspective == b.Perspective && same(a.Eye, b.Eye, 3) && same(a.U, b.U, 3) &&
+    same(a.V, b.V, 3) && same(a.W, b.W, 3) && a.FocalDistance == b.FocalDistance &&
+    a.NearDistance == b.NearDistance && same(a.Size, b.Size, 2) && same(a.Spacing, b.Spacing, 2) &&
+    same(a.Origin, b.Origin, 2) && same(a.Obliquity, b.Obliquity, 2);
+}
+}
+
+// A view order and what it was sorted for.
+struct vtkMCXPointSampler::SortedView
+{
+  vtkDataArray* Ids = nullptr; // the index's sorted ids: compared only, never dereferenced
+  vtkMTimeType IdsTime = 0;
+  double World[12] = { 0 }; // the index's source-to-world origin and matrix
+  mcx::ProjectionGeometry Geometry;
+  int Bins = 0;
+  mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
+  mcx::ViewOrder<std::uint64_t> Wide;   // or 64-bit (WideIds)
+
+  void Describe(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins)
+  {
+    this->Ids = view.Ids;
+    this->IdsTime = view.Ids->GetMTime();
+    view.SourceToWorld(this->World, this->World + 3);
+    this->Geometry = geometry;
+    this->Bins = bins;
+  }
+
+  bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins) const
+  {
+    SortedView wanted;
+    wanted.Describe(view, geometry, bins);
+    return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
+      std::equal(this->World, this->World + 12, wanted.World) &&
+      SameGeometry(this->Geometry, wanted.Geometry) && this->Bins == wanted.Bins;
+  }
+};
+
 vtkMCXPointSampler::vtkMCXPointSampler()
 {
   this->SetProgressText("X-Ray Point Sampler"); // what progress bars show (ParaView's label)
@@ -241,6 +325,37 @@ void vtkMCXPointSampler::SetReusePoints(bool reuse)
     this->ReusePoints = reuse;
     this->Modified();
   }
+}
+
+void vtkMCXPointSampler::SetOrderingView(vtkCamera* camera, int width, int height)
+{
+  std::unique_ptr<OrderingView> ordering;
+  if (camera && width > 0 && height > 0)
+  {
+    ordering.reset(new OrderingView);
+    const int size[2] = { width, height };
+    const std::string problem = mcx::GeometryFromCamera(camera, size, 0.0, 0.0, ordering->Geometry);
+    if (!problem.empty())
+    {
+      vtkErrorMacro("Cannot order by this view: " << problem);
+      return;
+    }
+  }
+  if (!ordering && !this->Ordering)
+  {
+    return;
+  }
+  if (ordering && this->Ordering && SameGeometry(ordering->Geometry, this->Ordering->Geometry))
+  {
+    return;
+  }
+  this->Ordering = std::move(ordering);
+  this->Modified();
+}
+
+bool vtkMCXPointSampler::HasOrderingView() const
+{
+  return this->Ordering != nullptr;
 }
 
 vtkTypeInt64 vtkMCXPointSampler::GetNumberOfSamples()
@@ -300,6 +415,11 @@ int vtkMCXPointSampler::RequestData(
     return this->RequestEveryVoxel(input, output);
   }
   this->KeptVoxels.reset();
+  if (this->Strategy == VIEW_ORDERED)
+  {
+    return this->RequestViewOrdered(input, output);
+  }
+  this->KeptViewOrder.reset();
   // A sampled cloud's points count once each (an output the executive did
   // not empty may still hold an every-voxel cloud's weights).
   output->GetPointData()->RemoveArray(PointWeightName());
@@ -316,30 +436,11 @@ int vtkMCXPointSampler::RequestData(
   const unsigned m = table.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
   const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
   const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
-  vtkSmartPointer<vtkPoints> points = this->ReusablePoints(output, pointType, count);
-  this->KeptPoints = nullptr; // an old cloud is not held while a new one is allocated
-  if (!points &&
-    !mcx::CheckMemory(this, 3.0 * (pointType == VTK_DOUBLE ? 8 : 4) * static_cast<double>(count),
-      "A cloud of " + std::to_string(count) + " points"))
+  vtkSmartPointer<vtkPoints> points = this->CloudPoints(output, pointType, count);
+  if (!points)
   {
     output->Initialize();
     return 0;
-  }
-  if (points)
-  {
-    points->Modified();
-  }
-  else
-  {
-    points = vtkSmartPointer<vtkPoints>::New();
-    points->SetDataType(pointType);
-    points->SetNumberOfPoints(count);
-    if (points->GetNumberOfPoints() != count)
-    {
-      vtkErrorMacro("Cannot allocate a cloud of " << count << " points.");
-      output->Initialize();
-      return 0;
-    }
   }
 
   bool completed = true;
@@ -380,9 +481,191 @@ int vtkMCXPointSampler::RequestData(
   return 1;
 }
 
+vtkSmartPointer<vtkPoints> vtkMCXPointSampler::CloudPoints(
+  vtkPolyData* output, int type, vtkIdType count)
+{
+  vtkSmartPointer<vtkPoints> points = this->ReusablePoints(output, type, count);
+  this->KeptPoints = nullptr; // an old cloud is not held while a new one is allocated
+  if (points)
+  {
+    points->Modified();
+    return points;
+  }
+  if (!mcx::CheckMemory(this, 3.0 * (type == VTK_DOUBLE ? 8 : 4) * static_cast<double>(count),
+        "A cloud of " + std::to_string(count) + " points"))
+  {
+    return nullptr;
+  }
+  points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataType(type);
+  points->SetNumberOfPoints(count);
+  if (points->GetNumberOfPoints() != count)
+  {
+    vtkErrorMacro("Cannot allocate a cloud of " << count << " points.");
+    return nullptr;
+  }
+  return points;
+}
+
+int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* output)
+{
+  mcx::IndexView view;
+  mcx::TransferTable table;
+  double integral = 0.0;
+  if (!mcx::PrepareSampling(
+        this, "sample in view order", input, this->TransferFunction, view, table, integral))
+  {
+    this->KeptPoints = nullptr;
+    output->Initialize(); // no stale cloud of an earlier request
+    return 0;
+  }
+  if (!this->Ordering)
+  {
+    vtkErrorMacro("Cannot sample in view order: no view to order by (call "
+                  "SetOrderingView(camera, width, height) first).");
+    output->Initialize();
+    return 0;
+  }
+  if (view.PieceOffsets)
+  {
+    vtkErrorMacro("Cannot sample in view order: the index is one piece of a distributed volume, "
+                  "and the view order needs the whole volume in one process (use HYBRID).");
+    output->Initialize();
+    return 0;
+  }
+  std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
+  std::vector<char> kept;
+  view.KeepLevels(weights, kept); // the weights as the table takes them
+  bool completed = true;
+  SortedView* sorted = this->ViewOrderFor(view, completed);
+  if (!sorted)
+  {
+    output->Initialize();
+    return completed ? 0 : 1; // an error, or aborted
+  }
+
+  const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
+  const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
+  const bool centres = this->Deposit == FOOTPRINT;
+  const auto seed = static_cast<vtkTypeUInt64>(this->Seed);
+  vtkSmartPointer<vtkPoints> points;
+  vtkSmartPointer<vtkFloatArray> pointWeights;
+  unsigned m = 0;
+  auto generate = [&](const auto& order)
+  {
+    std::vector<double> binMeans, levelRatios;
+    order.Weights(weights.data(), view.LevelOffsets, binMeans, levelRatios);
+    const mcx::TransferTable binTable =
+      mcx::BuildTransferTable(binMeans.data(), order.BinOffsets.data(), order.NumberOfBins());
+    m = binTable.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
+    const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
+    points = this->CloudPoints(output, pointType, count);
+    if (!points)
+    {
+      return false;
+    }
+    pointWeights = vtkSmartPointer<vtkFloatArray>::New();
+    pointWeights->SetName(PointWeightName());
+    pointWeights->SetNumberOfValues(count);
+    void* raw = points->GetVoidPointer(0);
+    float* w = pointWeights->GetPointer(0);
+    completed = count == 0 ||
+      (pointType == VTK_DOUBLE ? GenerateViewOrderedPoints(this, view, order, binTable, levelRatios,
+                                   kernel, seed, m, centres, static_cast<double*>(raw), w)
+                               : GenerateViewOrderedPoints(this, view, order, binTable, levelRatios,
+                                   kernel, seed, m, centres, static_cast<float*>(raw), w));
+    return true;
+  };
+  if (!(view.WideIds ? generate(sorted->Wide) : generate(sorted->Narrow)))
+  {
+    output->Initialize();
+    return 0;
+  }
+  if (!completed)
+  {
+    output->Initialize();
+    return 1;
+  }
+  output->SetPoints(points);
+  output->GetPointData()->AddArray(pointWeights);
+  if (this->ReusePoints)
+  {
+    this->KeptPoints = points;
+  }
+  WriteCloudFields(
+    this, view, integral, points->GetNumberOfPoints(), static_cast<int>(m), output->GetFieldData());
+  return 1;
+}
+
+vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
+  const mcx::IndexView& view, bool& completed)
+{
+  completed = true;
+  const mcx::ProjectionGeometry& geometry = this->Ordering->Geometry;
+  if (this->KeptViewOrder && this->KeptViewOrder->Fits(view, geometry, this->NumberOfOrderingBins))
+  {
+    return this->KeptViewOrder.get();
+  }
+  this->KeptViewOrder.reset(); // not held while a new one is sorted
+  const std::int64_t voxels = view.LevelOffsets[view.NumberOfLevels];
+  const std::int64_t pixels = static_cast<std::int64_t>(geometry.Size[0]) * geometry.Size[1];
+  const std::int64_t cells = pixels + 1; // the last: voxels off the image
+  std::vector<std::int64_t> binFirstLevel =
+    mcx::GroupLevelsIntoBins(view.LevelValues, view.NumberOfLevels, this->NumberOfOrderingBins);
+  const std::int64_t keys = (static_cast<std::int64_t>(binFirstLevel.size()) - 1) * cells;
+  const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
+  if (!mcx::CheckMemory(this,
+        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0) +
+          8.0 * static_cast<double>(layout.NumberOfChunks) * static_cast<double>(keys),
+        "The view order of " + std::to_string(voxels) + " voxels"))
+  {
+    return nullptr;
+  }
+  std::unique_ptr<SortedView> sorted(new SortedView);
+  sorted->Describe(view, geometry, this->NumberOfOrderingBins);
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  const mcx::PixelBinner binner(geometry, origin, matrix);
+  auto progress = [this](double fraction)
+  {
+    this->UpdateProgress(0.5 * fraction);
+    return !this->GetAbortExecute();
+  };
+  auto sort = [&](auto& order)
+  {
+    using IdType = typename std::decay_t<decltype(order.Ids)>::value_type;
+    const mcx::VoxelDecoder<IdType> decoder(static_cast<std::uint64_t>(view.Dimensions[0]),
+      static_cast<std::uint64_t>(view.Dimensions[1]));
+    auto cellOf = [&](IdType id)
+    {
+      std::uint64_t voxel[3];
+      decoder.Decode(id, voxel[0], voxel[1], voxel[2]);
+      const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
+        static_cast<double>(voxel[2]) };
+      double fx, fy, f, inverseDepth;
+      if (!binner.Locate(p, fx, fy, f, inverseDepth) || !(fx >= 0 && fx < geometry.Size[0]) ||
+        !(fy >= 0 && fy < geometry.Size[1]))
+      {
+        return pixels;
+      }
+      return static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * geometry.Size[0];
+    };
+    return order.Build(mcx::SMPExecutor(), view.IdPointer<IdType>(), view.LevelOffsets,
+      view.NumberOfLevels, std::move(binFirstLevel), cells, cellOf, progress);
+  };
+  if (!(view.WideIds ? sort(sorted->Wide) : sort(sorted->Narrow)))
+  {
+    completed = false;
+    return nullptr;
+  }
+  this->KeptViewOrder = std::move(sorted);
+  return this->KeptViewOrder.get();
+}
+
 int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* output)
 {
   this->KeptPoints = nullptr;
+  this->KeptViewOrder.reset();
   std::unique_ptr<EveryVoxelCloud> cloud = std::move(this->KeptVoxels);
   mcx::IndexView view;
   mcx::TransferTable table;
@@ -510,4 +793,21 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
      << (this->KeptVoxels ? static_cast<vtkIdType>(this->KeptVoxels->Levels.size()) : 0)
      << " points\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
+  os << indent << "NumberOfOrderingBins: " << this->NumberOfOrderingBins << "\n";
+  os << indent << "OrderingView: ";
+  if (this->Ordering)
+  {
+    const mcx::ProjectionGeometry& g = this->Ordering->Geometry;
+    os << (g.Perspective ? "perspective" : "parallel") << ", " << g.Size[0] << " x " << g.Size[1]
+       << " pixels, looking along (" << g.W[0] << ", " << g.W[1] << ", " << g.W[2] << ")\n";
+  }
+  else
+  {
+    os << "(none)\n";
+  }
+  os << indent << "KeptViewOrder: "
+     << (this->KeptViewOrder ? static_cast<vtkIdType>(this->KeptViewOrder->Narrow.Ids.size() +
+                                 this->KeptViewOrder->Wide.Ids.size())
+                             : 0)
+     << " voxels\n";
 }

@@ -165,6 +165,11 @@ void WarnOfLongRuns(const Settings& settings)
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
 {
+  if (settings.Method == "view-ordered")
+  {
+    Fail("view-ordered sorts every voxel for one view to speed up many TF edits: it is a method "
+         "of mcxray view; one render would pay the sort (use hybrid or every-voxel)");
+  }
   if (!IsCloudMethod(settings.Method) && settings.Method != "reference")
   {
     Fail("unknown --method '" + settings.Method +

@@ -14,15 +14,16 @@ bool IsSamplingMethod(const std::string& method)
 
 bool IsCloudMethod(const std::string& method)
 {
-  return IsSamplingMethod(method) || method == "every-voxel";
+  return IsSamplingMethod(method) || method == "every-voxel" || method == "view-ordered";
 }
 
 int StrategyOf(const std::string& method)
 {
   return method == "mc"       ? vtkMCXPointSampler::MONTE_CARLO
     : method == "qmc"         ? vtkMCXPointSampler::QUASI_MONTE_CARLO
-    : method == "every-voxel" ? vtkMCXPointSampler::EVERY_VOXEL
-                              : vtkMCXPointSampler::HYBRID;
+    : method == "every-voxel"  ? vtkMCXPointSampler::EVERY_VOXEL
+    : method == "view-ordered" ? vtkMCXPointSampler::VIEW_ORDERED
+                               : vtkMCXPointSampler::HYBRID;
 }
 
 void CheckKernel(const std::string& kernel)

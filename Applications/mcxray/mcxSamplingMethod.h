@@ -9,7 +9,8 @@ namespace mcxapp
 
 /// hybrid, mc or qmc: the methods that sample points (not reference).
 bool IsSamplingMethod(const std::string& method);
-/// A sampling method or every-voxel: the methods that make a point cloud.
+/// A sampling method, every-voxel or view-ordered: the methods that make a
+/// point cloud.
 bool IsCloudMethod(const std::string& method);
 
 /// vtkMCXPointSampler's strategy for a sampling method.

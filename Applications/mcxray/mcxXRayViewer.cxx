@@ -113,6 +113,7 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   camera->SetPosition(centre[0], centre[1] - 1.0, centre[2]);
   camera->SetViewUp(0, 0, 1);
   this->Renderer->ResetCamera(bounds);
+  this->OrderByTheCurrentView();
 
   // Density-axis sliders span the data range; the width may reach all of it.
   const double span =
@@ -184,7 +185,17 @@ void XRayViewer::SetTransferFunctionWindow(double centre, double width)
   window->ClampingOn();
   window->AddPoint(points[0], points[1]);
   window->AddPoint(points[2], points[3]);
+  this->OrderByTheCurrentView();
   this->TransferFunction->DeepCopy(window);
+}
+
+void XRayViewer::OrderByTheCurrentView()
+{
+  if (this->Sampler->GetStrategy() == vtkMCXPointSampler::VIEW_ORDERED)
+  {
+    const int* size = this->Window->GetSize();
+    this->Sampler->SetOrderingView(this->Renderer->GetActiveCamera(), size[0], size[1]);
+  }
 }
 
 bool XRayViewer::ApplyPreset(const std::string& name)
@@ -195,6 +206,7 @@ bool XRayViewer::ApplyPreset(const std::string& name)
   {
     return false;
   }
+  this->OrderByTheCurrentView();
   this->TransferFunction->DeepCopy(tf);
   this->UpdateSlidersFromTransferFunction();
   return true;

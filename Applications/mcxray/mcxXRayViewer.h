@@ -92,6 +92,10 @@ private:
   void AddSlider(
     vtkSliderWidget* slider, const char* title, double lowest, double highest, double y);
   void UpdateSlidersFromTransferFunction();
+  /// A view-ordered cloud (VIEW_ORDERED) follows the camera and window of
+  /// now: called before each TF edit, so a TF edit after a camera move
+  /// sorts the voxels for the new view, and camera moves alone do not.
+  void OrderByTheCurrentView();
 
   std::string ErrorMessage;
   double DataRange[2] = { 0, 1 };

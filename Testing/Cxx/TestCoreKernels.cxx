@@ -2,7 +2,8 @@
 // the compiler's, the executor-driven kernels (counting sort, sample
 // accumulation, progressive image, radiograph effects) giving the same
 // result on one thread and on several, a thread's 64-bit sums carrying
-// exactly, and the footprint tables' supports and scale choice.
+// exactly, the footprint tables' supports and scale choice, and the view
+// order's sort and weights.
 #include "mcxCountingSort.h"
 #include "mcxEveryVoxelOrder.h"
 #include "mcxEveryVoxelSource.h"
@@ -11,11 +12,14 @@
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
 #include "mcxSampleAccumulator.h"
+#include "mcxSampleGenerator.h"
+#include "mcxViewOrder.h"
 #include "mcxWideInteger.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <list>
@@ -270,6 +274,259 @@ TEST(EveryVoxelSource, EachKeptVoxelOnceByItsIdOnTheWholeAndOnAnyPieces)
   EXPECT_EQ(expected, whole.size());
   EXPECT_EQ(expected, pieces.size());
   EXPECT_GT(expected, 60u);
+}
+
+TEST(ViewOrder, LevelsGroupIntoBinsOfEqualWidthAndAtMostTwoTo16Levels)
+{
+  // Values 0, 1, ..., 99 in 4 bins of width 99 / 4: 0-24, 25-49, 50-74 and
+  // 75-99 (the top value in the last bin); empty bins are left out.
+  std::vector<double> values(100);
+  std::iota(values.begin(), values.end(), 0.0);
+  EXPECT_EQ((std::vector<std::int64_t>{ 0, 25, 50, 75, 100 }),
+    mcx::GroupLevelsIntoBins(values.data(), 100, 4));
+  const std::vector<double> gap = { 0, 1, 10 };
+  EXPECT_EQ((std::vector<std::int64_t>{ 0, 2, 3 }), mcx::GroupLevelsIntoBins(gap.data(), 3, 4));
+  EXPECT_EQ((std::vector<std::int64_t>{ 0, 1 }), mcx::GroupLevelsIntoBins(gap.data(), 1, 16));
+  EXPECT_EQ((std::vector<std::int64_t>{ 0 }), mcx::GroupLevelsIntoBins(gap.data(), 0, 16));
+  // One bin's worth of 2^16 + 5 levels opens a second bin after 2^16.
+  std::vector<double> many((std::size_t(1) << 16) + 5);
+  std::iota(many.begin(), many.end(), 0.0);
+  EXPECT_EQ((std::vector<std::int64_t>{ 0, std::int64_t(1) << 16, std::int64_t(many.size()) }),
+    mcx::GroupLevelsIntoBins(many.data(), static_cast<std::int64_t>(many.size()), 1));
+}
+
+TEST(ViewOrder, EachVoxelOnceByBinCellLevelAndId)
+{
+  // Voxels of random levels in a random cell each: the order holds each
+  // indexed voxel once, with its level, sorted by (bin, cell, level, id),
+  // whatever the executor.
+  for (const std::int64_t n : { std::int64_t(0), std::int64_t(1), std::int64_t(200003) })
+  {
+    const std::int64_t levels = 9, cells = 37;
+    std::mt19937 random(static_cast<unsigned>(n) + 11);
+    std::vector<int> level(static_cast<std::size_t>(n)), cell(static_cast<std::size_t>(n));
+    for (std::size_t id = 0; id < level.size(); ++id)
+    {
+      level[id] = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
+      cell[id] = static_cast<int>(random() % cells);
+    }
+    std::vector<std::int64_t> offsets;
+    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(n));
+    mcx::CountingSortByBin<std::uint32_t>(
+      mcx::SerialExecutor(), n, levels,
+      [&](std::int64_t id)
+      { return static_cast<std::int64_t>(level[static_cast<std::size_t>(id)]); },
+      offsets, sorted.data());
+    const std::vector<std::int64_t> bins = { 0, 2, 3, 7, 9 };
+    auto cellOf = [&](std::uint32_t id) { return static_cast<std::int64_t>(cell[id]); };
+    auto keepGoing = [](double) { return true; };
+    mcx::ViewOrder<std::uint32_t> serial, threaded;
+    ASSERT_TRUE(serial.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
+      cells, cellOf, keepGoing));
+    ASSERT_TRUE(threaded.Build(
+      ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
+    EXPECT_EQ(serial.Ids, threaded.Ids) << n;
+    EXPECT_EQ(serial.LevelInBin, threaded.LevelInBin) << n;
+    EXPECT_EQ(serial.BinOffsets, threaded.BinOffsets) << n;
+    ASSERT_EQ(4, serial.NumberOfBins());
+    ASSERT_EQ(static_cast<std::size_t>(offsets[levels]), serial.Ids.size());
+
+    std::vector<int> seen(static_cast<std::size_t>(n), 0);
+    std::array<std::int64_t, 4> key{}, previous{ -1, -1, -1, -1 };
+    for (std::int64_t b = 0; b < 4; ++b)
+    {
+      EXPECT_EQ(
+        offsets[bins[static_cast<std::size_t>(b)]], serial.BinOffsets[static_cast<std::size_t>(b)]);
+      for (std::int64_t k = serial.BinOffsets[static_cast<std::size_t>(b)];
+           k < serial.BinOffsets[static_cast<std::size_t>(b + 1)]; ++k)
+      {
+        const std::uint32_t id = serial.Ids[static_cast<std::size_t>(k)];
+        ++seen[id];
+        const std::int64_t l =
+          bins[static_cast<std::size_t>(b)] + serial.LevelInBin[static_cast<std::size_t>(k)];
+        ASSERT_EQ(level[id], l) << "entry " << k;
+        key = { b, cell[id], l, id };
+        ASSERT_LT(previous, key) << "entry " << k;
+        previous = key;
+      }
+    }
+    for (std::int64_t id = 0; id < n; ++id)
+    {
+      ASSERT_EQ(
+        level[static_cast<std::size_t>(id)] >= 0 ? 1 : 0, seen[static_cast<std::size_t>(id)]);
+    }
+    // Stopped after the first pass: no order.
+    mcx::ViewOrder<std::uint32_t> stopped;
+    EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
+      cells, cellOf, [](double fraction) { return fraction < 0.5; }));
+    EXPECT_TRUE(stopped.BinOffsets.empty());
+  }
+}
+
+namespace
+{
+// The view order's Halton samples of a toy volume: Cells cells of PerCell
+// voxels, each voxel's cell and level (0 to 3) random (so the index's own
+// order, by level, does not stratify the cells), levels {0, 1} and {2, 3}
+// in two bins. Returns each cell's estimate of its mass (sample k
+// carries W / M times its weight, W the total mass), and checks the order's
+// bin means and ratios.
+struct ToyViewOrder
+{
+  static constexpr std::int64_t Cells = 4, PerCell = std::int64_t(1) << 14;
+  std::vector<int> Level = std::vector<int>(static_cast<std::size_t>(Cells * PerCell));
+  std::vector<std::int64_t> Cell =
+    std::vector<std::int64_t>(static_cast<std::size_t>(Cells * PerCell));
+  std::vector<std::int64_t> Offsets;
+  std::vector<double> Exact = std::vector<double>(static_cast<std::size_t>(Cells), 0.0);
+  double Total = 0;
+
+  ToyViewOrder()
+  {
+    std::mt19937 random(3);
+    for (int& l : this->Level)
+    {
+      l = static_cast<int>(random() % 4);
+    }
+    for (std::size_t id = 0; id < this->Cell.size(); ++id)
+    {
+      this->Cell[id] = static_cast<std::int64_t>(id) / PerCell;
+    }
+    std::shuffle(this->Cell.begin(), this->Cell.end(), random);
+  }
+
+  // Each cell's estimate and the sum of the sample weights for `weight`;
+  // means and ratios are the order's.
+  std::vector<double> Estimate(const double weight[4], unsigned exponent,
+    std::vector<double>& means, std::vector<double>& ratios, double& weightSum)
+  {
+    const std::int64_t n = Cells * PerCell;
+    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(n));
+    mcx::CountingSortByBin<std::uint32_t>(
+      mcx::SerialExecutor(), n, 4,
+      [&](std::int64_t id)
+      { return static_cast<std::int64_t>(this->Level[static_cast<std::size_t>(id)]); },
+      this->Offsets, sorted.data());
+    mcx::ViewOrder<std::uint32_t> order;
+    EXPECT_TRUE(order.Build(
+      mcx::SerialExecutor(), sorted.data(), this->Offsets.data(), 4, { 0, 2, 4 }, Cells,
+      [&](std::uint32_t id) { return this->Cell[id]; }, [](double) { return true; }));
+    order.Weights(weight, this->Offsets.data(), means, ratios);
+    std::fill(this->Exact.begin(), this->Exact.end(), 0.0);
+    this->Total = 0;
+    for (std::int64_t id = 0; id < n; ++id)
+    {
+      const double w = weight[this->Level[static_cast<std::size_t>(id)]];
+      this->Exact[static_cast<std::size_t>(this->Cell[static_cast<std::size_t>(id)])] += w;
+      this->Total += w;
+    }
+    const mcx::TransferTable table =
+      mcx::BuildTransferTable(means.data(), order.BinOffsets.data(), 2);
+    mcx::SampleSource<std::uint32_t> source;
+    source.SortedIds = order.Ids.data();
+    source.LevelOffsets = order.BinOffsets.data();
+    source.NumberOfLevels = 2;
+    source.SetTable(table);
+    source.Decoder = mcx::VoxelDecoder<std::uint32_t>(static_cast<std::uint64_t>(n), 1);
+    source.LevelInBin = order.LevelInBin.data();
+    source.BinFirstLevel = order.BinFirstLevel.data();
+    source.LevelRatio = ratios.data();
+    source.Centres = true;
+    source.Exponent = exponent;
+    const double m = static_cast<double>(source.NumberOfSamples());
+    std::vector<double> estimate(static_cast<std::size_t>(Cells), 0.0);
+    weightSum = 0;
+    auto sink = [&](std::uint64_t, const double p[3], double w)
+    {
+      estimate[static_cast<std::size_t>(this->Cell[static_cast<std::size_t>(p[0])])] +=
+        w * this->Total / m;
+      weightSum += w;
+    };
+    source.Generate(0, source.NumberOfSamples(), sink);
+    return estimate;
+  }
+
+  double Count(int level) const
+  {
+    return static_cast<double>(this->Offsets[level + 1] - this->Offsets[level]);
+  }
+};
+}
+
+TEST(ViewOrder, HaltonSamplesStratifyEachCellToWithinOneCountPerBin)
+{
+  // Equal weights inside each bin (ratio 1): in the view order (bin, cell)
+  // each cell's count in each bin is its expected count rounded up or down,
+  // so each cell's estimate is exact to within W / M per bin, where Monte
+  // Carlo's error is sqrt(W_c W / M), 60 times more here.
+  ToyViewOrder toy;
+  const double weight[4] = { 1, 1, 2, 2 };
+  std::vector<double> means, ratios;
+  double weightSum = 0;
+  const std::vector<double> estimate = toy.Estimate(weight, 16, means, ratios, weightSum);
+  EXPECT_EQ((std::vector<double>{ 1, 1 }), std::vector<double>(ratios.begin(), ratios.begin() + 2));
+  EXPECT_EQ((std::vector<double>{ 1, 1 }), std::vector<double>(ratios.begin() + 2, ratios.end()));
+  const double m = std::ldexp(1.0, 16) - 1;
+  for (std::int64_t c = 0; c < ToyViewOrder::Cells; ++c)
+  {
+    const double exact = toy.Exact[static_cast<std::size_t>(c)];
+    EXPECT_NEAR(exact, estimate[static_cast<std::size_t>(c)], 2 * toy.Total / m) << "cell " << c;
+  }
+  EXPECT_DOUBLE_EQ(m, weightSum);
+}
+
+TEST(ViewOrder, HaltonSamplesWeightedByTheBinMeanAreUnbiased)
+{
+  // Weights 1, 3 | 0, 2: a voxel drawn uniformly in its bin carries w / (the
+  // bin's mean w), so each cell's estimate is unbiased, and its error is the
+  // spread of those ratios over the cell's samples: with n_b samples of bin
+  // b in the cell and var_b the ratios' variance over the bin's voxels,
+  // sigma = (W / M) sqrt(sum_b n_b var_b). Each cell within 2 W / M
+  // (rounding) + 4 sigma; the weights sum to M within 4 sigma of the whole.
+  ToyViewOrder toy;
+  const double weight[4] = { 1, 3, 0, 2 };
+  std::vector<double> means, ratios;
+  double weightSum = 0;
+  const unsigned exponent = 16;
+  const std::vector<double> estimate = toy.Estimate(weight, exponent, means, ratios, weightSum);
+  const double count[4] = { toy.Count(0), toy.Count(1), toy.Count(2), toy.Count(3) };
+  ASSERT_EQ(2u, means.size());
+  EXPECT_DOUBLE_EQ((1 * count[0] + 3 * count[1]) / (count[0] + count[1]), means[0]);
+  EXPECT_DOUBLE_EQ(2 * count[3] / (count[2] + count[3]), means[1]);
+  EXPECT_DOUBLE_EQ(3 / means[0], ratios[1]);
+  EXPECT_EQ(0.0, ratios[2]);
+  double variance[2];
+  for (int b = 0; b < 2; ++b)
+  {
+    const int l0 = 2 * b;
+    const double n = count[l0] + count[l0 + 1];
+    variance[b] = (count[l0] * (ratios[l0] - 1) * (ratios[l0] - 1) +
+                    count[l0 + 1] * (ratios[l0 + 1] - 1) * (ratios[l0 + 1] - 1)) /
+      n;
+  }
+  const double m = std::ldexp(1.0, exponent) - 1;
+  const double unit = toy.Total / m;
+  double wholeVariance = 0;
+  for (std::int64_t c = 0; c < ToyViewOrder::Cells; ++c)
+  {
+    // The cell's voxels of each bin: its exact mass per bin over the mean.
+    double massOfBin[2] = { 0, 0 };
+    for (std::size_t id = 0; id < toy.Level.size(); ++id)
+    {
+      const int l = toy.Level[id];
+      massOfBin[l / 2] += toy.Cell[id] == c ? means[static_cast<std::size_t>(l / 2)] : 0.0;
+    }
+    double cellVariance = 0;
+    for (int b = 0; b < 2; ++b)
+    {
+      cellVariance += massOfBin[b] / unit * variance[b];
+    }
+    wholeVariance += cellVariance;
+    const double exact = toy.Exact[static_cast<std::size_t>(c)];
+    const double sigma = unit * std::sqrt(cellVariance);
+    EXPECT_NEAR(exact, estimate[static_cast<std::size_t>(c)], 2 * unit + 4 * sigma) << "cell " << c;
+  }
+  EXPECT_NEAR(m, weightSum, 2 + 4 * std::sqrt(wholeVariance));
 }
 
 TEST(EveryVoxelOrder, EachKeptVoxelOnceInSpreadRunsOfNeighbours)
