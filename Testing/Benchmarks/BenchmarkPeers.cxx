@@ -310,6 +310,7 @@ void ToggleEdit(vtkPiecewiseFunction* tf, bool on, double baseValue)
 
 struct EditResult
 {
+  double FirstRenderSeconds = 0; // the first cloud (VIEW_ORDERED: with the sort)
   double MedianMilliseconds = 0;
   double Errors[2] = { 1, 1 }; // without and with the edit
   vtkIdType Points = 0;
@@ -334,6 +335,7 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
   sampler->SetStrategy(strategy);
   sampler->SetDepositToFootprint();
   sampler->ReusePointsOn(); // as the viewer's pipeline: the mapper is the cloud's only consumer
+  sampler->SetOrderingView(camera, size, size); // used by VIEW_ORDERED only
   vtkNew<vtkMCXXRayMapper> mapper;
   mapper->SetInputConnection(sampler->GetOutputPort());
   mapper->ProgressiveRefinementOff();
@@ -347,7 +349,9 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
   window->SetMultiSamples(0);
   window->SetSize(size, size);
   window->AddRenderer(renderer);
+  const Clock::time_point first = Clock::now();
   window->Render();
+  result.FirstRenderSeconds = Since(first);
   std::vector<double> milliseconds;
   for (int r = 0; r < repetitions; ++r)
   {
@@ -377,6 +381,33 @@ EditResult MeasureTransferFunctionEdit(vtkAlgorithm* index, vtkPiecewiseFunction
   }
   ToggleEdit(tf, false, baseValue);
   return result;
+}
+
+// The least m in [first, last] whose view-ordered footprint cloud (sorted
+// for `camera` at size^2) is within `target` of the reference (last if none).
+int ViewOrderedExponentForTarget(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera,
+  int size, vtkImageData* reference, double target, int first, int last)
+{
+  vtkNew<vtkMCXPointSampler> sampler;
+  sampler->SetInputConnection(index->GetOutputPort());
+  sampler->SetTransferFunction(tf);
+  sampler->SetStrategyToViewOrdered();
+  sampler->SetOrderingView(camera, size, size);
+  sampler->SetDepositToFootprint();
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(sampler->GetOutputPort());
+  projector->SetCamera(camera);
+  projector->SetImageSize(size, size);
+  for (int m = first; m < last; ++m)
+  {
+    sampler->SetSampleExponent(m); // the sort is kept
+    projector->Update();
+    if (mcxbench::RelativeRMS(mcxbench::Values(projector->GetOutput()), reference) <= target)
+    {
+      return m;
+    }
+  }
+  return last;
 }
 
 std::string Quoted(const std::string& text)
@@ -423,7 +454,7 @@ int main(int argc, char* argv[])
              "footprint_seconds,footprint_error,plastimatch_exact_seconds,plastimatch_error,"
              "footprint_speedup\n";
   std::ofstream edits(output + "/tf-edit.csv");
-  edits << "volume,size,cloud,points,median_ms,error,error_after_edit\n";
+  edits << "volume,size,cloud,points,first_render_ms,median_ms,error,error_after_edit\n";
 
   int nonsense = 0; // failed peers, non-finite errors: the run must fail loudly
   for (const VolumeCase& c : cases)
@@ -545,23 +576,30 @@ int main(int argc, char* argv[])
         }
       }
       // The interactive path at the smallest size: the footprint count that
-      // reached 2 %, and every voxel of non-zero weight once (where they
-      // are fewer than 2^30 points).
+      // reached 2 %, every voxel of non-zero weight once (where they are
+      // fewer than 2^30 points), and the view-ordered count that reaches 2 %.
       if (size == sizes.front())
       {
         const int m = static_cast<int>(std::lround(std::log2(reached[1][0].Samples + 1)));
-        for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+        const int viewOrderedM = ViewOrderedExponentForTarget(
+          index, tf, camera, size, reference, Targets[0], footprintRange[0], m);
+        for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL,
+               vtkMCXPointSampler::VIEW_ORDERED })
         {
           if (strategy == vtkMCXPointSampler::EVERY_VOXEL && !c.EveryVoxel)
           {
             continue;
           }
-          const EditResult edit = MeasureTransferFunctionEdit(
-            index, tf, camera, size, m, strategy, reference, quick ? 3 : 9);
+          const EditResult edit = MeasureTransferFunctionEdit(index, tf, camera, size,
+            strategy == vtkMCXPointSampler::VIEW_ORDERED ? viewOrderedM : m, strategy, reference,
+            quick ? 3 : 9);
           edits << Quoted(c.Name) << ',' << size << ','
-                << (strategy == vtkMCXPointSampler::HYBRID ? "sampled" : "every voxel") << ','
-                << edit.Points << ',' << edit.MedianMilliseconds << ',' << edit.Errors[0] << ','
-                << edit.Errors[1] << '\n';
+                << (strategy == vtkMCXPointSampler::HYBRID           ? "sampled"
+                       : strategy == vtkMCXPointSampler::EVERY_VOXEL ? "every voxel"
+                                                                     : "view ordered")
+                << ',' << edit.Points << ',' << 1000 * edit.FirstRenderSeconds << ','
+                << edit.MedianMilliseconds << ',' << edit.Errors[0] << ',' << edit.Errors[1]
+                << '\n';
           nonsense += std::isfinite(edit.Errors[0]) && std::isfinite(edit.Errors[1]) ? 0 : 1;
         }
       }

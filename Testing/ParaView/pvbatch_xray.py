@@ -13,7 +13,9 @@ function and checks what it computes and what it draws:
   function, midpoints and sharpness included, and the sampler's integral is
   that TF summed over the voxels;
 - the screenshot is the window and level of that image, per pixel, and equals
-  the baseline within a few grey levels (no shift, no averaging).
+  the baseline within a few grey levels (no shift, no averaging);
+- with the View ordered strategy, the image is that of a cloud sorted for
+  the view's camera and size.
 
     pvbatch pvbatch_xray.py PLUGIN VOLUME.vti BASELINE.png OUTPUT_DIR
 """
@@ -51,12 +53,17 @@ def as_array(image, name):
     return vtk_to_numpy(array).reshape(height, width, -1).squeeze().astype(numpy.float64)
 
 
-def offline_image(index, points, camera, size, **parameters):
-    """X-Ray Projector's image of an X-Ray Point Sampler cloud for a camera."""
+def offline_image(index, points, camera, size, ordered=False, **parameters):
+    """X-Ray Projector's image of an X-Ray Point Sampler cloud for a camera
+    (ordered: a view-ordered cloud sorted for that camera and size)."""
     cloud = XRayPointSampler(Input=index)
     cloud.TransferFunction.Points = points
     for name, value in parameters.items():
         setattr(cloud, name, value)
+    if ordered:
+        sampler = obj(cloud.GetClientSideObject())
+        invoke("Invoke %s SetStrategyToViewOrdered" % sampler,
+               "Invoke %s SetOrderingView %s int32(%d) int32(%d)" % (sampler, obj(camera), size[0], size[1]))
     offline = XRayProjector(Input=cloud)
     offline.ImageSize = size
     # The proxy has no camera property: set the VTK object's before its first update.
@@ -275,6 +282,18 @@ expected = offline_image(index, opacity.Points, camera, [300, 240],
                          SampleExponent=20, Seed=5, Kernel=1, Strategy=1, Deposit=0)
 check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
       "with midpoints, seed 5, box kernel, Monte Carlo, point deposit, 2^20 - 1 points: %d pixels differ from the off-line image"
+      % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
+
+# View ordered: the representation sorts the voxels for the view as it is
+# when it updates; its image is the off-line projection of a cloud sorted
+# for that camera and size.
+display.XRayStrategy = 4
+Render(view)
+on_screen = line_integral_image(representation)
+expected = offline_image(index, opacity.Points, camera, [300, 240], ordered=True,
+                         SampleExponent=20, Seed=5, Kernel=1, Deposit=0)
+check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
+      "view ordered: %d pixels differ from the off-line image of a cloud sorted for the view"
       % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
 
 if failures:

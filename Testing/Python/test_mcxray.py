@@ -182,6 +182,46 @@ class Pipeline(unittest.TestCase):
         self.assertEqual((1 << 14) - 1, sampler.GetOutput().GetNumberOfPoints())
         self.assertLess(second, first)
 
+    def test_view_ordered_cloud_is_weighted_and_holds_the_integral(self):
+        # A cloud sorted for one camera: each point carries w / (its bin's
+        # mean w), so the weights sum to about M, and projected from the
+        # same camera the image holds the TF's integral (the projector
+        # shares it among the points by weight).
+        from vtkmodules.vtkRenderingCore import vtkCamera
+        camera = vtkCamera()
+        camera.SetPosition(0, -1, 0)
+        camera.SetViewUp(0, 0, 1)
+        camera.ParallelProjectionOn()
+        bounds = self.volume.GetBounds()
+        camera.SetFocalPoint([(bounds[2 * a] + bounds[2 * a + 1]) / 2 for a in range(3)])
+        camera.SetPosition(camera.GetFocalPoint()[0], camera.GetFocalPoint()[1] - 1000,
+                           camera.GetFocalPoint()[2])
+        camera.SetParallelScale(200)
+        sampler = mcxray.vtkMCXPointSampler()
+        sampler.SetInputConnection(self.index.GetOutputPort())
+        sampler.SetTransferFunction(self.tf)
+        sampler.SetSampleExponent(16)
+        sampler.SetDepositToFootprint()
+        sampler.SetStrategyToViewOrdered()
+        sampler.SetOrderingView(camera, 64, 64)
+        self.assertTrue(sampler.HasOrderingView())
+        sampler.Update()
+        cloud = sampler.GetOutput()
+        weights = numpy.array([cloud.GetPointData().GetArray("PointWeight").GetValue(i)
+                               for i in range(cloud.GetNumberOfPoints())])
+        self.assertEqual((1 << 16) - 1, len(weights))
+        self.assertLess(abs(weights.sum() / len(weights) - 1), 0.01)
+        projector = mcxray.vtkMCXProjector()
+        projector.SetInputConnection(sampler.GetOutputPort())
+        projector.SetCamera(camera)
+        projector.SetImageSize(64, 64)
+        projector.Update()
+        image = projector.GetOutput()
+        spacing = image.GetSpacing()
+        integral = image.GetFieldData().GetArray("Integral").GetTuple1(0)
+        total = mcxray.image_to_numpy(image).sum() * spacing[0] * spacing[1]
+        self.assertAlmostEqual(1.0, total / integral, places=9)
+
     def test_errors_do_not_crash(self):
         with self.assertRaises(ValueError):
             mcxray.image_to_numpy(vtkImageData())

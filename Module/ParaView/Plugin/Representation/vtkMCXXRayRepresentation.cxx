@@ -279,6 +279,14 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   }
   if (request == vtkPVView::REQUEST_UPDATE())
   {
+    // A view-ordered cloud is sorted for the view as it is when the
+    // representation updates (a TF or property edit), not at each camera move.
+    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    if (view && this->Sampler->GetStrategy() == vtkMCXPointSampler::VIEW_ORDERED)
+    {
+      const int* size = view->GetSize();
+      this->Sampler->SetOrderingView(view->GetActiveCamera(), size[0], size[1]);
+    }
     // Only the index travels to the rendering processes: 4 or 8 bytes a voxel.
     // The size that decides on interactive (LOD) renders is that of the
     // cloud the renders draw, so that a large point count makes camera
