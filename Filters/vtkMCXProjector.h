@@ -63,7 +63,9 @@ public:
    * QUASI_MONTE_CARLO, or EVERY_VOXEL: each voxel of non-zero weight once,
    * weighted by its TF weight over the mean, never stored; SampleExponent
    * is unused and the target controls must be 0, else an error) and the
-   * seed. Ignored for a point-cloud input.
+   * seed. Ignored for a point-cloud input (a VIEW_ORDERED cloud too: that
+   * strategy is the sampler's alone, since one projection would pay its
+   * sort of every voxel).
    */
   vtkSetClampMacro(SampleExponent, int, 0, vtkMCXPointSampler::LargestSampleExponent);
   vtkGetMacro(SampleExponent, int);

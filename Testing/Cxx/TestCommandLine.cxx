@@ -381,6 +381,7 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
     "render --noise-seed -3 --output ",
     "render --method every-voxel --samples 1000 --output ",
     "render --method every-voxel --target-error 0.02 --output ",
+    "render --method view-ordered --output ",
     "frobnicate --output ",
   };
   for (const char* arguments : cases)

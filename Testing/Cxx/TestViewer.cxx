@@ -2,6 +2,7 @@
 // events in, frames out, TF edits applied through the keys and the sliders,
 // progressive refinement driven by the timer.
 #include "mcxXRayViewer.h"
+#include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXXRayMapper.h"
 
@@ -11,6 +12,8 @@
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -24,6 +27,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 namespace
@@ -193,6 +197,49 @@ TEST(Viewer, ScriptedSession)
   Press(interactor, '+');
   EXPECT_EQ(19, viewer.GetSampler()->GetSampleExponent());
   EXPECT_EQ(6, samplerRuns.Count);
+}
+
+TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
+{
+  // --method view-ordered: the sampler is ordered by the window's view from
+  // the start; a camera move alone neither sorts nor samples again; the TF
+  // edit after it orders by the moved camera, and the image is the cloud
+  // sorted for that view, all of its points.
+  mcxapp::ViewerOptions options;
+  options.Strategy = vtkMCXPointSampler::VIEW_ORDERED;
+  options.SampleExponent = 16;
+  options.Size[0] = options.Size[1] = Size;
+  options.OffScreen = true;
+  mcxapp::XRayViewer viewer(BundledCT(), options);
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  EXPECT_TRUE(viewer.GetSampler()->HasOrderingView());
+  mcxtest::ExecutionCounter samplerRuns(viewer.GetSampler());
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(1, samplerRuns.Count);
+  EXPECT_EQ(65535, viewer.GetMapper()->GetNumberOfAccumulatedSamples());
+  EXPECT_GT(MeanBrightness(viewer.GetRenderWindow()), 1.0);
+  viewer.GetRenderer()->GetActiveCamera()->Azimuth(40);
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(1, samplerRuns.Count);
+  Press(interactor, '2'); // bone
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(2, samplerRuns.Count);
+  vtkNew<vtkMCXPointSampler> fresh;
+  fresh->SetInputConnection(viewer.GetIndex()->GetOutputPort());
+  fresh->SetTransferFunction(viewer.GetTransferFunction());
+  fresh->SetStrategyToViewOrdered();
+  fresh->SetSampleExponent(16);
+  fresh->SetDeposit(viewer.GetSampler()->GetDeposit());
+  fresh->SetOrderingView(viewer.GetRenderer()->GetActiveCamera(), Size, Size);
+  fresh->Update();
+  vtkPolyData* shown = viewer.GetSampler()->GetOutput();
+  ASSERT_EQ(fresh->GetOutput()->GetNumberOfPoints(), shown->GetNumberOfPoints());
+  const float* a = static_cast<const float*>(fresh->GetOutput()->GetPoints()->GetVoidPointer(0));
+  const float* b = static_cast<const float*>(shown->GetPoints()->GetVoidPointer(0));
+  EXPECT_TRUE(std::equal(a, a + 3 * shown->GetNumberOfPoints(), b));
+  EXPECT_EQ(65535, viewer.GetMapper()->GetNumberOfAccumulatedSamples());
 }
 
 TEST(Viewer, EveryVoxelSession)
