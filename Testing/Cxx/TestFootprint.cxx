@@ -695,7 +695,9 @@ TEST(ViewOrder, SameCloudForAnyThreadsPrefixesAndTFEditsWithoutSortingAgain)
   one->Update();
   EXPECT_FALSE(watch.Sorted);
   EXPECT_TRUE(SameCloud(cloud(lateral, 16)->GetOutput(), one->GetOutput()));
+  const vtkMTimeType edited = one->GetMTime();
   one->SetOrderingView(lateral, 64, 64); // the same view: nothing to do
+  EXPECT_EQ(edited, one->GetMTime());
   one->Update();
   EXPECT_FALSE(watch.Sorted);
   one->SetOrderingView(oblique, 64, 64);

@@ -17,6 +17,7 @@ CONSTANTS = {
     "Monte Carlo": mcxray.vtkMCXPointSampler.MONTE_CARLO,
     "Quasi-Monte Carlo": mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO,
     "Every voxel": mcxray.vtkMCXPointSampler.EVERY_VOXEL,
+    "View ordered": mcxray.vtkMCXPointSampler.VIEW_ORDERED,
     "Tent (trilinear)": mcxray.vtkMCXPointSampler.TENT,
     "Box (nearest)": mcxray.vtkMCXPointSampler.BOX,
     "Point": mcxray.vtkMCXPointSampler.POINT,
