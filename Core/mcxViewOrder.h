@@ -11,9 +11,9 @@
 // drawn in proportion to its mass and a voxel uniformly inside it, weighted
 // w / (the bin's mean w): unbiased for any view and any TF, and for the
 // view it was sorted for, each (bin, pixel) cell gets its expected count to
-// within one, so the error falls nearly as M^-1 where a cell holds many
-// voxels. The remaining noise is the spread of w inside a bin, small when
-// the TF varies little over a bin's value range.
+// within one, and its samples spread evenly over the cell's levels, so the
+// voxel choice adds little noise where a cell holds many voxels (what is
+// left is mostly the deposit's own random parts).
 //
 // The sort is a pass over every voxel, like the index build, so it pays
 // where one view takes many TF edits. The order depends on the index, the

@@ -165,7 +165,9 @@ public:
    * is drawn in proportion to its mass and a voxel uniformly in it, with the
    * weight w / (the bin's mean w) in PointWeight. Unbiased for any camera;
    * for the ordering view each pixel gets its share of each bin to within
-   * one sample, so the error falls nearly as M^-1 instead of M^-1/2. The
+   * one sample, so the voxel choice adds little noise (measured: a 400
+   * M-voxel CT at 256^2 needs 8 times fewer points than HYBRID for 2 %,
+   * the footprint's own random parts then dominating). The
    * sort is a pass over every voxel (about the index build's time), done
    * when the view, the bins or the index change and kept while only the TF
    * changes: it pays where one view takes many TF edits. The whole volume
