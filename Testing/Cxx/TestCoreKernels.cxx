@@ -108,6 +108,19 @@ Native ToNative(const mcx::PortableUInt128& value)
   return (static_cast<Native>(value.HighHalf()) << 64) | value.LowHalf();
 }
 #endif
+
+// The ids 0 .. level.size() - 1 sorted by level (-1: not indexed), as the
+// density index lists them; offsets (levels + 1 entries) bounds each level.
+std::vector<std::uint32_t> SortByLevel(
+  const std::vector<int>& level, std::int64_t levels, std::vector<std::int64_t>& offsets)
+{
+  std::vector<std::uint32_t> sorted(level.size());
+  mcx::CountingSortByBin<std::uint32_t>(
+    mcx::SerialExecutor(), static_cast<std::int64_t>(level.size()), levels,
+    [&](std::int64_t id) { return static_cast<std::int64_t>(level[static_cast<std::size_t>(id)]); },
+    offsets, sorted.data());
+  return sorted;
+}
 }
 
 TEST(WideInteger, PortableMatchesTheCompilersType)
@@ -311,12 +324,7 @@ TEST(ViewOrder, EachVoxelOnceByBinCellLevelAndId)
       cell[id] = static_cast<int>(random() % cells);
     }
     std::vector<std::int64_t> offsets;
-    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(n));
-    mcx::CountingSortByBin<std::uint32_t>(
-      mcx::SerialExecutor(), n, levels,
-      [&](std::int64_t id)
-      { return static_cast<std::int64_t>(level[static_cast<std::size_t>(id)]); },
-      offsets, sorted.data());
+    const std::vector<std::uint32_t> sorted = SortByLevel(level, levels, offsets);
     const std::vector<std::int64_t> bins = { 0, 2, 3, 7, 9 };
     auto cellOf = [&](std::uint32_t id) { return static_cast<std::int64_t>(cell[id]); };
     auto keepGoing = [](double) { return true; };
@@ -401,12 +409,7 @@ struct ToyViewOrder
     std::vector<double>& means, std::vector<double>& ratios, double& weightSum)
   {
     const std::int64_t n = Cells * PerCell;
-    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(n));
-    mcx::CountingSortByBin<std::uint32_t>(
-      mcx::SerialExecutor(), n, 4,
-      [&](std::int64_t id)
-      { return static_cast<std::int64_t>(this->Level[static_cast<std::size_t>(id)]); },
-      this->Offsets, sorted.data());
+    const std::vector<std::uint32_t> sorted = SortByLevel(this->Level, 4, this->Offsets);
     mcx::ViewOrder<std::uint32_t> order;
     EXPECT_TRUE(order.Build(
       mcx::SerialExecutor(), sorted.data(), this->Offsets.data(), 4, { 0, 2, 4 }, Cells,
@@ -548,12 +551,7 @@ TEST(EveryVoxelOrder, EachKeptVoxelOnceInSpreadRunsOfNeighbours)
       l = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
     }
     std::vector<std::int64_t> offsets;
-    std::vector<std::uint32_t> sorted(static_cast<std::size_t>(n));
-    mcx::CountingSortByBin<std::uint32_t>(
-      mcx::SerialExecutor(), n, levels,
-      [&](std::int64_t id)
-      { return static_cast<std::int64_t>(level[static_cast<std::size_t>(id)]); },
-      offsets, sorted.data());
+    const std::vector<std::uint32_t> sorted = SortByLevel(level, levels, offsets);
     const std::vector<char> kept = { 1, 0, 1, 1, 0, 1, 1, 1, 1 };
     mcx::EveryVoxelOrder<std::uint32_t> serial, threaded;
     serial.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, kept, n);

@@ -227,12 +227,7 @@ TEST(Footprint, MassIsConservedWhenTheImageCoversTheSupport)
     projector->SetSampleExponent(18);
     projector->Update();
     vtkImageData* image = projector->GetOutput();
-    vtkDataArray* values = mcxtest::LineIntegral(image);
-    double sum = 0;
-    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
-    {
-      sum += values->GetTuple1(i);
-    }
+    const double sum = mcxtest::LineIntegralSum(image);
     const double integral = mcxtest::FieldValue(image, "Integral");
     EXPECT_NEAR(integral, sum * image->GetSpacing()[0] * image->GetSpacing()[1], 1e-12 * integral)
       << size;
@@ -734,12 +729,7 @@ TEST(ViewOrder, MassIsConservedAndAViewIsRequired)
   errors->StopObserving();
   EXPECT_TRUE(errors->GetErrorText().empty()) << errors->GetErrorText();
   vtkImageData* image = projector->GetOutput();
-  vtkDataArray* values = mcxtest::LineIntegral(image);
-  double sum = 0;
-  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
-  {
-    sum += values->GetTuple1(i);
-  }
+  const double sum = mcxtest::LineIntegralSum(image);
   const double integral = mcxtest::FieldValue(image, "Integral");
   EXPECT_NEAR(integral, sum * image->GetSpacing()[0] * image->GetSpacing()[1], 1e-9 * integral);
 }

@@ -198,12 +198,7 @@ TEST(Projection, PixelSumTimesAreaIsTheIntegral)
       projector->SetDeposit(deposit);
       projector->Update();
       vtkImageData* image = projector->GetOutput();
-      vtkDataArray* values = mcxtest::LineIntegral(image);
-      double sum = 0;
-      for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
-      {
-        sum += values->GetTuple1(i);
-      }
+      const double sum = mcxtest::LineIntegralSum(image);
       const double integral = mcxtest::FieldValue(image, "Integral");
       const double tolerance = deposit == vtkMCXPointSampler::FOOTPRINT ? 1e-8 : 1e-12;
       std::cout << "strategy " << strategy << " deposit " << deposit << ": relative loss "

@@ -79,6 +79,19 @@ inline vtkDataArray* LineIntegral(vtkImageData* image)
   return image->GetPointData()->GetArray("LineIntegral");
 }
 
+/// The sum of an image's line integrals over its pixels (times the pixel
+/// area: the mass the image holds).
+inline double LineIntegralSum(vtkImageData* image)
+{
+  vtkDataArray* values = LineIntegral(image);
+  double sum = 0;
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    sum += values->GetTuple1(i);
+  }
+  return sum;
+}
+
 /// Largest |value| of an image (a scale that keeps sums of squares finite).
 inline double MaximumAbsolute(vtkDataArray* values)
 {
