@@ -615,8 +615,8 @@ vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
   const std::int64_t keys = (static_cast<std::int64_t>(binFirstLevel.size()) - 1) * cells;
   const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
   if (!mcx::CheckMemory(this,
-        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0) +
-          8.0 * static_cast<double>(layout.NumberOfChunks) * static_cast<double>(keys),
+        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 1.0) +
+          8.0 * static_cast<double>(layout.NumberOfChunks + 1) * static_cast<double>(keys),
         "The view order of " + std::to_string(voxels) + " voxels"))
   {
     return nullptr;
@@ -643,12 +643,16 @@ vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
       const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
         static_cast<double>(voxel[2]) };
       double fx, fy, f, inverseDepth;
+      mcx::ViewCell where;
       if (!binner.Locate(p, fx, fy, f, inverseDepth) || !(fx >= 0 && fx < geometry.Size[0]) ||
         !(fy >= 0 && fy < geometry.Size[1]))
       {
-        return pixels;
+        where.Cell = pixels;
+        return where;
       }
-      return static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * geometry.Size[0];
+      where.Cell = static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * geometry.Size[0];
+      where.Position = mcx::PositionInPixel(fx, fy);
+      return where;
     };
     return order.Build(mcx::SMPExecutor(), view.IdPointer<IdType>(), view.LevelOffsets,
       view.NumberOfLevels, std::move(binFirstLevel), cells, cellOf, progress);

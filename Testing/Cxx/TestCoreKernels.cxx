@@ -308,25 +308,55 @@ TEST(ViewOrder, LevelsGroupIntoBinsOfEqualWidthAndAtMostTwoTo16Levels)
     mcx::GroupLevelsIntoBins(many.data(), static_cast<std::int64_t>(many.size()), 1));
 }
 
-TEST(ViewOrder, EachVoxelOnceByBinCellLevelAndId)
+TEST(ViewOrder, PositionInPixelIsTheMortonRankOfSixteenthPixelSquares)
 {
-  // Voxels of random levels in a random cell each: the order holds each
-  // indexed voxel once, with its level, sorted by (bin, cell, level, id),
-  // whatever the executor.
+  EXPECT_EQ(0, mcx::PositionInPixel(0.0, 0.0));
+  EXPECT_EQ(0, mcx::PositionInPixel(7.01, -3.0)); // only the fraction counts
+  EXPECT_EQ(255, mcx::PositionInPixel(0.999, 2.9999));
+  EXPECT_EQ(128, mcx::PositionInPixel(0.5, 0.0)); // the column's high bit first
+  EXPECT_EQ(64, mcx::PositionInPixel(0.0, 0.5));
+  // Column 1010, row 0101: the pairs 10 01 10 01.
+  EXPECT_EQ(0b10011001, mcx::PositionInPixel(10.0 / 16 + 0.01, 5.0 / 16 + 0.01));
+  EXPECT_EQ(0b10100000, mcx::PositionInPixel(-0.25, 0.0)); // column 12 (1100), row 0
+  // Each aligned quarter of the pixel is one run of 64 ranks.
+  for (int column = 0; column < 16; ++column)
+  {
+    for (int row = 0; row < 16; ++row)
+    {
+      const int quarter = 2 * (column / 8) + row / 8;
+      EXPECT_EQ(quarter, mcx::PositionInPixel((column + 0.5) / 16, (row + 0.5) / 16) / 64);
+    }
+  }
+}
+
+TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
+{
+  // Voxels of random levels in a random cell and position each: the order
+  // holds each indexed voxel once, with its level, sorted by (bin, cell,
+  // position, level, id), whatever the executor.
   for (const std::int64_t n : { std::int64_t(0), std::int64_t(1), std::int64_t(200003) })
   {
     const std::int64_t levels = 9, cells = 37;
     std::mt19937 random(static_cast<unsigned>(n) + 11);
-    std::vector<int> level(static_cast<std::size_t>(n)), cell(static_cast<std::size_t>(n));
+    std::vector<int> level(static_cast<std::size_t>(n)), cell(static_cast<std::size_t>(n)),
+      position(static_cast<std::size_t>(n));
     for (std::size_t id = 0; id < level.size(); ++id)
     {
       level[id] = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
       cell[id] = static_cast<int>(random() % cells);
+      // Few positions in the last cell (the off-image cell: 0), all in others.
+      position[id] = cell[id] == cells - 1 ? 0 : static_cast<int>(random() % 256);
     }
     std::vector<std::int64_t> offsets;
     const std::vector<std::uint32_t> sorted = SortByLevel(level, levels, offsets);
     const std::vector<std::int64_t> bins = { 0, 2, 3, 7, 9 };
-    auto cellOf = [&](std::uint32_t id) { return static_cast<std::int64_t>(cell[id]); };
+    auto cellOf = [&](std::uint32_t id)
+    {
+      mcx::ViewCell where;
+      where.Cell = cell[id];
+      where.Position = static_cast<std::uint8_t>(position[id]);
+      return where;
+    };
     auto keepGoing = [](double) { return true; };
     mcx::ViewOrder<std::uint32_t> serial, threaded;
     ASSERT_TRUE(serial.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
@@ -340,7 +370,7 @@ TEST(ViewOrder, EachVoxelOnceByBinCellLevelAndId)
     ASSERT_EQ(static_cast<std::size_t>(offsets[levels]), serial.Ids.size());
 
     std::vector<int> seen(static_cast<std::size_t>(n), 0);
-    std::array<std::int64_t, 4> key{}, previous{ -1, -1, -1, -1 };
+    std::array<std::int64_t, 5> key{}, previous{ -1, -1, -1, -1, -1 };
     for (std::int64_t b = 0; b < 4; ++b)
     {
       EXPECT_EQ(
@@ -353,7 +383,7 @@ TEST(ViewOrder, EachVoxelOnceByBinCellLevelAndId)
         const std::int64_t l =
           bins[static_cast<std::size_t>(b)] + serial.LevelInBin[static_cast<std::size_t>(k)];
         ASSERT_EQ(level[id], l) << "entry " << k;
-        key = { b, cell[id], l, id };
+        key = { b, cell[id], position[id], l, id };
         ASSERT_LT(previous, key) << "entry " << k;
         previous = key;
       }
@@ -363,30 +393,38 @@ TEST(ViewOrder, EachVoxelOnceByBinCellLevelAndId)
       ASSERT_EQ(
         level[static_cast<std::size_t>(id)] >= 0 ? 1 : 0, seen[static_cast<std::size_t>(id)]);
     }
-    // Stopped after the first pass: no order.
-    mcx::ViewOrder<std::uint32_t> stopped;
-    EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
-      cells, cellOf, [](double fraction) { return fraction < 0.5; }));
-    EXPECT_TRUE(stopped.BinOffsets.empty());
+    // Stopped after the first or the second pass: no order.
+    for (const double last : { 0.3, 0.6 })
+    {
+      mcx::ViewOrder<std::uint32_t> stopped;
+      EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels,
+        bins, cells, cellOf, [last](double fraction) { return fraction < last; }));
+      EXPECT_TRUE(stopped.BinOffsets.empty());
+    }
   }
 }
 
 namespace
 {
 // The view order's Halton samples of a toy volume: Cells cells of PerCell
-// voxels, each voxel's cell and level (0 to 3) random (so the index's own
-// order, by level, does not stratify the cells), levels {0, 1} and {2, 3}
-// in two bins. Returns each cell's estimate of its mass (sample k
-// carries W / M times its weight, W the total mass), and checks the order's
-// bin means and ratios.
+// voxels, each voxel's cell, position in its cell and level (0 to 3) random
+// (so the index's own order, by level, stratifies neither the cells nor
+// the positions), levels {0, 1} and {2, 3} in two bins. Returns each cell's
+// estimate of its mass (sample k carries W / M times its weight, W the
+// total mass) and keeps each quarter's of its cell (the four aligned runs
+// of 64 positions); the order's bin means and ratios go to the caller.
 struct ToyViewOrder
 {
   static constexpr std::int64_t Cells = 4, PerCell = std::int64_t(1) << 14;
   std::vector<int> Level = std::vector<int>(static_cast<std::size_t>(Cells * PerCell));
+  std::vector<std::uint8_t> Position =
+    std::vector<std::uint8_t>(static_cast<std::size_t>(Cells * PerCell));
   std::vector<std::int64_t> Cell =
     std::vector<std::int64_t>(static_cast<std::size_t>(Cells * PerCell));
   std::vector<std::int64_t> Offsets;
   std::vector<double> Exact = std::vector<double>(static_cast<std::size_t>(Cells), 0.0);
+  std::vector<double> ExactQuarters = std::vector<double>(static_cast<std::size_t>(4 * Cells));
+  std::vector<double> EstimatedQuarters = std::vector<double>(static_cast<std::size_t>(4 * Cells));
   double Total = 0;
 
   ToyViewOrder()
@@ -395,6 +433,10 @@ struct ToyViewOrder
     for (int& l : this->Level)
     {
       l = static_cast<int>(random() % 4);
+    }
+    for (std::uint8_t& p : this->Position)
+    {
+      p = static_cast<std::uint8_t>(random() % 256);
     }
     for (std::size_t id = 0; id < this->Cell.size(); ++id)
     {
@@ -411,16 +453,25 @@ struct ToyViewOrder
     const std::int64_t n = Cells * PerCell;
     const std::vector<std::uint32_t> sorted = SortByLevel(this->Level, 4, this->Offsets);
     mcx::ViewOrder<std::uint32_t> order;
-    EXPECT_TRUE(order.Build(
-      mcx::SerialExecutor(), sorted.data(), this->Offsets.data(), 4, { 0, 2, 4 }, Cells,
-      [&](std::uint32_t id) { return this->Cell[id]; }, [](double) { return true; }));
+    auto cellOf = [&](std::uint32_t id)
+    {
+      mcx::ViewCell where;
+      where.Cell = this->Cell[id];
+      where.Position = this->Position[id];
+      return where;
+    };
+    EXPECT_TRUE(order.Build(mcx::SerialExecutor(), sorted.data(), this->Offsets.data(), 4,
+      { 0, 2, 4 }, Cells, cellOf, [](double) { return true; }));
     order.Weights(weight, this->Offsets.data(), means, ratios);
     std::fill(this->Exact.begin(), this->Exact.end(), 0.0);
+    std::fill(this->ExactQuarters.begin(), this->ExactQuarters.end(), 0.0);
+    std::fill(this->EstimatedQuarters.begin(), this->EstimatedQuarters.end(), 0.0);
     this->Total = 0;
-    for (std::int64_t id = 0; id < n; ++id)
+    for (std::size_t id = 0; id < static_cast<std::size_t>(n); ++id)
     {
-      const double w = weight[this->Level[static_cast<std::size_t>(id)]];
-      this->Exact[static_cast<std::size_t>(this->Cell[static_cast<std::size_t>(id)])] += w;
+      const double w = weight[this->Level[id]];
+      this->Exact[static_cast<std::size_t>(this->Cell[id])] += w;
+      this->ExactQuarters[this->QuarterOf(id)] += w;
       this->Total += w;
     }
     const mcx::TransferTable table =
@@ -441,12 +492,18 @@ struct ToyViewOrder
     weightSum = 0;
     auto sink = [&](std::uint64_t, const double p[3], double w)
     {
-      estimate[static_cast<std::size_t>(this->Cell[static_cast<std::size_t>(p[0])])] +=
-        w * this->Total / m;
+      const std::size_t id = static_cast<std::size_t>(p[0]);
+      estimate[static_cast<std::size_t>(this->Cell[id])] += w * this->Total / m;
+      this->EstimatedQuarters[this->QuarterOf(id)] += w * this->Total / m;
       weightSum += w;
     };
     source.Generate(0, source.NumberOfSamples(), sink);
     return estimate;
+  }
+
+  std::size_t QuarterOf(std::size_t id) const
+  {
+    return static_cast<std::size_t>(4 * this->Cell[id] + this->Position[id] / 64);
   }
 
   double Count(int level) const
@@ -456,12 +513,14 @@ struct ToyViewOrder
 };
 }
 
-TEST(ViewOrder, HaltonSamplesStratifyEachCellToWithinOneCountPerBin)
+TEST(ViewOrder, HaltonSamplesStratifyEachCellAndItsQuartersToWithinOneCountPerBin)
 {
-  // Equal weights inside each bin (ratio 1): in the view order (bin, cell)
-  // each cell's count in each bin is its expected count rounded up or down,
-  // so each cell's estimate is exact to within W / M per bin, where Monte
-  // Carlo's error is sqrt(W_c W / M), 60 times more here.
+  // Equal weights inside each bin (ratio 1): in the view order (bin, cell,
+  // position) each cell's count in each bin, and each quarter's of the cell
+  // (a run of 64 positions), is its expected count rounded up or down, so
+  // each estimate is exact to within W / M per bin, where Monte Carlo's
+  // error is sqrt(W_c W / M), 60 times more for a cell here, 30 for a
+  // quarter.
   ToyViewOrder toy;
   const double weight[4] = { 1, 1, 2, 2 };
   std::vector<double> means, ratios;
@@ -474,6 +533,11 @@ TEST(ViewOrder, HaltonSamplesStratifyEachCellToWithinOneCountPerBin)
   {
     const double exact = toy.Exact[static_cast<std::size_t>(c)];
     EXPECT_NEAR(exact, estimate[static_cast<std::size_t>(c)], 2 * toy.Total / m) << "cell " << c;
+  }
+  for (std::size_t q = 0; q < toy.ExactQuarters.size(); ++q)
+  {
+    EXPECT_NEAR(toy.ExactQuarters[q], toy.EstimatedQuarters[q], 2 * toy.Total / m)
+      << "quarter " << q;
   }
   EXPECT_DOUBLE_EQ(m, weightSum);
 }
