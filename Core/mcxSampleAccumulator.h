@@ -19,6 +19,7 @@
 #include "mcxFixedPoint.h"
 #include "mcxFootprint.h"
 #include "mcxPixelBinner.h"
+#include "mcxPrefetch.h"
 #include "mcxProjectionGeometry.h"
 #include "mcxRandom.h"
 
@@ -33,25 +34,6 @@
 
 namespace mcx
 {
-
-/// Hints that the cache line holding `address` is about to be written or
-/// read (no effect where the compiler offers no prefetch).
-inline void PrefetchForWriting(const void* address)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(address, 1, 3);
-#else
-  (void)address;
-#endif
-}
-inline void PrefetchForReading(const void* address)
-{
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(address, 0, 3);
-#else
-  (void)address;
-#endif
-}
 
 /// The largest weight of a point of a weighted cloud: a point adds at most
 /// 2^40 counts of 2^32 each, so no pixel's 128-bit sum comes near overflow.

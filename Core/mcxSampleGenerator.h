@@ -25,6 +25,7 @@
 
 #include "mcxFastDivide.h"
 #include "mcxHalton.h"
+#include "mcxPrefetch.h"
 #include "mcxRandom.h"
 #include "mcxTransferTable.h"
 
@@ -352,10 +353,9 @@ private:
   /// CT: a sample every hundred voxels) each rank reads a line of its own,
   /// and waiting for them one at a time took most of the generation. The
   /// same walk as the run's; the whole volume only (a piece's ranks shift).
-  void PrefetchRun(std::uint64_t runStart, std::uint64_t first, std::uint64_t side,
-    std::int64_t c, double step) const
+  void PrefetchRun(std::uint64_t runStart, std::uint64_t first, std::uint64_t side, std::int64_t c,
+    double step) const
   {
-#if defined(__GNUC__) || defined(__clang__)
     if (this->PieceOffsets)
     {
       return;
@@ -368,17 +368,12 @@ private:
         ++c;
       }
       const std::int64_t slot = this->LevelOffsets[c - 1] + this->VoxelRank(target, c);
-      __builtin_prefetch(this->SortedIds + slot);
+      PrefetchForReadingInALoop(this->SortedIds + slot);
       if (this->LevelInBin)
       {
-        __builtin_prefetch(this->LevelInBin + slot);
+        PrefetchForReadingInALoop(this->LevelInBin + slot);
       }
-      // A loop of prefetches alone is dead code to GCC, which drops it.
-      asm volatile("" ::: "memory");
     }
-#else
-    (void)runStart, (void)first, (void)side, (void)c, (void)step;
-#endif
   }
 
   /// q of GenerateForStorage's blocks: StorageBits, or m / 2 for small m.

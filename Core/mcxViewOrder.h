@@ -29,6 +29,7 @@
 #define mcxViewOrder_h
 
 #include "mcxCountingSort.h"
+#include "mcxHugePageAllocator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -125,8 +126,8 @@ struct ViewOrder
   /// The voxel ids by (bin, cell, position, level, id); BinOffsets (bins + 1 entries)
   /// delimits each bin, LevelInBin is each entry's level minus its bin's
   /// first level, BinFirstLevel (bins + 1) the bins' levels.
-  std::vector<IdType> Ids;
-  std::vector<std::uint16_t> LevelInBin;
+  std::vector<IdType, HugePageAllocator<IdType>> Ids;
+  std::vector<std::uint16_t, HugePageAllocator<std::uint16_t>> LevelInBin;
   std::vector<std::int64_t> BinOffsets;
   std::vector<std::int64_t> BinFirstLevel;
 
@@ -178,7 +179,8 @@ struct ViewOrder
     auto keyOf = [&](std::int64_t level, std::int64_t cell)
     { return binOfLevel[static_cast<std::size_t>(level)] * cells + cell; };
 
-    std::vector<std::int64_t> counters(static_cast<std::size_t>(layout.NumberOfChunks * keys), 0);
+    std::vector<std::int64_t, HugePageAllocator<std::int64_t>> counters(
+      static_cast<std::size_t>(layout.NumberOfChunks * keys), 0);
     executor.For(0, layout.NumberOfChunks, 1,
       [&](std::int64_t c0, std::int64_t c1)
       {
@@ -220,7 +222,8 @@ struct ViewOrder
 
     this->Ids.resize(static_cast<std::size_t>(voxels));
     this->LevelInBin.resize(static_cast<std::size_t>(voxels));
-    std::vector<std::uint8_t> positions(static_cast<std::size_t>(voxels));
+    std::vector<std::uint8_t, HugePageAllocator<std::uint8_t>> positions(
+      static_cast<std::size_t>(voxels));
     executor.For(0, layout.NumberOfChunks, 1,
       [&](std::int64_t c0, std::int64_t c1)
       {
@@ -240,7 +243,7 @@ struct ViewOrder
             });
         }
       });
-    counters = std::vector<std::int64_t>(); // the third pass needs no cursors
+    counters = decltype(counters)(); // the third pass needs no cursors
     if (!progress(2.0 / 3.0))
     {
       this->BinOffsets.clear();

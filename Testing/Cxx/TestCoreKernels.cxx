@@ -9,6 +9,7 @@
 #include "mcxEveryVoxelSource.h"
 #include "mcxExecutor.h"
 #include "mcxFixedPoint.h"
+#include "mcxHugePageAllocator.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
 #include "mcxSampleAccumulator.h"
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <list>
 #include <map>
 #include <mutex>
@@ -308,6 +310,29 @@ TEST(ViewOrder, LevelsGroupIntoBinsOfEqualWidthAndAtMostTwoTo16Levels)
     mcx::GroupLevelsIntoBins(many.data(), static_cast<std::int64_t>(many.size()), 1));
 }
 
+TEST(HugePageAllocator, LargeArraysAlignToHugePagesAndAllHoldTheirValues)
+{
+  using Allocator = mcx::HugePageAllocator<std::uint32_t>;
+  for (const std::size_t n : { std::size_t(0), std::size_t(1000), Allocator::HugeFrom / 4 + 3 })
+  {
+    std::vector<std::uint32_t, Allocator> values(n);
+    std::iota(values.begin(), values.end(), 7u);
+    EXPECT_TRUE(std::all_of(values.begin(), values.end(),
+      [&](const std::uint32_t& v)
+      { return v == 7u + static_cast<std::uint32_t>(&v - values.data()); }));
+#if defined(__linux__)
+    if (n * sizeof(std::uint32_t) >= Allocator::HugeFrom)
+    {
+      EXPECT_EQ(0u, reinterpret_cast<std::uintptr_t>(values.data()) % Allocator::HugePage);
+    }
+#endif
+    values.resize(n / 2); // shrinks in place; the large block is freed with the vector
+    EXPECT_EQ(n / 2, values.size());
+  }
+  EXPECT_THROW(
+    Allocator().allocate(std::numeric_limits<std::size_t>::max() / 2), std::bad_array_new_length);
+}
+
 TEST(ViewOrder, PositionInPixelIsTheMortonRankOfSixteenthPixelSquares)
 {
   EXPECT_EQ(0, mcx::PositionInPixel(0.0, 0.0));
@@ -397,8 +422,8 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
     for (const double last : { 0.3, 0.6 })
     {
       mcx::ViewOrder<std::uint32_t> stopped;
-      EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels,
-        bins, cells, cellOf, [last](double fraction) { return fraction < last; }));
+      EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
+        cells, cellOf, [last](double fraction) { return fraction < last; }));
       EXPECT_TRUE(stopped.BinOffsets.empty());
     }
   }
