@@ -597,7 +597,8 @@ TEST(ViewOrder, StratifiesTheOrderingViewAndStaysUnbiasedInOthers)
         auto orderedImage = ProjectCloud(ordered->GetOutputPort(), camera, size);
         const double orderedError = mcxtest::RelativeRMS(orderedImage, reference);
         // The error estimate from the halves still tracks the true error
-        // (measured: 0.75 to 1.46 of it).
+        // (measured: 0.78 to 1.46 of it; above 1.35 only at 2^20 - 1 in the
+        // views the cloud was not sorted for, where its error falls faster than M^-1/2).
         const double estimate = mcxtest::FieldValue(orderedImage, "EstimatedRelativeError");
         EXPECT_GT(estimate, 0.6 * orderedError) << "deposit " << deposit << " view " << view;
         EXPECT_LT(estimate, 1.6 * orderedError) << "deposit " << deposit << " view " << view;
@@ -605,7 +606,8 @@ TEST(ViewOrder, StratifiesTheOrderingViewAndStaysUnbiasedInOthers)
           mcxtest::RelativeRMS(ProjectCloud(hybrid->GetOutputPort(), camera, size), reference);
         std::cout << "deposit " << deposit << " view " << view << " m " << m << ": view order "
                   << orderedError / bound << ", hybrid " << hybridError / bound
-                  << " of the Monte Carlo bound " << bound << std::endl;
+                  << " of the Monte Carlo bound " << bound << "; estimate "
+                  << estimate / orderedError << " of the error" << std::endl;
         if (view == 0 && deposit == vtkMCXPointSampler::FOOTPRINT)
         {
           EXPECT_LT(orderedError, 0.3 * hybridError) << "m " << m;
