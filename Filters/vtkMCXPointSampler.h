@@ -161,15 +161,16 @@ public:
    * pixels of one view (a 400 M-voxel CT at 256^2), where the Halton choice
    * over density levels gains little over plain Monte Carlo: the levels are
    * grouped into NumberOfOrderingBins bins of equal value width, each bin's
-   * voxels sorted by the pixel of the view set with SetOrderingView; a bin
-   * is drawn in proportion to its mass and a voxel uniformly in it, with the
-   * weight w / (the bin's mean w) in PointWeight. Unbiased for any camera;
-   * for the ordering view each pixel gets its share of each bin to within
-   * one sample, so the voxel choice adds little noise (measured: a 400
-   * M-voxel CT at 256^2 needs 8 times fewer points than HYBRID for 2 %,
-   * the footprint's own random parts then dominating). The
-   * sort is a pass over every voxel (about the index build's time), done
-   * when the view, the bins or the index change and kept while only the TF
+   * voxels sorted by the pixel of the view set with SetOrderingView, then
+   * by the position in that pixel; a bin is drawn in proportion to its mass
+   * and a voxel uniformly in it, with the weight w / (the bin's mean w) in
+   * PointWeight. Unbiased for any camera; for the ordering view each pixel
+   * gets its share of each bin to within one sample, spread over the
+   * pixel's area, so the voxel choice adds little noise (measured: a 400
+   * M-voxel CT at 256^2 needs 8 times fewer points than HYBRID for 2 %).
+   * The sort is three passes over every voxel (there 1.5 times the index
+   * build's time), done when the view, the bins or the index change and
+   * kept while only the TF
    * changes: it pays where one view takes many TF edits. The whole volume
    * must be in this process (not a piece of a distributed index).
    */
