@@ -264,49 +264,6 @@ struct ViewOrder
     return progress(1.0);
   }
 
-private:
-  /// Sorts the entries [begin, end) of one cell by position, stably (the
-  /// level and id order kept within a position), reusing its buffers from
-  /// cell to cell.
-  class CellSorter
-  {
-  public:
-    void Sort(std::int64_t begin, std::int64_t end, const std::uint8_t* positions, IdType* ids,
-      std::uint16_t* levels)
-    {
-      const std::size_t n = static_cast<std::size_t>(end - begin);
-      const std::uint8_t* position = positions + begin;
-      if (n < 2 || std::is_sorted(position, position + n))
-      {
-        return; // also the off-image cell of a view that sees the whole volume
-      }
-      std::size_t starts[257] = {};
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        ++starts[position[i] + 1];
-      }
-      for (int p = 0; p < 256; ++p)
-      {
-        starts[p + 1] += starts[p];
-      }
-      this->Ids.resize(n);
-      this->Levels.resize(n);
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const std::size_t to = starts[position[i]]++;
-        this->Ids[to] = ids[begin + static_cast<std::int64_t>(i)];
-        this->Levels[to] = levels[begin + static_cast<std::int64_t>(i)];
-      }
-      std::copy(this->Ids.begin(), this->Ids.end(), ids + begin);
-      std::copy(this->Levels.begin(), this->Levels.end(), levels + begin);
-    }
-
-  private:
-    std::vector<IdType> Ids;
-    std::vector<std::uint16_t> Levels;
-  };
-
-public:
   /// For per-level weights (non-negative, finite): each bin's mean weight
   /// over its voxels (levelOffsets: the index's), and each level's weight
   /// over its bin's mean (0 in a bin of mean 0), the weight a voxel drawn
@@ -336,6 +293,48 @@ public:
       }
     }
   }
+
+private:
+  /// Sorts the entries [begin, end) of one cell by position, stably (the
+  /// level and id order kept within a position), reusing its buffers from
+  /// cell to cell.
+  class CellSorter
+  {
+  public:
+    void Sort(std::int64_t begin, std::int64_t end, const std::uint8_t* positions, IdType* ids,
+      std::uint16_t* levels)
+    {
+      const std::size_t n = static_cast<std::size_t>(end - begin);
+      const std::uint8_t* position = positions + begin;
+      if (n < 2 || std::is_sorted(position, position + n))
+      {
+        return; // the off-image cell among them: its voxels all have position 0
+      }
+      std::size_t starts[257] = {};
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        ++starts[position[i] + 1];
+      }
+      for (int p = 0; p < 256; ++p)
+      {
+        starts[p + 1] += starts[p];
+      }
+      this->Ids.resize(n);
+      this->Levels.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const std::size_t to = starts[position[i]]++;
+        this->Ids[to] = ids[begin + static_cast<std::int64_t>(i)];
+        this->Levels[to] = levels[begin + static_cast<std::int64_t>(i)];
+      }
+      std::copy(this->Ids.begin(), this->Ids.end(), ids + begin);
+      std::copy(this->Levels.begin(), this->Levels.end(), levels + begin);
+    }
+
+  private:
+    std::vector<IdType> Ids;
+    std::vector<std::uint16_t> Levels;
+  };
 };
 
 } // namespace mcx
