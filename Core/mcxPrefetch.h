@@ -30,11 +30,9 @@ inline void PrefetchForReading(const void* address)
 /// tells the compiler that memory may change.
 inline void PrefetchForReadingInALoop(const void* address)
 {
+  PrefetchForReading(address);
 #if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(address, 0, 3);
   asm volatile("" ::: "memory");
-#else
-  (void)address;
 #endif
 }
 
