@@ -105,7 +105,10 @@ void TransferIds(vtkMultiProcessController* controller, const Local* ids, vtkIdT
     }
     return;
   }
-  std::vector<long long> before(levels, 0);
+  // Sized after construction: GCC 12 takes the sized constructor here for a
+  // delete of a non-heap pointer (a false -Wfree-nonheap-object).
+  std::vector<long long> before;
+  before.resize(levels, 0);
   for (int p = 0; p < processes; ++p)
   {
     const long long* pieceOffsets = allPieceOffsets.data() + static_cast<std::size_t>(p) * (levels + 1);
