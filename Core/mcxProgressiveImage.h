@@ -8,10 +8,13 @@
 // the error estimate compares with the rest (the same halves as the off-line
 // projector's). Sums are integers, so the image is the same for any number of
 // threads and equals vtkMCXProjector's for the same camera and points: both
-// deposit through SampleAccumulator.
+// deposit through SampleAccumulator. With a control image (SetControl) it
+// also counts each point once and shows the controlled estimate of
+// mcxControlImage.h.
 #ifndef mcxProgressiveImage_h
 #define mcxProgressiveImage_h
 
+#include "mcxControlImage.h"
 #include "mcxErrorEstimate.h"
 #include "mcxFixedPoint.h"
 #include "mcxProjectionGeometry.h"
@@ -41,8 +44,31 @@ public:
     this->Counted = 0;
     this->FirstHalfCount = 0;
     this->Weights = 0;
+    this->FirstHalfWeights = 0;
     this->Weighted = false;
+    this->Control.clear();
+    this->OnceTotal.clear();
+    this->OnceFirstHalf.clear();
   }
+
+  /// Shows the controlled estimate (mcxControlImage.h) of the points to
+  /// come: `control` is the control image H of this view, NumberOfPixels()
+  /// line integrals, and `integral` the cloud's. Call after Reset(), before
+  /// the first Advance().
+  void SetControl(std::vector<double> control, double integral)
+  {
+    if (control.size() != this->Total.size() || this->Counted > 0)
+    {
+      return;
+    }
+    this->Control = std::move(control);
+    this->ControlIntegral = integral;
+    this->OnceTotal.assign(this->Total.size(), 0);
+    this->OnceFirstHalf.assign(this->Total.size(), 0);
+    this->Accumulator.SetControlled(true);
+  }
+
+  bool IsControlled() const { return !this->Control.empty(); }
 
   /// Adds points [Count(), target) of `points` (x, y, z each) to the image,
   /// each `weights[i]` times (null: once; see SampleAccumulator::DepositRange).
@@ -61,16 +87,24 @@ public:
     if (splitsHere)
     {
       this->FirstHalf = this->Total;
+      this->OnceFirstHalf = this->OnceTotal;
       this->FirstHalfCount = half;
     }
     this->Accumulator.SetSplit(splitsHere ? half : 0);
     this->Accumulator.DepositPoints(executor, points, this->Counted, target, weights);
     if (weights)
     {
+      if (splitsHere)
+      {
+        this->FirstHalfWeights =
+          this->Weights + PointWeightSum(executor, weights, this->Counted, half);
+      }
       this->Weights += PointWeightSum(executor, weights, this->Counted, target);
       this->Weighted = true;
     }
-    this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data());
+    this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data(),
+      this->IsControlled() ? this->OnceTotal.data() : nullptr,
+      this->IsControlled() ? this->OnceFirstHalf.data() : nullptr);
     this->Counted = target;
   }
 
@@ -97,6 +131,14 @@ public:
     {
       return std::nan("");
     }
+    if (this->IsControlled())
+    {
+      const double firstWeight = this->Weighted
+        ? ToDouble(this->FirstHalfWeights) / FixedOne
+        : static_cast<double>(this->FirstHalfCount);
+      return EstimateControlledRelativeError(this->Controlled(this->ControlIntegral),
+        this->FirstHalf.data(), this->OnceFirstHalf.data(), firstWeight);
+    }
     return (this->Accumulator.ErrorFallsAsInverseM() ? FootprintErrorCalibration : 1.0) *
       mcx::EstimateRelativeError(
         this->Total.data(), this->FirstHalf.data(), this->Total.size(), this->Counted);
@@ -107,11 +149,30 @@ public:
   template <typename Value>
   void ToValues(double sampleWeight, Value* values) const
   {
+    if (this->IsControlled())
+    {
+      ControlledSumsToValues(this->Controlled(sampleWeight * this->CountedWeight()), values);
+      return;
+    }
     FixedSumsToValues(this->Total.data(), this->Total.size(), sampleWeight,
       this->Geometry.BeamCrossSection(), values);
   }
 
 private:
+  ControlledSums Controlled(double integral) const
+  {
+    ControlledSums sums;
+    sums.Weighted = this->Total.data();
+    sums.Once = this->OnceTotal.data();
+    sums.Control = this->Control.data();
+    sums.Pixels = this->Total.size();
+    sums.Count = this->Counted;
+    sums.CarriedWeight = this->CountedWeight();
+    sums.Integral = integral;
+    sums.PixelArea = this->Geometry.BeamCrossSection();
+    return sums;
+  }
+
   ProjectionGeometry Geometry;
   SampleAccumulator<Executor> Accumulator;
   std::vector<FixedSum> Total;
@@ -119,7 +180,14 @@ private:
   std::uint64_t Counted = 0;
   std::uint64_t FirstHalfCount = 0;
   FixedSum Weights = 0; // of the points counted, when weighted
+  FixedSum FirstHalfWeights = 0; // of the first half's, when weighted
   bool Weighted = false;
+  // The control (SetControl): H, the cloud's integral, and the sums of the
+  // points counted once.
+  std::vector<double> Control;
+  double ControlIntegral = 0.0;
+  std::vector<FixedSum> OnceTotal;
+  std::vector<FixedSum> OnceFirstHalf;
 };
 
 } // namespace mcx

@@ -25,6 +25,34 @@ double ProjectionGeometry::RayLengthPerDepth() const
     1.0 + this->Obliquity[0] * this->Obliquity[0] + this->Obliquity[1] * this->Obliquity[1]);
 }
 
+bool SameGeometry(const ProjectionGeometry& a, const ProjectionGeometry& b)
+{
+  auto same = [](const auto* x, const auto* y, int n) { return std::equal(x, x + n, y); };
+  return a.Perspective == b.Perspective && same(a.Eye, b.Eye, 3) && same(a.U, b.U, 3) &&
+    same(a.V, b.V, 3) && same(a.W, b.W, 3) && a.FocalDistance == b.FocalDistance &&
+    a.NearDistance == b.NearDistance && same(a.Size, b.Size, 2) && same(a.Spacing, b.Spacing, 2) &&
+    same(a.Origin, b.Origin, 2) && same(a.Obliquity, b.Obliquity, 2);
+}
+
+void GeometryToValues(const ProjectionGeometry& g, double values[GeometryValueCount])
+{
+  const double perspective = g.Perspective ? 1.0 : 0.0;
+  double* at = values;
+  auto put = [&](const double* x, int n) { at = std::copy(x, x + n, at); };
+  put(&perspective, 1);
+  put(g.Eye, 3);
+  put(g.U, 3);
+  put(g.V, 3);
+  put(g.W, 3);
+  put(&g.FocalDistance, 1);
+  put(&g.NearDistance, 1);
+  const double size[2] = { static_cast<double>(g.Size[0]), static_cast<double>(g.Size[1]) };
+  put(size, 2);
+  put(g.Spacing, 2);
+  put(g.Origin, 2);
+  put(g.Obliquity, 2);
+}
+
 std::string ProjectionGeometry::Validate() const
 {
   const double tolerance = 1e-9;

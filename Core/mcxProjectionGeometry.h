@@ -58,6 +58,14 @@ struct ProjectionGeometry
   std::string Validate() const;
 };
 
+/// Whether two geometries are the same, bit for bit.
+bool SameGeometry(const ProjectionGeometry& a, const ProjectionGeometry& b);
+
+/// A geometry as GeometryValueCount numbers (a field array's): two
+/// geometries are the same when their values are.
+constexpr int GeometryValueCount = 23;
+void GeometryToValues(const ProjectionGeometry& geometry, double values[GeometryValueCount]);
+
 /// The 8 corners (x, y, z each) of the box where g can be non-zero: the
 /// extent grown by the kernel radius (in voxels), mapped to world
 /// coordinates by origin, spacing and direction (row-major 3x3).

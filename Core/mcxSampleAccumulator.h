@@ -296,7 +296,8 @@ private:
 
 /// One thread's image sums: two images, the samples below the split (the
 /// first Halton half) and the rest, so that a sample adds to one sum per
-/// pixel. Each sum is a 64-bit low word per pixel; the high words are
+/// pixel; a controlled accumulation (SampleAccumulator::SetControlled) keeps
+/// two more, the same samples each counted once (images 2 and 3). Each sum is a 64-bit low word per pixel; the high words are
 /// allocated at the first carry, which never comes in parallel views (a
 /// sample adds 2^32, so a pixel carries only after 2^32 samples of one
 /// thread in one round) and only near the eye in perspective views. A
@@ -305,14 +306,16 @@ private:
 class ThreadSums
 {
 public:
-  /// Makes room for `pixels` sums per half, zeroed; keeps zeroed ones of that size.
-  void Allocate(std::size_t pixels)
+  /// Makes room for `pixels` sums in each of `images` images (2, or 4 when
+  /// controlled), zeroed; keeps zeroed ones of that size.
+  void Allocate(std::size_t pixels, int images = 2)
   {
-    for (int half = 0; half < 2; ++half)
+    for (int half = 0; half < Images; ++half)
     {
-      if (this->Low[half].size() != pixels)
+      const std::size_t wanted = half < images ? pixels : 0;
+      if (this->Low[half].size() != wanted)
       {
-        this->Low[half].assign(pixels, 0);
+        this->Low[half].assign(wanted, 0);
         this->High[half].clear();
       }
     }
@@ -344,23 +347,29 @@ public:
 
   std::uint64_t* LowWords(int half) { return this->Low[half].data(); }
 
-  /// Adds both halves to `all` and the first to `firstHalf` (`pixels` each)
-  /// and zeroes the sums for the next round.
-  void CollectInto(std::size_t pixels, FixedSum* all, FixedSum* firstHalf)
+  /// Adds both halves to `all` and the first to `firstHalf` (`pixels` each),
+  /// the control images likewise to controlAll and controlFirstHalf when
+  /// both are given and the sums hold them, and zeroes the sums for the
+  /// next round.
+  void CollectInto(std::size_t pixels, FixedSum* all, FixedSum* firstHalf,
+    FixedSum* controlAll = nullptr, FixedSum* controlFirstHalf = nullptr)
   {
     if (this->Low[0].size() != pixels)
     {
       return;
     }
-    for (int half = 0; half < 2; ++half)
+    const bool control = controlAll && controlFirstHalf && this->Low[2].size() == pixels;
+    for (int half = 0; half < (control ? 4 : 2); ++half)
     {
+      FixedSum* whole = half < 2 ? all : controlAll;
+      FixedSum* first = half < 2 ? firstHalf : controlFirstHalf;
       const std::uint64_t* low = this->Low[half].data();
       const std::uint64_t* high = this->High[half].empty() ? nullptr : this->High[half].data();
       for (std::size_t p = 0; p < pixels; ++p)
       {
         const FixedSum sum = high ? (FixedSum(high[p]) << 64) + FixedSum(low[p]) : FixedSum(low[p]);
-        all[p] += sum;
-        firstHalf[p] += half == 0 ? sum : FixedSum(0);
+        whole[p] += sum;
+        first[p] += half % 2 == 0 ? sum : FixedSum(0);
       }
       std::fill(this->Low[half].begin(), this->Low[half].end(), 0);
       this->High[half].clear();
@@ -377,8 +386,9 @@ private:
     this->High[half][static_cast<std::size_t>(pixel)] += carry;
   }
 
-  std::vector<std::uint64_t> Low[2];
-  std::vector<std::uint64_t> High[2];
+  static constexpr int Images = 4;
+  std::vector<std::uint64_t> Low[Images];
+  std::vector<std::uint64_t> High[Images];
 };
 
 template <typename Executor>
@@ -411,12 +421,20 @@ public:
     this->Pixels = static_cast<std::size_t>(geometry.Size[0]) * geometry.Size[1];
     this->DepthLimits = std::move(depthLimits);
     this->Split = 0;
+    this->Controlled = false;
     // Collect() leaves the images zeroed: only another size is reallocated.
     for (ThreadSums& sums : this->Images)
     {
       sums.Allocate(this->Pixels);
     }
   }
+
+  /// Whether every sample is also counted once, whatever its weight, in the
+  /// control images (Collect's controlAll and controlFirstHalf): the cloud's
+  /// own estimate of a control image known exactly (mcxControlImage.h).
+  /// Reset() turns it off.
+  void SetControlled(bool controlled) { this->Controlled = controlled; }
+  bool IsControlled() const { return this->Controlled; }
 
   /// True when the image's error falls about as M^-1 (footprints of whole
   /// kernels with a stratified voxel choice), so that the halves' error
@@ -460,6 +478,10 @@ public:
         (!this->DepthLimits || this->Binner->Depth(p) < this->DepthLimits[pixel]))
       {
         this->Add(k, pixel, increment);
+        if (this->Controlled && this->Binner->Bin(p, pixel, increment))
+        {
+          this->Sums->Add(k < this->Split ? 2 : 3, pixel, increment);
+        }
       }
     }
 
@@ -486,6 +508,7 @@ public:
       std::int64_t Columns[2] = { 0, -1 };       // the image's pixels it reaches, inclusive
       std::int64_t Rows[2] = { 0, -1 };
       double F = 1.0;     // the perspective scale of the shares, times the point's weight
+      double ControlF = 1.0; // the perspective scale alone (the control images' F)
       double Depth = 0.0; // along the view, for the depth limits
       bool FirstHalf = false;
       bool Weighted = false; // a weight other than 1: the shares scaled by F in any view
@@ -585,6 +608,7 @@ public:
       footprint.Shares = table->Shares(phase[0], phase[1]);
       footprint.Increments = table->Increments(phase[0], phase[1]);
       footprint.F = f * weight;
+      footprint.ControlF = f;
       footprint.Weighted = weight != 1.0;
       footprint.Depth = this->DepthLimits ? this->Binner->Depth(p) : 0.0;
       footprint.FirstHalf = k < this->Split;
@@ -598,6 +622,8 @@ public:
     {
       const std::int64_t width = this->Binner->GetWidth();
       const std::uint64_t* low = this->Sums->LowWords(footprint.FirstHalf ? 0 : 1);
+      const std::uint64_t* control =
+        this->Controlled ? this->Sums->LowWords(footprint.FirstHalf ? 2 : 3) : nullptr;
       for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
       {
         const std::int64_t first = y * width + footprint.Columns[0];
@@ -605,8 +631,16 @@ public:
         for (std::int64_t pixel = first; pixel <= last; pixel += 8) // 8 sums per 64-byte line
         {
           PrefetchForWriting(low + pixel);
+          if (control)
+          {
+            PrefetchForWriting(control + pixel);
+          }
         }
         PrefetchForWriting(low + last);
+        if (control)
+        {
+          PrefetchForWriting(control + last);
+        }
         if (this->DepthLimits)
         {
           PrefetchForReading(this->DepthLimits + first);
@@ -622,16 +656,34 @@ public:
       }
     }
 
-    /// Adds a prepared footprint to the thread's image.
+    /// Adds a prepared footprint to the thread's image (a weight of 0 adds
+    /// nothing there), and once, unweighted, to its control image when
+    /// controlled.
     void AddFootprint(const PreparedFootprint& footprint) const
     {
-      if (footprint.FirstHalf)
+      const bool scales = this->ScalesShares(footprint);
+      if (footprint.F != 0.0 || !scales)
       {
-        this->AddFootprint<0>(footprint);
+        if (footprint.FirstHalf)
+        {
+          this->AddShares<0>(footprint, footprint.F, scales);
+        }
+        else
+        {
+          this->AddShares<1>(footprint, footprint.F, scales);
+        }
       }
-      else
+      if (this->Controlled)
       {
-        this->AddFootprint<1>(footprint);
+        const bool perspective = this->Binner->IsPerspective();
+        if (footprint.FirstHalf)
+        {
+          this->AddShares<2>(footprint, footprint.ControlF, perspective);
+        }
+        else
+        {
+          this->AddShares<3>(footprint, footprint.ControlF, perspective);
+        }
       }
     }
 
@@ -639,11 +691,12 @@ public:
     friend class SampleAccumulator;
 
     // Adds the footprint's table entries of its phase to every pixel it
-    // reaches that lies in front of the pixel's depth limit (F scales the
-    // shares in perspective views and for weighted points), in the
-    // thread's image Half (0: the first Halton half).
+    // reaches that lies in front of the pixel's depth limit, in the
+    // thread's image Half (0: the first Halton half; 2 and 3: the control's
+    // halves): the shares scaled by F when `scales` (perspective views,
+    // weighted points), else the parallel view's exact integer increments.
     template <int Half>
-    void AddFootprint(const PreparedFootprint& footprint) const
+    void AddShares(const PreparedFootprint& footprint, double F, bool scales) const
     {
       const std::int64_t x0 = footprint.Columns[0], x1 = footprint.Columns[1];
       const std::int64_t width = this->Binner->GetWidth();
@@ -680,10 +733,10 @@ public:
           }
         }
       };
-      if (this->ScalesShares(footprint))
+      if (scales)
       {
         // round(2^32 F share), as FixedIncrement(F * share): scaling by 2^32 is exact.
-        const double scale = footprint.F * FixedOne;
+        const double scale = F * FixedOne;
         const double* shares = footprint.Shares;
         if (scale < 9.2e18)
         {
@@ -738,6 +791,7 @@ public:
     }
 
     ThreadSums* Sums;
+    bool Controlled;
     const PixelBinner* Binner;
     const FootprintLadder* Ladder;
     const double* DepthLimits;
@@ -750,9 +804,10 @@ public:
   ThreadImage Local()
   {
     ThreadSums& sums = this->Images.Local();
-    sums.Allocate(this->Pixels);
+    sums.Allocate(this->Pixels, this->Controlled ? 4 : 2);
     ThreadImage local;
     local.Sums = &sums;
+    local.Controlled = this->Controlled;
     local.Binner = this->Binner.get();
     local.Ladder = this->Ladder.get();
     local.FootprintKey = this->FootprintKey;
@@ -790,7 +845,7 @@ public:
       for (std::uint64_t i = begin; i < end; ++i)
       {
         const double weight = weightOf(i);
-        if (weight != 0.0)
+        if (weight != 0.0 || image.Controlled) // the control counts every sample
         {
           double p[3];
           point(i, p);
@@ -813,7 +868,7 @@ public:
       if (i < end)
       {
         const double weight = weightOf(i);
-        if (weight == 0.0)
+        if (weight == 0.0 && !image.Controlled) // the control counts every sample
         {
           continue;
         }
@@ -843,13 +898,15 @@ public:
   }
 
   /// Adds the threads' sums to all (every sample) and firstHalf (k < split),
-  /// NumberOfPixels() each, and zeroes them for the next deposits; call it
-  /// after every round of deposits.
-  void Collect(FixedSum* all, FixedSum* firstHalf)
+  /// NumberOfPixels() each, and the control images to controlAll and
+  /// controlFirstHalf when controlled, and zeroes them for the next
+  /// deposits; call it after every round of deposits.
+  void Collect(FixedSum* all, FixedSum* firstHalf, FixedSum* controlAll = nullptr,
+    FixedSum* controlFirstHalf = nullptr)
   {
     for (ThreadSums& sums : this->Images)
     {
-      sums.CollectInto(this->Pixels, all, firstHalf);
+      sums.CollectInto(this->Pixels, all, firstHalf, controlAll, controlFirstHalf);
     }
   }
 
@@ -861,6 +918,7 @@ private:
   std::size_t Pixels = 0;
   std::vector<double> DepthLimits;
   std::uint64_t Split = 0;
+  bool Controlled = false;
   typename Executor::template ThreadLocal<ThreadSums> Images;
 };
 

@@ -113,6 +113,39 @@ bool IsEveryVoxelCloud(vtkPolyData* cloud)
            vtkMCXPointSampler::HYBRID) == vtkMCXPointSampler::EVERY_VOXEL;
 }
 
+std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeometry& geometry)
+{
+  vtkFieldData* fd = cloud->GetFieldData();
+  vtkDataArray* image = fd ? fd->GetArray(vtkMCXPointSampler::ControlImageName()) : nullptr;
+  vtkDataArray* view = fd ? fd->GetArray(vtkMCXPointSampler::ControlViewName()) : nullptr;
+  const vtkIdType pixels = static_cast<vtkIdType>(geometry.Size[0]) * geometry.Size[1];
+  if (!image || !view || image->GetNumberOfComponents() != 1 ||
+    image->GetNumberOfTuples() != pixels || view->GetNumberOfComponents() != 1 ||
+    view->GetNumberOfTuples() != GeometryValueCount)
+  {
+    return std::vector<double>();
+  }
+  double wanted[GeometryValueCount];
+  GeometryToValues(geometry, wanted);
+  for (int i = 0; i < GeometryValueCount; ++i)
+  {
+    if (view->GetComponent(i, 0) != wanted[i])
+    {
+      return std::vector<double>();
+    }
+  }
+  std::vector<double> control(static_cast<std::size_t>(pixels));
+  for (vtkIdType p = 0; p < pixels; ++p)
+  {
+    control[static_cast<std::size_t>(p)] = image->GetComponent(p, 0);
+    if (!std::isfinite(control[static_cast<std::size_t>(p)]))
+    {
+      return std::vector<double>();
+    }
+  }
+  return control;
+}
+
 vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid)
 {
   valid = true;

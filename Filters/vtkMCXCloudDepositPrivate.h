@@ -8,6 +8,8 @@
 #include "mcxSampleAccumulator.h"
 #include "vtkDataArray.h" // for WithPointWeights
 
+#include <vector>
+
 class vtkObject;
 class vtkPolyData;
 
@@ -31,6 +33,14 @@ MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* c
 /// voxel once, weighted, so the halves of its points are no two estimates
 /// of one image and its error is not estimated (NaN).
 MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
+
+/// The control image (vtkMCXPointSampler::ControlImageName(), line
+/// integrals) that a view-ordered cloud carries for `geometry`: empty
+/// unless its ControlView is this geometry, bit for bit, and it holds one
+/// finite value per pixel. Only for images of the cloud's own frame (no
+/// prop matrix) with nothing hiding any sample.
+MONTECARLOXRAYFILTERS_EXPORT std::vector<double> CloudControlImage(
+  vtkPolyData* cloud, const ProjectionGeometry& geometry);
 
 /// The cloud's point weights (point-data array
 /// vtkMCXPointSampler::PointWeightName()): null without them; valid false

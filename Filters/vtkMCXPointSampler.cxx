@@ -4,6 +4,7 @@
 #include "mcxEveryVoxelSource.h"
 #include "mcxPixelBinner.h"
 #include "mcxProjectionGeometry.h"
+#include "mcxSampleAccumulator.h"
 #include "mcxViewOrder.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXCameraGeometryPrivate.h"
@@ -171,6 +172,111 @@ vtkSmartPointer<vtkFloatArray> PointWeights(
   return pointWeights;
 }
 
+// Each bin's voxels of `order` projected once each, footprints of `kernel`
+// in `geometry` (voxel coordinates, as the sort located them): bins x
+// pixels sums in the accumulator's fixed-point units (2^32 a whole voxel),
+// the bins' images of the control (mcxControlImage.h). Progress runs from
+// progressBegin to progressEnd; false when aborted.
+template <typename IdType>
+bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
+  const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry,
+  mcx::Kernel kernel, vtkTypeUInt64 seed, double progressBegin, double progressEnd,
+  std::vector<double>& images)
+{
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  mcx::DepositSettings settings; // samples in voxel coordinates: the identity VoxelMatrix
+  settings.Mode = mcx::Deposit::Footprint;
+  settings.Reconstruction = kernel;
+  settings.Seed = seed;
+  if (geometry.Perspective)
+  {
+    double corners[24];
+    mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction,
+      mcx::KernelRadius(kernel), corners);
+    mcx::SupportDepthRange(geometry, corners, settings.Depths);
+  }
+  mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
+  accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  const std::int64_t bins = order.NumberOfBins();
+  const mcx::VoxelDecoder<IdType> decoder(
+    static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
+  const double voxels = static_cast<double>(std::max<std::int64_t>(1, order.BinOffsets.back()));
+  images.assign(static_cast<std::size_t>(bins) * pixels, 0.0);
+  std::vector<mcx::FixedSum> all(pixels), firstHalf(pixels);
+  for (std::int64_t b = 0; b < bins; ++b)
+  {
+    const std::int64_t first = order.BinOffsets[static_cast<std::size_t>(b)];
+    const std::int64_t last = order.BinOffsets[static_cast<std::size_t>(b + 1)];
+    const double span = progressEnd - progressBegin;
+    const bool completed = mcx::BatchedFor(self, static_cast<std::uint64_t>(last - first),
+      progressBegin + span * static_cast<double>(first) / voxels,
+      progressBegin + span * static_cast<double>(last) / voxels,
+      [&](std::uint64_t begin, std::uint64_t end)
+      {
+        const auto image = accumulator.Local();
+        for (std::uint64_t i = begin; i < end; ++i)
+        {
+          const std::uint64_t k = static_cast<std::uint64_t>(first) + i;
+          std::uint64_t voxel[3];
+          decoder.Decode(order.Ids[k], voxel[0], voxel[1], voxel[2]);
+          const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
+            static_cast<double>(voxel[2]) };
+          image.Deposit(k, p);
+        }
+      });
+    if (!completed)
+    {
+      return false;
+    }
+    std::fill(all.begin(), all.end(), mcx::FixedSum(0));
+    accumulator.Collect(all.data(), firstHalf.data());
+    double* image = images.data() + static_cast<std::size_t>(b) * pixels;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      image[p] = mcx::ToDouble(all[p]);
+    }
+  }
+  return true;
+}
+
+// The control image (line integrals) of the TF whose weight on each bin is
+// binMeans[b]: the bins' images weighed by it, scaled so that it carries
+// the cloud's integral as the cloud does. Empty when no bin has weight.
+std::vector<double> ControlImage(const std::vector<double>& binImages,
+  const std::vector<double>& binMeans, const std::vector<std::int64_t>& binOffsets,
+  double integral, const mcx::ProjectionGeometry& geometry)
+{
+  const std::size_t bins = binMeans.size();
+  const std::size_t pixels = bins > 0 ? binImages.size() / bins : 0;
+  double weightedVoxels = 0.0; // the integral in units of one voxel of weight 1
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    weightedVoxels += binMeans[b] * static_cast<double>(binOffsets[b + 1] - binOffsets[b]);
+  }
+  if (!(weightedVoxels > 0) || pixels == 0)
+  {
+    return std::vector<double>();
+  }
+  const double scale = integral / weightedVoxels / (mcx::FixedOne * geometry.BeamCrossSection());
+  std::vector<double> control(pixels, 0.0);
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    const double weight = binMeans[b] * scale;
+    if (weight == 0.0)
+    {
+      continue;
+    }
+    const double* image = binImages.data() + b * pixels;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      control[p] += weight * image[p];
+    }
+  }
+  return control;
+}
+
 // What every cloud's consumers read (the pipeline passes the input's field
 // data on: only these, not the index's arrays; SortedVoxelIds alone is 4
 // bytes per voxel). exponent < 0: no SampleExponent (an every-voxel cloud).
@@ -256,18 +362,6 @@ struct vtkMCXPointSampler::OrderingView
   mcx::ProjectionGeometry Geometry;
 };
 
-namespace
-{
-bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometry& b)
-{
-  auto same = [](const auto* x, const auto* y, int n) { return std::equal(x, x + n, y); };
-  return a.Perspective == b.Perspective && same(a.Eye, b.Eye, 3) && same(a.U, b.U, 3) &&
-    same(a.V, b.V, 3) && same(a.W, b.W, 3) && a.FocalDistance == b.FocalDistance &&
-    a.NearDistance == b.NearDistance && same(a.Size, b.Size, 2) && same(a.Spacing, b.Spacing, 2) &&
-    same(a.Origin, b.Origin, 2) && same(a.Obliquity, b.Obliquity, 2);
-}
-}
-
 // A view order and what it was sorted for.
 struct vtkMCXPointSampler::SortedView
 {
@@ -278,6 +372,11 @@ struct vtkMCXPointSampler::SortedView
   int Bins = 0;
   mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
   mcx::ViewOrder<std::uint64_t> Wide;   // or 64-bit (WideIds)
+  // The control's bins' images (ProjectBins), and the kernel and seed they
+  // were projected with; empty until a controlled cloud needs them.
+  std::vector<double> BinImages;
+  int BinKernel = -1;
+  vtkTypeInt64 BinSeed = 0;
 
   void Describe(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins)
   {
@@ -294,7 +393,7 @@ struct vtkMCXPointSampler::SortedView
     wanted.Describe(view, geometry, bins);
     return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
       std::equal(this->World, this->World + 12, wanted.World) &&
-      SameGeometry(this->Geometry, wanted.Geometry) && this->Bins == wanted.Bins;
+      mcx::SameGeometry(this->Geometry, wanted.Geometry) && this->Bins == wanted.Bins;
   }
 };
 
@@ -345,7 +444,7 @@ void vtkMCXPointSampler::SetOrderingView(vtkCamera* camera, int width, int heigh
   {
     return;
   }
-  if (ordering && this->Ordering && SameGeometry(ordering->Geometry, this->Ordering->Geometry))
+  if (ordering && this->Ordering && mcx::SameGeometry(ordering->Geometry, this->Ordering->Geometry))
   {
     return;
   }
@@ -543,7 +642,13 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
     output->Initialize();
     return completed ? 0 : 1; // an error, or aborted
   }
+  if (this->ControlVariate && !this->ProjectBinsFor(view, *sorted))
+  {
+    output->Initialize();
+    return 1; // aborted
+  }
 
+  std::vector<double> control;
   const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
   const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
   const bool centres = this->Deposit == FOOTPRINT;
@@ -558,6 +663,11 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
     const mcx::TransferTable binTable =
       mcx::BuildTransferTable(binMeans.data(), order.BinOffsets.data(), order.NumberOfBins());
     m = binTable.IsEmpty() ? 0u : static_cast<unsigned>(this->SampleExponent);
+    if (this->ControlVariate && m > 0)
+    {
+      control =
+        ControlImage(sorted->BinImages, binMeans, order.BinOffsets, integral, sorted->Geometry);
+    }
     const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
     points = this->CloudPoints(output, pointType, count);
     if (!points)
@@ -594,7 +704,42 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
   }
   WriteCloudFields(
     this, view, integral, points->GetNumberOfPoints(), static_cast<int>(m), output->GetFieldData());
+  if (!control.empty())
+  {
+    vtkNew<vtkDoubleArray> image;
+    image->SetName(ControlImageName());
+    image->SetNumberOfValues(static_cast<vtkIdType>(control.size()));
+    std::copy(control.begin(), control.end(), image->GetPointer(0));
+    output->GetFieldData()->AddArray(image);
+    vtkNew<vtkDoubleArray> controlView;
+    controlView->SetName(ControlViewName());
+    controlView->SetNumberOfValues(mcx::GeometryValueCount);
+    mcx::GeometryToValues(sorted->Geometry, controlView->GetPointer(0));
+    output->GetFieldData()->AddArray(controlView);
+  }
   return 1;
+}
+
+bool vtkMCXPointSampler::ProjectBinsFor(const mcx::IndexView& view, SortedView& sorted)
+{
+  if (!sorted.BinImages.empty() && sorted.BinKernel == this->Kernel && sorted.BinSeed == this->Seed)
+  {
+    return true;
+  }
+  sorted.BinImages.clear();
+  const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
+  const auto seed = static_cast<vtkTypeUInt64>(this->Seed);
+  std::vector<double> images;
+  const bool completed = view.WideIds
+    ? ProjectBins(this, view, sorted.Wide, sorted.Geometry, kernel, seed, 0.3, 0.55, images)
+    : ProjectBins(this, view, sorted.Narrow, sorted.Geometry, kernel, seed, 0.3, 0.55, images);
+  if (completed)
+  {
+    sorted.BinImages = std::move(images);
+    sorted.BinKernel = this->Kernel;
+    sorted.BinSeed = this->Seed;
+  }
+  return completed;
 }
 
 vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
@@ -616,7 +761,8 @@ vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
   const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
   if (!mcx::CheckMemory(this,
         static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 1.0) +
-          8.0 * static_cast<double>(layout.NumberOfChunks + 1) * static_cast<double>(keys),
+          8.0 * static_cast<double>(layout.NumberOfChunks + (this->ControlVariate ? 2 : 1)) *
+            static_cast<double>(keys),
         "The view order of " + std::to_string(voxels) + " voxels"))
   {
     return nullptr;
@@ -628,7 +774,7 @@ vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
   const mcx::PixelBinner binner(geometry, origin, matrix);
   auto progress = [this](double fraction)
   {
-    this->UpdateProgress(0.5 * fraction);
+    this->UpdateProgress((this->ControlVariate ? 0.3 : 0.5) * fraction);
     return !this->GetAbortExecute();
   };
   auto sort = [&](auto& order)
@@ -798,6 +944,7 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
      << " points\n";
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
   os << indent << "NumberOfOrderingBins: " << this->NumberOfOrderingBins << "\n";
+  os << indent << "ControlVariate: " << (this->ControlVariate ? "On" : "Off") << "\n";
   os << indent << "OrderingView: ";
   if (this->Ordering)
   {

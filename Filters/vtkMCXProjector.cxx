@@ -1,5 +1,6 @@
 #include "vtkMCXProjector.h"
 
+#include "mcxControlImage.h"
 #include "mcxErrorEstimate.h"
 #include "mcxEveryVoxelSource.h"
 #include "mcxFixedPoint.h"
@@ -52,12 +53,40 @@ struct Projection
   bool Completed = true;
   bool FallsAsInverseM = false; // see mcx::FootprintErrorCalibration
   bool EveryVoxel = false;      // not estimated: see mcx::IsEveryVoxelCloud
+  // A view-ordered cloud's control (mcx::CloudControlImage; empty: none):
+  // H, the sums of the points counted once (as Sums), the weight the points
+  // carry and that of the first half, and a pixel's beam cross-section.
+  std::vector<double> Control;
+  std::vector<mcx::FixedSum> OnceSums;
+  double CarriedWeight = 0.0;
+  double FirstHalfWeight = 0.0;
+  double PixelArea = 1.0;
+
+  mcx::ControlledSums Controlled() const
+  {
+    mcx::ControlledSums sums;
+    sums.Pixels = this->Control.size();
+    sums.Weighted = this->Sums.data();
+    sums.Once = this->OnceSums.data();
+    sums.Control = this->Control.data();
+    sums.Count = this->Count;
+    sums.CarriedWeight = this->CarriedWeight;
+    sums.Integral = this->Integral;
+    sums.PixelArea = this->PixelArea;
+    return sums;
+  }
 
   double EstimatedError() const
   {
     if (this->EveryVoxel && this->Count > 0) // an empty image is exactly known (0, below)
     {
       return std::nan("");
+    }
+    if (!this->Control.empty())
+    {
+      const std::size_t pixels = this->Control.size();
+      return mcx::EstimateControlledRelativeError(this->Controlled(), this->Sums.data() + pixels,
+        this->OnceSums.data() + pixels, this->FirstHalfWeight);
     }
     return (this->FallsAsInverseM ? mcx::FootprintErrorCalibration : 1.0) *
       mcx::EstimateRelativeError(this->Sums, this->Count);
@@ -68,6 +97,13 @@ void CollectSums(Accumulator& accumulator, Projection& projection)
 {
   const std::size_t pixels = accumulator.NumberOfPixels();
   projection.Sums.assign(2 * pixels, mcx::FixedSum(0));
+  if (accumulator.IsControlled())
+  {
+    projection.OnceSums.assign(2 * pixels, mcx::FixedSum(0));
+    accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels,
+      projection.OnceSums.data(), projection.OnceSums.data() + pixels);
+    return;
+  }
   accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels);
 }
 
@@ -111,7 +147,11 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
   projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
   projection.EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
-  accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
+  projection.Control = mcx::CloudControlImage(cloud, geometry);
+  projection.PixelArea = geometry.BeamCrossSection();
+  accumulator.SetControlled(!projection.Control.empty());
+  const std::uint64_t firstHalf = mcx::FirstHalfSize(projection.Count);
+  accumulator.SetSplit(firstHalf);
   auto deposit = [&](const auto* coordinates)
   {
     return mcx::WithPointWeights(weights,
@@ -128,16 +168,23 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
       ? deposit(static_cast<const float*>(points->GetVoidPointer(0)))
       : deposit(static_cast<const double*>(points->GetVoidPointer(0)));
   }
+  projection.CarriedWeight = static_cast<double>(projection.Count);
+  projection.FirstHalfWeight = static_cast<double>(firstHalf);
   if (weights)
   {
     // Weighted points carry the integral together, whatever their mean
     // weight (as the mapper's prefixes do).
-    const double carried =
-      mcx::ToDouble(mcx::WithPointWeights(weights,
-        [&](const auto* values)
-        { return mcx::PointWeightSum(mcx::SMPExecutor(), values, 0, projection.Count); })) /
-      mcx::FixedOne;
-    projection.SampleWeight = carried > 0 ? projection.Integral / carried : 0.0;
+    auto carried = [&](std::uint64_t end)
+    {
+      return mcx::ToDouble(mcx::WithPointWeights(weights,
+               [&](const auto* values)
+               { return mcx::PointWeightSum(mcx::SMPExecutor(), values, 0, end); })) /
+        mcx::FixedOne;
+    };
+    projection.CarriedWeight = carried(projection.Count);
+    projection.FirstHalfWeight = projection.Control.empty() ? 0.0 : carried(firstHalf);
+    projection.SampleWeight =
+      projection.CarriedWeight > 0 ? projection.Integral / projection.CarriedWeight : 0.0;
   }
   CollectSums(accumulator, projection);
   return true;
@@ -493,8 +540,15 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
   vtkDoubleArray* values, vtkFieldData* fd)
 {
   const std::size_t pixels = projection.Sums.size() / 2;
-  mcx::FixedSumsToValues(projection.Sums.data(), pixels, projection.SampleWeight,
-    geometry.BeamCrossSection(), values->GetPointer(0));
+  if (projection.Control.empty())
+  {
+    mcx::FixedSumsToValues(projection.Sums.data(), pixels, projection.SampleWeight,
+      geometry.BeamCrossSection(), values->GetPointer(0));
+  }
+  else
+  {
+    mcx::ControlledSumsToValues(projection.Controlled(), values->GetPointer(0));
+  }
   fd->Initialize();
   mcx::AddFieldValue(
     fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));

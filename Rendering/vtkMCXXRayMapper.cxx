@@ -71,16 +71,6 @@ const char* DisplayShaderBody = R"(
   gl_FragDepth = imageDepth; // at the far plane: depth tests tell film from geometry in front
 )";
 
-bool SameGeometry(const mcx::ProjectionGeometry& a, const mcx::ProjectionGeometry& b)
-{
-  auto same = [](const double* x, const double* y, int n) { return std::equal(x, x + n, y); };
-  return a.Perspective == b.Perspective && same(a.Eye, b.Eye, 3) && same(a.U, b.U, 3) &&
-    same(a.V, b.V, 3) && same(a.W, b.W, 3) && a.FocalDistance == b.FocalDistance &&
-    a.NearDistance == b.NearDistance && a.Size[0] == b.Size[0] && a.Size[1] == b.Size[1] &&
-    same(a.Spacing, b.Spacing, 2) && same(a.Origin, b.Origin, 2) &&
-    same(a.Obliquity, b.Obliquity, 2);
-}
-
 // Whether any other visible prop in the renderer draws opaque 3D geometry
 // that can hide part of the volume.
 bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
@@ -325,7 +315,7 @@ struct vtkMCXXRayMapper::vtkInternals
   bool RestartIfChanged(vtkMCXXRayMapper* self, vtkPolyData* cloud, View& view)
   {
     const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime;
-    if (this->HasImage && !newInput && SameGeometry(view.Geometry, this->Geometry) &&
+    if (this->HasImage && !newInput && mcx::SameGeometry(view.Geometry, this->Geometry) &&
       std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth &&
       self->GetFootprintReach() == this->FootprintReach)
     {
@@ -353,9 +343,20 @@ struct vtkMCXXRayMapper::vtkInternals
     vtkPoints* points = cloud->GetPoints();
     this->NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
     this->EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
-    this->ScaledIntegral =
-      cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0) *
-      std::fabs(vtkMatrix4x4::Determinant(m));
+    const double integral =
+      cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0);
+    this->ScaledIntegral = integral * std::fabs(vtkMatrix4x4::Determinant(m));
+    // A view-ordered cloud's control image holds for its own frame (no prop
+    // matrix) with every sample visible.
+    static const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    if (this->Depth.empty() && std::equal(m, m + 16, identity))
+    {
+      std::vector<double> control = mcx::CloudControlImage(cloud, view.Geometry);
+      if (!control.empty())
+      {
+        this->Image.SetControl(std::move(control), integral);
+      }
+    }
     this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
     this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
     // A new input needs a new source; so does a new view while the last
@@ -646,6 +647,11 @@ double vtkMCXXRayMapper::GetEstimatedRelativeError()
                                                                  : std::nan("");
 }
 
+bool vtkMCXXRayMapper::GetLastRenderUsedControlImage()
+{
+  return this->Internals->HasImage && this->Internals->Image.IsControlled();
+}
+
 void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
 {
   output->Initialize();
@@ -856,4 +862,5 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfUploads: " << this->NumberOfUploads << "\n";
   os << indent << "NumberOfDraws: " << this->NumberOfDraws << "\n";
   os << indent << "LastRenderUsedDepth: " << this->LastRenderUsedDepth << "\n";
+  os << indent << "LastRenderUsedControlImage: " << this->GetLastRenderUsedControlImage() << "\n";
 }

@@ -237,6 +237,14 @@ public:
   vtkGetMacro(LastRenderUsedDepth, bool);
 
   /**
+   * True when the image is the controlled estimate of a view-ordered cloud
+   * (vtkMCXPointSampler::SetControlVariate): the camera and the size are
+   * the cloud's ordering view, the prop's matrix is the identity and
+   * nothing opaque hides the volume.
+   */
+  bool GetLastRenderUsedControlImage();
+
+  /**
    * The volume's support (the sampler's SupportCorners), so that a camera
    * reset frames the volume even when the TF leaves the cloud empty; else
    * the points' bounds; uninitialised without points or support.
