@@ -54,8 +54,9 @@ void ControlledSumsToValues(const ControlledSums& sums, Value* values)
   const double once = sums.Count > 0 ? sums.Integral / static_cast<double>(sums.Count) * unit : 0.0;
   for (std::size_t p = 0; p < sums.Pixels; ++p)
   {
+    // The difference first: it is exactly 0 where every point weighs 1.
     values[p] = static_cast<Value>(
-      ToDouble(sums.Weighted[p]) * weighted + sums.Control[p] - ToDouble(sums.Once[p]) * once);
+      (ToDouble(sums.Weighted[p]) * weighted - ToDouble(sums.Once[p]) * once) + sums.Control[p]);
   }
 }
 
@@ -89,7 +90,7 @@ inline double EstimateControlledRelativeError(const ControlledSums& sums,
     const double d = weightedA * wa - (weighted - weightedA) * wb -
       (onceA / a - (once - onceA) / b) * unit;
     difference += d * d;
-    const double value = weighted * w + sums.Control[p] - once / n * unit;
+    const double value = (weighted * w - once / n * unit) + sums.Control[p];
     norm += value * value;
   }
   if (!(norm > 0))

@@ -136,7 +136,7 @@ public:
       const double firstWeight = this->Weighted
         ? ToDouble(this->FirstHalfWeights) / FixedOne
         : static_cast<double>(this->FirstHalfCount);
-      return EstimateControlledRelativeError(this->Controlled(this->ControlIntegral),
+      return EstimateControlledRelativeError(this->Controlled(),
         this->FirstHalf.data(), this->OnceFirstHalf.data(), firstWeight);
     }
     return (this->Accumulator.ErrorFallsAsInverseM() ? FootprintErrorCalibration : 1.0) *
@@ -151,7 +151,9 @@ public:
   {
     if (this->IsControlled())
     {
-      ControlledSumsToValues(this->Controlled(sampleWeight * this->CountedWeight()), values);
+      // The controlled estimate carries SetControl's integral (the caller's
+      // sampleWeight is that integral over CountedWeight(): the same image).
+      ControlledSumsToValues(this->Controlled(), values);
       return;
     }
     FixedSumsToValues(this->Total.data(), this->Total.size(), sampleWeight,
@@ -159,7 +161,7 @@ public:
   }
 
 private:
-  ControlledSums Controlled(double integral) const
+  ControlledSums Controlled() const
   {
     ControlledSums sums;
     sums.Weighted = this->Total.data();
@@ -168,7 +170,7 @@ private:
     sums.Pixels = this->Total.size();
     sums.Count = this->Counted;
     sums.CarriedWeight = this->CountedWeight();
-    sums.Integral = integral;
+    sums.Integral = this->ControlIntegral;
     sums.PixelArea = this->Geometry.BeamCrossSection();
     return sums;
   }

@@ -447,6 +447,68 @@ TEST(Mapper, EveryVoxelCloudRefinesLikeTheOfflineProjector)
   EXPECT_EQ(voxels, scene.Mapper->GetNumberOfAccumulatedSamples());
 }
 
+TEST(Mapper, ViewOrderedCloudInItsViewRefinesItsControlledImageLikeTheOfflineProjector)
+{
+  // A view-ordered cloud carries the control image of its ordering view:
+  // in that view every progressive prefix on screen is the off-line
+  // projector's controlled image of that prefix, bit for bit, with the
+  // same estimate; another view, or a prop matrix, shows the plain estimate
+  // (the control's image holds only for its own view and frame).
+  Scene scene(16);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->Azimuth(20);
+  scene.Renderer->ResetCameraClippingRange();
+  scene.Sampler->SetDepositToFootprint();
+  scene.Sampler->SetStrategyToViewOrdered();
+  scene.Sampler->SetOrderingView(camera, 160, 128);
+  scene.Mapper->AutomaticWindowLevelOff();
+  scene.Mapper->SetInitialSampleExponent(10);
+  scene.Window->SetDesiredUpdateRate(1e6); // one level per render
+  scene.Window->Render();
+  int steps = 0;
+  while (steps++ < 40)
+  {
+    ASSERT_TRUE(scene.Mapper->GetLastRenderUsedControlImage());
+    const vtkTypeInt64 count = scene.Mapper->GetNumberOfAccumulatedSamples();
+    auto offline = scene.Offline(count);
+    ASSERT_EQ(0, DifferingPixels(scene.OnScreen(), offline)) << count << " points";
+    EXPECT_EQ(mcxtest::FieldValue(offline, "EstimatedRelativeError"),
+      scene.Mapper->GetEstimatedRelativeError())
+      << count << " points";
+    if (scene.Mapper->IsRefinementComplete())
+    {
+      break;
+    }
+    scene.Window->Render();
+  }
+  EXPECT_GT(steps, 3);
+  EXPECT_EQ((1 << 16) - 1, scene.Mapper->GetNumberOfAccumulatedSamples());
+  auto controlled = scene.OnScreen();
+
+  // The same cloud without its control: another image of the same scene.
+  scene.Sampler->ControlVariateOff();
+  scene.Mapper->ProgressiveRefinementOff();
+  scene.Window->Render();
+  EXPECT_FALSE(scene.Mapper->GetLastRenderUsedControlImage());
+  EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), scene.Offline()));
+  EXPECT_GT(DifferingPixels(scene.OnScreen(), controlled), 1000);
+  scene.Sampler->ControlVariateOn();
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->GetLastRenderUsedControlImage());
+  EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), controlled));
+
+  camera->Azimuth(1); // not the ordering view
+  scene.Window->Render();
+  EXPECT_FALSE(scene.Mapper->GetLastRenderUsedControlImage());
+  camera->Azimuth(-1);
+  scene.Volume->SetPosition(0.5, 0, 0); // the cloud seen moved
+  scene.Window->Render();
+  EXPECT_FALSE(scene.Mapper->GetLastRenderUsedControlImage());
+  scene.Volume->SetPosition(0, 0, 0);
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->GetLastRenderUsedControlImage());
+}
+
 TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)
 {
   // A cloud's PointWeight array scales each point's deposit, and the points
