@@ -297,8 +297,8 @@ private:
 /// One thread's image sums: two images, the samples below the split (the
 /// first Halton half) and the rest, so that a sample adds to one sum per
 /// pixel; a controlled accumulation (SampleAccumulator::SetControlled) keeps
-/// two more, the same samples each counted once (images 2 and 3). Each sum is a 64-bit low word per pixel; the high words are
-/// allocated at the first carry, which never comes in parallel views (a
+/// two more, the same samples each counted once (images 2 and 3). Each sum
+/// is a 64-bit low word per pixel; the high words are allocated at the first carry, which never comes in parallel views (a
 /// sample adds 2^32, so a pixel carries only after 2^32 samples of one
 /// thread in one round) and only near the eye in perspective views. A
 /// sample touches 8 bytes per pixel, not 32 (a thread's image of 256^2

@@ -175,20 +175,20 @@ vtkSmartPointer<vtkFloatArray> PointWeights(
 // Each bin's voxels of `order` projected once each, footprints of `kernel`
 // in `geometry` (voxel coordinates, as the sort located them): bins x
 // pixels sums in the accumulator's fixed-point units (2^32 a whole voxel),
-// the bins' images of the control (mcxControlImage.h). Progress runs from
-// progressBegin to progressEnd; false when aborted.
+// the bins' images of the control (mcxControlImage.h). Their footprints
+// round at random from a stream of their own, the same for every seed, so
+// a new seed keeps them. Progress runs from progressBegin to progressEnd;
+// false when aborted.
 template <typename IdType>
 bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry,
-  mcx::Kernel kernel, vtkTypeUInt64 seed, double progressBegin, double progressEnd,
-  std::vector<double>& images)
+  mcx::Kernel kernel, double progressBegin, double progressEnd, std::vector<double>& images)
 {
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
   mcx::DepositSettings settings; // samples in voxel coordinates: the identity VoxelMatrix
   settings.Mode = mcx::Deposit::Footprint;
   settings.Reconstruction = kernel;
-  settings.Seed = seed;
   if (geometry.Perspective)
   {
     double corners[24];
@@ -372,11 +372,10 @@ struct vtkMCXPointSampler::SortedView
   int Bins = 0;
   mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
   mcx::ViewOrder<std::uint64_t> Wide;   // or 64-bit (WideIds)
-  // The control's bins' images (ProjectBins), and the kernel and seed they
-  // were projected with; empty until a controlled cloud needs them.
+  // The control's bins' images (ProjectBins), and the kernel they were
+  // projected with; empty until a controlled cloud needs them.
   std::vector<double> BinImages;
   int BinKernel = -1;
-  vtkTypeInt64 BinSeed = 0;
 
   void Describe(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins)
   {
@@ -722,22 +721,20 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
 
 bool vtkMCXPointSampler::ProjectBinsFor(const mcx::IndexView& view, SortedView& sorted)
 {
-  if (!sorted.BinImages.empty() && sorted.BinKernel == this->Kernel && sorted.BinSeed == this->Seed)
+  if (!sorted.BinImages.empty() && sorted.BinKernel == this->Kernel)
   {
     return true;
   }
   sorted.BinImages.clear();
   const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
-  const auto seed = static_cast<vtkTypeUInt64>(this->Seed);
   std::vector<double> images;
   const bool completed = view.WideIds
-    ? ProjectBins(this, view, sorted.Wide, sorted.Geometry, kernel, seed, 0.3, 0.55, images)
-    : ProjectBins(this, view, sorted.Narrow, sorted.Geometry, kernel, seed, 0.3, 0.55, images);
+    ? ProjectBins(this, view, sorted.Wide, sorted.Geometry, kernel, 0.3, 0.55, images)
+    : ProjectBins(this, view, sorted.Narrow, sorted.Geometry, kernel, 0.3, 0.55, images);
   if (completed)
   {
     sorted.BinImages = std::move(images);
     sorted.BinKernel = this->Kernel;
-    sorted.BinSeed = this->Seed;
   }
   return completed;
 }
