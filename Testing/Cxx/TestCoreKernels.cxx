@@ -1309,60 +1309,79 @@ TEST(ProgressiveImage, PrefixesAddUpToTheOneShotImageAndItsHalves)
 TEST(ProgressiveImage, ControlledImageIsTheWeightedMinusTheOnceCountedPlusTheControl)
 {
   // mcxControlImage.h: (I / W) S_w + H - (I / n) S_1, every point counted
-  // once in S_1 whatever its weight (0 too). Weights all 1: S_w = S_1, so
-  // the image is H exactly and the halves differ nowhere.
-  const mcx::ProjectionGeometry g = SmallPerspectiveView();
+  // once in S_1 whatever its weight (0 too), point and footprint deposits,
+  // parallel and perspective. Weights all 1: S_w = S_1, so the image is H
+  // exactly and the halves differ nowhere.
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   const std::uint64_t count = 8191;
   const std::vector<float> cloud = RandomCloud(count);
   const double integral = 3.5;
-  auto image = [&](const float* weights, const std::vector<double>& control)
-  {
-    mcx::ProgressiveImage<ThreadExecutor> progressive;
-    progressive.Reset(g, origin, identity);
-    if (!control.empty())
-    {
-      progressive.SetControl(control, integral);
-    }
-    for (std::uint64_t target = 1; target <= count; target = 2 * target + 1)
-    {
-      progressive.Advance(ThreadExecutor(), cloud.data(), target, weights);
-    }
-    EXPECT_EQ(!control.empty(), progressive.IsControlled());
-    std::vector<double> values(progressive.NumberOfPixels());
-    progressive.ToValues(integral / progressive.CountedWeight(), values.data());
-    return std::make_pair(values, progressive.EstimateRelativeError());
-  };
-  const std::size_t pixels = image(nullptr, {}).first.size();
-  std::vector<double> control(pixels);
-  for (std::size_t p = 0; p < pixels; ++p)
-  {
-    control[p] = 0.01 * static_cast<double>(p % 37);
-  }
   std::vector<float> ones(count, 1.0f), weights(count);
   for (std::uint64_t i = 0; i < count; ++i)
   {
     weights[i] = 0.5f * static_cast<float>(i % 5);
   }
-  const auto equal = image(ones.data(), control);
-  EXPECT_EQ(control, equal.first);
-  EXPECT_LT(equal.second, 1e-12); // 0 but for the rounding of W / W_A against n / a
+  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
+  mcx::ProjectionGeometry parallel = perspective;
+  parallel.Perspective = false;
+  for (const bool footprint : { false, true })
+  {
+    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
+    {
+      mcx::DepositSettings settings;
+      if (footprint)
+      {
+        settings.Mode = mcx::Deposit::Footprint;
+        settings.Depths[0] = 40; // the cloud lies at depths 50 +- 9 (points beyond: points)
+        settings.Depths[1] = 60;
+      }
+      const std::string what = std::string(footprint ? "footprint" : "point") +
+        (g.Perspective ? ", perspective" : ", parallel");
+      auto image = [&](const float* pointWeights, const std::vector<double>& control)
+      {
+        mcx::ProgressiveImage<ThreadExecutor> progressive;
+        progressive.Reset(g, origin, identity, std::vector<double>(), settings);
+        if (!control.empty())
+        {
+          progressive.SetControl(control, integral);
+        }
+        for (std::uint64_t target = 1; target <= count; target = 2 * target + 1)
+        {
+          progressive.Advance(ThreadExecutor(), cloud.data(), target, pointWeights);
+        }
+        EXPECT_EQ(!control.empty(), progressive.IsControlled()) << what;
+        std::vector<double> values(progressive.NumberOfPixels());
+        progressive.ToValues(integral / progressive.CountedWeight(), values.data());
+        return std::make_pair(values, progressive.EstimateRelativeError());
+      };
+      const std::vector<double> once = image(nullptr, {}).first;
+      const std::size_t pixels = once.size();
+      std::vector<double> control(pixels);
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        control[p] = 0.01 * static_cast<double>(p % 37);
+      }
+      const auto equal = image(ones.data(), control);
+      EXPECT_EQ(control, equal.first) << what;
+      EXPECT_LT(equal.second, 1e-12) << what; // 0 but for the rounding of W / W_A against n / a
 
-  const auto controlled = image(weights.data(), control);
-  const std::vector<double> weighted = image(weights.data(), {}).first;
-  const std::vector<double> once = image(nullptr, {}).first;
-  double peak = 0.0;
-  for (double v : weighted)
-  {
-    peak = std::max(peak, std::fabs(v));
+      const auto controlled = image(weights.data(), control);
+      const std::vector<double> weighted = image(weights.data(), {}).first;
+      double peak = 0.0;
+      for (double v : weighted)
+      {
+        peak = std::max(peak, std::fabs(v));
+      }
+      ASSERT_GT(peak, 0.0) << what;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        ASSERT_NEAR(weighted[p] + control[p] - once[p], controlled.first[p], 1e-12 * peak)
+          << what << ", pixel " << p;
+      }
+      EXPECT_GT(controlled.second, 0.0) << what;
+    }
   }
-  ASSERT_GT(peak, 0.0);
-  for (std::size_t p = 0; p < pixels; ++p)
-  {
-    ASSERT_NEAR(weighted[p] + control[p] - once[p], controlled.first[p], 1e-12 * peak) << p;
-  }
-  EXPECT_GT(controlled.second, 0.0);
 }
 
 TEST(RadiographEffects, AppliedToAnImageAsPerPixel)
