@@ -10,9 +10,10 @@
 // deposit's one count in parallel views (to rounding in perspective views). A
 // thread keeps two images (ThreadSums): the samples with k below the split
 // (the first Halton half, which the error estimate compares with the rest)
-// and the rest. Collect() adds the threads' images up into all samples' sums
-// and the first half's; integer sums make the result independent of the
-// order and the number of threads.
+// and the rest; two more when controlled (each sample counted once, for a
+// control image: mcxControlImage.h). Collect() adds the threads' images up
+// into all samples' sums and the first half's; integer sums make the result
+// independent of the order and the number of threads.
 #ifndef mcxSampleAccumulator_h
 #define mcxSampleAccumulator_h
 
@@ -298,11 +299,12 @@ private:
 /// first Halton half) and the rest, so that a sample adds to one sum per
 /// pixel; a controlled accumulation (SampleAccumulator::SetControlled) keeps
 /// two more, the same samples each counted once (images 2 and 3). Each sum
-/// is a 64-bit low word per pixel; the high words are allocated at the first carry, which never comes in parallel views (a
-/// sample adds 2^32, so a pixel carries only after 2^32 samples of one
-/// thread in one round) and only near the eye in perspective views. A
-/// sample touches 8 bytes per pixel, not 32 (a thread's image of 256^2
-/// pixels takes 1 MB, about a core's L2 cache).
+/// is a 64-bit low word per pixel; the high words are allocated at the
+/// first carry, which never comes in parallel views (a sample adds 2^32, so
+/// a pixel carries only after 2^32 samples of one thread in one round) and
+/// only near the eye in perspective views. A sample touches 8 bytes per
+/// pixel, not 32 (16 when controlled; a thread's image of 256^2 pixels
+/// takes 1 MB, about a core's L2 cache).
 class ThreadSums
 {
 public:
@@ -315,7 +317,8 @@ public:
       const std::size_t wanted = half < images ? pixels : 0;
       if (this->Low[half].size() != wanted)
       {
-        this->Low[half].assign(wanted, 0);
+        // Swapped, not assigned: an image no longer used gives its memory back.
+        std::vector<std::uint64_t>(wanted, 0).swap(this->Low[half]);
         this->High[half].clear();
       }
     }
@@ -507,9 +510,9 @@ public:
       std::int64_t Stride = 0;                   // entries per row
       std::int64_t Columns[2] = { 0, -1 };       // the image's pixels it reaches, inclusive
       std::int64_t Rows[2] = { 0, -1 };
-      double F = 1.0;     // the perspective scale of the shares, times the point's weight
+      double F = 1.0;        // the perspective scale of the shares, times the point's weight
       double ControlF = 1.0; // the perspective scale alone (the control images' F)
-      double Depth = 0.0; // along the view, for the depth limits
+      double Depth = 0.0;    // along the view, for the depth limits
       bool FirstHalf = false;
       bool Weighted = false; // a weight other than 1: the shares scaled by F in any view
     };
@@ -821,7 +824,7 @@ public:
   /// Deposits points [begin, end) of a stored cloud (x, y, z each), point i
   /// being sample i, in the calling thread; point i counts weights[i] times
   /// (finite, >= 0: see PointWeightProblem; null: once each; weight 0 is
-  /// skipped). Footprints are prepared Lookahead samples before they are
+  /// skipped, unless controlled). Footprints are prepared Lookahead samples before they are
   /// added, their cache lines asked for in between: in Halton order
   /// successive samples reach the image at random (3 to 5 % of a TF edit on
   /// the CT body). The sums are integers: the order of the additions leaves

@@ -3,8 +3,10 @@
 #include "vtkMCXPointSampler.h"
 
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 
 #include <cmath>
@@ -134,6 +136,20 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
       return std::vector<double>();
     }
   }
+  vtkDataArray* made = fd->GetArray(vtkMCXPointSampler::ControlPointsName());
+  vtkSmartPointer<vtkDoubleArray> these = ControlPointsOf(cloud->GetPoints());
+  if (!made || made->GetNumberOfComponents() != 1 ||
+    made->GetNumberOfTuples() != these->GetNumberOfTuples())
+  {
+    return std::vector<double>();
+  }
+  for (vtkIdType i = 0; i < these->GetNumberOfTuples(); ++i)
+  {
+    if (made->GetComponent(i, 0) != these->GetValue(i))
+    {
+      return std::vector<double>();
+    }
+  }
   std::vector<double> control(static_cast<std::size_t>(pixels));
   for (vtkIdType p = 0; p < pixels; ++p)
   {
@@ -144,6 +160,23 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
     }
   }
   return control;
+}
+
+vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points)
+{
+  auto values = vtkSmartPointer<vtkDoubleArray>::New();
+  values->SetName(vtkMCXPointSampler::ControlPointsName());
+  values->SetNumberOfValues(3);
+  double first[3] = { 0, 0, 0 };
+  if (points && points->GetNumberOfPoints() > 0)
+  {
+    points->GetPoint(0, first);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    values->SetValue(a, first[a]);
+  }
+  return values;
 }
 
 vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid)

@@ -6,11 +6,14 @@
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleAccumulator.h"
-#include "vtkDataArray.h" // for WithPointWeights
+#include "vtkDataArray.h"    // for WithPointWeights
+#include "vtkSmartPointer.h" // for ControlPointsOf
 
 #include <vector>
 
+class vtkDoubleArray;
 class vtkObject;
+class vtkPoints;
 class vtkPolyData;
 
 namespace mcx
@@ -36,11 +39,15 @@ MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
 
 /// The control image (vtkMCXPointSampler::ControlImageName(), line
 /// integrals) that a view-ordered cloud carries for `geometry`: empty
-/// unless its ControlView is this geometry, bit for bit, and it holds one
-/// finite value per pixel. Only for images of the cloud's own frame (no
-/// prop matrix) with nothing hiding any sample.
+/// unless its ControlView is this geometry, bit for bit, its ControlPoints
+/// is the cloud's first point (ControlPointsOf), and it holds one finite
+/// value per pixel. Only for images of the cloud's own frame (no prop matrix)
+/// with nothing hiding any sample.
 MONTECARLOXRAYFILTERS_EXPORT std::vector<double> CloudControlImage(
   vtkPolyData* cloud, const ProjectionGeometry& geometry);
+
+/// The field array vtkMCXPointSampler::ControlPointsName() of `points`.
+MONTECARLOXRAYFILTERS_EXPORT vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points);
 
 /// The cloud's point weights (point-data array
 /// vtkMCXPointSampler::PointWeightName()): null without them; valid false

@@ -8,6 +8,7 @@
 #include "mcxViewOrder.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXCloudDepositPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXSMPExecutorPrivate.h"
@@ -377,6 +378,11 @@ struct vtkMCXPointSampler::SortedView
   std::vector<double> BinImages;
   int BinKernel = -1;
 
+  std::int64_t BinsOf(bool wideIds) const
+  {
+    return wideIds ? this->Wide.NumberOfBins() : this->Narrow.NumberOfBins();
+  }
+
   void Describe(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins)
   {
     this->Ids = view.Ids;
@@ -641,10 +647,10 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
     output->Initialize();
     return completed ? 0 : 1; // an error, or aborted
   }
-  if (this->ControlVariate && !this->ProjectBinsFor(view, *sorted))
+  if (this->ControlVariate && !this->ProjectBinsFor(view, *sorted, completed))
   {
     output->Initialize();
-    return 1; // aborted
+    return completed ? 0 : 1; // an error, or aborted
   }
 
   std::vector<double> control;
@@ -715,20 +721,32 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
     controlView->SetNumberOfValues(mcx::GeometryValueCount);
     mcx::GeometryToValues(sorted->Geometry, controlView->GetPointer(0));
     output->GetFieldData()->AddArray(controlView);
+    output->GetFieldData()->AddArray(mcx::ControlPointsOf(points));
   }
   return 1;
 }
 
-bool vtkMCXPointSampler::ProjectBinsFor(const mcx::IndexView& view, SortedView& sorted)
+bool vtkMCXPointSampler::ProjectBinsFor(
+  const mcx::IndexView& view, SortedView& sorted, bool& completed)
 {
+  completed = true;
   if (!sorted.BinImages.empty() && sorted.BinKernel == this->Kernel)
   {
     return true;
   }
-  sorted.BinImages.clear();
+  sorted.BinImages = std::vector<double>(); // not held while new ones are made
+  const double pixels = static_cast<double>(sorted.Geometry.Size[0]) * sorted.Geometry.Size[1];
+  const double bins = static_cast<double>(sorted.BinsOf(view.WideIds));
+  // The images (8 bytes a bin and pixel), the threads' sums (16) and their collection (32).
+  if (!mcx::CheckMemory(this,
+        pixels * (8.0 * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 32.0),
+        "The control image's " + std::to_string(static_cast<long long>(bins)) + " bin images"))
+  {
+    return false;
+  }
   const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
   std::vector<double> images;
-  const bool completed = view.WideIds
+  completed = view.WideIds
     ? ProjectBins(this, view, sorted.Wide, sorted.Geometry, kernel, 0.3, 0.55, images)
     : ProjectBins(this, view, sorted.Narrow, sorted.Geometry, kernel, 0.3, 0.55, images);
   if (completed)
@@ -758,8 +776,7 @@ vtkMCXPointSampler::SortedView* vtkMCXPointSampler::ViewOrderFor(
   const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
   if (!mcx::CheckMemory(this,
         static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 1.0) +
-          8.0 * static_cast<double>(layout.NumberOfChunks + (this->ControlVariate ? 2 : 1)) *
-            static_cast<double>(keys),
+          8.0 * static_cast<double>(layout.NumberOfChunks + 1) * static_cast<double>(keys),
         "The view order of " + std::to_string(voxels) + " voxels"))
   {
     return nullptr;

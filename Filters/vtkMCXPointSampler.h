@@ -110,6 +110,10 @@ public:
   /// (mcx::GeometryToValues' 23 values); see SetControlVariate.
   static const char* ControlImageName() { return "ControlImage"; }
   static const char* ControlViewName() { return "ControlView"; }
+  /// The first point of the cloud the control image was made with (3
+  /// values; a prefix of the cloud keeps it), so that a filter that moves
+  /// the points and passes the field data on leaves the control unused.
+  static const char* ControlPointsName() { return "ControlPoints"; }
   ///@}
 
   /**
@@ -335,8 +339,8 @@ private:
   /// fits, else sorted now; null after an error or an abort (`completed`).
   SortedView* ViewOrderFor(const mcx::IndexView& view, bool& completed);
   /// The bins' images of `sorted` for the control (kept, or projected now);
-  /// false after an abort.
-  bool ProjectBinsFor(const mcx::IndexView& view, SortedView& sorted);
+  /// false after an error or an abort (`completed`).
+  bool ProjectBinsFor(const mcx::IndexView& view, SortedView& sorted, bool& completed);
   /// A cloud's points: KeptPoints refilled, or new ones; null (and an
   /// error) when `count` points cannot be allocated.
   vtkSmartPointer<vtkPoints> CloudPoints(vtkPolyData* output, int type, vtkIdType count);

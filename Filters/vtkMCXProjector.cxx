@@ -9,6 +9,7 @@
 #include "vtkMCXCloudDepositPrivate.h"
 #include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
 #include "vtkMCXSMPExecutorPrivate.h"
@@ -25,6 +26,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
@@ -149,6 +151,16 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   projection.EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
   projection.Control = mcx::CloudControlImage(cloud, geometry);
   projection.PixelArea = geometry.BeamCrossSection();
+  // The control's two more sums per thread (16 bytes a pixel) and their
+  // collection (32), and the control image (8).
+  if (!projection.Control.empty() &&
+    !mcx::CheckMemory(self,
+      static_cast<double>(projection.Control.size()) *
+        (16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 40.0),
+      "The control image's sums"))
+  {
+    return false;
+  }
   accumulator.SetControlled(!projection.Control.empty());
   const std::uint64_t firstHalf = mcx::FirstHalfSize(projection.Count);
   accumulator.SetSplit(firstHalf);
