@@ -72,7 +72,8 @@ const char* DisplayShaderBody = R"(
 )";
 
 // Whether any other visible prop in the renderer draws opaque 3D geometry
-// that can hide part of the volume.
+// that can hide part of the volume (an actor without geometry, as
+// ParaView's views hold, draws nothing).
 bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
 {
   vtkPropCollection* props = renderer->GetViewProps();
@@ -83,10 +84,50 @@ bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
     if (prop != self && prop->GetVisibility() && prop->IsA("vtkProp3D") &&
       !prop->IsA("vtkVolume") && prop->HasOpaqueGeometry())
     {
-      return true;
+      const double* bounds = prop->GetBounds();
+      if (bounds && vtkMath::AreBoundsInitialized(bounds))
+      {
+        return true;
+      }
     }
   }
   return false;
+}
+
+// Whether no pixel's depth limit (a distance along the view from the eye)
+// hides any of the cloud's samples: every limit lies beyond the farthest
+// corner of the sampler's support (SupportCorners, world coordinates: for
+// a cloud drawn without a prop matrix). ParaView's view holds opaque props
+// (its axes) that need the depth test without hiding the volume.
+bool HidesNothing(
+  const std::vector<double>& limits, vtkPolyData* cloud, const mcx::ProjectionGeometry& g)
+{
+  if (limits.empty())
+  {
+    return true;
+  }
+  vtkDataArray* support =
+    cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName());
+  if (!support || support->GetNumberOfValues() != 24)
+  {
+    return false;
+  }
+  double farthest = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 8; ++c)
+  {
+    double depth = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const vtkIdType i = 3 * c + a;
+      depth += (support->GetComponent(i / support->GetNumberOfComponents(),
+                  static_cast<int>(i % support->GetNumberOfComponents())) -
+                 g.Eye[a]) *
+        g.W[a];
+    }
+    farthest = std::max(farthest, depth);
+  }
+  return std::isfinite(farthest) &&
+    std::all_of(limits.begin(), limits.end(), [farthest](double limit) { return limit > farthest; });
 }
 
 // Window 0 .. the 99.5th percentile of the positive means of 4 x 4 pixel
@@ -328,6 +369,7 @@ struct vtkMCXXRayMapper::vtkInternals
     {
       limits[p] = DepthToDistance(view.Depth[p], view.Geometry.Perspective, range[0], range[1]);
     }
+    const bool hidesNothing = HidesNothing(limits, cloud, view.Geometry);
     const double* m = view.Matrix;
     const double origin[3] = { m[3], m[7], m[11] };
     const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
@@ -349,7 +391,7 @@ struct vtkMCXXRayMapper::vtkInternals
     // A view-ordered cloud's control image holds for its own frame (no prop
     // matrix) with every sample visible.
     static const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-    if (this->Depth.empty() && std::equal(m, m + 16, identity))
+    if (hidesNothing && std::equal(m, m + 16, identity))
     {
       std::vector<double> control = mcx::CloudControlImage(cloud, view.Geometry);
       if (!control.empty())

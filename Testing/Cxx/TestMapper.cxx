@@ -453,11 +453,12 @@ TEST(Mapper, ViewOrderedCloudInItsViewRefinesItsControlledImageLikeTheOfflinePro
   // in that view every progressive prefix on screen is the off-line
   // projector's controlled image of that prefix, bit for bit, with the
   // same estimate; another view, or a prop matrix, shows the plain estimate
-  // (the control's image holds only for its own view and frame).
+  // (the control's image holds only for its own view and frame), and so
+  // does opaque geometry in front of the volume, not behind it or empty.
   Scene scene(16);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   camera->Azimuth(20);
-  scene.Renderer->ResetCameraClippingRange();
+  camera->SetClippingRange(100, 2000); // kept: the plates below do not move it
   scene.Sampler->SetDepositToFootprint();
   scene.Sampler->SetStrategyToViewOrdered();
   scene.Sampler->SetOrderingView(camera, 160, 128);
@@ -507,6 +508,39 @@ TEST(Mapper, ViewOrderedCloudInItsViewRefinesItsControlledImageLikeTheOfflinePro
   scene.Volume->SetPosition(0, 0, 0);
   scene.Window->Render();
   EXPECT_TRUE(scene.Mapper->GetLastRenderUsedControlImage());
+
+  // A 600 mm plate across the view, 400 mm behind the focal point (the
+  // head reaches about 160 mm from it), then 300 mm in front; and an actor
+  // with nothing to draw, which is no occluder.
+  double direction[3];
+  camera->GetDirectionOfProjection(direction);
+  const double* focal = camera->GetFocalPoint();
+  vtkNew<vtkPlaneSource> plate;
+  plate->SetOrigin(0, 0, 0);
+  plate->SetPoint1(600, 0, 0);
+  plate->SetPoint2(0, 600, 0);
+  plate->SetNormal(direction);
+  vtkNew<vtkPolyDataMapper> plateMapper;
+  plateMapper->SetInputConnection(plate->GetOutputPort());
+  vtkNew<vtkActor> plateActor;
+  plateActor->SetMapper(plateMapper);
+  scene.Renderer->AddActor(plateActor);
+  for (const double along : { 400.0, -300.0 })
+  {
+    plate->SetCenter(focal[0] + along * direction[0], focal[1] + along * direction[1],
+      focal[2] + along * direction[2]);
+    scene.Window->Render();
+    EXPECT_TRUE(scene.Mapper->GetLastRenderUsedDepth()) << along;
+    EXPECT_EQ(along > 0, scene.Mapper->GetLastRenderUsedControlImage()) << along;
+  }
+  vtkNew<vtkPolyDataMapper> emptyMapper;
+  vtkNew<vtkPolyData> nothing;
+  emptyMapper->SetInputData(nothing);
+  plateActor->SetMapper(emptyMapper);
+  scene.Window->Render();
+  EXPECT_FALSE(scene.Mapper->GetLastRenderUsedDepth());
+  EXPECT_TRUE(scene.Mapper->GetLastRenderUsedControlImage());
+  EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), controlled));
 }
 
 TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)

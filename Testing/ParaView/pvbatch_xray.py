@@ -295,6 +295,10 @@ expected = offline_image(index, opacity.Points, camera, [300, 240], ordered=True
 check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
       "view ordered: %d pixels differ from the off-line image of a cloud sorted for the view"
       % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
+# Both are the controlled estimate (the cloud's control image holds for the
+# view it was sorted for; the view's empty actors hide nothing).
+used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
+check("bool(true)" in used, "view ordered: the view's image is not the controlled one (%r)" % used.strip())
 
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
