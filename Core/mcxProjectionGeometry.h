@@ -62,7 +62,8 @@ struct ProjectionGeometry
 bool SameGeometry(const ProjectionGeometry& a, const ProjectionGeometry& b);
 
 /// A geometry as GeometryValueCount numbers (a field array's): two
-/// geometries are the same when their values are.
+/// geometries are the same when their values are. The near distance is
+/// value 14.
 constexpr int GeometryValueCount = 23;
 void GeometryToValues(const ProjectionGeometry& geometry, double values[GeometryValueCount]);
 

@@ -9,7 +9,9 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace mcx
@@ -17,6 +19,37 @@ namespace mcx
 
 namespace
 {
+// GeometryToValues' place of the near distance.
+constexpr int NearDistanceValue = 14;
+
+// Whether the near planes at geometry.NearDistance and at `otherNear` both
+// leave every sample of the cloud (inside its SupportCorners) in view, so
+// that the two geometries make the same image: ParaView resets the
+// clipping range when it renders, after the sampler took the camera.
+bool NearPlanesClipNothing(vtkPolyData* cloud, const ProjectionGeometry& geometry, double otherNear)
+{
+  if (!geometry.Perspective)
+  {
+    return true; // a parallel view clips nothing at its near plane
+  }
+  vtkDataArray* support = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName());
+  if (!support || support->GetNumberOfComponents() != 1 || support->GetNumberOfTuples() != 24)
+  {
+    return false;
+  }
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 8; ++c)
+  {
+    double depth = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      depth += (support->GetComponent(3 * c + a, 0) - geometry.Eye[a]) * geometry.W[a];
+    }
+    nearest = std::min(nearest, depth);
+  }
+  return std::isfinite(nearest) && geometry.NearDistance < nearest && otherNear < nearest;
+}
+
 double Field(vtkFieldData* fd, const char* name, double fallback)
 {
   vtkDataArray* array = fd ? fd->GetArray(name) : nullptr;
@@ -131,7 +164,8 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
   GeometryToValues(geometry, wanted);
   for (int i = 0; i < GeometryValueCount; ++i)
   {
-    if (view->GetComponent(i, 0) != wanted[i])
+    if (view->GetComponent(i, 0) != wanted[i] &&
+      !(i == NearDistanceValue && NearPlanesClipNothing(cloud, geometry, view->GetComponent(i, 0))))
     {
       return std::vector<double>();
     }

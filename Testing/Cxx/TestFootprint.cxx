@@ -737,6 +737,17 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
   EXPECT_TRUE(SameImage(controlled, project(2, perspective, true)));
   EXPECT_FALSE(SameImage(controlled, project(2, perspective, false)));
   EXPECT_TRUE(SameImage(project(2, lateral, true), project(2, lateral, false)));
+  // A near plane moved but still in front of the volume (ParaView resets
+  // the clipping range when it renders) makes the same image, so the
+  // control holds; one that cuts into the volume does not.
+  vtkNew<vtkCamera> moved;
+  moved->DeepCopy(perspective);
+  const double* range = perspective->GetClippingRange();
+  moved->SetClippingRange(0.5 * range[0], range[1]);
+  EXPECT_TRUE(SameImage(controlled, project(2, moved, true)));
+  moved->SetClippingRange(perspective->GetDistance(), range[1]);
+  EXPECT_TRUE(SameImage(project(2, moved, false), project(2, moved, true)));
+  EXPECT_FALSE(SameImage(controlled, project(2, moved, true)));
 
   auto sampler = scene.FootprintCloud(15, vtkMCXPointSampler::VIEW_ORDERED);
   sampler->SetOrderingView(perspective, size, size);
