@@ -12,8 +12,9 @@
 //
 // (I the cloud's integral, W the weight of its n points so far, S_w their
 // weighted sums, S_1 their sums counted once) is unbiased like the cloud's
-// own (I / W) S_w, and mass-conserving like it (H and (I / n) S_1 carry the
-// same integral). Where the samples fall in their pixel, at which depth, and
+// own (I / W) S_w as far as H is exact (H is made by the same footprint
+// deposit, whose random rounding is here one fixed draw), and
+// mass-conserving like it (H and (I / n) S_1 carry the same integral). Where the samples fall in their pixel, at which depth, and
 // how many land in each (bin, pixel) cell moves S_w and S_1 alike and
 // cancels; what is left is the spread of w / (the bin's mean w) inside each
 // bin. On the CT chest upsampled to 50 M voxels (256^2 cone beam, 2^21 - 1
