@@ -803,8 +803,9 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
 
 namespace
 {
-// Watches an algorithm's progress for the view sort's first half (the
-// sampler reports the sort in [0, 0.5], the sampling from 0.55 on).
+// Watches an algorithm's progress for the view sort (the sampler reports
+// the sort in [0, 0.5], or [0, 0.3] and the control's projection in [0.3,
+// 0.55] with the control image; the sampling from 0.55 on).
 struct SortWatch
 {
   bool Sorted = false;
@@ -912,4 +913,60 @@ TEST(ViewOrder, MassIsConservedAndAViewIsRequired)
   const double sum = mcxtest::LineIntegralSum(image);
   const double integral = mcxtest::FieldValue(image, "Integral");
   EXPECT_NEAR(integral, sum * image->GetSpacing()[0] * image->GetSpacing()[1], 1e-9 * integral);
+}
+
+TEST(ViewOrder, AnAbortDuringTheControlsProjectionLeavesNoCloudAndTheNextUpdateFinishes)
+{
+  // The sampler reports the sort in [0, 0.3] and the control's projection
+  // of every voxel in [0.3, 0.55]: stopped there, it leaves no cloud, and
+  // the next update (the sort kept) makes the cloud and the control image
+  // of a sampler that was never stopped.
+  Scene scene(
+    "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
+  auto camera = scene.Camera(2);
+  auto sampler = scene.FootprintCloud(14, vtkMCXPointSampler::VIEW_ORDERED);
+  sampler->SetOrderingView(camera, 40, 40);
+  struct Stopper
+  {
+    bool Armed = true;
+    bool Stopped = false;
+  } stopper;
+  vtkNew<vtkCallbackCommand> command;
+  command->SetClientData(&stopper);
+  command->SetCallback(
+    [](vtkObject* caller, unsigned long, void* client, void* data)
+    {
+      auto* stop = static_cast<Stopper*>(client);
+      const double progress = *static_cast<double*>(data);
+      if (stop->Armed && progress > 0.3 && progress < 0.55)
+      {
+        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+        stop->Armed = false;
+        stop->Stopped = true;
+      }
+    });
+  sampler->AddObserver(vtkCommand::ProgressEvent, command);
+  sampler->Update();
+  ASSERT_TRUE(stopper.Stopped);
+  EXPECT_EQ(0, sampler->GetOutput()->GetNumberOfPoints());
+  EXPECT_FALSE(sampler->GetOutput()->GetFieldData()->GetArray(
+    vtkMCXPointSampler::ControlImageName()));
+
+  sampler->SetAbortExecute(0);
+  sampler->Modified();
+  sampler->Update();
+  auto fresh = scene.FootprintCloud(14, vtkMCXPointSampler::VIEW_ORDERED);
+  fresh->SetOrderingView(camera, 40, 40);
+  fresh->Update();
+  EXPECT_TRUE(SameCloud(fresh->GetOutput(), sampler->GetOutput()));
+  vtkDataArray* made =
+    sampler->GetOutput()->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName());
+  vtkDataArray* expected =
+    fresh->GetOutput()->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName());
+  ASSERT_TRUE(made && expected);
+  ASSERT_EQ(expected->GetNumberOfTuples(), made->GetNumberOfTuples());
+  for (vtkIdType p = 0; p < made->GetNumberOfTuples(); ++p)
+  {
+    ASSERT_EQ(expected->GetTuple1(p), made->GetTuple1(p)) << "pixel " << p;
+  }
 }
