@@ -14,11 +14,12 @@
 // weighted sums, S_1 their sums counted once) is unbiased like the cloud's
 // own (I / W) S_w as far as H is exact (H is made by the same footprint
 // deposit, whose random rounding is here one fixed draw), and
-// mass-conserving like it (H and (I / n) S_1 carry the same integral). Where the samples fall in their pixel, at which depth, and
-// how many land in each (bin, pixel) cell moves S_w and S_1 alike and
-// cancels; what is left is the spread of w / (the bin's mean w) inside each
-// bin. On the CT chest upsampled to 50 M voxels (256^2 cone beam, 2^21 - 1
-// points) the error falls from 1.7 to 0.65 %.
+// mass-conserving like it (H and (I / n) S_1 carry the same integral).
+// Where the samples fall in their pixel, at which depth, and how many land
+// in each (bin, pixel) cell moves S_w and S_1 alike and cancels; what is
+// left is the spread of w / (the bin's mean w) inside each bin. On the CT
+// chest upsampled to 50 M voxels (256^2 cone beam, 2^21 - 1 points) the
+// error falls from 1.7 to 0.65 %.
 #ifndef mcxControlImage_h
 #define mcxControlImage_h
 
@@ -35,14 +36,14 @@ namespace mcx
 /// The sums of a controlled image and what its points carry.
 struct ControlledSums
 {
-  const FixedSum* Weighted = nullptr;  ///< S_w of all points
-  const FixedSum* Once = nullptr;      ///< S_1 of all points
-  const double* Control = nullptr;     ///< H, line integrals
+  const FixedSum* Weighted = nullptr; ///< S_w of all points
+  const FixedSum* Once = nullptr;     ///< S_1 of all points
+  const double* Control = nullptr;    ///< H, line integrals
   std::size_t Pixels = 0;
-  std::uint64_t Count = 0;     ///< n
-  double CarriedWeight = 0.0;  ///< W (n for an unweighted cloud)
-  double Integral = 0.0;       ///< I
-  double PixelArea = 1.0;      ///< the beam cross-section of a pixel
+  std::uint64_t Count = 0;    ///< n
+  double CarriedWeight = 0.0; ///< W (n for an unweighted cloud)
+  double Integral = 0.0;      ///< I
+  double PixelArea = 1.0;     ///< the beam cross-section of a pixel
 };
 
 /// Line integrals of the controlled estimate (see the file comment); the
@@ -88,8 +89,8 @@ inline double EstimateControlledRelativeError(const ControlledSums& sums,
   {
     const double weighted = ToDouble(sums.Weighted[p]), once = ToDouble(sums.Once[p]);
     const double weightedA = ToDouble(weightedFirst[p]), onceA = ToDouble(onceFirst[p]);
-    const double d = weightedA * wa - (weighted - weightedA) * wb -
-      (onceA / a - (once - onceA) / b) * unit;
+    const double d =
+      weightedA * wa - (weighted - weightedA) * wb - (onceA / a - (once - onceA) / b) * unit;
     difference += d * d;
     const double value = (weighted * w - once / n * unit) + sums.Control[p];
     norm += value * value;

@@ -133,11 +133,10 @@ public:
     }
     if (this->IsControlled())
     {
-      const double firstWeight = this->Weighted
-        ? ToDouble(this->FirstHalfWeights) / FixedOne
-        : static_cast<double>(this->FirstHalfCount);
-      return EstimateControlledRelativeError(this->Controlled(),
-        this->FirstHalf.data(), this->OnceFirstHalf.data(), firstWeight);
+      const double firstWeight = this->Weighted ? ToDouble(this->FirstHalfWeights) / FixedOne
+                                                : static_cast<double>(this->FirstHalfCount);
+      return EstimateControlledRelativeError(
+        this->Controlled(), this->FirstHalf.data(), this->OnceFirstHalf.data(), firstWeight);
     }
     return (this->Accumulator.ErrorFallsAsInverseM() ? FootprintErrorCalibration : 1.0) *
       mcx::EstimateRelativeError(

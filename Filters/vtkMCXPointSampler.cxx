@@ -182,8 +182,8 @@ vtkSmartPointer<vtkFloatArray> PointWeights(
 // false when aborted.
 template <typename IdType>
 bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
-  const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry,
-  mcx::Kernel kernel, double progressBegin, double progressEnd, std::vector<double>& images)
+  const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry, mcx::Kernel kernel,
+  double progressBegin, double progressEnd, std::vector<double>& images)
 {
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
@@ -193,8 +193,8 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   if (geometry.Perspective)
   {
     double corners[24];
-    mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction,
-      mcx::KernelRadius(kernel), corners);
+    mcx::ComputeSupportCorners(
+      view.Extent, view.Origin, view.Spacing, view.Direction, mcx::KernelRadius(kernel), corners);
     mcx::SupportDepthRange(geometry, corners, settings.Depths);
   }
   mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
@@ -246,8 +246,8 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
 // binMeans[b]: the bins' images weighed by it, scaled so that it carries
 // the cloud's integral as the cloud does. Empty when no bin has weight.
 std::vector<double> ControlImage(const std::vector<double>& binImages,
-  const std::vector<double>& binMeans, const std::vector<std::int64_t>& binOffsets,
-  double integral, const mcx::ProjectionGeometry& geometry)
+  const std::vector<double>& binMeans, const std::vector<std::int64_t>& binOffsets, double integral,
+  const mcx::ProjectionGeometry& geometry)
 {
   const std::size_t bins = binMeans.size();
   const std::size_t pixels = bins > 0 ? binImages.size() / bins : 0;

@@ -106,8 +106,7 @@ bool HidesNothing(
   {
     return true;
   }
-  vtkDataArray* support =
-    cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName());
+  vtkDataArray* support = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName());
   if (!support || support->GetNumberOfValues() != 24)
   {
     return false;
@@ -127,7 +126,8 @@ bool HidesNothing(
     farthest = std::max(farthest, depth);
   }
   return std::isfinite(farthest) &&
-    std::all_of(limits.begin(), limits.end(), [farthest](double limit) { return limit > farthest; });
+    std::all_of(
+      limits.begin(), limits.end(), [farthest](double limit) { return limit > farthest; });
 }
 
 // Window 0 .. the 99.5th percentile of the positive means of 4 x 4 pixel

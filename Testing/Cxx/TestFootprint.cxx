@@ -687,10 +687,10 @@ TEST(ViewOrder, ControlImageCutsTheOrderingViewsErrorAndKeepsItsGuarantees)
       const double plainSum = mcxtest::LineIntegralSum(plain);
       const double sum = mcxtest::LineIntegralSum(controlled);
       std::cout << "view " << view << " m " << m << ": controlled " << error << " ("
-                << error / bound << " of the Monte Carlo bound), plain " << plainError
-                << ", ratio " << error / plainError << "; estimate " << estimate / error
-                << " of the error; sums " << sum << " " << plainSum << " reference "
-                << mcxtest::LineIntegralSum(reference) << std::endl;
+                << error / bound << " of the Monte Carlo bound), plain " << plainError << ", ratio "
+                << error / plainError << "; estimate " << estimate / error << " of the error; sums "
+                << sum << " " << plainSum << " reference " << mcxtest::LineIntegralSum(reference)
+                << std::endl;
       EXPECT_LT(error, 0.12 * bound) << "view " << view << " m " << m;
       EXPECT_LT(error, (m == 14 ? 0.6 : 0.9) * plainError) << "view " << view << " m " << m;
       EXPECT_GT(estimate, 0.75 * error) << "view " << view << " m " << m;
@@ -949,8 +949,8 @@ TEST(ViewOrder, AnAbortDuringTheControlsProjectionLeavesNoCloudAndTheNextUpdateF
   sampler->Update();
   ASSERT_TRUE(stopper.Stopped);
   EXPECT_EQ(0, sampler->GetOutput()->GetNumberOfPoints());
-  EXPECT_FALSE(sampler->GetOutput()->GetFieldData()->GetArray(
-    vtkMCXPointSampler::ControlImageName()));
+  EXPECT_FALSE(
+    sampler->GetOutput()->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName()));
 
   sampler->SetAbortExecute(0);
   sampler->Modified();
