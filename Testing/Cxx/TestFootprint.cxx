@@ -713,7 +713,7 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
 {
   // Bit for bit with 1 and 2 threads (the bins' images are fixed-point
   // sums); in another view, with a control image that is not one finite
-  // value per pixel or a view a little off (a hostile file), or with the
+  // value per pixel or a view 1e-4 off (a hostile file), or with the
   // points moved by a filter that passed the field data on, the projector
   // shows the plain estimate, bit for bit.
   Scene scene(
@@ -779,7 +779,7 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
     }
     else if (damage == 2)
     {
-      view->SetTuple1(4, view->GetTuple1(4) + 1e-9);
+      view->SetTuple1(4, view->GetTuple1(4) + 1e-4); // U turned by 1e-4 radians
     }
     else
     {

@@ -204,7 +204,8 @@ TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
   // --method view-ordered: the sampler is ordered by the window's view from
   // the start; a camera move alone neither sorts nor samples again; the TF
   // edit after it orders by the moved camera, and the image is the cloud
-  // sorted for that view, all of its points.
+  // sorted for that view, all of its points, with its control image (not
+  // in the moved view before the edit).
   mcxapp::ViewerOptions options;
   options.Strategy = vtkMCXPointSampler::VIEW_ORDERED;
   options.SampleExponent = 16;
@@ -220,12 +221,15 @@ TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
   EXPECT_EQ(1, samplerRuns.Count);
   EXPECT_EQ(65535, viewer.GetMapper()->GetNumberOfAccumulatedSamples());
   EXPECT_GT(MeanBrightness(viewer.GetRenderWindow()), 1.0);
+  EXPECT_TRUE(viewer.GetMapper()->GetLastRenderUsedControlImage());
   viewer.GetRenderer()->GetActiveCamera()->Azimuth(40);
   viewer.RefineUntilComplete();
   EXPECT_EQ(1, samplerRuns.Count);
+  EXPECT_FALSE(viewer.GetMapper()->GetLastRenderUsedControlImage());
   Press(interactor, '2'); // bone
   viewer.RefineUntilComplete();
   EXPECT_EQ(2, samplerRuns.Count);
+  EXPECT_TRUE(viewer.GetMapper()->GetLastRenderUsedControlImage());
   vtkNew<vtkMCXPointSampler> fresh;
   fresh->SetInputConnection(viewer.GetIndex()->GetOutputPort());
   fresh->SetTransferFunction(viewer.GetTransferFunction());
