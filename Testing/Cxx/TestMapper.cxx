@@ -509,16 +509,17 @@ TEST(Mapper, ViewOrderedCloudInItsViewRefinesItsControlledImageLikeTheOfflinePro
   scene.Window->Render();
   EXPECT_TRUE(scene.Mapper->GetLastRenderUsedControlImage());
 
-  // A 600 mm plate across the view, 400 mm behind the focal point (the
-  // head reaches about 160 mm from it), then 300 mm in front; and an actor
-  // with nothing to draw, which is no occluder.
+  // A 100 mm plate on the view's axis (covering part of the view), 400 mm
+  // behind the focal point (the head reaches about 160 mm from it), then
+  // 300 mm in front; and an actor with nothing to draw, which is no
+  // occluder.
   double direction[3];
   camera->GetDirectionOfProjection(direction);
   const double* focal = camera->GetFocalPoint();
   vtkNew<vtkPlaneSource> plate;
   plate->SetOrigin(0, 0, 0);
-  plate->SetPoint1(600, 0, 0);
-  plate->SetPoint2(0, 600, 0);
+  plate->SetPoint1(100, 0, 0);
+  plate->SetPoint2(0, 100, 0);
   plate->SetNormal(direction);
   vtkNew<vtkPolyDataMapper> plateMapper;
   plateMapper->SetInputConnection(plate->GetOutputPort());
