@@ -94,12 +94,15 @@ public:
     this->Accumulator.DepositPoints(executor, points, this->Counted, target, weights);
     if (weights)
     {
+      // Fixed-point sums of consecutive ranges add up exactly: the first
+      // half's part is summed once.
+      const std::uint64_t middle = splitsHere ? half : this->Counted;
+      this->Weights += PointWeightSum(executor, weights, this->Counted, middle);
       if (splitsHere)
       {
-        this->FirstHalfWeights =
-          this->Weights + PointWeightSum(executor, weights, this->Counted, half);
+        this->FirstHalfWeights = this->Weights;
       }
-      this->Weights += PointWeightSum(executor, weights, this->Counted, target);
+      this->Weights += PointWeightSum(executor, weights, middle, target);
       this->Weighted = true;
     }
     this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data(),

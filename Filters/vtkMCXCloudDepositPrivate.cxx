@@ -42,22 +42,9 @@ bool NearPlanesClipNothing(vtkPolyData* cloud, const ProjectionGeometry& geometr
   {
     return true; // a parallel view clips nothing at its near plane
   }
-  vtkDataArray* support = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName());
-  if (!support || support->GetNumberOfComponents() != 1 || support->GetNumberOfTuples() != 24)
-  {
-    return false;
-  }
-  double nearest = std::numeric_limits<double>::infinity();
-  for (int c = 0; c < 8; ++c)
-  {
-    double depth = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      depth += (support->GetComponent(3 * c + a, 0) - geometry.Eye[a]) * geometry.W[a];
-    }
-    nearest = std::min(nearest, depth);
-  }
-  return std::isfinite(nearest) && geometry.NearDistance < nearest && otherNear < nearest;
+  double depths[2];
+  return CloudSupportDepths(cloud, geometry, depths) && geometry.NearDistance < depths[0] &&
+    otherNear < depths[0];
 }
 
 double Field(vtkFieldData* fd, const char* name, double fallback)
@@ -205,6 +192,29 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
     }
   }
   return control;
+}
+
+bool CloudSupportDepths(vtkPolyData* cloud, const ProjectionGeometry& geometry, double depths[2])
+{
+  vtkFieldData* fd = cloud->GetFieldData();
+  vtkDataArray* support = fd ? fd->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
+  if (!support || support->GetNumberOfComponents() != 1 || support->GetNumberOfTuples() != 24)
+  {
+    return false;
+  }
+  depths[0] = std::numeric_limits<double>::infinity();
+  depths[1] = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 8; ++c)
+  {
+    double depth = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      depth += (support->GetComponent(3 * c + a, 0) - geometry.Eye[a]) * geometry.W[a];
+    }
+    depths[0] = std::min(depths[0], depth);
+    depths[1] = std::max(depths[1], depth);
+  }
+  return std::isfinite(depths[0]) && std::isfinite(depths[1]);
 }
 
 vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points)

@@ -46,6 +46,12 @@ MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
 MONTECARLOXRAYFILTERS_EXPORT std::vector<double> CloudControlImage(
   vtkPolyData* cloud, const ProjectionGeometry& geometry);
 
+/// The depths along `geometry`'s view (from its Eye along W) of the nearest
+/// and the farthest corner of the cloud's SupportCorners (world
+/// coordinates), the box where its samples lie; false without them.
+MONTECARLOXRAYFILTERS_EXPORT bool CloudSupportDepths(
+  vtkPolyData* cloud, const ProjectionGeometry& geometry, double depths[2]);
+
 /// The field array vtkMCXPointSampler::ControlPointsName() of `points`.
 MONTECARLOXRAYFILTERS_EXPORT vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points);
 

@@ -185,16 +185,18 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   if (weights)
   {
     // Weighted points carry the integral together, whatever their mean
-    // weight (as the mapper's prefixes do).
-    auto carried = [&](std::uint64_t end)
+    // weight (as the mapper's prefixes do). Fixed-point sums of consecutive
+    // ranges add up exactly: the first half's weight is summed once.
+    auto carried = [&](std::uint64_t begin, std::uint64_t end)
     {
-      return mcx::ToDouble(mcx::WithPointWeights(weights,
-               [&](const auto* values)
-               { return mcx::PointWeightSum(mcx::SMPExecutor(), values, 0, end); })) /
-        mcx::FixedOne;
+      return mcx::WithPointWeights(weights,
+        [&](const auto* values)
+        { return mcx::PointWeightSum(mcx::SMPExecutor(), values, begin, end); });
     };
-    projection.CarriedWeight = carried(projection.Count);
-    projection.FirstHalfWeight = projection.Control.empty() ? 0.0 : carried(firstHalf);
+    const mcx::FixedSum first = carried(0, firstHalf);
+    projection.CarriedWeight =
+      mcx::ToDouble(first + carried(firstHalf, projection.Count)) / mcx::FixedOne;
+    projection.FirstHalfWeight = mcx::ToDouble(first) / mcx::FixedOne;
     projection.SampleWeight =
       projection.CarriedWeight > 0 ? projection.Integral / projection.CarriedWeight : 0.0;
   }

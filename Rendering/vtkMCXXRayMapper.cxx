@@ -97,8 +97,8 @@ bool HasOccluders(vtkRenderer* renderer, vtkVolume* self)
 // Whether no pixel's depth limit (a distance along the view from the eye)
 // hides any of the cloud's samples: every limit lies beyond the farthest
 // corner of the sampler's support (SupportCorners, world coordinates: for
-// a cloud drawn without a prop matrix). ParaView's view holds opaque props
-// (its axes) that need the depth test without hiding the volume.
+// a cloud drawn without a prop matrix): opaque props behind the volume
+// need the depth test but hide nothing.
 bool HidesNothing(
   const std::vector<double>& limits, vtkPolyData* cloud, const mcx::ProjectionGeometry& g)
 {
@@ -106,28 +106,10 @@ bool HidesNothing(
   {
     return true;
   }
-  vtkDataArray* support = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName());
-  if (!support || support->GetNumberOfValues() != 24)
-  {
-    return false;
-  }
-  double farthest = -std::numeric_limits<double>::infinity();
-  for (int c = 0; c < 8; ++c)
-  {
-    double depth = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      const vtkIdType i = 3 * c + a;
-      depth += (support->GetComponent(i / support->GetNumberOfComponents(),
-                  static_cast<int>(i % support->GetNumberOfComponents())) -
-                 g.Eye[a]) *
-        g.W[a];
-    }
-    farthest = std::max(farthest, depth);
-  }
-  return std::isfinite(farthest) &&
+  double depths[2];
+  return mcx::CloudSupportDepths(cloud, g, depths) &&
     std::all_of(
-      limits.begin(), limits.end(), [farthest](double limit) { return limit > farthest; });
+      limits.begin(), limits.end(), [&depths](double limit) { return limit > depths[1]; });
 }
 
 // Window 0 .. the 99.5th percentile of the positive means of 4 x 4 pixel

@@ -721,6 +721,20 @@ mcx::ProjectionGeometry SmallPerspectiveView()
   return g;
 }
 
+// The point deposit, or the footprint deposit tabulated over RandomCloud's
+// depths in SmallPerspectiveView.
+mcx::DepositSettings RandomCloudDeposit(bool footprint)
+{
+  mcx::DepositSettings settings;
+  if (footprint)
+  {
+    settings.Mode = mcx::Deposit::Footprint;
+    settings.Depths[0] = 40; // the cloud lies at depths 50 +- 9 (points beyond: points)
+    settings.Depths[1] = 60;
+  }
+  return settings;
+}
+
 std::vector<float> RandomCloud(std::size_t points)
 {
   std::mt19937 random(99);
@@ -1147,13 +1161,7 @@ TEST(SampleAccumulator, WeightedPointsAddTheirWeightTimesTheirDeposit)
     for (const mcx::ProjectionGeometry& g : { parallel, perspective })
     {
       ASSERT_EQ("", g.Validate());
-      mcx::DepositSettings settings;
-      if (footprint)
-      {
-        settings.Mode = mcx::Deposit::Footprint;
-        settings.Depths[0] = 40; // the cloud lies at depths 50 +- 9 (points beyond: points)
-        settings.Depths[1] = 60;
-      }
+      const mcx::DepositSettings settings = RandomCloudDeposit(footprint);
       const std::string what = std::string(footprint ? "footprint" : "point") +
         (g.Perspective ? ", perspective" : ", parallel");
       using Serial = mcx::SerialExecutor;
@@ -1329,13 +1337,7 @@ TEST(ProgressiveImage, ControlledImageIsTheWeightedMinusTheOnceCountedPlusTheCon
   {
     for (const mcx::ProjectionGeometry& g : { parallel, perspective })
     {
-      mcx::DepositSettings settings;
-      if (footprint)
-      {
-        settings.Mode = mcx::Deposit::Footprint;
-        settings.Depths[0] = 40; // the cloud lies at depths 50 +- 9 (points beyond: points)
-        settings.Depths[1] = 60;
-      }
+      const mcx::DepositSettings settings = RandomCloudDeposit(footprint);
       const std::string what = std::string(footprint ? "footprint" : "point") +
         (g.Perspective ? ", perspective" : ", parallel");
       auto image = [&](const float* pointWeights, const std::vector<double>& control)
