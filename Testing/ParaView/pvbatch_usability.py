@@ -15,7 +15,8 @@
   the index's densities, and "reset to data range" restores it;
 - with ParaView's streaming on, a still render spends only its budget and
   the streaming passes (what the GUI runs after each render, without user
-  action) refine the image until every point counts, then stop.
+  action) refine the image until every point counts, then stop;
+- colouring by the density after choosing the representation logs no error.
 
     pvbatch pvbatch_usability.py PLUGIN VOLUME.vti OUTPUT_DIR
 """
@@ -213,7 +214,20 @@ check(counts[-1] == 2**22 - 1 and passes < 40, "streaming ended at %d points aft
 check(all(b > a for a, b in zip(counts, counts[1:])), "a streaming pass added no points: %s" % counts)
 check(errors_along[-1] < 0.5 * errors_along[0], "the error went from %g to %g only" % (errors_along[0], errors_along[-1]))
 
+# 10. Colouring by the density after choosing the representation (the
+# README's order): the view empties the delivered piece until the new index
+# arrives and asks the visible props' bounds first; no error (any fails the
+# test), and the X-ray of every point under the colour map's opacity.
+vtkPVView.SetEnableStreaming(False)
+late_view, late_display = xray_view([300, 240])
+Render(late_view)
+ColorBy(late_display, ("POINTS", "headsq"))
+Render(late_view)
+Render(late_view)  # the first still render after a restart draws a prefix, the next the rest
+late = int(mapper_call(xray_representation(late_display), "GetNumberOfAccumulatedSamples"))
+check(late == 2**22 - 1, "after colouring by the density the X-ray drew %d points, not 2^22 - 1" % late)
+
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
 print("ParaView usability checks passed (array choice, film, tiles, window, interaction, errors, TF range, "
-      "streaming)")
+      "streaming, colouring after the representation)")

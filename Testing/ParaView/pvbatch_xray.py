@@ -15,7 +15,8 @@ function and checks what it computes and what it draws:
 - the screenshot is the window and level of that image, per pixel, and equals
   the baseline within a few grey levels (no shift, no averaging);
 - with the View ordered strategy, the image is that of a cloud sorted for
-  the view's camera and size.
+  the view's camera and size, and a TF edit after a camera move sorts for
+  the moved camera.
 
     pvbatch pvbatch_xray.py PLUGIN VOLUME.vti BASELINE.png OUTPUT_DIR
 """
@@ -299,6 +300,23 @@ check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expecte
 # view it was sorted for; the view's empty actors hide nothing).
 used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
 check("bool(true)" in used, "view ordered: the view's image is not the controlled one (%r)" % used.strip())
+# A camera move keeps the sort (the plain estimate is shown); the TF edit
+# that follows sorts for the view as it is then, and is controlled again.
+camera.Azimuth(30)
+Render(view)
+used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
+check("bool(false)" in used, "view ordered: the control image is used after a camera move (%r)" % used.strip())
+opacity.Points = [1200.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
+Render(view)
+used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
+check("bool(true)" in used, "view ordered: a TF edit after a camera move is not controlled (%r)" % used.strip())
+on_screen = line_integral_image(representation)
+expected = offline_image(index, opacity.Points, camera, [300, 240], ordered=True,
+                         SampleExponent=20, Seed=5, Kernel=1, Deposit=0)
+check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
+      "view ordered, a TF edit after a camera move: %d pixels differ from the off-line image of a cloud "
+      "sorted for the moved camera"
+      % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
 
 if failures:
     sys.exit("%d check(s) failed" % len(failures))

@@ -259,6 +259,12 @@ int vtkMCXXRayRepresentation::RequestData(
         0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
     }
     this->Aggregate->Update();
+    // The volume is hidden and the sampler leaves the view's piece until the
+    // new index is delivered (REQUEST_RENDER shows and connects them again):
+    // the view empties the piece in between, and asks the visible props'
+    // bounds first, which would sample that.
+    this->Sampler->RemoveAllInputConnections(0);
+    this->Volume->SetVisibility(false);
     this->DeliveredIndex = vtkSmartPointer<vtkImageData>::New();
     this->DeliveredIndex->ShallowCopy(this->Aggregate->GetOutput());
     // The whole volume's bounds, the same on every process.
@@ -280,13 +286,8 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   if (request == vtkPVView::REQUEST_UPDATE())
   {
     // A view-ordered cloud is sorted for the view as it is when the
-    // representation updates (a TF or property edit), not at each camera move.
-    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
-    if (view && this->Sampler->GetStrategy() == vtkMCXPointSampler::VIEW_ORDERED)
-    {
-      const int* size = view->GetSize();
-      this->Sampler->SetOrderingView(view->GetActiveCamera(), size[0], size[1]);
-    }
+    // representation updates (a property edit), not at each camera move.
+    this->OrderForView(vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW())));
     // Only the index travels to the rendering processes: 4 or 8 bytes a voxel.
     // The size that decides on interactive (LOD) renders is that of the
     // cloud the renders draw, so that a large point count makes camera
@@ -355,6 +356,13 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     {
       this->Sampler->SetInputConnection(producer);
       this->UseDefaultRampUnlessColoured(index);
+      // A TF edit re-samples without updating the representation: it too
+      // sorts for the view as it is (the control image holds only there).
+      vtkPiecewiseFunction* tf = this->Sampler->GetTransferFunction();
+      if (tf && tf->GetMTime() > this->OrderedForTransferFunction)
+      {
+        this->OrderForView(vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW())));
+      }
     }
     else
     {
@@ -445,6 +453,18 @@ void vtkMCXXRayRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* fu
   this->OpacityFunction = function;
   this->Sampler->SetTransferFunction(function ? function : this->DefaultRamp.GetPointer());
   this->MarkModified();
+}
+
+void vtkMCXXRayRepresentation::OrderForView(vtkPVRenderView* view)
+{
+  if (!view || this->Sampler->GetStrategy() != vtkMCXPointSampler::VIEW_ORDERED)
+  {
+    return;
+  }
+  const int* size = view->GetSize();
+  this->Sampler->SetOrderingView(view->GetActiveCamera(), size[0], size[1]);
+  vtkPiecewiseFunction* tf = this->Sampler->GetTransferFunction();
+  this->OrderedForTransferFunction = tf ? tf->GetMTime() : 0;
 }
 
 void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
@@ -576,6 +596,7 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
   os << indent << "StreamedProgress: " << this->StreamedProgress << "\n";
   os << indent << "ToldServerCannotRender: " << this->ToldServerCannotRender << "\n";
+  os << indent << "OrderedForTransferFunction: " << this->OrderedForTransferFunction << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

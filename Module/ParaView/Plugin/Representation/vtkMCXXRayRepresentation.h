@@ -30,6 +30,7 @@
 
 class vtkImageData;
 class vtkPolyData;
+class vtkPVRenderView;
 class vtkMCXAggregateIndex;
 class vtkMCXDensityIndex;
 class vtkMCXPointSampler;
@@ -141,10 +142,15 @@ protected:
   vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
   vtkTypeInt64 StreamedProgress = -1;  // the mapper's projecting renders at the last streaming pass
   bool ToldServerCannotRender = false; // the warning is given once
+  // The sampler's TF as it was when a view-ordered cloud last took the
+  // view: an edit since then sorts for the view as it is now.
+  vtkMTimeType OrderedForTransferFunction = 0;
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
   void UseDefaultRampUnlessColoured(vtkImageData* index);
+  /// A view-ordered sampler sorts for the view as it is now.
+  void OrderForView(vtkPVRenderView* view);
   bool ServerRenders(); // the view's server processes can render
   void operator=(const vtkMCXXRayRepresentation&) = delete;
 };
