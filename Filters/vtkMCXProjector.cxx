@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <new>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -55,6 +56,7 @@ struct Projection
   bool Completed = true;
   bool FallsAsInverseM = false; // see mcx::FootprintErrorCalibration
   bool EveryVoxel = false;      // not estimated: see mcx::IsEveryVoxelCloud
+  std::string RandomParts;      // the deposit's random parts, if any (RandomPartsOf)
   // A view-ordered cloud's control (mcx::CloudControlImage; empty: none):
   // H, the sums of the points counted once (as Sums), the weight the points
   // carry and that of the first half, and a pixel's beam cross-section.
@@ -94,6 +96,26 @@ struct Projection
       mcx::EstimateRelativeError(this->Sums, this->Count);
   }
 };
+
+// What is random in a deposit whose error does not fall as M^-1 (the
+// voxel choice aside): empty for whole footprints. An every-voxel image is
+// exact only without these.
+std::string RandomPartsOf(
+  const Accumulator& accumulator, const mcx::DepositSettings& settings, double footprintReach)
+{
+  if (accumulator.ErrorFallsAsInverseM())
+  {
+    return std::string();
+  }
+  if (settings.Mode == mcx::Deposit::Point)
+  {
+    return "the point deposit draws each kernel offset at random";
+  }
+  std::ostringstream parts;
+  parts << "voxels reach more than FootprintReach (" << footprintReach
+        << ") pixels here, so their footprints are split with a random part";
+  return parts.str();
+}
 
 void CollectSums(Accumulator& accumulator, Projection& projection)
 {
@@ -148,6 +170,7 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   Accumulator accumulator;
   accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
   projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
+  projection.RandomParts = RandomPartsOf(accumulator, settings, footprintReach);
   projection.EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
   projection.Control = mcx::CloudControlImage(cloud, geometry);
   projection.PixelArea = geometry.BeamCrossSection();
@@ -307,8 +330,10 @@ private:
     Accumulator accumulator;
     double origin[3], matrix[9];
     this->View.SourceToWorld(origin, matrix);
-    accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), this->Settings());
+    const mcx::DepositSettings settings = this->Settings();
+    accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), settings);
     projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
+    projection.RandomParts = RandomPartsOf(accumulator, settings, this->FootprintReach);
     std::string error;
     try
     {
@@ -678,6 +703,13 @@ int vtkMCXProjector::RequestData(
   {
     mcx::EmptyOutputElsewhere(output, outputVector->GetInformationObject(0));
     return 1;
+  }
+  if (projection.EveryVoxel && projection.Count > 0 && !projection.RandomParts.empty())
+  {
+    vtkWarningMacro("Every voxel once, but not without noise: "
+      << projection.RandomParts
+      << "; that noise is not estimated (the footprint deposit, a smaller image or a larger "
+         "FootprintReach avoids it).");
   }
   WriteImage(projection, geometry, this->AllocateLineIntegral(output), output->GetFieldData());
   return 1;

@@ -74,8 +74,10 @@ options:
                         mean pixel deviation below one of L grey levels
   --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
                         non-zero weight once, weighted by the TF: no sampling
-                        noise; replaces --samples; with --stored-points, a cloud
-                        as large as those voxels), or reference (exact, slow)
+                        noise while each voxel's footprint reaches at most 16
+                        pixels, else a warning; replaces --samples; with
+                        --stored-points, a cloud as large as those voxels), or
+                        reference (exact, slow)
   --kernel K            tent (trilinear, default) or box (nearest neighbour)
   --deposit D           footprint (default: each sample adds its voxel's kernel
                         integrated over every pixel it reaches; about 4 to 50
@@ -465,8 +467,10 @@ private:
     const auto start = std::chrono::steady_clock::now();
     projector->Update();
     this->Progress.End();
+    bool noisy = false; // an every-voxel image with random parts (the projector's warning)
     for (const std::string& warning : this->Capture.Warnings())
     {
+      noisy = noisy || warning.find("not without noise") != std::string::npos;
       if (IsFirstProcess())
       {
         std::cerr << "mcxray: warning: " << warning << std::endl;
@@ -477,12 +481,12 @@ private:
     vtkImageData* image = projector->GetOutput();
     if (IsFirstProcess())
     {
-      this->LogProjection(image, seconds);
+      this->LogProjection(image, seconds, noisy);
     }
     return image;
   }
 
-  void LogProjection(vtkImageData* image, double seconds) const
+  void LogProjection(vtkImageData* image, double seconds, bool noisy) const
   {
     vtkFieldData* fields = image->GetFieldData();
     std::ostringstream line;
@@ -502,7 +506,8 @@ private:
            << seconds << " s (" << static_cast<long long>(samples);
       if (this->Options.Method == "every-voxel")
       {
-        line << " voxels, each once: no sampling error to estimate)";
+        line << (noisy ? " voxels, each once, with random parts: their noise is not estimated)"
+                       : " voxels, each once: no sampling error to estimate)");
       }
       else
       {

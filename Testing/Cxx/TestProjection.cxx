@@ -8,6 +8,7 @@
 #include "vtkMCXProjector.h"
 #include "vtkMCXReferenceProjector.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -232,6 +233,51 @@ TEST(Projection, EveryVoxelTakesNoTarget)
       errors->GetErrorText())
       << quantization;
     EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints()) << quantization;
+  }
+}
+
+TEST(Projection, EveryVoxelWarnsWhenItsImageHasRandomParts)
+{
+  // Every voxel once is exact only with whole footprints: the point
+  // deposit's offsets and footprints split past FootprintReach are random,
+  // and a warning says so (its error is not estimated).
+  Scene scene;
+  struct Case
+  {
+    int Deposit;
+    double Reach;
+    const char* Expected; // in the warning; nullptr: none
+  };
+  const Case cases[] = {
+    { vtkMCXPointSampler::FOOTPRINT, 16.0, nullptr },
+    { vtkMCXPointSampler::FOOTPRINT, 0.5, "footprints are split with a random part" },
+    { vtkMCXPointSampler::POINT, 16.0, "the point deposit draws each kernel offset at random" },
+  };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    scene.Configure(projector.Get(), nullptr, 32);
+    projector->SetStrategy(vtkMCXPointSampler::EVERY_VOXEL);
+    projector->SetDeposit(c.Deposit);
+    projector->SetFootprintReach(c.Reach);
+    std::string warnings;
+    vtkNew<vtkCallbackCommand> onWarning;
+    onWarning->SetClientData(&warnings);
+    onWarning->SetCallback([](vtkObject*, unsigned long, void* target, void* text)
+      { *static_cast<std::string*>(target) += static_cast<const char*>(text); });
+    projector->AddObserver(vtkCommand::WarningEvent, onWarning);
+    projector->Update();
+    if (c.Expected)
+    {
+      EXPECT_NE(std::string::npos, warnings.find("Every voxel once, but not without noise: "))
+        << warnings;
+      EXPECT_NE(std::string::npos, warnings.find(c.Expected)) << warnings;
+    }
+    else
+    {
+      EXPECT_EQ("", warnings);
+    }
+    EXPECT_GT(mcxtest::LineIntegralSum(projector->GetOutput()), 0.0) << c.Deposit << " " << c.Reach;
   }
 }
 
