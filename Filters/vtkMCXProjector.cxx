@@ -632,6 +632,25 @@ int vtkMCXProjector::RequestUpdateExtent(
   return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
 }
 
+void vtkMCXProjector::SetStrategy(int strategy)
+{
+  if (strategy == vtkMCXPointSampler::VIEW_ORDERED)
+  {
+    vtkErrorMacro("SetStrategy: VIEW_ORDERED sorts a vtkMCXPointSampler's cloud for one view; "
+                  "the projector's own samples cannot take it, so the strategy stays "
+      << this->Strategy << ".");
+    return;
+  }
+  const int clamped =
+    std::min(std::max(strategy, static_cast<int>(vtkMCXPointSampler::HYBRID)),
+      static_cast<int>(vtkMCXPointSampler::EVERY_VOXEL));
+  if (clamped != this->Strategy)
+  {
+    this->Strategy = clamped;
+    this->Modified();
+  }
+}
+
 void vtkMCXProjector::SetNumberOfSamples(vtkTypeInt64 n)
 {
   this->SetSampleExponent(static_cast<int>(mcx::ExponentForSampleCount(n)));

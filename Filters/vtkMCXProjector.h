@@ -65,13 +65,14 @@ public:
    * is unused and the target controls must be 0, else an error) and the
    * seed. Ignored for a point-cloud input (a VIEW_ORDERED cloud too: that
    * strategy is the sampler's alone, since one projection would pay its
-   * sort of every voxel).
+   * sort of every voxel; SetStrategy(VIEW_ORDERED) is an error that keeps
+   * the strategy).
    */
   vtkSetClampMacro(SampleExponent, int, 0, vtkMCXPointSampler::LargestSampleExponent);
   vtkGetMacro(SampleExponent, int);
   void SetNumberOfSamples(vtkTypeInt64 n);
   vtkTypeInt64 GetNumberOfSamples();
-  vtkSetClampMacro(Strategy, int, vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL);
+  virtual void SetStrategy(int strategy);
   vtkGetMacro(Strategy, int);
   vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
   vtkGetMacro(Seed, vtkTypeInt64);

@@ -111,6 +111,16 @@ std::string vtkMCXProjectorBase::vtkInternals::ComputeGeometry(
 {
   std::string problem;
   const bool framed = corners != nullptr;
+  // What the setters cannot clamp: a NaN spacing, a negative size.
+  if (!std::isfinite(self.PixelSpacing))
+  {
+    return "PixelSpacing must be a finite number (0: automatic)";
+  }
+  if (self.ImageSize[0] < 0 || self.ImageSize[1] < 0)
+  {
+    return "ImageSize must be 0 (automatic) or positive, not " +
+      std::to_string(self.ImageSize[0]) + " x " + std::to_string(self.ImageSize[1]);
+  }
   if (self.Camera)
   {
     problem = mcx::GeometryFromCamera(self.Camera, self.ImageSize, self.PixelSpacing, 0.0, g);

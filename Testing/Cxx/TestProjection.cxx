@@ -236,6 +236,50 @@ TEST(Projection, EveryVoxelTakesNoTarget)
   }
 }
 
+TEST(Projection, SettingsNoSetterCanClampAreErrors)
+{
+  // A NaN pixel spacing and a negative size are one error line each and no
+  // image (a NaN passed through the clamp and meant "automatic"); the
+  // sampler's VIEW_ORDERED is refused by the projector and leaves its
+  // strategy as it was (it was clamped to EVERY_VOXEL).
+  Scene scene;
+  struct Case
+  {
+    double Spacing;
+    int Size[2];
+    const char* Expected;
+  };
+  const Case cases[] = {
+    { std::nan(""), { 16, 16 }, "PixelSpacing must be a finite number (0: automatic)." },
+    { 0.0, { -1, 5 }, "ImageSize must be 0 (automatic) or positive, not -1 x 5." },
+  };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    scene.Configure(projector.Get(), nullptr, 16);
+    projector->SetPixelSpacing(c.Spacing);
+    projector->SetImageSize(c.Size[0], c.Size[1]);
+    vtkNew<vtkMCXFirstErrorObserver> errors;
+    errors->ObserveAlgorithm(projector);
+    projector->Update();
+    errors->StopObserving();
+    EXPECT_EQ(c.Expected, errors->GetErrorText());
+    EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints()) << c.Expected;
+  }
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetStrategy(vtkMCXPointSampler::QUASI_MONTE_CARLO);
+  vtkNew<vtkMCXFirstErrorObserver> errors;
+  errors->ObserveAlgorithm(projector);
+  projector->SetStrategy(vtkMCXPointSampler::VIEW_ORDERED);
+  errors->StopObserving();
+  EXPECT_EQ("SetStrategy: VIEW_ORDERED sorts a vtkMCXPointSampler's cloud for one view; the "
+            "projector's own samples cannot take it, so the strategy stays 2.",
+    errors->GetErrorText());
+  EXPECT_EQ(vtkMCXPointSampler::QUASI_MONTE_CARLO, projector->GetStrategy());
+  projector->SetStrategy(99);
+  EXPECT_EQ(vtkMCXPointSampler::EVERY_VOXEL, projector->GetStrategy());
+}
+
 TEST(Projection, EveryVoxelWarnsWhenItsImageHasRandomParts)
 {
   // Every voxel once is exact only with whole footprints: the point
