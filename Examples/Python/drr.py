@@ -15,7 +15,7 @@ import time
 
 import numpy
 from vtkmodules.vtkImagingCore import vtkImageShiftScale
-from vtkmodules.vtkIOImage import vtkNIFTIImageReader, vtkPNGWriter
+from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 
@@ -26,42 +26,46 @@ from vtkmodules.vtkCommonCore import vtkCommand
 BUNDLED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "Data", "ct_head_headsq.vti")
 
 
-def read_dicom_series(folder):
-    reader = mcxray.vtkMCXDICOMSeriesReader()
-    reader.SetDirectoryName(folder)
+def read_with(reader):
+    """Updates the reader; its first error ends the script in one line (nothing is written)."""
     errors = []
 
     def keep(caller, event, report=None):
         errors.append(mcxray.vtkMCXFirstErrorObserver.MessageOf(report))
     keep.CallDataType = VTK_STRING  # VTK hands the report over
     reader.AddObserver(vtkCommand.ErrorEvent, keep)  # kept instead of printed
+    reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, keep)  # its "returned failure"
     reader.Update()
     if errors:
         sys.exit("drr.py: error: %s" % errors[0])
-    return reader.GetOutput()
+    volume = reader.GetOutput()
+    if volume.GetNumberOfPoints() == 0:
+        sys.exit("drr.py: error: no voxels read")
+    return volume
 
 
 def read_volume(path):
     if os.path.isdir(path):
-        return read_dicom_series(path)
+        reader = mcxray.vtkMCXDICOMSeriesReader()
+        reader.SetDirectoryName(path)
+        return read_with(reader)
     if path.endswith(".vti"):
         reader = vtkXMLImageDataReader()
     elif path.endswith(".nii") or path.endswith(".nii.gz"):
-        reader = vtkNIFTIImageReader()
+        reader = mcxray.vtkMCXNIFTIReader()  # world placement from the sform or qform, scl_slope applied
     else:
         sys.exit("drr.py: error: expected a .vti or .nii/.nii.gz volume or a DICOM folder, not %r" % path)
     if not os.path.isfile(path):
         sys.exit("drr.py: error: no such file %r" % path)
     reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
+    return read_with(reader)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("volume", nargs="?", default=BUNDLED)
     parser.add_argument("--output", default="drr")
-    parser.add_argument("--samples", type=int, default=(1 << 24) - 1)
+    parser.add_argument("--samples", type=int, default=(1 << 20) - 1)
     parser.add_argument("--size", type=int, default=256)
     args = parser.parse_args()
 
@@ -78,6 +82,7 @@ def main():
     projector = mcxray.vtkMCXProjector()
     projector.SetInputConnection(index.GetOutputPort())
     projector.SetTransferFunction(tf)
+    projector.SetDeposit(mcxray.vtkMCXPointSampler.FOOTPRINT)  # far less error per sample than POINT
     projector.SetNumberOfSamples(args.samples)
     projector.SetDetectorAxisU(1, 0, 0)  # a frontal view along +y, z up
     projector.SetDetectorAxisV(0, 0, 1)

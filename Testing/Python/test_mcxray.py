@@ -222,6 +222,28 @@ class Pipeline(unittest.TestCase):
         total = mcxray.image_to_numpy(image).sum() * spacing[0] * spacing[1]
         self.assertAlmostEqual(1.0, total / integral, places=9)
 
+    def test_drr_example_stops_at_a_truncated_volume(self):
+        """Examples/Python/drr.py on a cut-off file: one error line, a failing
+        exit status, and nothing written (it rendered what it had read)."""
+        import subprocess
+        import sys
+        import tempfile
+        example = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "Python", "drr.py")
+        with open(os.path.join(DATA, "ct_head_headsq.vti"), "rb") as whole:
+            head = whole.read()
+        with tempfile.TemporaryDirectory() as folder:
+            cut = os.path.join(folder, "cut.vti")
+            with open(cut, "wb") as part:
+                part.write(head[: len(head) // 2])
+            prefix = os.path.join(folder, "drr")
+            run = subprocess.run([sys.executable, example, cut, "--output", prefix, "--samples", "65535"],
+                                 capture_output=True, text=True, timeout=300)
+            self.assertNotEqual(0, run.returncode)
+            lines = run.stderr.strip().splitlines()
+            self.assertEqual(1, len(lines), run.stderr)
+            self.assertTrue(lines[0].startswith("drr.py: error: "), run.stderr)
+            self.assertEqual([os.path.basename(cut)], os.listdir(folder))
+
     def test_errors_do_not_crash(self):
         with self.assertRaises(ValueError):
             mcxray.image_to_numpy(vtkImageData())
