@@ -68,9 +68,9 @@ vtkSmartPointer<vtkCamera> ParseCamera(const std::string& text)
     Fail("bad --camera '" + text + "' (expected P:F:U:parallel=S or P:F:U:angle=A[:near=D])");
   }
   double position[3], focal[3], up[3];
-  ParseTriple(parts[0], position, "position");
-  ParseTriple(parts[1], focal, "focal point");
-  ParseTriple(parts[2], up, "view-up");
+  ParseTriple(parts[0], position, "--camera position");
+  ParseTriple(parts[1], focal, "--camera focal point");
+  ParseTriple(parts[2], up, "--camera view-up");
   auto camera = vtkSmartPointer<vtkCamera>::New();
   camera->SetPosition(position);
   camera->SetFocalPoint(focal);

@@ -46,7 +46,7 @@ void SetGeometryDistance(Settings& settings, double& distance, const Argument& a
 
 void SetSize(Settings& settings, const Argument& argument, int smallest, int largest)
 {
-  ParseSize(argument.Value, smallest, largest, settings.Size);
+  ParseSize(argument.Value, argument.Name, smallest, largest, settings.Size);
   settings.SizeGiven = true;
 }
 
@@ -103,7 +103,7 @@ const Option Options[] = {
   { "--detector", Both, true,
     [](Settings& s, const Argument& a)
     {
-      ParseSize(a.Value, 1, 65536, s.Radiograph.Detector);
+      ParseSize(a.Value, "--detector", 1, 65536, s.Radiograph.Detector);
       s.Radiograph.Geometry = true;
     } },
   { "--gantry", Both, true,
@@ -115,7 +115,7 @@ const Option Options[] = {
   { "--isocenter", Both, true,
     [](Settings& s, const Argument& a)
     {
-      ParseTriple(a.Value, s.Radiograph.Isocenter, "isocenter");
+      ParseTriple(a.Value, s.Radiograph.Isocenter, "--isocenter");
       s.Radiograph.HasIsocenter = true;
       s.Radiograph.Geometry = true;
     } },

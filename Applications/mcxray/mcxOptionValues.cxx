@@ -97,36 +97,35 @@ std::vector<std::string> Split(const std::string& text, char separator)
   return parts;
 }
 
-// The messages say --size even for --detector, as they always have.
-void ParseSize(const std::string& text, int smallest, int largest, int size[2])
+void ParseSize(
+  const std::string& text, const std::string& option, int smallest, int largest, int size[2])
 {
   const std::vector<std::string> parts = Split(text, 'x');
   if (parts.size() != 2)
   {
-    Fail("bad --size '" + text + "' (expected WxH, e.g. 512x512)");
+    Fail("bad " + option + " '" + text + "' (expected WxH, e.g. 512x512)");
   }
   for (int k = 0; k < 2; ++k)
   {
-    const long long side = ParseInteger(parts[k], "--size", smallest);
+    const long long side = ParseInteger(parts[k], option, smallest);
     if (side > largest)
     {
-      Fail("--size is limited to " + std::to_string(largest) + " pixels per side");
+      Fail(option + " is limited to " + std::to_string(largest) + " pixels per side");
     }
     size[k] = static_cast<int>(side);
   }
 }
 
-// The messages say --camera even for --isocenter, as they always have.
 void ParseTriple(const std::string& text, double out[3], const std::string& what)
 {
   const std::vector<std::string> parts = Split(text, ',');
   if (parts.size() != 3)
   {
-    Fail("bad --camera " + what + " '" + text + "' (expected x,y,z)");
+    Fail("bad " + what + " '" + text + "' (expected x,y,z)");
   }
   for (int a = 0; a < 3; ++a)
   {
-    out[a] = ParseNumber(parts[a], "--camera " + what);
+    out[a] = ParseNumber(parts[a], what);
   }
 }
 

@@ -29,10 +29,11 @@ long long ParseInteger(const std::string& text, const std::string& option, long 
 /// or T ("512M", "8G"), at most 2^60.
 double ParseByteSize(const std::string& text, const std::string& option);
 
-/// "WxH" with each side in [smallest, largest].
-void ParseSize(const std::string& text, int smallest, int largest, int size[2]);
+/// "WxH" with each side in [smallest, largest]; `option` names it in errors.
+void ParseSize(
+  const std::string& text, const std::string& option, int smallest, int largest, int size[2]);
 
-/// "x,y,z"; `what` names the triple in errors (e.g. "position").
+/// "x,y,z"; `what` names the triple in errors (e.g. "--camera position").
 void ParseTriple(const std::string& text, double out[3], const std::string& what);
 
 /// The parts of text between separators.

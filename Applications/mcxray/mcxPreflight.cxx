@@ -108,6 +108,10 @@ void CheckOutputDirectory(const std::string& path)
   {
     Fail("cannot write '" + path + "': directory '" + directory + "' is missing or not writable");
   }
+  if (vtksys::SystemTools::FileIsDirectory(path))
+  {
+    Fail("cannot write '" + path + "': it is a directory");
+  }
 }
 
 // Whether a spec parses does not depend on the data range, so any range will do.

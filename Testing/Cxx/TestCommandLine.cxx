@@ -390,9 +390,40 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
   }
   Result r = RunCLI("render --output /nonexistent-dir/x.png");
   EXPECT_EQ(2, r.Status);
+  // An output that is a folder is refused before any work, not after the render.
+  const std::string folder = Temporary("cli_folder.png");
+  vtksys::SystemTools::MakeDirectory(folder);
+  r = RunCLI("render --output " + folder);
+  EXPECT_EQ(2, r.Status);
+  EXPECT_EQ("mcxray: error: cannot write '" + folder + "': it is a directory\n", r.Errors);
+  EXPECT_EQ(std::string::npos, r.Output.find("index:")) << r.Output;
   Result help = RunCLI("render --help");
   EXPECT_EQ(0, help.Status);
   EXPECT_NE(std::string::npos, help.Output.find("--pixel-spacing"));
+}
+
+TEST(CommandLine, ErrorsNameTheOptionGiven)
+{
+  // --detector and --isocenter share --size's and --camera's parsers; their
+  // errors name the option the user gave.
+  const std::pair<const char*, const char*> cases[] = {
+    { "render --detector 0x5",
+      "mcxray: error: bad value '0' for --detector (expected an integer >= 1)\n" },
+    { "render --detector 5", "mcxray: error: bad --detector '5' (expected WxH, e.g. 512x512)\n" },
+    { "render --detector 70000x5",
+      "mcxray: error: --detector is limited to 65536 pixels per side\n" },
+    { "render --isocenter 1,2", "mcxray: error: bad --isocenter '1,2' (expected x,y,z)\n" },
+    { "render --isocenter 1,x,2", "mcxray: error: bad value 'x' for --isocenter\n" },
+    { "render --size 0x5", "mcxray: error: bad value '0' for --size (expected an integer >= 1)\n" },
+    { "render --camera 1,2:0,0,0:0,0,1:angle=30",
+      "mcxray: error: bad --camera position '1,2' (expected x,y,z)\n" },
+  };
+  for (const auto& c : cases)
+  {
+    const Result r = RunCLI(std::string(c.first) + " --output " + Temporary("cli_named.png"));
+    EXPECT_EQ(2, r.Status) << c.first;
+    EXPECT_EQ(c.second, r.Errors) << c.first;
+  }
 }
 
 TEST(CommandLine, ViewerBadInputGivesOneLineErrorAndNoOutput)
