@@ -138,6 +138,13 @@ std::string GeometryFromCamera(
   camera->GetPosition(position);
   camera->GetFocalPoint(focal);
   camera->GetViewUp(up);
+  for (const double* point : { position, focal, up })
+  {
+    if (!std::isfinite(point[0]) || !std::isfinite(point[1]) || !std::isfinite(point[2]))
+    {
+      return "the camera's position, focal point and view-up must be finite";
+    }
+  }
   double w[3] = { focal[0] - position[0], focal[1] - position[1], focal[2] - position[2] };
   const double distance = vtkMath::Normalize(w);
   if (!(distance > 0) || !std::isfinite(distance))

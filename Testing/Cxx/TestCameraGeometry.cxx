@@ -244,6 +244,36 @@ TEST(CameraGeometry, PixelsOfWorldPointsAreVTKs)
   }
 }
 
+TEST(CameraGeometry, CamerasThatDescribeNoViewAreNamed)
+{
+  // A NaN anywhere is named as such (it said the points coincide).
+  const double nan = std::nan("");
+  const int size[2] = { 8, 8 };
+  struct Case
+  {
+    double Position[3];
+    double Focal[3];
+    double Up[3];
+    const char* Expected;
+  };
+  const Case cases[] = {
+    { { nan, 0, 10 }, { 0, 0, 0 }, { 0, 1, 0 },
+      "the camera's position, focal point and view-up must be finite" },
+    { { 0, 0, 10 }, { 0, 0, 0 }, { 0, nan, 0 },
+      "the camera's position, focal point and view-up must be finite" },
+    { { 0, 0, 10 }, { 0, 0, 10 }, { 0, 1, 0 }, "the camera's position and focal point coincide" },
+  };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkCamera> camera;
+    camera->SetPosition(c.Position[0], c.Position[1], c.Position[2]);
+    camera->SetFocalPoint(c.Focal[0], c.Focal[1], c.Focal[2]);
+    camera->SetViewUp(c.Up[0], c.Up[1], c.Up[2]);
+    mcx::ProjectionGeometry g;
+    EXPECT_EQ(c.Expected, mcx::GeometryFromCamera(camera, size, 0.0, 0.0, g));
+  }
+}
+
 TEST(CameraGeometry, ProjectorPutsEachPointInVTKsPixel)
 {
   // A cloud of single points, each far from a pixel border in VTK's
