@@ -197,10 +197,16 @@ int vtkMCXProjectorBase::RequestInformation(
     inInfo, vtkInternals::ComputeGeometry(*this, in.Framed ? in.Corners : nullptr, g, depth));
   // A failed request leaves no stale image of an earlier one behind.
   vtkImageData* output = vtkImageData::GetData(outputVector);
+  in.InformationFailure = failure;
   if (!failure.empty())
   {
     vtkErrorMacro(<< failure << ".");
     output->Initialize();
+    // Not the input's extent, which the pipeline copied here by default: an
+    // update extent made from it would outlive the failure and be refused
+    // once the image is valid again (a 3D extent for a 2D image).
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
     return 0;
   }
   in.Geometry = g;
@@ -224,6 +230,10 @@ bool vtkMCXProjectorBase::FrameOnInputData(vtkDataObject* input, vtkInformation*
   // input post filter and VTK 9.1's pass-through filters drop the
   // DIRECTION key (a NIfTI volume in LPS came out mostly off the image).
   vtkInternals& in = *this->Internals;
+  if (!in.InformationFailure.empty())
+  {
+    return false; // RequestInformation said why; its geometry is not this request's
+  }
   double corners[24];
   if (this->Camera ||
     !DataCorners(

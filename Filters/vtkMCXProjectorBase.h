@@ -156,7 +156,8 @@ protected:
    * Frames the image again (no camera) when the input data place the volume
    * elsewhere than its information said, as when a filter upstream dropped
    * the DIRECTION key; call it first in RequestData. False (reported) when
-   * the data's volume cannot be framed.
+   * the data's volume cannot be framed, and (reported once, by
+   * RequestInformation) when the information could make no image.
    */
   bool FrameOnInputData(vtkDataObject* input, vtkInformation* inInfo);
 
