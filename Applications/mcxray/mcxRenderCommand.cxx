@@ -87,7 +87,7 @@ options:
   --threads N           worker threads (default: all cores); results do not depend on it
   --memory-limit SIZE   memory budget (e.g. 8G; default: the machine's memory):
                         volumes, indices, images and clouds that need more are
-                        refused up front, naming the size
+                        refused before the stage that makes them, naming the size
   --series N            the N-th series of a DICOM folder that holds several (an
                         error lists them when N is missing)
   --read-timeout S      stop a reader that takes longer than S seconds (default

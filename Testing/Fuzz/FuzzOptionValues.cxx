@@ -52,13 +52,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   });
   Try([&] {
     int wh[2] = { 0, 0 };
-    mcxapp::ParseSize(text, 1, 65536, wh);
+    mcxapp::ParseSize(text, "--size", 1, 65536, wh);
     if (wh[0] < 1 || wh[1] < 1 || wh[0] > 65536 || wh[1] > 65536)
       __builtin_trap();
   });
   Try([&] {
     double xyz[3];
-    mcxapp::ParseTriple(text, xyz, "position");
+    mcxapp::ParseTriple(text, xyz, "--camera position");
     if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
       __builtin_trap();
   });
