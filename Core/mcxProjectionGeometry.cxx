@@ -130,6 +130,20 @@ void ComputeSupportCorners(const int extent[6], const double origin[3], const do
   }
 }
 
+void CornerDepths(const ProjectionGeometry& g, const double corners[24], double depths[2])
+{
+  depths[0] = std::numeric_limits<double>::infinity();
+  depths[1] = -depths[0];
+  for (int c = 0; c < 8; ++c)
+  {
+    const double d[3] = { corners[3 * c] - g.Eye[0], corners[3 * c + 1] - g.Eye[1],
+      corners[3 * c + 2] - g.Eye[2] };
+    const double z = Dot(d, g.W);
+    depths[0] = std::min(depths[0], z);
+    depths[1] = std::max(depths[1], z);
+  }
+}
+
 void SupportDepthRange(const ProjectionGeometry& g, const double corners[24], double range[2])
 {
   range[0] = range[1] = 0.0;
@@ -137,17 +151,10 @@ void SupportDepthRange(const ProjectionGeometry& g, const double corners[24], do
   {
     return;
   }
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (int c = 0; c < 8; ++c)
-  {
-    const double d[3] = { corners[3 * c] - g.Eye[0], corners[3 * c + 1] - g.Eye[1],
-      corners[3 * c + 2] - g.Eye[2] };
-    const double z = Dot(d, g.W);
-    lo = std::min(lo, z);
-    hi = std::max(hi, z);
-  }
-  range[0] = std::max(lo, g.NearDistance);
-  range[1] = std::max(hi, range[0]);
+  double depths[2];
+  CornerDepths(g, corners, depths);
+  range[0] = std::max(depths[0], g.NearDistance);
+  range[1] = std::max(depths[1], range[0]);
 }
 
 bool ProjectToPlane(const ProjectionGeometry& g, const double x[3], double& a, double& b)

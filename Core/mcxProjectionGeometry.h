@@ -73,6 +73,10 @@ void GeometryToValues(const ProjectionGeometry& geometry, double values[Geometry
 void ComputeSupportCorners(const int extent[6], const double origin[3], const double spacing[3],
   const double direction[9], double kernelRadius, double corners[24]);
 
+/// The depths (along W, from the eye) of the nearest and the farthest of
+/// the 8 corners, in any view.
+void CornerDepths(const ProjectionGeometry& g, const double corners[24], double depths[2]);
+
 /// The depths (along W, from the eye) of the corners' box as seen from the
 /// eye: [nearest, farthest], the nearest at least the near distance; both 0
 /// in a parallel view.

@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 namespace mcx
@@ -92,17 +91,12 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
   // tables for every prefix of the cloud), else the points' bounds grown by
   // the kernel's reach along each axis.
   double corners[24];
-  vtkDataArray* support = fd->GetArray(vtkMCXPointSampler::SupportCornersName());
-  if (support && support->GetNumberOfValues() == 24)
+  if (!CloudSupportCorners(cloud, corners))
   {
-    for (int i = 0; i < 24; ++i)
+    if (cloud->GetNumberOfPoints() == 0)
     {
-      corners[i] = support->GetComponent(
-        i / support->GetNumberOfComponents(), i % support->GetNumberOfComponents());
+      return settings;
     }
-  }
-  else if (cloud->GetNumberOfPoints() > 0)
-  {
     double bounds[6];
     cloud->GetBounds(bounds);
     const double radius = KernelRadius(settings.Reconstruction);
@@ -120,10 +114,6 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
         corners[3 * c + a] = bounds[2 * a + ((c >> a) & 1)];
       }
     }
-  }
-  else
-  {
-    return settings;
   }
   double world[24];
   for (int c = 0; c < 8; ++c)
@@ -194,26 +184,30 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
   return control;
 }
 
-bool CloudSupportDepths(vtkPolyData* cloud, const ProjectionGeometry& geometry, double depths[2])
+bool CloudSupportCorners(vtkDataObject* data, double corners[24])
 {
-  vtkFieldData* fd = cloud->GetFieldData();
+  vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
   vtkDataArray* support = fd ? fd->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
-  if (!support || support->GetNumberOfComponents() != 1 || support->GetNumberOfTuples() != 24)
+  if (!support || support->GetNumberOfValues() != 24)
   {
     return false;
   }
-  depths[0] = std::numeric_limits<double>::infinity();
-  depths[1] = -std::numeric_limits<double>::infinity();
-  for (int c = 0; c < 8; ++c)
+  const int components = support->GetNumberOfComponents();
+  for (int i = 0; i < 24; ++i)
   {
-    double depth = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      depth += (support->GetComponent(3 * c + a, 0) - geometry.Eye[a]) * geometry.W[a];
-    }
-    depths[0] = std::min(depths[0], depth);
-    depths[1] = std::max(depths[1], depth);
+    corners[i] = support->GetComponent(i / components, i % components);
   }
+  return true;
+}
+
+bool CloudSupportDepths(vtkPolyData* cloud, const ProjectionGeometry& geometry, double depths[2])
+{
+  double corners[24];
+  if (!CloudSupportCorners(cloud, corners))
+  {
+    return false;
+  }
+  CornerDepths(geometry, corners, depths);
   return std::isfinite(depths[0]) && std::isfinite(depths[1]);
 }
 

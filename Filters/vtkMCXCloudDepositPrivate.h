@@ -11,6 +11,7 @@
 
 #include <vector>
 
+class vtkDataObject;
 class vtkDoubleArray;
 class vtkObject;
 class vtkPoints;
@@ -45,6 +46,12 @@ MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
 /// with nothing hiding any sample.
 MONTECARLOXRAYFILTERS_EXPORT std::vector<double> CloudControlImage(
   vtkPolyData* cloud, const ProjectionGeometry& geometry);
+
+/// The 8 corners (x, y, z each, in the cloud's coordinates: world for a
+/// sampler's cloud) of the data's field SupportCorners (the box where a
+/// vtkMCXPointSampler cloud's samples lie), 24 values in any layout; false
+/// without them.
+MONTECARLOXRAYFILTERS_EXPORT bool CloudSupportCorners(vtkDataObject* data, double corners[24]);
 
 /// The depths along `geometry`'s view (from its Eye along W) of the nearest
 /// and the farthest corner of the cloud's SupportCorners (world

@@ -3,6 +3,7 @@
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleGenerator.h"
 #include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXCloudDepositPrivate.h"
 #include "vtkMCXIndexViewPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 #include "vtkMCXPointSampler.h"
@@ -91,18 +92,7 @@ bool DataCorners(
       image->GetDirectionMatrix()->GetData(), kernelRadius, corners);
     return true;
   }
-  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
-  vtkDataArray* support = fd ? fd->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
-  if (!support || support->GetNumberOfComponents() * support->GetNumberOfTuples() != 24)
-  {
-    return false;
-  }
-  for (vtkIdType i = 0; i < 24; ++i)
-  {
-    corners[i] = support->GetComponent(
-      i / support->GetNumberOfComponents(), static_cast<int>(i % support->GetNumberOfComponents()));
-  }
-  return true;
+  return mcx::CloudSupportCorners(input, corners);
 }
 }
 
@@ -197,7 +187,7 @@ int vtkMCXProjectorBase::RequestInformation(
     inInfo, vtkInternals::ComputeGeometry(*this, in.Framed ? in.Corners : nullptr, g, depth));
   // A failed request leaves no stale image of an earlier one behind.
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  in.InformationFailure = failure;
+  in.InformationFailed = !failure.empty();
   if (!failure.empty())
   {
     vtkErrorMacro(<< failure << ".");
@@ -230,7 +220,7 @@ bool vtkMCXProjectorBase::FrameOnInputData(vtkDataObject* input, vtkInformation*
   // input post filter and VTK 9.1's pass-through filters drop the
   // DIRECTION key (a NIfTI volume in LPS came out mostly off the image).
   vtkInternals& in = *this->Internals;
-  if (!in.InformationFailure.empty())
+  if (in.InformationFailed)
   {
     return false; // RequestInformation said why; its geometry is not this request's
   }

@@ -19,10 +19,10 @@ struct vtkMCXProjectorBase::vtkInternals
   // on them (FrameOnInputData compares the data's with them).
   bool Framed = false;
   double Corners[24] = { 0 };
-  // Why the last RequestInformation could make no image ("" if it could):
-  // RequestData, which the pipeline may still run, then makes none either,
-  // without saying it twice (FrameOnInputData).
-  std::string InformationFailure;
+  // Whether the last RequestInformation could make no image: RequestData,
+  // which the pipeline may still run, then makes none either, without
+  // saying why twice (FrameOnInputData).
+  bool InformationFailed = false;
 
   /// The geometry of the projector's settings, framed on the support's 8
   /// corners (null: none known), and the detector plane's depth; returns why

@@ -781,16 +781,14 @@ double* vtkMCXXRayMapper::GetBounds()
   }
   this->Update();
   vtkPolyData* cloud = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
-  vtkDataArray* support =
-    cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
-  if (support && support->GetNumberOfValues() == 24)
+  double corners[24];
+  if (mcx::CloudSupportCorners(cloud, corners))
   {
     for (int c = 0; c < 8; ++c)
     {
       for (int a = 0; a < 3; ++a)
       {
-        const double x = support->GetComponent((3 * c + a) / support->GetNumberOfComponents(),
-          (3 * c + a) % support->GetNumberOfComponents());
+        const double x = corners[3 * c + a];
         this->Bounds[2 * a] = c == 0 ? x : std::min(this->Bounds[2 * a], x);
         this->Bounds[2 * a + 1] = c == 0 ? x : std::max(this->Bounds[2 * a + 1], x);
       }
