@@ -9,6 +9,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMCXFirstErrorObserver.h"
+#include "vtkMCXPatientSpace.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkObjectFactory.h"
@@ -78,18 +79,34 @@ bool vtkMCXNIFTIReader::Rescale() const
   return slope != 0.0 && (slope != 1.0 || intercept != 0.0);
 }
 
-void vtkMCXNIFTIReader::Placement(double origin[3], double direction[9]) const
+std::string vtkMCXNIFTIReader::Place(vtkInformation* readerInfo)
 {
+  // The form maps (spacing x index) to RAS: its columns times the spacing
+  // are the axes' steps, in LPS once their x and y are negated (the
+  // identity, the NIfTI standard's "method 1", when there is no form).
   vtkMatrix4x4* form = this->Reader->GetSFormMatrix() ? this->Reader->GetSFormMatrix()
                                                       : this->Reader->GetQFormMatrix();
+  double stored[3] = { 1, 1, 1 };
+  readerInfo->Get(vtkDataObject::SPACING(), stored);
+  double steps[9];
+  const double toLPS[3] = { -1.0, -1.0, 1.0 };
   for (int r = 0; r < 3; ++r)
   {
-    origin[r] = form ? form->GetElement(r, 3) : 0.0;
+    this->Origin[r] = form ? toLPS[r] * form->GetElement(r, 3) : 0.0;
     for (int c = 0; c < 3; ++c)
     {
-      direction[3 * r + c] = form ? form->GetElement(r, c) : (r == c ? 1.0 : 0.0);
+      steps[3 * r + c] = toLPS[r] * (form ? form->GetElement(r, c) : (r == c ? 1.0 : 0.0)) * stored[c];
     }
   }
+  std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, this->Spacing, this->Direction);
+  if (problem.empty())
+  {
+    int extent[6];
+    readerInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+    problem =
+      vtkMCXPatientSpace::DescribeUnusableExtent(this->Origin, this->Spacing, this->Direction, extent);
+  }
+  return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
 }
 
 int vtkMCXNIFTIReader::RequestInformation(
@@ -104,6 +121,11 @@ int vtkMCXNIFTIReader::RequestInformation(
     this->Reader->SetFileName(path.c_str());
     problem = Run(this->Reader, [this] { this->Reader->UpdateInformation(); });
   }
+  vtkInformation* readerInfo = this->Reader->GetOutputInformation(0);
+  if (problem.empty())
+  {
+    problem = this->Place(readerInfo);
+  }
   this->Failed = !problem.empty();
   if (this->Failed)
   {
@@ -115,9 +137,8 @@ int vtkMCXNIFTIReader::RequestInformation(
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
     return 1;
   }
-  vtkInformation* readerInfo = this->Reader->GetOutputInformation(0);
   outInfo->CopyEntry(readerInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-  outInfo->CopyEntry(readerInfo, vtkDataObject::SPACING());
+  outInfo->Set(vtkDataObject::SPACING(), this->Spacing, 3);
   outInfo->CopyEntry(readerInfo, vtkDataObject::POINT_DATA_VECTOR(), 1);
   if (this->Rescale())
   {
@@ -128,10 +149,8 @@ int vtkMCXNIFTIReader::RequestInformation(
       : 1;
     vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, components);
   }
-  double origin[3], direction[9];
-  this->Placement(origin, direction);
-  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), direction, 9);
+  outInfo->Set(vtkDataObject::ORIGIN(), this->Origin, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), this->Direction, 9);
   this->SetErrorCode(vtkErrorCode::NoError);
   return 1;
 }
@@ -162,10 +181,9 @@ int vtkMCXNIFTIReader::RequestData(
     return 1;
   }
   output->ShallowCopy(image);
-  double origin[3], direction[9];
-  this->Placement(origin, direction);
-  output->SetOrigin(origin);
-  output->SetDirectionMatrix(direction);
+  output->SetOrigin(this->Origin);
+  output->SetSpacing(this->Spacing);
+  output->SetDirectionMatrix(this->Direction);
   if (this->Rescale())
   {
     const double slope = this->Reader->GetRescaleSlope();
@@ -195,4 +213,14 @@ void vtkMCXNIFTIReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "Reader: " << this->Reader.GetPointer() << "\n";
   os << indent << "Failed (last information request): " << this->Failed << "\n";
+  os << indent << "Origin (LPS): " << this->Origin[0] << " " << this->Origin[1] << " "
+     << this->Origin[2] << "\n";
+  os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " "
+     << this->Spacing[2] << "\n";
+  os << indent << "Direction (LPS):";
+  for (double d : this->Direction)
+  {
+    os << " " << d;
+  }
+  os << "\n";
 }

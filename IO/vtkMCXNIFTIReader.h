@@ -5,9 +5,12 @@
  *
  * VTK's vtkNIFTIImageReader gives the voxels on a grid at the origin and
  * leaves the header's placement and scaling to the caller (ParaView's own
- * NIfTI reader ignores the sform). This reader applies them:
- * - world = form x (spacing x index), form the sform when the file has one,
- *   else the qform: the output's origin and direction matrix;
+ * NIfTI reader ignores the sform). This reader applies them, in DICOM
+ * patient space (LPS, vtkMCXPatientSpace) like every MonteCarloXRay reader:
+ * - world = diag(-1, -1, 1) x form x (spacing x index), form the sform when
+ *   the file has one, else the qform (NIfTI's world is RAS: x and y are
+ *   negated): the output's origin, spacing (the steps' lengths) and
+ *   direction matrix; a form that places no volume is an error;
  * - values = scl_slope x stored + scl_inter (float64), unless scl_slope is 0
  *   (no scaling, as NIfTI-1 says) or the pair is 1 and 0.
  * An error is one vtkErrorMacro line (the wrapped reader's own reports are
@@ -19,6 +22,8 @@
 #include "MonteCarloXRayIOModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 #include "vtkNew.h" // for the wrapped reader
+
+#include <string> // for the placement's problems
 
 class vtkNIFTIImageReader;
 
@@ -53,7 +58,11 @@ private:
 
   // The header's placement and scaling, from the last RequestInformation.
   bool Rescale() const;
-  void Placement(double origin[3], double direction[9]) const;
+  std::string Place(vtkInformation* readerInfo); // "" or why the placement is unusable
+
+  double Origin[3] = { 0, 0, 0 };                     // LPS
+  double Spacing[3] = { 1, 1, 1 };
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }; // LPS
 
   vtkNew<vtkNIFTIImageReader> Reader;
   bool Failed = false; // the last RequestInformation reported an error

@@ -10,10 +10,11 @@
 #include "vtkImageReader2.h"
 #include "vtkMCXFirstErrorObserver.h"
 #include "vtkMatrix4x4.h"
-#include "vtkMetaImageReader.h"
+#include "vtkMCXMetaImageReader.h"
 #include "vtkMCXNIFTIReader.h"
+#include "vtkMCXNrrdReader.h"
+#include "vtkMCXPatientSpace.h"
 #include "vtkNew.h"
-#include "vtkNrrdReader.h"
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkStructuredPointsReader.h"
@@ -78,7 +79,15 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   }
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    return ReadDicomSeries(path, options.DicomSeries, error);
+    auto series = ReadDicomSeries(path, options.DicomSeries, error);
+    const std::string placement =
+      series ? vtkMCXPatientSpace::DescribeUnusablePlacement(series) : std::string();
+    if (!placement.empty())
+    {
+      error = "cannot read '" + path + "': the series' placement cannot be used: " + placement;
+      return nullptr;
+    }
+    return series;
   }
   vtkSmartPointer<vtkAlgorithm> reader;
   if (EndsWith(path, ".vti"))
@@ -89,19 +98,19 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   }
   else if (EndsWith(path, ".mha") || EndsWith(path, ".mhd"))
   {
-    auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
+    auto meta = vtkSmartPointer<vtkMCXMetaImageReader>::New(); // oriented in LPS
     meta->SetFileName(path.c_str());
     reader = meta;
   }
   else if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
   {
-    auto nifti = vtkSmartPointer<vtkMCXNIFTIReader>::New(); // sform/qform and scaling applied
+    auto nifti = vtkSmartPointer<vtkMCXNIFTIReader>::New(); // sform/qform in LPS, scaling applied
     nifti->SetFileName(path.c_str());
     reader = nifti;
   }
   else if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
   {
-    auto nrrd = vtkSmartPointer<vtkNrrdReader>::New();
+    auto nrrd = vtkSmartPointer<vtkMCXNrrdReader>::New(); // its space, oriented in LPS
     nrrd->SetFileName(path.c_str());
     reader = nrrd;
   }
@@ -135,6 +144,12 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   {
     error = "cannot read '" + path + "'" +
       (message.empty() ? std::string(": no volume data") : ": " + message);
+    return nullptr;
+  }
+  const std::string placement = vtkMCXPatientSpace::DescribeUnusablePlacement(image);
+  if (!placement.empty())
+  {
+    error = "cannot read '" + path + "': the file's placement cannot be used: " + placement;
     return nullptr;
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();

@@ -105,9 +105,17 @@ struct Nifti
   float SRow[3][4] = { { 0 } };
   float VoxOffset = 352;
 
-  // World point of stored voxel (i, j, k) by the standard: sform when its
-  // code is set, else the qform, else pixdim alone.
+  // World point of stored voxel (i, j, k) in patient space (LPS): the
+  // standard's RAS point (RASOf) with x and y negated.
   World WorldOf(int i, int j, int k) const
+  {
+    const World ras = this->RASOf(i, j, k);
+    return { -ras[0], -ras[1], ras[2] };
+  }
+
+  // RAS point of stored voxel (i, j, k) by the standard: sform when its
+  // code is set, else the qform, else pixdim alone.
+  World RASOf(int i, int j, int k) const
   {
     const double ijk[3] = { double(i), double(j), double(k) };
     World x{ 0, 0, 0 };

@@ -6,7 +6,7 @@ mcxray.vtkMCXNIFTIReader on the shared CT body and on files written here.
 
 The series holds the voxels of headsq.vti, its slices at positions that run
 the other way along z; the NIfTI volume lies where its header's sform puts
-it. An error is exactly one printed VTK error line, an error code and an
+it, in patient space (LPS: the sform's RAS x and y negated). An error is exactly one printed VTK error line, an error code and an
 empty output, never a crash or a stale (half-read) volume.
 """
 import gzip
@@ -192,7 +192,7 @@ class Nifti(unittest.TestCase):
     def tearDown(self):
         shutil.rmtree(self.work)
 
-    def test_volume_lies_where_the_sform_puts_it(self):
+    def test_volume_lies_where_the_sform_puts_it_in_lps(self):
         with gzip.open(BODY, "rb") as f:
             header = f.read(348)
         dims = struct.unpack("<8h", header[40:56])[1:4]
@@ -205,7 +205,8 @@ class Nifti(unittest.TestCase):
         for index in ((0, 0, 0), (dims[0] - 1, 1, 2), (5, dims[1] - 1, dims[2] - 1)):
             placed = [0.0, 0.0, 0.0]
             volume.TransformIndexToPhysicalPoint(*index, placed)
-            expected = srow @ numpy.array(list(index) + [1.0])
+            expected = srow @ numpy.array(list(index) + [1.0])  # RAS, NIfTI's world
+            expected[:2] = -expected[:2]  # LPS, the project's
             self.assertLess(numpy.abs(numpy.array(placed) - expected).max(), 1e-4, index)
 
     def test_scaling_keeps_every_component(self):

@@ -1,0 +1,304 @@
+#include "vtkMCXNrrdReader.h"
+
+#include "vtkCharArray.h"
+#include "vtkErrorCode.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMCXPatientSpace.h"
+#include "vtkMCXReaderErrorsPrivate.h"
+#include "vtkMath.h"
+#include "vtkObjectFactory.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXNrrdReader);
+
+namespace
+{
+std::string Trim(const std::string& text)
+{
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  const std::size_t last = text.find_last_not_of(" \t\r\n");
+  return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+}
+
+// The header's fields as vtkNrrdReader reads them: "field: description"
+// lines after the magic, up to the first empty line, '#' comments skipped;
+// a field given twice keeps its last value.
+std::map<std::string, std::string> Fields(const std::string& header)
+{
+  std::map<std::string, std::string> fields;
+  std::istringstream in(header);
+  std::string line;
+  std::getline(in, line); // the magic
+  while (std::getline(in, line) && !line.empty())
+  {
+    const std::size_t separator = line.find(": ");
+    if (line[0] != '#' && separator != std::string::npos)
+    {
+      fields[line.substr(0, separator)] = Trim(line.substr(separator + 2));
+    }
+  }
+  return fields;
+}
+
+// The signs that take a named space to LPS; false for a space that has no
+// LPS equivalent (or none this reader knows).
+bool SpaceToLPS(const std::string& space, double sign[3])
+{
+  static const std::map<std::string, std::array<double, 3>> known = {
+    { "right-anterior-superior", { -1, -1, 1 } }, { "RAS", { -1, -1, 1 } },
+    { "left-anterior-superior", { 1, -1, 1 } }, { "LAS", { 1, -1, 1 } },
+    { "left-posterior-superior", { 1, 1, 1 } }, { "LPS", { 1, 1, 1 } },
+    { "scanner-xyz", { 1, 1, 1 } }, { "3D-right-handed", { 1, 1, 1 } }
+  };
+  const auto found = known.find(space);
+  if (found == known.end())
+  {
+    return false;
+  }
+  std::copy(found->second.begin(), found->second.end(), sign);
+  return true;
+}
+
+// One vector "(a,b,c)" (spaces allowed) of exactly three numbers.
+bool ParseVector(const std::string& text, double vector[3])
+{
+  if (text.size() < 2 || text.front() != '(' || text.back() != ')')
+  {
+    return false;
+  }
+  std::string inner = text.substr(1, text.size() - 2);
+  std::istringstream in(inner);
+  std::string part;
+  int n = 0;
+  while (std::getline(in, part, ','))
+  {
+    part = Trim(part);
+    char* end = nullptr;
+    const double value = std::strtod(part.c_str(), &end);
+    if (part.empty() || n >= 3 || end != part.c_str() + part.size())
+    {
+      return false;
+    }
+    vector[n++] = value;
+  }
+  return n == 3;
+}
+
+// The entries of "space directions": "none" or a parenthesised vector.
+bool ParseDirections(const std::string& text, std::vector<std::string>& entries)
+{
+  entries.clear();
+  std::size_t at = 0;
+  while ((at = text.find_first_not_of(" \t", at)) != std::string::npos)
+  {
+    std::size_t end;
+    if (text[at] == '(')
+    {
+      end = text.find(')', at);
+      if (end == std::string::npos)
+      {
+        return false;
+      }
+      ++end;
+    }
+    else
+    {
+      end = std::min(text.find_first_of(" \t", at), text.size());
+    }
+    entries.push_back(text.substr(at, end - at));
+    at = end;
+  }
+  return true;
+}
+}
+
+vtkMCXNrrdReader::vtkMCXNrrdReader() = default;
+
+std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int extent[6],
+  const double vtkSpacing[3], double origin[3], double spacing[3], double direction[9])
+{
+  std::map<std::string, std::string> f = Fields(header);
+  for (int a = 0; a < 3; ++a)
+  {
+    origin[a] = 0.0;
+    spacing[a] = vtkSpacing[a];
+    for (int r = 0; r < 3; ++r)
+    {
+      direction[3 * r + a] = r == a ? 1.0 : 0.0;
+    }
+  }
+  if (!f.count("space") && !f.count("space dimension") && !f.count("space directions") &&
+    !f.count("space origin"))
+  {
+    return std::string(); // no world stated: VTK's grid, at the origin
+  }
+  double sign[3] = { 1, 1, 1 };
+  if (f.count("space") && !SpaceToLPS(f["space"], sign))
+  {
+    return "the NRRD space '" + f["space"] +
+      "' has no place in patient space (known: RAS, LAS, LPS, scanner-xyz, 3D-right-handed)";
+  }
+  if (!f.count("space") && Trim(f["space dimension"]) != "3")
+  {
+    return "the NRRD header's space dimension is '" + f["space dimension"] + "', not 3";
+  }
+  std::vector<std::string> entries;
+  if (!f.count("space directions") || !ParseDirections(f["space directions"], entries))
+  {
+    return "the NRRD header names a space but gives no readable space directions";
+  }
+  // vtkNrrdReader's rule for a leading component axis.
+  std::istringstream sizesText(f["sizes"]);
+  std::vector<long long> sizes;
+  long long size;
+  while (sizesText >> size)
+  {
+    sizes.push_back(size);
+  }
+  const bool components = sizes.size() > 3 || (!sizes.empty() && sizes[0] <= 9) ||
+    (!entries.empty() && entries[0] == "none");
+  if (entries.size() != sizes.size() || sizes.empty())
+  {
+    return "the NRRD header's space directions do not give one entry per axis";
+  }
+  const std::size_t first = components ? 1 : 0;
+  if (components && entries[0] != "none")
+  {
+    return "the NRRD header's first axis has a space direction but VTK's reader reads it as the "
+           "voxels' components (" +
+      std::to_string(sizes[0]) + " samples)";
+  }
+  const std::size_t axes = entries.size() - first;
+  if (axes < 2 || axes > 3)
+  {
+    return "the NRRD header gives " + std::to_string(axes) + " spatial axes, not 2 or 3";
+  }
+  double steps[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+  for (std::size_t a = 0; a < axes; ++a)
+  {
+    double v[3];
+    if (!ParseVector(entries[first + a], v))
+    {
+      return "the NRRD header's space direction '" + entries[first + a] + "' is not a vector of 3 numbers";
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      steps[3 * r + a] = sign[r] * v[r];
+    }
+  }
+  if (axes == 2)
+  {
+    // One slice: a unit step along the normal of its plane.
+    const double u[3] = { steps[0], steps[3], steps[6] }, w[3] = { steps[1], steps[4], steps[7] };
+    double normal[3];
+    vtkMath::Cross(u, w, normal);
+    const double length = vtkMath::Norm(normal);
+    for (int r = 0; r < 3; ++r)
+    {
+      steps[3 * r + 2] = length > 0 ? normal[r] / length : 0.0;
+    }
+  }
+  if (f.count("space origin"))
+  {
+    double o[3];
+    if (!ParseVector(f["space origin"], o))
+    {
+      return "the NRRD header's space origin '" + f["space origin"] + "' is not a vector of 3 numbers";
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      origin[r] = sign[r] * o[r];
+    }
+  }
+  std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, spacing, direction);
+  if (problem.empty())
+  {
+    problem = vtkMCXPatientSpace::DescribeUnusableExtent(origin, spacing, direction, extent);
+  }
+  return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
+}
+
+int vtkMCXNrrdReader::ReadHeader(vtkCharArray* headerBuffer)
+{
+  if (!this->Superclass::ReadHeader(headerBuffer))
+  {
+    return 0;
+  }
+  // The same bytes the superclass parsed, placed in LPS; the voxels are
+  // read in the file's order (vtkNrrdReader reverses the rows of LAS).
+  this->FileLowerLeft = 1;
+  double origin[3], spacing[3], direction[9];
+  this->PlacementProblem = PlaceHeader(std::string(headerBuffer->GetPointer(0)), this->DataExtent,
+    this->DataSpacing, origin, spacing, direction);
+  if (!this->PlacementProblem.empty())
+  {
+    return 0;
+  }
+  this->SetDataOrigin(origin);
+  this->SetDataSpacing(spacing);
+  this->SetDataDirection(direction);
+  return 1;
+}
+
+int vtkMCXNrrdReader::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->PlacementProblem.clear();
+  const std::string problem = mcxio::RunReaderStage(this,
+    [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+    [this] { return this->PlacementProblem; });
+  this->Failed = !problem.empty();
+  if (this->Failed)
+  {
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    mcxio::ReportReaderFailure(this, outputVector, this->FileName, problem);
+    return 1;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Set(vtkDataObject::ORIGIN(), this->DataOrigin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), this->DataSpacing, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), this->DataDirection, 9);
+  return 1;
+}
+
+int vtkMCXNrrdReader::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (this->Failed)
+  {
+    output->Initialize();
+    return 1; // reported by RequestInformation
+  }
+  const std::string problem = mcxio::RunReaderStage(this,
+    [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
+    [] { return std::string(); });
+  if (!problem.empty())
+  {
+    output->Initialize();
+    this->SetErrorCode(vtkErrorCode::FileFormatError);
+    mcxio::ReportReaderFailure(this, nullptr, this->FileName, problem);
+    return 1;
+  }
+  output->SetOrigin(this->DataOrigin);
+  output->SetSpacing(this->DataSpacing);
+  output->SetDirectionMatrix(this->DataDirection);
+  return 1;
+}
+
+void vtkMCXNrrdReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Failed (last information request): " << this->Failed << "\n";
+  os << indent << "PlacementProblem: " << this->PlacementProblem << "\n";
+}
