@@ -14,6 +14,7 @@
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
 #include "vtkMetaImageWriter.h"
+#include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
@@ -407,8 +408,18 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   const std::string work =
     vtksys::SystemTools::GetCurrentWorkingDirectory() + "/radiograph-plastimatch";
   vtksys::SystemTools::MakeDirectory(work);
+  // plastimatch ignores a volume's direction cosines: it is given the
+  // voxels axis-aligned at the origin (x = s * index) and the same view
+  // turned into that frame, x' = D^T (x - origin) (D, here the patient
+  // matrix of the NIfTI's RAS sform in LPS, diag(-1, -1, 1), is a rotation).
+  vtkNew<vtkImageData> aligned;
+  aligned->ShallowCopy(volume);
+  aligned->SetOrigin(0, 0, 0);
+  aligned->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+  vtkMatrix3x3* d = volume->GetDirectionMatrix();
+  ASSERT_NEAR(1.0, d->Determinant(), 1e-9);
   vtkNew<vtkMetaImageWriter> writer;
-  writer->SetInputData(volume);
+  writer->SetInputData(aligned);
   writer->SetFileName((work + "/ct.mha").c_str());
   writer->SetCompression(false);
   writer->Write();
@@ -419,10 +430,23 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   volume->GetBounds(bounds);
   const double iso[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
     (bounds[4] + bounds[5]) / 2 };
+  double turned[3], normal[3], up[3]; // D^T (iso - origin), D^T x, D^T z
+  for (int a = 0; a < 3; ++a)
+  {
+    turned[a] = 0;
+    for (int r = 0; r < 3; ++r)
+    {
+      turned[a] += d->GetElement(r, a) * (iso[r] - volume->GetOrigin()[r]);
+    }
+    normal[a] = d->GetElement(0, a);
+    up[a] = d->GetElement(2, a);
+  }
   std::ostringstream command;
   command << "plastimatch drr -I " << work << "/ct.mha -O " << work << "/drr_ -t pfm -i exact -r \""
-          << pixels << " " << pixels << "\" -z \"600 600\" --sad 1000 --sid 1500 -o \"" << iso[0]
-          << " " << iso[1] << " " << iso[2] << "\" > " << work << "/plastimatch.log 2>&1";
+          << pixels << " " << pixels << "\" -z \"600 600\" --sad 1000 --sid 1500 -o \"" << turned[0]
+          << " " << turned[1] << " " << turned[2] << "\" --nrm \"" << normal[0] << " " << normal[1]
+          << " " << normal[2] << "\" --vup \"" << up[0] << " " << up[1] << " " << up[2] << "\" > "
+          << work << "/plastimatch.log 2>&1";
   ASSERT_EQ(0, std::system(command.str().c_str())) << command.str();
   std::ifstream in(work + "/drr_0000.pfm", std::ios::binary);
   std::string magic;
