@@ -135,6 +135,15 @@ const Option Options[] = {
     [](Settings& s, const Argument& a)
     { s.Radiograph.NoiseSeed = ParseInteger(a.Value, a.Name, 0); } },
   { "--camera", Render, true, [](Settings& s, const Argument& a) { s.Camera = a.Value; } },
+  { "--coordinates", Both, true,
+    [](Settings& s, const Argument& a)
+    {
+      if (a.Value != "lps" && a.Value != "ras")
+      {
+        Fail("bad --coordinates '" + a.Value + "' (expected lps or ras)");
+      }
+      s.RASCoordinates = a.Value == "ras";
+    } },
   // An image may be large; a window must fit a screen.
   { "--size", Render, true, [](Settings& s, const Argument& a) { SetSize(s, a, 1, 65536); } },
   { "--size", View, true, [](Settings& s, const Argument& a) { SetSize(s, a, 16, 8192); } },
@@ -232,6 +241,13 @@ bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
       Fail("unknown option " + name + " (try: mcxray " + CommandName(command) + " --help)");
     }
     option->Apply(settings, { name, value });
+  }
+  if (settings.RASCoordinates)
+  {
+    // Points given in RAS, taken to patient space (LPS) once; the camera
+    // when it is parsed (ChooseView).
+    settings.Radiograph.Isocenter[0] = -settings.Radiograph.Isocenter[0];
+    settings.Radiograph.Isocenter[1] = -settings.Radiograph.Isocenter[1];
   }
   return true;
 }

@@ -56,6 +56,10 @@ Renders a simulated X-ray image (a DRR): per pixel, the mean over the pixel's
 area of the line integral of g = TF(density), reconstructed with the chosen
 kernel, in TF units times world length (mm for medical data).
 
+The world is DICOM patient space (LPS: x to the patient's left, y posterior,
+z to the head) for every format: NIfTI (RAS), NRRD and MetaImage headers are
+converted, so the same patient gives the same image from any file.
+
 INPUT   a volume: .vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a
         DICOM series directory (read with vtk-dicom: sorted by position, in
         patient space, rescaled to HU). Default: the bundled CT head (VTK's
@@ -106,11 +110,15 @@ options:
                         a cone-beam radiograph as radiographers give it (any one of
                         these selects it): source-to-axis distance (default 1000),
                         source-to-image distance (1500), detector pixels (512x512)
-                        and pitch (0.8), gantry angle (0: source on +x, turning
-                        about z), isocentre (default: the volume's centre). Image
-                        columns run along +y at angle 0, rows along +z, as in
-                        plastimatch drr; replaces --view, --camera, --size and
-                        --pixel-spacing
+                        and pitch (0.8), gantry angle (0: source on +x, the
+                        patient's left, turning about z), isocentre (default:
+                        the volume's centre). Image columns run along +y at
+                        angle 0, rows along +z, as in plastimatch drr; replaces
+                        --view, --camera, --size and --pixel-spacing
+  --coordinates C       lps (default) or ras: the points of --camera and
+                        --isocenter are in RAS (x to the patient's right, y
+                        anterior) and are taken to LPS by negating x and y;
+                        --view and --gantry name patient directions either way
   --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)
   --i0 I                unattenuated intensity I0 (default 1)
   --photons N           quantum noise: N photons reach an unattenuated pixel,
@@ -234,6 +242,10 @@ ViewChoice ChooseView(const Settings& settings)
   if (!settings.Camera.empty())
   {
     view.Camera = ParseCamera(settings.Camera);
+    if (settings.RASCoordinates)
+    {
+      FlipCameraRightAnterior(view.Camera);
+    }
   }
   else
   {

@@ -30,6 +30,7 @@ struct Settings
   bool SizeGiven = false;
   int Size[2] = { 0, 0 };
   RadiographSettings Radiograph;
+  bool RASCoordinates = false; // --coordinates ras: camera and isocentre points in RAS (else LPS)
 
   // render only
   std::string View = "+z";

@@ -61,7 +61,7 @@ options:
   --series N         the N-th series of a DICOM folder that holds several
   --read-timeout S   stop a reader that takes longer than S seconds (default 300)
   --size WxH         window size (default 768x768)
-  --sad, --sid, --detector, --pitch, --gantry, --isocenter
+  --sad, --sid, --detector, --pitch, --gantry, --isocenter, --coordinates
                      a cone-beam radiograph view as for mcxray render (the
                      detector's pixels become the window)
   --beer-lambert, --i0 I, --photons N, --noise-seed N, --negative-log

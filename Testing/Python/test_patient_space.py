@@ -356,6 +356,41 @@ class PatientSpace(unittest.TestCase):
         # from it, axis-aligned (orientation dropped) 16.2 %.
         self.assertLess(error, 0.04)
 
+    def test_points_given_in_ras_are_the_same_view(self):
+        # --coordinates ras negates x and y of --isocenter and --camera: the
+        # same image as their LPS values, and not the image without it.
+        path = self.files["NIfTI sform"][0]
+        iso = lps((numpy.array(DIMS) - 1) / 2) + [10, -5, 3]
+        images = {}
+        for name, extra in {
+            "lps": ["--isocenter", ",".join(repr(float(x)) for x in iso)],
+            "ras": ["--coordinates", "ras", "--isocenter", "%r,%r,%r" % (-iso[0], -iso[1], iso[2])],
+            "ras points read as lps": ["--isocenter", "%r,%r,%r" % (-iso[0], -iso[1], iso[2])],
+        }.items():
+            output = os.path.join(self.work, "iso-%s.vti" % name.replace(" ", "-"))
+            result = render(path, output, *extra)
+            self.assertEqual(0, result.returncode, result.stderr)
+            images[name] = read_vti_image(output)
+        self.assertTrue(numpy.array_equal(images["lps"], images["ras"]))
+        self.assertGreater(relative_rms(images["ras points read as lps"], images["lps"]), 0.5)
+        cameras = {}
+        source, up = iso + [0, -800, 0], [0, 0, 1]
+        for name, flip in (("lps", [1, 1, 1]), ("ras", [-1, -1, 1])):
+            spec = ":".join(",".join(repr(float(x)) for x in numpy.multiply(flip, p))
+                            for p in (source, iso, up)) + ":angle=8"
+            output = os.path.join(self.work, "camera-%s.vti" % name)
+            extra = ["--camera", spec] + (["--coordinates", "ras"] if name == "ras" else [])
+            result = subprocess.run([MCXRAY, "render", path, "--tf", ATTENUATION, "--size", "32x32",
+                                     "--samples", "262143", "--quiet", "--output", output, *extra],
+                                    capture_output=True, text=True, timeout=300)
+            self.assertEqual(0, result.returncode, result.stderr)
+            reader = vtkXMLImageDataReader()
+            reader.SetFileName(output)
+            reader.Update()
+            cameras[name] = vtk_to_numpy(reader.GetOutput().GetPointData().GetArray("LineIntegral"))
+        self.assertTrue(numpy.array_equal(cameras["lps"], cameras["ras"]))
+        self.assertGreater(cameras["lps"].max(), 0)
+
     def test_headers_whose_orientation_cannot_be_honoured_are_one_error(self):
         hu = self.hu
         cases = {
