@@ -214,17 +214,20 @@ bool FrameCorners(ProjectionGeometry& g, const double corners[24], const int req
     return false;
   }
   const double width[2] = { hi[0] - lo[0], hi[1] - lo[1] };
+  // FrameMargin pixels on each side: room for the footprint deposit's phase
+  // rounding, so that every sample's whole deposit lands in the image.
+  const double margins = 2 * FrameMargin;
   double spacing = requestedSpacing;
   int size[2] = { requestedSize[0], requestedSize[1] };
   if (!(spacing > 0))
   {
     if (size[0] > 0 && size[1] > 0)
     {
-      spacing = std::max(width[0] / size[0], width[1] / size[1]);
+      spacing = std::max(width[0] / (size[0] - margins), width[1] / (size[1] - margins));
     }
     else
     {
-      spacing = std::max(width[0], width[1]) / std::max(defaultLongSide, 1);
+      spacing = std::max(width[0], width[1]) / (std::max(defaultLongSide, 1) - margins);
     }
   }
   if (!(spacing > 0) || !std::isfinite(spacing))
@@ -235,7 +238,7 @@ bool FrameCorners(ProjectionGeometry& g, const double corners[24], const int req
   {
     if (size[k] <= 0)
     {
-      const double pixels = std::ceil(width[k] / spacing - 1e-9);
+      const double pixels = std::ceil(width[k] / spacing + margins - 1e-9);
       size[k] = static_cast<int>(std::max(1.0, std::min(pixels, 1.0e6)));
     }
     const double centre = 0.5 * (lo[k] + hi[k]);

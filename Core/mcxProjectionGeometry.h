@@ -87,11 +87,19 @@ void SupportDepthRange(
 /// eye (perspective) -- then (a, b) are left unchanged.
 bool ProjectToPlane(const ProjectionGeometry& geometry, const double x[3], double& a, double& b);
 
+/// The margin, in pixels, FrameCorners leaves on each side of the corners'
+/// projection: the footprint deposit rounds a sample's sub-pixel phase to one
+/// of at least 8 per pixel (FootprintTable), which moves its deposit by up to
+/// 1/8 pixel, so that with this margin every deposit of a parallel view lands
+/// in an image framed on the support and mass is conserved exactly.
+constexpr double FrameMargin = 0.125;
+
 /// Sets Size, Spacing and Origin so that the image covers the projection of
-/// the corners (perspective: the part in front of the near plane is framed by
-/// its 8 corners, so corners behind the eye are ignored). A requested size or
-/// spacing (> 0) is kept; with neither, the longest side gets defaultLongSide
-/// pixels. Returns false if nothing can be framed.
+/// the corners and FrameMargin pixels around it (perspective: the part in
+/// front of the near plane is framed by its 8 corners, so corners behind the
+/// eye are ignored). A requested size or spacing (> 0) is kept; with neither,
+/// the longest side gets defaultLongSide pixels. Returns false if nothing can
+/// be framed.
 bool FrameCorners(ProjectionGeometry& geometry, const double corners[24],
   const int requestedSize[2], double requestedSpacing, int defaultLongSide);
 

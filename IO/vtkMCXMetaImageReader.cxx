@@ -10,6 +10,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkmetaio/metaImage.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 

@@ -120,6 +120,40 @@ bool ParseDirections(const std::string& text, std::vector<std::string>& entries)
   }
   return true;
 }
+
+// The header's sizes, as integers.
+std::vector<long long> Sizes(const std::string& text)
+{
+  std::istringstream in(text);
+  std::vector<long long> sizes;
+  long long size;
+  while (in >> size)
+  {
+    sizes.push_back(size);
+  }
+  return sizes;
+}
+
+// Whether the first axis holds the voxels' components: a "none" space
+// direction or a kind that is no domain says so; without either, VTK's
+// guess (more than three axes, or at most 9 samples along the first).
+bool LeadingComponentAxis(std::map<std::string, std::string>& f)
+{
+  std::vector<std::string> entries;
+  if (f.count("space directions") && ParseDirections(f["space directions"], entries) &&
+    !entries.empty())
+  {
+    return entries[0] == "none";
+  }
+  std::istringstream kinds(f["kinds"]);
+  std::string first;
+  if (kinds >> first)
+  {
+    return first != "domain" && first != "space";
+  }
+  const std::vector<long long> sizes = Sizes(f["sizes"]);
+  return sizes.size() > 3 || (!sizes.empty() && sizes[0] <= 9);
+}
 }
 
 vtkMCXNrrdReader::vtkMCXNrrdReader() = default;
@@ -157,27 +191,12 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
   {
     return "the NRRD header names a space but gives no readable space directions";
   }
-  // vtkNrrdReader's rule for a leading component axis.
-  std::istringstream sizesText(f["sizes"]);
-  std::vector<long long> sizes;
-  long long size;
-  while (sizesText >> size)
-  {
-    sizes.push_back(size);
-  }
-  const bool components = sizes.size() > 3 || (!sizes.empty() && sizes[0] <= 9) ||
-    (!entries.empty() && entries[0] == "none");
+  const std::vector<long long> sizes = Sizes(f["sizes"]);
   if (entries.size() != sizes.size() || sizes.empty())
   {
     return "the NRRD header's space directions do not give one entry per axis";
   }
-  const std::size_t first = components ? 1 : 0;
-  if (components && entries[0] != "none")
-  {
-    return "the NRRD header's first axis has a space direction but VTK's reader reads it as the "
-           "voxels' components (" +
-      std::to_string(sizes[0]) + " samples)";
-  }
+  const std::size_t first = entries[0] == "none" ? 1 : 0;
   const std::size_t axes = entries.size() - first;
   if (axes < 2 || axes > 3)
   {
@@ -237,8 +256,36 @@ int vtkMCXNrrdReader::ReadHeader(vtkCharArray* headerBuffer)
   // The same bytes the superclass parsed, placed in LPS; the voxels are
   // read in the file's order (vtkNrrdReader reverses the rows of LAS).
   this->FileLowerLeft = 1;
+  const std::string header(headerBuffer->GetPointer(0));
+  std::map<std::string, std::string> fields = Fields(header);
+  const std::vector<long long> sizes = Sizes(fields["sizes"]);
+  const bool sizesFit = std::all_of(
+    sizes.begin(), sizes.end(), [](long long n) { return n >= 1 && n <= VTK_INT_MAX; });
+  if (this->NumberOfScalarComponents > 1 && sizes.size() == 3 && sizesFit &&
+    !LeadingComponentAxis(fields))
+  {
+    // vtkNrrdReader takes a first axis of at most 9 samples for the voxels'
+    // components; the header says it is a spatial axis.
+    this->NumberOfScalarComponents = 1;
+    this->FileDimensionality = 3;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->DataExtent[2 * a] = 0;
+      this->DataExtent[2 * a + 1] = static_cast<int>(sizes[a] - 1);
+    }
+    std::istringstream spacings(fields["spacings"]);
+    double spacing[3] = { 1, 1, 1 };
+    for (double& s : spacing)
+    {
+      if (!(spacings >> s) || !(s > 0))
+      {
+        s = 1.0;
+      }
+    }
+    this->SetDataSpacing(spacing);
+  }
   double origin[3], spacing[3], direction[9];
-  this->PlacementProblem = PlaceHeader(std::string(headerBuffer->GetPointer(0)), this->DataExtent,
+  this->PlacementProblem = PlaceHeader(header, this->DataExtent,
     this->DataSpacing, origin, spacing, direction);
   if (!this->PlacementProblem.empty())
   {

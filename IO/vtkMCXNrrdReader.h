@@ -15,7 +15,9 @@
  * - 3D-left-handed, the time spaces and unknown names are errors, as are
  *   space directions that are missing, not finite, zero or span no volume.
  * A header without any space field keeps VTK's axis-aligned placement
- * (spacings, origin 0). An error is one vtkErrorMacro line naming the file
+ * (spacings, origin 0). A first axis of 9 or fewer samples that the header
+ * calls spatial (a space direction, or the kind domain or space) stays an
+ * axis, where vtkNrrdReader would read it as the voxels' components. An error is one vtkErrorMacro line naming the file
  * and leaves an empty output.
  */
 #ifndef vtkMCXNrrdReader_h

@@ -3,8 +3,9 @@
 
     python3 drr.py [VOLUME] [--output PREFIX] [--samples N] [--size N]
 
-VOLUME is a .vti or .nii/.nii.gz CT, or a folder with one DICOM series
-(read with vtk-dicom, in Hounsfield units; default: the bundled CT head). Writes
+VOLUME is a .vti, .nii/.nii.gz, .nrrd/.nhdr or .mha/.mhd CT, or a folder with
+one DICOM series (read with vtk-dicom, in Hounsfield units; default: the
+bundled CT head), placed in DICOM patient space (LPS) whatever the format. Writes
 PREFIX.png (windowed 0..maximum) and PREFIX.npy (float64 line integrals of
 the TF, in TF units times mm, row 0 at the bottom), and prints what it made.
 """
@@ -52,9 +53,14 @@ def read_volume(path):
     if path.endswith(".vti"):
         reader = vtkXMLImageDataReader()
     elif path.endswith(".nii") or path.endswith(".nii.gz"):
-        reader = mcxray.vtkMCXNIFTIReader()  # world placement from the sform or qform, scl_slope applied
+        reader = mcxray.vtkMCXNIFTIReader()  # patient space (LPS) from the sform or qform, scl_slope applied
+    elif path.endswith(".nrrd") or path.endswith(".nhdr"):
+        reader = mcxray.vtkMCXNrrdReader()  # patient space from the space directions and origin
+    elif path.endswith(".mha") or path.endswith(".mhd"):
+        reader = mcxray.vtkMCXMetaImageReader()  # patient space from TransformMatrix and Offset
     else:
-        sys.exit("drr.py: error: expected a .vti or .nii/.nii.gz volume or a DICOM folder, not %r" % path)
+        sys.exit("drr.py: error: expected a .vti, .nii/.nii.gz, .nrrd/.nhdr or .mha/.mhd volume or a "
+                 "DICOM folder, not %r" % path)
     if not os.path.isfile(path):
         sys.exit("drr.py: error: no such file %r" % path)
     reader.SetFileName(path)

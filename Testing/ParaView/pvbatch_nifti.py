@@ -10,8 +10,9 @@ Python.Readers and TestReaders; this file has none.)
 
     pvbatch pvbatch_nifti.py PLUGIN VOLUME.nii.gz TURNED.nii.gz
 
-TURNED is a volume whose sform turns it (the projector's check, and an image
-size beyond the memory fixed afterwards).
+TURNED is a volume whose sform turns it in LPS (the CT body: its RAS sform is
++3 mm on the diagonal, so its LPS axes run along -x and -y; the projector's
+check, and an image size beyond the memory fixed afterwards).
 """
 import gzip
 import os

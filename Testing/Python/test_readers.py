@@ -6,8 +6,9 @@ mcxray.vtkMCXNIFTIReader on the shared CT body and on files written here.
 
 The series holds the voxels of headsq.vti, its slices at positions that run
 the other way along z; the NIfTI volume lies where its header's sform puts
-it, in patient space (LPS: the sform's RAS x and y negated). An error is exactly one printed VTK error line, an error code and an
-empty output, never a crash or a stale (half-read) volume.
+it, in patient space (LPS: the sform's RAS x and y negated). An error is
+exactly one printed VTK error line, an error code and an empty output, never
+a crash or a stale (half-read) volume.
 """
 import gzip
 import os
