@@ -26,13 +26,26 @@ bool OrientationDirection(vtkmetaio::MET_OrientationEnumType code, double direct
   direction[0] = direction[1] = direction[2] = 0.0;
   switch (code)
   {
-    case vtkmetaio::MET_ORIENTATION_RL: direction[0] = 1; return true;
-    case vtkmetaio::MET_ORIENTATION_LR: direction[0] = -1; return true;
-    case vtkmetaio::MET_ORIENTATION_AP: direction[1] = 1; return true;
-    case vtkmetaio::MET_ORIENTATION_PA: direction[1] = -1; return true;
-    case vtkmetaio::MET_ORIENTATION_IS: direction[2] = 1; return true;
-    case vtkmetaio::MET_ORIENTATION_SI: direction[2] = -1; return true;
-    default: return false;
+    case vtkmetaio::MET_ORIENTATION_RL:
+      direction[0] = 1;
+      return true;
+    case vtkmetaio::MET_ORIENTATION_LR:
+      direction[0] = -1;
+      return true;
+    case vtkmetaio::MET_ORIENTATION_AP:
+      direction[1] = 1;
+      return true;
+    case vtkmetaio::MET_ORIENTATION_PA:
+      direction[1] = -1;
+      return true;
+    case vtkmetaio::MET_ORIENTATION_IS:
+      direction[2] = 1;
+      return true;
+    case vtkmetaio::MET_ORIENTATION_SI:
+      direction[2] = -1;
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -128,7 +141,8 @@ std::string vtkMCXMetaImageReader::Place()
   std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, spacing, direction);
   if (problem.empty())
   {
-    problem = vtkMCXPatientSpace::DescribeUnusableExtent(origin, spacing, direction, this->DataExtent);
+    problem =
+      vtkMCXPatientSpace::DescribeUnusableExtent(origin, spacing, direction, this->DataExtent);
   }
   if (!problem.empty())
   {
@@ -143,8 +157,8 @@ std::string vtkMCXMetaImageReader::Place()
 int vtkMCXMetaImageReader::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  std::string problem = mcxio::RunReaderStage(this,
-    [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+  std::string problem = mcxio::RunReaderStage(
+    this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
     [] { return std::string(); });
   if (problem.empty())
   {
@@ -173,8 +187,8 @@ int vtkMCXMetaImageReader::RequestData(
     output->Initialize();
     return 1; // reported by RequestInformation
   }
-  const std::string problem = mcxio::RunReaderStage(this,
-    [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
+  const std::string problem = mcxio::RunReaderStage(
+    this, [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
     [] { return std::string(); });
   if (!problem.empty())
   {

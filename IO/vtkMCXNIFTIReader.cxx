@@ -95,7 +95,8 @@ std::string vtkMCXNIFTIReader::Place(vtkInformation* readerInfo)
     this->Origin[r] = form ? toLPS[r] * form->GetElement(r, 3) : 0.0;
     for (int c = 0; c < 3; ++c)
     {
-      steps[3 * r + c] = toLPS[r] * (form ? form->GetElement(r, c) : (r == c ? 1.0 : 0.0)) * stored[c];
+      steps[3 * r + c] =
+        toLPS[r] * (form ? form->GetElement(r, c) : (r == c ? 1.0 : 0.0)) * stored[c];
     }
   }
   std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, this->Spacing, this->Direction);
@@ -103,8 +104,8 @@ std::string vtkMCXNIFTIReader::Place(vtkInformation* readerInfo)
   {
     int extent[6];
     readerInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-    problem =
-      vtkMCXPatientSpace::DescribeUnusableExtent(this->Origin, this->Spacing, this->Direction, extent);
+    problem = vtkMCXPatientSpace::DescribeUnusableExtent(
+      this->Origin, this->Spacing, this->Direction, extent);
   }
   return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
 }

@@ -60,7 +60,7 @@ private:
   bool Rescale() const;
   std::string Place(vtkInformation* readerInfo); // "" or why the placement is unusable
 
-  double Origin[3] = { 0, 0, 0 };                     // LPS
+  double Origin[3] = { 0, 0, 0 }; // LPS
   double Spacing[3] = { 1, 1, 1 };
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }; // LPS
 

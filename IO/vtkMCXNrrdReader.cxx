@@ -54,12 +54,11 @@ std::map<std::string, std::string> Fields(const std::string& header)
 // LPS equivalent (or none this reader knows).
 bool SpaceToLPS(const std::string& space, double sign[3])
 {
-  static const std::map<std::string, std::array<double, 3>> known = {
-    { "right-anterior-superior", { -1, -1, 1 } }, { "RAS", { -1, -1, 1 } },
-    { "left-anterior-superior", { 1, -1, 1 } }, { "LAS", { 1, -1, 1 } },
+  static const std::map<std::string, std::array<double, 3>> known = { { "right-anterior-superior",
+                                                                        { -1, -1, 1 } },
+    { "RAS", { -1, -1, 1 } }, { "left-anterior-superior", { 1, -1, 1 } }, { "LAS", { 1, -1, 1 } },
     { "left-posterior-superior", { 1, 1, 1 } }, { "LPS", { 1, 1, 1 } },
-    { "scanner-xyz", { 1, 1, 1 } }, { "3D-right-handed", { 1, 1, 1 } }
-  };
+    { "scanner-xyz", { 1, 1, 1 } }, { "3D-right-handed", { 1, 1, 1 } } };
   const auto found = known.find(space);
   if (found == known.end())
   {
@@ -208,7 +207,8 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
     double v[3];
     if (!ParseVector(entries[first + a], v))
     {
-      return "the NRRD header's space direction '" + entries[first + a] + "' is not a vector of 3 numbers";
+      return "the NRRD header's space direction '" + entries[first + a] +
+        "' is not a vector of 3 numbers";
     }
     for (int r = 0; r < 3; ++r)
     {
@@ -232,7 +232,8 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
     double o[3];
     if (!ParseVector(f["space origin"], o))
     {
-      return "the NRRD header's space origin '" + f["space origin"] + "' is not a vector of 3 numbers";
+      return "the NRRD header's space origin '" + f["space origin"] +
+        "' is not a vector of 3 numbers";
     }
     for (int r = 0; r < 3; ++r)
     {
@@ -259,8 +260,8 @@ int vtkMCXNrrdReader::ReadHeader(vtkCharArray* headerBuffer)
   const std::string header(headerBuffer->GetPointer(0));
   std::map<std::string, std::string> fields = Fields(header);
   const std::vector<long long> sizes = Sizes(fields["sizes"]);
-  const bool sizesFit = std::all_of(
-    sizes.begin(), sizes.end(), [](long long n) { return n >= 1 && n <= VTK_INT_MAX; });
+  const bool sizesFit =
+    std::all_of(sizes.begin(), sizes.end(), [](long long n) { return n >= 1 && n <= VTK_INT_MAX; });
   if (this->NumberOfScalarComponents > 1 && sizes.size() == 3 && sizesFit &&
     !LeadingComponentAxis(fields))
   {
@@ -285,8 +286,8 @@ int vtkMCXNrrdReader::ReadHeader(vtkCharArray* headerBuffer)
     this->SetDataSpacing(spacing);
   }
   double origin[3], spacing[3], direction[9];
-  this->PlacementProblem = PlaceHeader(header, this->DataExtent,
-    this->DataSpacing, origin, spacing, direction);
+  this->PlacementProblem =
+    PlaceHeader(header, this->DataExtent, this->DataSpacing, origin, spacing, direction);
   if (!this->PlacementProblem.empty())
   {
     return 0;
@@ -301,8 +302,8 @@ int vtkMCXNrrdReader::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->PlacementProblem.clear();
-  const std::string problem = mcxio::RunReaderStage(this,
-    [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+  const std::string problem = mcxio::RunReaderStage(
+    this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
     [this] { return this->PlacementProblem; });
   this->Failed = !problem.empty();
   if (this->Failed)
@@ -327,8 +328,8 @@ int vtkMCXNrrdReader::RequestData(
     output->Initialize();
     return 1; // reported by RequestInformation
   }
-  const std::string problem = mcxio::RunReaderStage(this,
-    [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
+  const std::string problem = mcxio::RunReaderStage(
+    this, [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
     [] { return std::string(); });
   if (!problem.empty())
   {

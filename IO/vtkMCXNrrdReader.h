@@ -17,8 +17,8 @@
  * A header without any space field keeps VTK's axis-aligned placement
  * (spacings, origin 0). A first axis of 9 or fewer samples that the header
  * calls spatial (a space direction, or the kind domain or space) stays an
- * axis, where vtkNrrdReader would read it as the voxels' components. An error is one vtkErrorMacro line naming the file
- * and leaves an empty output.
+ * axis, where vtkNrrdReader would read it as the voxels' components. An error is one vtkErrorMacro
+ * line naming the file and leaves an empty output.
  */
 #ifndef vtkMCXNrrdReader_h
 #define vtkMCXNrrdReader_h

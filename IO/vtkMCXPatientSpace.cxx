@@ -58,10 +58,10 @@ std::string vtkMCXPatientSpace::SplitAxisSteps(
     }
     // Scaled first, so that neither 1e200 nor 1e-200 over- or underflows.
     const double largest = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
-    const double length = largest > 0
-      ? largest * std::sqrt((x / largest) * (x / largest) + (y / largest) * (y / largest) +
-                    (z / largest) * (z / largest))
-      : 0.0;
+    const double length = largest > 0 ? largest *
+        std::sqrt((x / largest) * (x / largest) + (y / largest) * (y / largest) +
+          (z / largest) * (z / largest))
+                                      : 0.0;
     if (!(length > 0) || !std::isfinite(length))
     {
       return std::string("the ") + AxisName[a] + " axis's direction is a zero vector";
@@ -97,8 +97,8 @@ std::string vtkMCXPatientSpace::DescribeUnusableExtent(
       if (!(std::abs(x) <= largest))
       {
         std::ostringstream text;
-        text << "the volume reaches " << x << " along world axis " << "xyz"[r]
-             << ", beyond the largest coordinate, " << largest;
+        text << "the volume reaches " << x << " along world axis "
+             << "xyz"[r] << ", beyond the largest coordinate, " << largest;
         return text.str();
       }
     }

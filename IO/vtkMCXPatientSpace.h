@@ -54,8 +54,8 @@ public:
    * direction (a non-finite origin, a corner beyond GetLargestCoordinate()),
    * or "".
    */
-  static std::string DescribeUnusableExtent(
-    const double origin[3], const double spacing[3], const double direction[9], const int extent[6]);
+  static std::string DescribeUnusableExtent(const double origin[3], const double spacing[3],
+    const double direction[9], const int extent[6]);
 
   /** Negates x and y of a point or vector given in RAS, making it LPS (and back). */
   static void FlipRightAnterior(double point[3]);

@@ -12,8 +12,8 @@
 namespace mcxio
 {
 
-std::string RunReaderStage(
-  vtkAlgorithm* reader, const std::function<int()>& stage, const std::function<std::string()>& problem)
+std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& stage,
+  const std::function<std::string()>& problem)
 {
   vtkNew<vtkMCXFirstErrorObserver> error;
   error->ObserveAlgorithm(reader);
@@ -44,8 +44,8 @@ std::string RunReaderStage(
   return result ? std::string() : std::string("the reader failed");
 }
 
-void ReportReaderFailure(
-  vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path, const std::string& problem)
+void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
+  const std::string& problem)
 {
   vtkErrorWithObjectMacro(reader, << "cannot read '" << (path ? path : "") << "': " << problem);
   if (outputVector)

@@ -17,14 +17,14 @@ namespace mcxio
 /// message; else what problem() says afterwards; else "the reader failed"
 /// when stage returned 0, "out of memory" when it threw std::bad_alloc;
 /// else "".
-std::string RunReaderStage(
-  vtkAlgorithm* reader, const std::function<int()>& stage, const std::function<std::string()>& problem);
+std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& stage,
+  const std::function<std::string()>& problem);
 
 /// Says "cannot read 'path': problem" once as reader's error and, given
 /// outputVector, sets an empty whole extent: a failed request would make the
 /// executive say it again. (The caller sets its error code.)
-void ReportReaderFailure(
-  vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path, const std::string& problem);
+void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
+  const std::string& problem);
 
 } // namespace mcxio
 

@@ -13,8 +13,8 @@
 
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
-#include "vtkMetaImageWriter.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMetaImageWriter.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSMPTools.h"
