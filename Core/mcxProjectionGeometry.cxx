@@ -238,7 +238,13 @@ bool FrameCorners(ProjectionGeometry& g, const double corners[24], const int req
   {
     if (size[k] <= 0)
     {
-      const double pixels = std::ceil(width[k] / spacing + margins - 1e-9);
+      // Whole pixels of the support, and two more when their slack leaves
+      // less than the margins: the grid keeps its place on the support.
+      double pixels = std::ceil(width[k] / spacing - 1e-9);
+      if (pixels - width[k] / spacing < margins - 1e-9)
+      {
+        pixels += 2;
+      }
       size[k] = static_cast<int>(std::max(1.0, std::min(pixels, 1.0e6)));
     }
     const double centre = 0.5 * (lo[k] + hi[k]);

@@ -98,8 +98,11 @@ constexpr double FrameMargin = 0.125;
 /// the corners and FrameMargin pixels around it (perspective: the part in
 /// front of the near plane is framed by its 8 corners, so corners behind the
 /// eye are ignored). A requested size or spacing (> 0) is kept; with neither,
-/// the longest side gets defaultLongSide pixels. Returns false if nothing can
-/// be framed.
+/// the longest side gets defaultLongSide pixels (the spacing grows to leave
+/// the margins). A side computed from a spacing is the projection's whole
+/// pixels, and two more where their slack is below the margins, so that the
+/// grid keeps its place on the projection. Returns false if nothing can be
+/// framed.
 bool FrameCorners(ProjectionGeometry& geometry, const double corners[24],
   const int requestedSize[2], double requestedSpacing, int defaultLongSide);
 

@@ -231,7 +231,7 @@ int vtkMCXAggregateIndex::RequestData(
     {
       ids = wide ? vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkTypeUInt64Array>::New())
                  : vtkSmartPointer<vtkDataArray>(vtkSmartPointer<vtkTypeUInt32Array>::New());
-      ids->SetName(vtkMCXDensityIndex::SortedVoxelIdsName());
+      ids->SetName(vtkMCXTypes::SortedVoxelIdsName());
       if (!ids->SetNumberOfValues(static_cast<vtkIdType>(total)))
       {
         problem = "Out of memory for the whole index of " + std::to_string(total) + " voxels";
@@ -276,10 +276,10 @@ int vtkMCXAggregateIndex::RequestData(
   }
 
   // The counts of left-out voxels add; the bin width is the same everywhere.
-  const long long nonFinite = FieldInteger(input, vtkMCXDensityIndex::NonFiniteVoxelCountName());
+  const long long nonFinite = FieldInteger(input, vtkMCXTypes::NonFiniteVoxelCountName());
   long long nonFiniteTotal = 0;
   controller->Reduce(&nonFinite, &nonFiniteTotal, 1, vtkCommunicator::SUM_OP, 0);
-  const double binWidth = FieldDouble(input, vtkMCXDensityIndex::LevelBinWidthName());
+  const double binWidth = FieldDouble(input, vtkMCXTypes::LevelBinWidthName());
   double widestBin = 0.0;
   controller->Reduce(&binWidth, &widestBin, 1, vtkCommunicator::MAX_OP, 0);
   if (rank != 0)
@@ -293,18 +293,18 @@ int vtkMCXAggregateIndex::RequestData(
   output->SetExtent(whole);
   vtkFieldData* fd = output->GetFieldData();
   vtkNew<vtkDoubleArray> levelValues;
-  levelValues->SetName(vtkMCXDensityIndex::LevelValuesName());
+  levelValues->SetName(vtkMCXTypes::LevelValuesName());
   levelValues->SetNumberOfValues(static_cast<vtkIdType>(levelCount));
   std::copy(levels.LevelValues.begin(), levels.LevelValues.end(), levelValues->GetPointer(0));
   vtkNew<vtkTypeInt64Array> wholeOffsets;
-  wholeOffsets->SetName(vtkMCXDensityIndex::LevelOffsetsName());
+  wholeOffsets->SetName(vtkMCXTypes::LevelOffsetsName());
   wholeOffsets->SetNumberOfValues(static_cast<vtkIdType>(levelCount + 1));
   std::copy(levels.LevelOffsets.begin(), levels.LevelOffsets.end(), wholeOffsets->GetPointer(0));
   fd->AddArray(levelValues);
   fd->AddArray(wholeOffsets);
   fd->AddArray(ids);
-  mcx::AddFieldValue(fd, vtkMCXDensityIndex::NonFiniteVoxelCountName(), nonFiniteTotal);
-  mcx::AddFieldValue(fd, vtkMCXDensityIndex::LevelBinWidthName(), widestBin);
+  mcx::AddFieldValue(fd, vtkMCXTypes::NonFiniteVoxelCountName(), nonFiniteTotal);
+  mcx::AddFieldValue(fd, vtkMCXTypes::LevelBinWidthName(), widestBin);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -58,9 +58,9 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
 {
   DepositSettings settings;
   vtkFieldData* fd = cloud->GetFieldData();
-  vtkDataArray* axes = fd ? fd->GetArray(vtkMCXPointSampler::VoxelAxesName()) : nullptr;
-  const bool footprint = Field(fd, vtkMCXPointSampler::DepositName(), vtkMCXPointSampler::POINT) ==
-      vtkMCXPointSampler::FOOTPRINT &&
+  vtkDataArray* axes = fd ? fd->GetArray(vtkMCXTypes::VoxelAxesName()) : nullptr;
+  const bool footprint = Field(fd, vtkMCXTypes::DepositName(), vtkMCXTypes::POINT) ==
+      vtkMCXTypes::FOOTPRINT &&
     axes && axes->GetNumberOfValues() == 9;
   if (!footprint)
   {
@@ -69,11 +69,11 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
   settings.Mode = Deposit::Footprint;
   settings.Reach = footprintReach;
   settings.Reconstruction =
-    Field(fd, vtkMCXPointSampler::KernelName(), 0) == vtkMCXPointSampler::BOX ? Kernel::Box
+    Field(fd, vtkMCXTypes::KernelName(), 0) == vtkMCXTypes::BOX ? Kernel::Box
                                                                               : Kernel::Tent;
-  settings.Seed = static_cast<std::uint64_t>(Field(fd, vtkMCXPointSampler::SeedName(), 0));
-  settings.Stratified = Field(fd, vtkMCXPointSampler::StrategyName(), vtkMCXPointSampler::HYBRID) !=
-    vtkMCXPointSampler::MONTE_CARLO;
+  settings.Seed = static_cast<std::uint64_t>(Field(fd, vtkMCXTypes::SeedName(), 0));
+  settings.Stratified = Field(fd, vtkMCXTypes::StrategyName(), vtkMCXTypes::HYBRID) !=
+    vtkMCXTypes::MONTE_CARLO;
   for (int i = 0; i < 9; ++i)
   {
     settings.VoxelMatrix[i] =
@@ -131,15 +131,15 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
 
 bool IsEveryVoxelCloud(vtkPolyData* cloud)
 {
-  return Field(cloud->GetFieldData(), vtkMCXPointSampler::StrategyName(),
-           vtkMCXPointSampler::HYBRID) == vtkMCXPointSampler::EVERY_VOXEL;
+  return Field(cloud->GetFieldData(), vtkMCXTypes::StrategyName(),
+           vtkMCXTypes::HYBRID) == vtkMCXTypes::EVERY_VOXEL;
 }
 
 std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeometry& geometry)
 {
   vtkFieldData* fd = cloud->GetFieldData();
-  vtkDataArray* image = fd ? fd->GetArray(vtkMCXPointSampler::ControlImageName()) : nullptr;
-  vtkDataArray* view = fd ? fd->GetArray(vtkMCXPointSampler::ControlViewName()) : nullptr;
+  vtkDataArray* image = fd ? fd->GetArray(vtkMCXTypes::ControlImageName()) : nullptr;
+  vtkDataArray* view = fd ? fd->GetArray(vtkMCXTypes::ControlViewName()) : nullptr;
   const vtkIdType pixels = static_cast<vtkIdType>(geometry.Size[0]) * geometry.Size[1];
   if (!image || !view || image->GetNumberOfComponents() != 1 ||
     image->GetNumberOfTuples() != pixels || view->GetNumberOfComponents() != 1 ||
@@ -158,7 +158,7 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
       return std::vector<double>();
     }
   }
-  vtkDataArray* made = fd->GetArray(vtkMCXPointSampler::ControlPointsName());
+  vtkDataArray* made = fd->GetArray(vtkMCXTypes::ControlPointsName());
   vtkSmartPointer<vtkDoubleArray> these = ControlPointsOf(cloud->GetPoints());
   if (!made || made->GetNumberOfComponents() != 1 ||
     made->GetNumberOfTuples() != these->GetNumberOfTuples())
@@ -187,7 +187,7 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
 bool CloudSupportCorners(vtkDataObject* data, double corners[24])
 {
   vtkFieldData* fd = data ? data->GetFieldData() : nullptr;
-  vtkDataArray* support = fd ? fd->GetArray(vtkMCXPointSampler::SupportCornersName()) : nullptr;
+  vtkDataArray* support = fd ? fd->GetArray(vtkMCXTypes::SupportCornersName()) : nullptr;
   if (!support || support->GetNumberOfValues() != 24)
   {
     return false;
@@ -214,7 +214,7 @@ bool CloudSupportDepths(vtkPolyData* cloud, const ProjectionGeometry& geometry, 
 vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points)
 {
   auto values = vtkSmartPointer<vtkDoubleArray>::New();
-  values->SetName(vtkMCXPointSampler::ControlPointsName());
+  values->SetName(vtkMCXTypes::ControlPointsName());
   values->SetNumberOfValues(3);
   double first[3] = { 0, 0, 0 };
   if (points && points->GetNumberOfPoints() > 0)
@@ -231,7 +231,7 @@ vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points)
 vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid)
 {
   valid = true;
-  vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName());
+  vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXTypes::PointWeightName());
   if (!weights)
   {
     return nullptr;
@@ -256,7 +256,7 @@ vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid
   if (!problem.empty())
   {
     vtkErrorWithObjectMacro(self,
-      "The cloud's " << vtkMCXPointSampler::PointWeightName()
+      "The cloud's " << vtkMCXTypes::PointWeightName()
                      << " array cannot be used: " << problem << ".");
     valid = false;
     return nullptr;

@@ -38,7 +38,7 @@ MONTECARLOXRAYFILTERS_EXPORT DepositSettings CloudDepositSettings(vtkPolyData* c
 /// of one image and its error is not estimated (NaN).
 MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
 
-/// The control image (vtkMCXPointSampler::ControlImageName(), line
+/// The control image (vtkMCXTypes::ControlImageName(), line
 /// integrals) that a view-ordered cloud carries for `geometry`: empty
 /// unless its ControlView is this geometry, bit for bit, its ControlPoints
 /// is the cloud's first point (ControlPointsOf), and it holds one finite
@@ -59,11 +59,11 @@ MONTECARLOXRAYFILTERS_EXPORT bool CloudSupportCorners(vtkDataObject* data, doubl
 MONTECARLOXRAYFILTERS_EXPORT bool CloudSupportDepths(
   vtkPolyData* cloud, const ProjectionGeometry& geometry, double depths[2]);
 
-/// The field array vtkMCXPointSampler::ControlPointsName() of `points`.
+/// The field array vtkMCXTypes::ControlPointsName() of `points`.
 MONTECARLOXRAYFILTERS_EXPORT vtkSmartPointer<vtkDoubleArray> ControlPointsOf(vtkPoints* points);
 
 /// The cloud's point weights (point-data array
-/// vtkMCXPointSampler::PointWeightName()): null without them; valid false
+/// vtkMCXTypes::PointWeightName()): null without them; valid false
 /// (and reported on `self`) when the array is not one float or double
 /// component per point, each finite and in [0, MaximumPointWeight].
 MONTECARLOXRAYFILTERS_EXPORT vtkDataArray* CloudPointWeights(

@@ -169,7 +169,7 @@ void SortIntoLevels(std::int64_t n, std::int64_t numberOfBins, std::int64_t numb
   using ArrayType = typename std::conditional<std::is_same<IdType, std::uint32_t>::value,
     vtkTypeUInt32Array, vtkTypeUInt64Array>::type;
   vtkNew<ArrayType> ids;
-  ids->SetName(vtkMCXDensityIndex::SortedVoxelIdsName());
+  ids->SetName(vtkMCXTypes::SortedVoxelIdsName());
   ids->SetNumberOfValues(numberKept);
   std::vector<std::int64_t> binOffsets;
   result.NonFinite = mcx::CountingSortByBin<IdType>(mcx::SMPExecutor(), n, numberOfBins, binOf,
@@ -635,18 +635,18 @@ int vtkMCXDensityIndex::RequestData(
   fd->Initialize();
 
   vtkNew<vtkDoubleArray> levelValues;
-  levelValues->SetName(LevelValuesName());
+  levelValues->SetName(vtkMCXTypes::LevelValuesName());
   levelValues->SetNumberOfValues(static_cast<vtkIdType>(result.LevelValues.size()));
   std::copy(result.LevelValues.begin(), result.LevelValues.end(), levelValues->GetPointer(0));
   vtkNew<vtkTypeInt64Array> levelOffsets;
-  levelOffsets->SetName(LevelOffsetsName());
+  levelOffsets->SetName(vtkMCXTypes::LevelOffsetsName());
   levelOffsets->SetNumberOfValues(static_cast<vtkIdType>(result.LevelOffsets.size()));
   std::copy(result.LevelOffsets.begin(), result.LevelOffsets.end(), levelOffsets->GetPointer(0));
   fd->AddArray(levelValues);
   fd->AddArray(levelOffsets);
   fd->AddArray(result.SortedIds);
-  mcx::AddFieldValue(fd, NonFiniteVoxelCountName(), static_cast<long long>(result.NonFinite));
-  mcx::AddFieldValue(fd, LevelBinWidthName(), result.BinWidth);
+  mcx::AddFieldValue(fd, vtkMCXTypes::NonFiniteVoxelCountName(), static_cast<long long>(result.NonFinite));
+  mcx::AddFieldValue(fd, vtkMCXTypes::LevelBinWidthName(), result.BinWidth);
 
   if (result.NonFinite > 0)
   {

@@ -44,6 +44,7 @@
 #define vtkMCXDensityIndex_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
+#include "vtkMCXTypes.h" // for the array names and constants
 #include "vtkImageAlgorithm.h"
 
 class vtkMultiProcessController;
@@ -83,17 +84,6 @@ public:
    */
   virtual void SetController(vtkMultiProcessController*);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
-  ///@}
-
-  ///@{
-  /**
-   * Names of the field-data arrays of the output.
-   */
-  static const char* LevelValuesName() { return "LevelValues"; }
-  static const char* LevelOffsetsName() { return "LevelOffsets"; }
-  static const char* SortedVoxelIdsName() { return "SortedVoxelIds"; }
-  static const char* NonFiniteVoxelCountName() { return "NonFiniteVoxelCount"; }
-  static const char* LevelBinWidthName() { return "LevelBinWidth"; }
   ///@}
 
   /**

@@ -47,11 +47,11 @@ std::string IndexView::Read(vtkImageData* index)
   }
   vtkFieldData* fd = index->GetFieldData();
   auto* values =
-    vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelValuesName()));
+    vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::LevelValuesName()));
   auto* offsets =
-    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::LevelOffsetsName()));
+    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::LevelOffsetsName()));
   auto* ids =
-    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXDensityIndex::SortedVoxelIdsName()));
+    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::SortedVoxelIdsName()));
   if (!values || !offsets || !ids)
   {
     return "the input is not a density index (run vtkMCXDensityIndex first)";

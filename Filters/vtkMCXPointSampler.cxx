@@ -39,15 +39,15 @@
 vtkStandardNewMacro(vtkMCXPointSampler);
 
 // The public constants are the core's, seen from VTK.
-static_assert(vtkMCXPointSampler::HYBRID == static_cast<int>(mcx::Strategy::Hybrid) &&
-    vtkMCXPointSampler::MONTE_CARLO == static_cast<int>(mcx::Strategy::MonteCarlo) &&
-    vtkMCXPointSampler::QUASI_MONTE_CARLO == static_cast<int>(mcx::Strategy::QuasiMonteCarlo),
+static_assert(vtkMCXTypes::HYBRID == static_cast<int>(mcx::Strategy::Hybrid) &&
+    vtkMCXTypes::MONTE_CARLO == static_cast<int>(mcx::Strategy::MonteCarlo) &&
+    vtkMCXTypes::QUASI_MONTE_CARLO == static_cast<int>(mcx::Strategy::QuasiMonteCarlo),
   "strategy values differ from mcx::Strategy");
-static_assert(vtkMCXPointSampler::TENT == static_cast<int>(mcx::Kernel::Tent) &&
-    vtkMCXPointSampler::BOX == static_cast<int>(mcx::Kernel::Box),
+static_assert(vtkMCXTypes::TENT == static_cast<int>(mcx::Kernel::Tent) &&
+    vtkMCXTypes::BOX == static_cast<int>(mcx::Kernel::Box),
   "kernel values differ from mcx::Kernel");
 static_assert(
-  vtkMCXPointSampler::LargestSampleExponent == static_cast<int>(mcx::MaximumSampleExponent),
+  vtkMCXTypes::LargestSampleExponent == static_cast<int>(mcx::MaximumSampleExponent),
   "the largest sample exponent differs from the core's");
 vtkCxxSetObjectMacro(vtkMCXPointSampler, TransferFunction, vtkPiecewiseFunction);
 vtkInformationKeyRestrictedMacro(vtkMCXPointSampler, SUPPORT_CORNERS, DoubleVector, 24);
@@ -159,7 +159,7 @@ vtkSmartPointer<vtkFloatArray> PointWeights(
       static_cast<float>(mcx::EveryVoxelWeight(weights[l], static_cast<double>(count), total));
   }
   auto pointWeights = vtkSmartPointer<vtkFloatArray>::New();
-  pointWeights->SetName(vtkMCXPointSampler::PointWeightName());
+  pointWeights->SetName(vtkMCXTypes::PointWeightName());
   pointWeights->SetNumberOfValues(count);
   float* w = pointWeights->GetPointer(0);
   vtkSMPTools::For(0, count,
@@ -285,25 +285,25 @@ void WriteCloudFields(vtkMCXPointSampler* self, const mcx::IndexView& view, doub
   vtkIdType count, int exponent, vtkFieldData* fd)
 {
   fd->Initialize();
-  mcx::AddFieldValue(fd, vtkMCXPointSampler::SampleWeightName(),
+  mcx::AddFieldValue(fd, vtkMCXTypes::SampleWeightName(),
     count > 0 ? integral / static_cast<double>(count) : 0.0);
-  mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), integral);
+  mcx::AddFieldValue(fd, vtkMCXTypes::IntegralName(), integral);
   if (exponent >= 0)
   {
     mcx::AddFieldValue(
-      fd, vtkMCXPointSampler::SampleExponentName(), static_cast<long long>(exponent));
+      fd, vtkMCXTypes::SampleExponentName(), static_cast<long long>(exponent));
   }
   mcx::AddFieldValue(
-    fd, vtkMCXPointSampler::DepositName(), static_cast<long long>(self->GetDeposit()));
+    fd, vtkMCXTypes::DepositName(), static_cast<long long>(self->GetDeposit()));
   mcx::AddFieldValue(
-    fd, vtkMCXPointSampler::KernelName(), static_cast<long long>(self->GetKernel()));
+    fd, vtkMCXTypes::KernelName(), static_cast<long long>(self->GetKernel()));
   mcx::AddFieldValue(
-    fd, vtkMCXPointSampler::StrategyName(), static_cast<long long>(self->GetStrategy()));
-  mcx::AddFieldValue(fd, vtkMCXPointSampler::SeedName(), static_cast<long long>(self->GetSeed()));
+    fd, vtkMCXTypes::StrategyName(), static_cast<long long>(self->GetStrategy()));
+  mcx::AddFieldValue(fd, vtkMCXTypes::SeedName(), static_cast<long long>(self->GetSeed()));
   double origin[3], axes[9];
   view.SourceToWorld(origin, axes);
   vtkNew<vtkDoubleArray> voxelAxes;
-  voxelAxes->SetName(vtkMCXPointSampler::VoxelAxesName());
+  voxelAxes->SetName(vtkMCXTypes::VoxelAxesName());
   voxelAxes->SetNumberOfValues(9);
   std::copy(axes, axes + 9, voxelAxes->GetPointer(0));
   fd->AddArray(voxelAxes);
@@ -311,7 +311,7 @@ void WriteCloudFields(vtkMCXPointSampler* self, const mcx::IndexView& view, doub
   mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction,
     mcx::KernelRadius(static_cast<mcx::Kernel>(self->GetKernel())), corners);
   vtkNew<vtkDoubleArray> support;
-  support->SetName(vtkMCXPointSampler::SupportCornersName());
+  support->SetName(vtkMCXTypes::SupportCornersName());
   support->SetNumberOfValues(24);
   std::copy(corners, corners + 24, support->GetPointer(0));
   fd->AddArray(support);
@@ -326,8 +326,8 @@ struct vtkMCXPointSampler::EveryVoxelCloud
   double World[12] = { 0 }; // the index's source-to-world origin and matrix
   std::vector<char> Kept;   // per level
   int PointType = VTK_FLOAT;
-  int Deposit = POINT;
-  int Kernel = TENT;
+  int Deposit = vtkMCXTypes::POINT;
+  int Kernel = vtkMCXTypes::TENT;
   vtkTypeInt64 Seed = 0;
   vtkSmartPointer<vtkPoints> Points;
   std::vector<std::uint32_t> Levels; // of each point
@@ -514,19 +514,19 @@ int vtkMCXPointSampler::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (this->Strategy == EVERY_VOXEL)
+  if (this->Strategy == vtkMCXTypes::EVERY_VOXEL)
   {
     return this->RequestEveryVoxel(input, output);
   }
   this->KeptVoxels.reset();
-  if (this->Strategy == VIEW_ORDERED)
+  if (this->Strategy == vtkMCXTypes::VIEW_ORDERED)
   {
     return this->RequestViewOrdered(input, output);
   }
   this->KeptViewOrder.reset();
   // A sampled cloud's points count once each (an output the executive did
   // not empty may still hold an every-voxel cloud's weights).
-  output->GetPointData()->RemoveArray(PointWeightName());
+  output->GetPointData()->RemoveArray(vtkMCXTypes::PointWeightName());
   mcx::IndexView view;
   mcx::TransferTable table;
   double integral = 0.0;
@@ -552,7 +552,7 @@ int vtkMCXPointSampler::RequestData(
   {
     const auto strategy = static_cast<mcx::Strategy>(this->Strategy);
     const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
-    const bool centres = this->Deposit == FOOTPRINT;
+    const bool centres = this->Deposit == vtkMCXTypes::FOOTPRINT;
     void* raw = points->GetVoidPointer(0);
     const bool isDouble = this->OutputPointsPrecision == DOUBLE_PRECISION;
     if (view.WideIds)
@@ -656,7 +656,7 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
   std::vector<double> control;
   const int pointType = this->OutputPointsPrecision == DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
   const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
-  const bool centres = this->Deposit == FOOTPRINT;
+  const bool centres = this->Deposit == vtkMCXTypes::FOOTPRINT;
   const auto seed = static_cast<vtkTypeUInt64>(this->Seed);
   vtkSmartPointer<vtkPoints> points;
   vtkSmartPointer<vtkFloatArray> pointWeights;
@@ -680,7 +680,7 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
       return false;
     }
     pointWeights = vtkSmartPointer<vtkFloatArray>::New();
-    pointWeights->SetName(PointWeightName());
+    pointWeights->SetName(vtkMCXTypes::PointWeightName());
     pointWeights->SetNumberOfValues(count);
     void* raw = points->GetVoidPointer(0);
     float* w = pointWeights->GetPointer(0);
@@ -712,12 +712,12 @@ int vtkMCXPointSampler::RequestViewOrdered(vtkImageData* input, vtkPolyData* out
   if (!control.empty())
   {
     vtkNew<vtkDoubleArray> image;
-    image->SetName(ControlImageName());
+    image->SetName(vtkMCXTypes::ControlImageName());
     image->SetNumberOfValues(static_cast<vtkIdType>(control.size()));
     std::copy(control.begin(), control.end(), image->GetPointer(0));
     output->GetFieldData()->AddArray(image);
     vtkNew<vtkDoubleArray> controlView;
-    controlView->SetName(ControlViewName());
+    controlView->SetName(vtkMCXTypes::ControlViewName());
     controlView->SetNumberOfValues(mcx::GeometryValueCount);
     mcx::GeometryToValues(sorted->Geometry, controlView->GetPointer(0));
     output->GetFieldData()->AddArray(controlView);
@@ -842,7 +842,7 @@ int vtkMCXPointSampler::RequestEveryVoxel(vtkImageData* input, vtkPolyData* outp
   std::vector<double> weights = view.EvaluateTransferFunction(this->TransferFunction);
   std::vector<char> kept;
   const vtkIdType count = static_cast<vtkIdType>(view.KeepLevels(weights, kept));
-  const vtkIdType largest = (vtkIdType(1) << MaximumPointCloudExponent) - 1;
+  const vtkIdType largest = (vtkIdType(1) << vtkMCXTypes::MaximumPointCloudExponent) - 1;
   if (count > largest)
   {
     vtkErrorMacro("Every voxel: " << count << " voxels of non-zero weight exceed the " << largest
@@ -899,7 +899,7 @@ bool vtkMCXPointSampler::MakeEveryVoxelPoints(const mcx::IndexView& view,
   const std::int64_t voxels =
     static_cast<std::int64_t>(view.Dimensions[0]) * view.Dimensions[1] * view.Dimensions[2];
   const auto kernel = static_cast<mcx::Kernel>(this->Kernel);
-  const bool centres = this->Deposit == FOOTPRINT;
+  const bool centres = this->Deposit == vtkMCXTypes::FOOTPRINT;
   const auto seed = static_cast<vtkTypeUInt64>(this->Seed);
   auto make = [&](auto id)
   {

@@ -26,6 +26,7 @@
 #define vtkMCXPointSampler_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
+#include "vtkMCXTypes.h"                 // for the strategies, kernels and deposits
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // for KeptPoints
 
@@ -50,83 +51,6 @@ public:
   vtkTypeMacro(vtkMCXPointSampler, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum StrategyType
-  {
-    HYBRID = 0,            ///< Halton voxel choice, pseudo-random offset (the paper)
-    MONTE_CARLO = 1,       ///< pseudo-random voxel choice and offset
-    QUASI_MONTE_CARLO = 2, ///< Halton voxel choice and Halton (bases 3, 5, 7) offset
-    EVERY_VOXEL = 3,       ///< each voxel of non-zero weight once, weighted (see SetStrategy)
-    VIEW_ORDERED = 4       ///< Halton choice in one view's pixel order, weighted (see SetStrategy)
-  };
-
-  enum KernelType
-  {
-    TENT = 0, ///< trilinear reconstruction
-    BOX = 1   ///< nearest-neighbour reconstruction
-  };
-
-  /** How a projector spreads a sample over the image (see vtkMCXProjector::SetDeposit). */
-  enum DepositType
-  {
-    POINT = 0,    ///< one count where the kernel's random offset lands (the paper's)
-    FOOTPRINT = 1 ///< the voxel's kernel footprint over every pixel it reaches
-  };
-
-  ///@{
-  /**
-   * The sample-count limits of every class of the module, as exponents m of
-   * M = 2^m - 1 samples:
-   * - LargestSampleExponent: samples projected as they are generated (never
-   *   stored); M then still fits a signed 64-bit count;
-   * - MaximumPointCloudExponent: a stored cloud (this filter, the mapper):
-   *   2^30 points take 12 GiB as float triples, more than the machines this
-   *   runs on hold twice (the cloud and the renderer's copy);
-   * - PilotSampleExponent: the smallest pilot run of vtkMCXProjector's
-   *   target-accuracy controls, enough for the error estimate to settle.
-   */
-  static constexpr int LargestSampleExponent = 63;
-  static constexpr int MaximumPointCloudExponent = 30;
-  static constexpr int PilotSampleExponent = 16;
-  ///@}
-
-  ///@{
-  /** Names of the output's field-data arrays. */
-  static const char* SampleWeightName() { return "SampleWeight"; }
-  static const char* IntegralName() { return "Integral"; }
-  static const char* SampleExponentName() { return "SampleExponent"; }
-  /// How projectors deposit the points (POINT or FOOTPRINT), the kernel, the
-  /// seed of the footprint's random parts, and the world edge vectors of a
-  /// voxel (9 values, row-major: column k is edge k), which the footprint needs.
-  static const char* DepositName() { return "Deposit"; }
-  static const char* KernelName() { return "Kernel"; }
-  static const char* StrategyName() { return "Strategy"; }
-  static const char* SeedName() { return "Seed"; }
-  static const char* VoxelAxesName() { return "VoxelAxes"; }
-  /// The support's world corners (24 values, as SUPPORT_CORNERS), with which
-  /// perspective projectors tabulate footprints for any prefix alike.
-  static const char* SupportCornersName() { return "SupportCorners"; }
-  /// VIEW_ORDERED with ControlVariate: the control image of the ordering
-  /// view (one line integral per pixel, rows from the bottom) and that view
-  /// (mcx::GeometryToValues' 23 values); see SetControlVariate.
-  static const char* ControlImageName() { return "ControlImage"; }
-  static const char* ControlViewName() { return "ControlView"; }
-  /// The first point of the cloud the control image was made with (3
-  /// values; a prefix of the cloud keeps it), so that a filter that moves
-  /// the points and passes the field data on leaves the control unused.
-  static const char* ControlPointsName() { return "ControlPoints"; }
-  ///@}
-
-  /**
-   * The name of an optional point-data array of a cloud's consumers
-   * (vtkMCXProjector, vtkMCXXRayMapper): point i counts PointWeight[i] times
-   * (one float or double component, each finite and in [0, 2^40]; 0 skips
-   * the point), and the points deposited carry the cloud's Integral
-   * together: a point of weight w carries Integral w / (the sum of the
-   * weights deposited), in the mapper's prefixes too, and the SampleWeight
-   * field is not read. Without it every point counts once.
-   */
-  static const char* PointWeightName() { return "PointWeight"; }
-
   ///@{
   /**
    * Transfer function from data values to g (any non-negative unit); it is
@@ -142,7 +66,7 @@ public:
    * M = 2^SampleExponent - 1 samples (default m = 20).
    * SetNumberOfSamples(n) picks the smallest m with 2^m - 1 >= n.
    */
-  vtkSetClampMacro(SampleExponent, int, 0, MaximumPointCloudExponent);
+  vtkSetClampMacro(SampleExponent, int, 0, vtkMCXTypes::MaximumPointCloudExponent);
   vtkGetMacro(SampleExponent, int);
   void SetNumberOfSamples(vtkTypeInt64 n);
   vtkTypeInt64 GetNumberOfSamples();
@@ -184,13 +108,13 @@ public:
    * changes: it pays where one view takes many TF edits. The whole volume
    * must be in this process (not a piece of a distributed index).
    */
-  vtkSetClampMacro(Strategy, int, HYBRID, VIEW_ORDERED);
+  vtkSetClampMacro(Strategy, int, vtkMCXTypes::HYBRID, vtkMCXTypes::VIEW_ORDERED);
   vtkGetMacro(Strategy, int);
-  void SetStrategyToHybrid() { this->SetStrategy(HYBRID); }
-  void SetStrategyToMonteCarlo() { this->SetStrategy(MONTE_CARLO); }
-  void SetStrategyToQuasiMonteCarlo() { this->SetStrategy(QUASI_MONTE_CARLO); }
-  void SetStrategyToEveryVoxel() { this->SetStrategy(EVERY_VOXEL); }
-  void SetStrategyToViewOrdered() { this->SetStrategy(VIEW_ORDERED); }
+  void SetStrategyToHybrid() { this->SetStrategy(vtkMCXTypes::HYBRID); }
+  void SetStrategyToMonteCarlo() { this->SetStrategy(vtkMCXTypes::MONTE_CARLO); }
+  void SetStrategyToQuasiMonteCarlo() { this->SetStrategy(vtkMCXTypes::QUASI_MONTE_CARLO); }
+  void SetStrategyToEveryVoxel() { this->SetStrategy(vtkMCXTypes::EVERY_VOXEL); }
+  void SetStrategyToViewOrdered() { this->SetStrategy(vtkMCXTypes::VIEW_ORDERED); }
   ///@}
 
   /**
@@ -235,10 +159,10 @@ public:
   ///@}
 
   ///@{
-  vtkSetClampMacro(Kernel, int, TENT, BOX);
+  vtkSetClampMacro(Kernel, int, vtkMCXTypes::TENT, vtkMCXTypes::BOX);
   vtkGetMacro(Kernel, int);
-  void SetKernelToTent() { this->SetKernel(TENT); }
-  void SetKernelToBox() { this->SetKernel(BOX); }
+  void SetKernelToTent() { this->SetKernel(vtkMCXTypes::TENT); }
+  void SetKernelToBox() { this->SetKernel(vtkMCXTypes::BOX); }
   ///@}
 
   ///@{
@@ -250,10 +174,10 @@ public:
    * over the pixels it reaches (see vtkMCXProjector): the same memory per
    * point, far less noise. The choice travels in the field data.
    */
-  vtkSetClampMacro(Deposit, int, POINT, FOOTPRINT);
+  vtkSetClampMacro(Deposit, int, vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT);
   vtkGetMacro(Deposit, int);
-  void SetDepositToPoint() { this->SetDeposit(POINT); }
-  void SetDepositToFootprint() { this->SetDeposit(FOOTPRINT); }
+  void SetDepositToPoint() { this->SetDeposit(vtkMCXTypes::POINT); }
+  void SetDepositToFootprint() { this->SetDeposit(vtkMCXTypes::FOOTPRINT); }
   ///@}
 
   ///@{
@@ -308,10 +232,10 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkPiecewiseFunction* TransferFunction = nullptr;
-  int SampleExponent = 20;
-  int Strategy = HYBRID;
-  int Kernel = TENT;
-  int Deposit = POINT;
+  int SampleExponent = vtkMCXTypes::DefaultSampleExponent;
+  int Strategy = vtkMCXTypes::HYBRID;
+  int Kernel = vtkMCXTypes::TENT;
+  int Deposit = vtkMCXTypes::FOOTPRINT;
   vtkTypeInt64 Seed = 0;
   bool ReusePoints = false;
   int OutputPointsPrecision = SINGLE_PRECISION;

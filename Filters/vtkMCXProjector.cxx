@@ -142,7 +142,7 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   double footprintReach, Projection& projection)
 {
   vtkFieldData* fd = cloud->GetFieldData();
-  if (!fd || !fd->GetArray(vtkMCXPointSampler::SampleWeightName()))
+  if (!fd || !fd->GetArray(vtkMCXTypes::SampleWeightName()))
   {
     vtkErrorWithObjectMacro(
       self, "The point cloud carries no SampleWeight (make it with vtkMCXPointSampler).");
@@ -159,8 +159,8 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   {
     return false;
   }
-  projection.SampleWeight = FieldValue(fd, vtkMCXPointSampler::SampleWeightName(), 0.0);
-  projection.Integral = FieldValue(fd, vtkMCXPointSampler::IntegralName(), 0.0);
+  projection.SampleWeight = FieldValue(fd, vtkMCXTypes::SampleWeightName(), 0.0);
+  projection.Integral = FieldValue(fd, vtkMCXTypes::IntegralName(), 0.0);
   projection.Count = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
 
   const double origin[3] = { 0, 0, 0 };
@@ -315,7 +315,7 @@ public:
 
   mcx::Strategy Method =
     mcx::Strategy::Hybrid; // with EveryVoxel: Hybrid, which no voxel choice uses
-  bool EveryVoxel = false; // EVERY_VOXEL instead of Method (set before Prepare)
+  bool EveryVoxel = false; // vtkMCXTypes::EVERY_VOXEL instead of Method (set before Prepare)
   mcx::Kernel Reconstruction = mcx::Kernel::Tent;
   std::uint64_t Seed = 0;
   mcx::Deposit DepositMode = mcx::Deposit::Point;
@@ -510,7 +510,7 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
 {
   const long long pixels = static_cast<long long>(geometry.Size[0]) * geometry.Size[1];
   unsigned m = std::min(maximumExponent,
-    std::max(static_cast<unsigned>(vtkMCXPointSampler::PilotSampleExponent),
+    std::max(static_cast<unsigned>(vtkMCXTypes::PilotSampleExponent),
       mcx::ExponentForSampleCount(4 * pixels)));
   Projection projection = sampler.Project(m, 0.0, 0.05);
   const double passEnd[] = { 0.8, 0.95, 1.0 };
@@ -541,7 +541,7 @@ bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeEx
   const bool targeted =
     self->GetTargetRelativeError() > 0 || self->GetTargetQuantizationLevels() > 0;
   IndexProjection sampler(self, geometry, self->GetController(), wholeExtent);
-  sampler.EveryVoxel = self->GetStrategy() == vtkMCXPointSampler::EVERY_VOXEL;
+  sampler.EveryVoxel = self->GetStrategy() == vtkMCXTypes::EVERY_VOXEL;
   if (sampler.EveryVoxel && targeted)
   {
     vtkErrorWithObjectMacro(self,
@@ -590,11 +590,11 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
   }
   fd->Initialize();
   mcx::AddFieldValue(
-    fd, vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(projection.Count));
-  mcx::AddFieldValue(fd, vtkMCXPointSampler::SampleWeightName(), projection.SampleWeight);
-  mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), projection.Integral);
+    fd, vtkMCXTypes::SampleCountName(), static_cast<long long>(projection.Count));
+  mcx::AddFieldValue(fd, vtkMCXTypes::SampleWeightName(), projection.SampleWeight);
+  mcx::AddFieldValue(fd, vtkMCXTypes::IntegralName(), projection.Integral);
   mcx::AddFieldValue(
-    fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(), projection.EstimatedError());
+    fd, vtkMCXTypes::EstimatedRelativeErrorName(), projection.EstimatedError());
 }
 }
 
@@ -634,7 +634,7 @@ int vtkMCXProjector::RequestUpdateExtent(
 
 void vtkMCXProjector::SetStrategy(int strategy)
 {
-  if (strategy == vtkMCXPointSampler::VIEW_ORDERED)
+  if (strategy == vtkMCXTypes::VIEW_ORDERED)
   {
     vtkErrorMacro("SetStrategy: VIEW_ORDERED sorts a vtkMCXPointSampler's cloud for one view; "
                   "the projector's own samples cannot take it, so the strategy stays "
@@ -642,8 +642,8 @@ void vtkMCXProjector::SetStrategy(int strategy)
     return;
   }
   const int clamped =
-    std::min(std::max(strategy, static_cast<int>(vtkMCXPointSampler::HYBRID)),
-      static_cast<int>(vtkMCXPointSampler::EVERY_VOXEL));
+    std::min(std::max(strategy, static_cast<int>(vtkMCXTypes::HYBRID)),
+      static_cast<int>(vtkMCXTypes::EVERY_VOXEL));
   if (clamped != this->Strategy)
   {
     this->Strategy = clamped;

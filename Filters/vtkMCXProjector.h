@@ -15,7 +15,7 @@
  * from the samples themselves, by comparing the images of the first half of
  * the samples (for Hybrid, the coarser Halton run) and of the second half
  * (0 for an empty image, NaN for 1 or 2 samples, and NaN for an image of
- * every voxel, a cloud of vtkMCXPointSampler::EVERY_VOXEL or Strategy
+ * every voxel, a cloud of vtkMCXTypes::EVERY_VOXEL or Strategy
  * EVERY_VOXEL here, which has no voxel-choice error to estimate, unless it
  * is empty; its "SampleCount" is the number of voxels).
  *
@@ -59,7 +59,7 @@ public:
   ///@{
   /**
    * With an index input: M = 2^SampleExponent - 1 samples (default m = 24),
-   * the sampling strategy (vtkMCXPointSampler::HYBRID, MONTE_CARLO,
+   * the sampling strategy (vtkMCXTypes::HYBRID, MONTE_CARLO,
    * QUASI_MONTE_CARLO, or EVERY_VOXEL: each voxel of non-zero weight once,
    * weighted by its TF weight over the mean, never stored; SampleExponent
    * is unused and the target controls must be 0, else an error) and the
@@ -68,7 +68,7 @@ public:
    * sort of every voxel; SetStrategy(VIEW_ORDERED) is an error that keeps
    * the strategy).
    */
-  vtkSetClampMacro(SampleExponent, int, 0, vtkMCXPointSampler::LargestSampleExponent);
+  vtkSetClampMacro(SampleExponent, int, 0, vtkMCXTypes::LargestSampleExponent);
   vtkGetMacro(SampleExponent, int);
   void SetNumberOfSamples(vtkTypeInt64 n);
   vtkTypeInt64 GetNumberOfSamples();
@@ -80,13 +80,13 @@ public:
 
   ///@{
   /**
-   * vtkMCXPointSampler::POINT (default) or FOOTPRINT, and the footprint's
+   * vtkMCXTypes::POINT (default) or FOOTPRINT, and the footprint's
    * reach in pixels per projected voxel axis (default 16, 0.5 to 32).
    */
-  vtkSetClampMacro(Deposit, int, vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT);
+  vtkSetClampMacro(Deposit, int, vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT);
   vtkGetMacro(Deposit, int);
-  void SetDepositToPoint() { this->SetDeposit(vtkMCXPointSampler::POINT); }
-  void SetDepositToFootprint() { this->SetDeposit(vtkMCXPointSampler::FOOTPRINT); }
+  void SetDepositToPoint() { this->SetDeposit(vtkMCXTypes::POINT); }
+  void SetDepositToFootprint() { this->SetDeposit(vtkMCXTypes::FOOTPRINT); }
   vtkSetClampMacro(FootprintReach, double, 0.5, 32.0);
   vtkGetMacro(FootprintReach, double);
   ///@}
@@ -121,8 +121,8 @@ public:
 
   ///@{
   /** Upper bound of the exponent the target controls may choose (default 30). */
-  vtkSetClampMacro(MaximumSampleExponent, int, vtkMCXPointSampler::PilotSampleExponent,
-    vtkMCXPointSampler::LargestSampleExponent);
+  vtkSetClampMacro(MaximumSampleExponent, int, vtkMCXTypes::PilotSampleExponent,
+    vtkMCXTypes::LargestSampleExponent);
   vtkGetMacro(MaximumSampleExponent, int);
   ///@}
 
@@ -135,10 +135,10 @@ protected:
   std::string AgreeOnFailure(vtkInformation* inInfo, const std::string& failure) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int SampleExponent = 24;
-  int Strategy = vtkMCXPointSampler::HYBRID;
+  int SampleExponent = vtkMCXTypes::DefaultSampleExponent;
+  int Strategy = vtkMCXTypes::HYBRID;
   vtkTypeInt64 Seed = 0;
-  int Deposit = vtkMCXPointSampler::POINT;
+  int Deposit = vtkMCXTypes::FOOTPRINT;
   double FootprintReach = 16.0;
   double TargetRelativeError = 0.0;
   int TargetQuantizationLevels = 0;

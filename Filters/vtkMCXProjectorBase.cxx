@@ -274,7 +274,7 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
   output->SetDirectionMatrix(direction);
   output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
   vtkNew<vtkDoubleArray> values;
-  values->SetName(LineIntegralName());
+  values->SetName(vtkMCXTypes::LineIntegralName());
   values->SetNumberOfValues(static_cast<vtkIdType>(g.Size[0]) * g.Size[1]);
   values->FillValue(0.0);
   output->GetPointData()->Initialize();

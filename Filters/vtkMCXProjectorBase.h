@@ -24,6 +24,7 @@
 #define vtkMCXProjectorBase_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
+#include "vtkMCXTypes.h" // for the array names and constants
 #include "vtkImageAlgorithm.h"
 
 #include <string> // for std::string
@@ -118,20 +119,9 @@ public:
   ///@}
 
   ///@{
-  /** Reconstruction kernel, vtkMCXPointSampler::TENT (default) or BOX. */
+  /** Reconstruction kernel, vtkMCXTypes::TENT (default) or BOX. */
   vtkSetClampMacro(Kernel, int, 0, 1);
   vtkGetMacro(Kernel, int);
-  ///@}
-
-  ///@{
-  /**
-   * Names of the output's point-data array and of the field-data arrays
-   * that tell how the image was made (the sample weight and integral keep
-   * vtkMCXPointSampler's names).
-   */
-  static const char* LineIntegralName() { return "LineIntegral"; }
-  static const char* SampleCountName() { return "SampleCount"; }
-  static const char* EstimatedRelativeErrorName() { return "EstimatedRelativeError"; }
   ///@}
 
   /** Includes the camera's and the transfer function's modification times. */

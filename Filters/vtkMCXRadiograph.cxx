@@ -47,7 +47,7 @@ int vtkMCXRadiograph::RequestData(
     return 1; // nothing asked for, nothing done
   }
   vtkDataArray* lineIntegral =
-    input->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
+    input->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName());
   if (!lineIntegral || lineIntegral->GetNumberOfComponents() != 1)
   {
     vtkErrorMacro(
@@ -56,7 +56,7 @@ int vtkMCXRadiograph::RequestData(
     return 0;
   }
   vtkNew<vtkDoubleArray> values;
-  values->SetName(this->NegativeLog ? AttenuationName() : IntensityName());
+  values->SetName(this->NegativeLog ? vtkMCXTypes::AttenuationName() : vtkMCXTypes::IntensityName());
   const vtkIdType pixels = lineIntegral->GetNumberOfTuples();
   values->SetNumberOfValues(pixels);
   EffectsOf(this).ApplyToImage(

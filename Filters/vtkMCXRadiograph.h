@@ -23,6 +23,7 @@
 #define vtkMCXRadiograph_h
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
+#include "vtkMCXTypes.h" // for the array names and constants
 #include "vtkImageAlgorithm.h"
 
 class MONTECARLOXRAYFILTERS_EXPORT vtkMCXRadiograph : public vtkImageAlgorithm
@@ -47,12 +48,6 @@ public:
 
   /** Largest PhotonsPerPixel: Poisson counts stay exact in a double. */
   static constexpr double MaximumPhotonsPerPixel = 1e15;
-
-  ///@{
-  /** Names of the output arrays: Beer-Lambert (with or without noise), negative log. */
-  static const char* IntensityName() { return "Intensity"; }
-  static const char* AttenuationName() { return "Attenuation"; }
-  ///@}
 
   ///@{
   /** Photons reaching an unattenuated pixel; 0 (default) means no noise. */

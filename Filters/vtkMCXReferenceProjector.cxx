@@ -250,9 +250,9 @@ int vtkMCXReferenceProjector::RequestData(
   std::copy(current.begin(), current.end(), values->GetPointer(0));
   vtkFieldData* fd = output->GetFieldData();
   fd->Initialize();
-  mcx::AddFieldValue(fd, vtkMCXProjectorBase::EstimatedRelativeErrorName(), change);
+  mcx::AddFieldValue(fd, vtkMCXTypes::EstimatedRelativeErrorName(), change);
   mcx::AddFieldValue(fd, "RaysPerPixelAxis", static_cast<long long>(subdivision));
-  mcx::AddFieldValue(fd, vtkMCXPointSampler::IntegralName(), integral);
+  mcx::AddFieldValue(fd, vtkMCXTypes::IntegralName(), integral);
   return 1;
 }
 

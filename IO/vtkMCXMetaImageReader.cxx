@@ -9,103 +9,83 @@
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkmetaio/metaImage.h"
+#include "vtkmetaio/metaUtils.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 vtkStandardNewMacro(vtkMCXMetaImageReader);
 
 namespace
 {
-// The LPS direction an AnatomicalOrientation letter gives an axis (MetaIO:
-// the letter says where the axis comes from); false for an unknown one.
-bool OrientationDirection(vtkmetaio::MET_OrientationEnumType code, double direction[3])
-{
-  direction[0] = direction[1] = direction[2] = 0.0;
-  switch (code)
-  {
-    case vtkmetaio::MET_ORIENTATION_RL:
-      direction[0] = 1;
-      return true;
-    case vtkmetaio::MET_ORIENTATION_LR:
-      direction[0] = -1;
-      return true;
-    case vtkmetaio::MET_ORIENTATION_AP:
-      direction[1] = 1;
-      return true;
-    case vtkmetaio::MET_ORIENTATION_PA:
-      direction[1] = -1;
-      return true;
-    case vtkmetaio::MET_ORIENTATION_IS:
-      direction[2] = 1;
-      return true;
-    case vtkmetaio::MET_ORIENTATION_SI:
-      direction[2] = -1;
-      return true;
-    default:
-      return false;
-  }
-}
-
-bool IsIdentity(const double* matrix, int n)
-{
-  for (int i = 0; i < n * n; ++i)
-  {
-    if (matrix[i] != ((i % (n + 1)) == 0 ? 1.0 : 0.0))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-// The unit directions of the first three axes (rows of TransformMatrix, or
-// the AnatomicalOrientation's letters), axes[a][r].
+// The unit directions of the first three axes, axes[a][r]: the rows of
+// TransformMatrix (ITK's reading), the identity beyond them.
 void AxisDirections(const vtkmetaio::MetaImage& meta, double axes[3][3])
 {
   const int n = meta.NDims();
-  const int shown = std::min(n, 3);
   for (int a = 0; a < 3; ++a)
   {
     for (int r = 0; r < 3; ++r)
     {
-      axes[a][r] = a == r ? 1.0 : 0.0;
+      axes[a][r] = a < n && r < n ? meta.TransformMatrix()[a * n + r] : (a == r ? 1.0 : 0.0);
     }
   }
-  if (!IsIdentity(meta.TransformMatrix(), n))
+}
+}
+
+namespace
+{
+// Where the voxels of a header with ElementDataFile = LOCAL begin: after
+// the line of that field (MetaIO ends the header there).
+unsigned long long LocalDataOffset(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  unsigned long long offset = 0;
+  while (offset < (1ULL << 20) && std::getline(in, line))
   {
-    for (int a = 0; a < shown; ++a)
+    offset += line.size() + 1;
+    if (line.compare(0, 15, "ElementDataFile") == 0)
     {
-      for (int r = 0; r < shown; ++r)
-      {
-        axes[a][r] = meta.TransformMatrix()[a * n + r];
-      }
+      return offset;
     }
-    return;
   }
-  double fromOrientation[3][3];
-  double present[3] = { 0, 0, 0 };
-  for (int a = 0; a < shown; ++a)
+  return offset;
+}
+
+// "" when uncompressed binary data hold the voxels the header claims (data
+// after the header, or in one file beside it); VTK's reader only warns of a
+// short read and leaves zeros. Compressed data, file lists and patterns are
+// left to the read.
+std::string DescribeShortData(const vtkmetaio::MetaImage& meta, const char* header)
+{
+  const std::string data = meta.ElementDataFileName();
+  int elementBytes = 0;
+  if (meta.CompressedData() || !meta.BinaryData() || data.empty() || data == "LIST" ||
+    data.find('%') != std::string::npos || data.find(' ') != std::string::npos ||
+    !vtkmetaio::MET_SizeOfType(meta.ElementType(), &elementBytes))
   {
-    if (!OrientationDirection(meta.AnatomicalOrientation(a), fromOrientation[a]))
-    {
-      return; // unknown or partial: the identity stands
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      present[r] += std::abs(fromOrientation[a][r]);
-    }
+    return std::string();
   }
-  for (int r = 0; r < shown; ++r)
+  unsigned long long total = static_cast<unsigned long long>(elementBytes) *
+    static_cast<unsigned long long>(std::max(1, meta.ElementNumberOfChannels()));
+  for (int a = 0; a < meta.NDims(); ++a)
   {
-    if (present[r] != 1.0)
-    {
-      return; // an axis named twice
-    }
+    total *= static_cast<unsigned long long>(std::max(0, meta.DimSize(a)));
   }
-  std::copy(&fromOrientation[0][0], &fromOrientation[0][0] + 3 * shown, &axes[0][0]);
+  if (data == "LOCAL")
+  {
+    return mcxio::DescribeShortRawData({ header }, LocalDataOffset(header), total);
+  }
+  const std::string file = vtksys::SystemTools::CollapseFullPath(
+    data, vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(header)));
+  return meta.HeaderSize() >= 0
+    ? mcxio::DescribeShortRawData({ file }, static_cast<unsigned long long>(meta.HeaderSize()), total)
+    : std::string(); // -1: the data end the file
 }
 }
 
@@ -151,7 +131,7 @@ std::string vtkMCXMetaImageReader::Place()
   this->SetDataOrigin(origin);
   this->SetDataSpacing(spacing);
   this->SetDataDirection(direction);
-  return problem;
+  return DescribeShortData(meta, this->FileName);
 }
 
 int vtkMCXMetaImageReader::RequestInformation(
@@ -189,7 +169,7 @@ int vtkMCXMetaImageReader::RequestData(
   }
   const std::string problem = mcxio::RunReaderStage(
     this, [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
-    [] { return std::string(); });
+    [] { return std::string(); }, true);
   if (!problem.empty())
   {
     output->Initialize();

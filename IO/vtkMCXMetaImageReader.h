@@ -1,22 +1,19 @@
 /**
  * @class   vtkMCXMetaImageReader
  * @brief   A MetaImage volume (.mha, .mhd) placed in DICOM patient space
- *          (LPS) by its TransformMatrix, Offset and AnatomicalOrientation.
+ *          (LPS) by its TransformMatrix and Offset, as ITK places it.
  *
  * VTK's vtkMetaImageReader keeps ElementSpacing and Offset (Position) and
  * drops the orientation. This reader reads the voxels with it and places
  * them as ITK writes and reads MetaImage (the world is LPS): the centre of
  * voxel (i, j, k) at Offset + i s0 r0 + j s1 r1 + k s2 r2, where s are the
  * ElementSpacing and r0, r1, r2 the rows of TransformMatrix (also spelled
- * Orientation or Rotation: row a is the direction of axis a). When the
- * matrix is the identity (or absent) and AnatomicalOrientation names three
- * distinct axes, its letters give the directions instead, as MetaIO defines
- * them: each is where the axis comes from (R: the axis runs to the left,
- * +x; L: -x; A: +y, to the posterior; P: -y; I: +z; S: -z), so "RAI" is
- * the identity. ITK ignores AnatomicalOrientation; it differs from this
- * reader only on a header whose matrix is the identity and whose
- * orientation is not RAI. A matrix that is not finite or spans no volume,
- * and a non-finite or far origin, are errors. An error is one vtkErrorMacro
+ * Orientation or Rotation: row a is the direction of axis a).
+ * AnatomicalOrientation is read and, as ITK, SimpleITK, Slicer and
+ * plastimatch do, ignored: writers use it in both senses (ITK writes "RAI"
+ * for the identity, others "LPS" for the same matrix), so it says nothing
+ * the matrix does not. A matrix that is not finite or spans no volume, and
+ * a non-finite or far origin, are errors. An error is one vtkErrorMacro
  * line naming the file and leaves an empty output.
  */
 #ifndef vtkMCXMetaImageReader_h

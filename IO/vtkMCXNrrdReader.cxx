@@ -1,6 +1,7 @@
 #include "vtkMCXNrrdReader.h"
 
 #include "vtkCharArray.h"
+#include "vtkDataArray.h"
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -10,8 +11,10 @@
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -50,16 +53,32 @@ std::map<std::string, std::string> Fields(const std::string& header)
   return fields;
 }
 
+// A space name as teem compares it: any case, without spaces, hyphens or
+// underscores ("right-anterior-superior", "Right Anterior Superior", "RAS").
+std::string Normalized(const std::string& name)
+{
+  std::string out;
+  for (unsigned char c : name)
+  {
+    if (c != ' ' && c != '-' && c != '_')
+    {
+      out += static_cast<char>(std::tolower(c));
+    }
+  }
+  return out;
+}
+
 // The signs that take a named space to LPS; false for a space that has no
 // LPS equivalent (or none this reader knows).
 bool SpaceToLPS(const std::string& space, double sign[3])
 {
-  static const std::map<std::string, std::array<double, 3>> known = { { "right-anterior-superior",
-                                                                        { -1, -1, 1 } },
-    { "RAS", { -1, -1, 1 } }, { "left-anterior-superior", { 1, -1, 1 } }, { "LAS", { 1, -1, 1 } },
-    { "left-posterior-superior", { 1, 1, 1 } }, { "LPS", { 1, 1, 1 } },
-    { "scanner-xyz", { 1, 1, 1 } }, { "3D-right-handed", { 1, 1, 1 } } };
-  const auto found = known.find(space);
+  static const std::map<std::string, std::array<double, 3>> known = {
+    { "rightanteriorsuperior", { -1, -1, 1 } }, { "ras", { -1, -1, 1 } },
+    { "leftanteriorsuperior", { 1, -1, 1 } }, { "las", { 1, -1, 1 } },
+    { "leftposteriorsuperior", { 1, 1, 1 } }, { "lps", { 1, 1, 1 } },
+    { "scannerxyz", { 1, 1, 1 } }, { "3drighthanded", { 1, 1, 1 } }
+  };
+  const auto found = known.find(Normalized(space));
   if (found == known.end())
   {
     return false;
@@ -179,7 +198,8 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
   if (f.count("space") && !SpaceToLPS(f["space"], sign))
   {
     return "the NRRD space '" + f["space"] +
-      "' has no place in patient space (known: RAS, LAS, LPS, scanner-xyz, 3D-right-handed)";
+      "' has no place in patient space (known: right-anterior-superior, left-anterior-superior, "
+      "left-posterior-superior, scanner-xyz, 3D-right-handed)";
   }
   if (!f.count("space") && Trim(f["space dimension"]) != "3")
   {
@@ -196,6 +216,11 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
     return "the NRRD header's space directions do not give one entry per axis";
   }
   const std::size_t first = entries[0] == "none" ? 1 : 0;
+  if (std::find(entries.begin() + first, entries.end(), "none") != entries.end())
+  {
+    return "the NRRD header has a non-spatial axis after its spatial ones (as diffusion "
+           "gradients), which VTK's reader cannot read";
+  }
   const std::size_t axes = entries.size() - first;
   if (axes < 2 || axes > 3)
   {
@@ -248,43 +273,98 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
   return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
 }
 
+std::string vtkMCXNrrdReader::CheckLayout(const std::string& header)
+{
+  // vtkNrrdReader sizes its axes by the last "dimension", "space" or
+  // "space dimension" line before "sizes" (and writes past a vector sized
+  // 0 when none comes first): the header's own dimension and sizes decide
+  // here, before it reads them.
+  std::istringstream in(header);
+  std::string line;
+  std::getline(in, line); // the magic
+  bool dimensionSeen = false;
+  std::map<std::string, std::string> fields;
+  while (std::getline(in, line) && !line.empty())
+  {
+    const std::size_t separator = line.find(": ");
+    if (line[0] == '#' || separator == std::string::npos)
+    {
+      continue;
+    }
+    const std::string field = line.substr(0, separator);
+    dimensionSeen = dimensionSeen || field == "dimension";
+    if (field == "sizes" && !dimensionSeen)
+    {
+      return "the NRRD header gives its sizes before its dimension";
+    }
+    fields[field] = Trim(line.substr(separator + 2));
+  }
+  std::istringstream dimensionText(fields["dimension"]);
+  long long dimension = 0;
+  const std::vector<long long> sizes = Sizes(fields["sizes"]);
+  if (!(dimensionText >> dimension) || dimension < 1 || dimension > 4 ||
+    static_cast<long long>(sizes.size()) != dimension)
+  {
+    return "the NRRD header's sizes do not give its dimension's " + fields["dimension"] + " axes";
+  }
+  for (long long size : sizes)
+  {
+    if (size < 1 || size > VTK_INT_MAX)
+    {
+      return "the NRRD header's sizes '" + fields["sizes"] + "' are not all between 1 and 2^31 - 1";
+    }
+  }
+  const long long spatial = dimension - (LeadingComponentAxis(fields) ? 1 : 0);
+  if (spatial < 2 || spatial > 3)
+  {
+    return "the NRRD header has " + std::to_string(spatial) +
+      " spatial axes (after a leading component axis, if any), not 2 or 3";
+  }
+  return std::string();
+}
+
+void vtkMCXNrrdReader::SetLayout(const std::string& header)
+{
+  std::map<std::string, std::string> fields = Fields(header);
+  const std::vector<long long> sizes = Sizes(fields["sizes"]);
+  const std::size_t first = LeadingComponentAxis(fields) ? 1 : 0;
+  this->NumberOfScalarComponents = first ? static_cast<int>(sizes[0]) : 1;
+  // Data in several files hold one slice each (vtkNrrdReader's rule).
+  this->FileDimensionality = static_cast<int>(sizes.size() - first) -
+    (this->DataFiles->GetNumberOfValues() > 1 ? 1 : 0);
+  std::istringstream spacings(fields["spacings"]);
+  std::string skipped;
+  if (first)
+  {
+    spacings >> skipped;
+  }
+  double spacing[3] = { 1, 1, 1 };
+  for (int a = 0; a < 3; ++a)
+  {
+    const std::size_t axis = first + a;
+    this->DataExtent[2 * a] = 0;
+    this->DataExtent[2 * a + 1] = axis < sizes.size() ? static_cast<int>(sizes[axis] - 1) : 0;
+    if (axis < sizes.size() && (!(spacings >> spacing[a]) || !(spacing[a] > 0)))
+    {
+      spacing[a] = 1.0; // "nan" or none: VTK's unit spacing
+    }
+  }
+  this->SetDataSpacing(spacing);
+}
+
 int vtkMCXNrrdReader::ReadHeader(vtkCharArray* headerBuffer)
 {
-  if (!this->Superclass::ReadHeader(headerBuffer))
+  const std::string header(headerBuffer->GetPointer(0));
+  this->PlacementProblem = CheckLayout(header);
+  if (!this->PlacementProblem.empty() || !this->Superclass::ReadHeader(headerBuffer))
   {
     return 0;
   }
-  // The same bytes the superclass parsed, placed in LPS; the voxels are
-  // read in the file's order (vtkNrrdReader reverses the rows of LAS).
+  // The same bytes the superclass parsed: the axes as the header gives them
+  // (vtkNrrdReader guesses components and sizes them by the space), placed
+  // in LPS; the voxels read in the file's order (it reverses LAS's rows).
   this->FileLowerLeft = 1;
-  const std::string header(headerBuffer->GetPointer(0));
-  std::map<std::string, std::string> fields = Fields(header);
-  const std::vector<long long> sizes = Sizes(fields["sizes"]);
-  const bool sizesFit =
-    std::all_of(sizes.begin(), sizes.end(), [](long long n) { return n >= 1 && n <= VTK_INT_MAX; });
-  if (this->NumberOfScalarComponents > 1 && sizes.size() == 3 && sizesFit &&
-    !LeadingComponentAxis(fields))
-  {
-    // vtkNrrdReader takes a first axis of at most 9 samples for the voxels'
-    // components; the header says it is a spatial axis.
-    this->NumberOfScalarComponents = 1;
-    this->FileDimensionality = 3;
-    for (int a = 0; a < 3; ++a)
-    {
-      this->DataExtent[2 * a] = 0;
-      this->DataExtent[2 * a + 1] = static_cast<int>(sizes[a] - 1);
-    }
-    std::istringstream spacings(fields["spacings"]);
-    double spacing[3] = { 1, 1, 1 };
-    for (double& s : spacing)
-    {
-      if (!(spacings >> s) || !(s > 0))
-      {
-        s = 1.0;
-      }
-    }
-    this->SetDataSpacing(spacing);
-  }
+  this->SetLayout(header);
   double origin[3], spacing[3], direction[9];
   this->PlacementProblem =
     PlaceHeader(header, this->DataExtent, this->DataSpacing, origin, spacing, direction);
@@ -298,13 +378,43 @@ int vtkMCXNrrdReader::ReadHeader(vtkCharArray* headerBuffer)
   return 1;
 }
 
+std::vector<std::string> vtkMCXNrrdReader::DataFileNames() const
+{
+  std::vector<std::string> files;
+  for (vtkIdType i = 0; i < this->DataFiles->GetNumberOfValues(); ++i)
+  {
+    files.push_back(this->DataFiles->GetValue(i));
+  }
+  if (files.empty() && this->FileName)
+  {
+    files.emplace_back(this->FileName); // the data follow the header
+  }
+  return files;
+}
+
+unsigned long long vtkMCXNrrdReader::DataBytes() const
+{
+  unsigned long long bytes = static_cast<unsigned long long>(this->NumberOfScalarComponents) *
+    vtkDataArray::GetDataTypeSize(this->DataScalarType);
+  for (int a = 0; a < 3; ++a)
+  {
+    bytes *= static_cast<unsigned long long>(this->DataExtent[2 * a + 1] - this->DataExtent[2 * a] + 1);
+  }
+  return bytes;
+}
+
 int vtkMCXNrrdReader::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->PlacementProblem.clear();
-  const std::string problem = mcxio::RunReaderStage(
+  std::string problem = mcxio::RunReaderStage(
     this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
     [this] { return this->PlacementProblem; });
+  if (problem.empty() && this->Encoding == ENCODING_RAW)
+  {
+    problem = mcxio::DescribeShortRawData(this->DataFileNames(),
+      this->DataFiles->GetNumberOfValues() > 0 ? 0 : this->GetHeaderSize(), this->DataBytes());
+  }
   this->Failed = !problem.empty();
   if (this->Failed)
   {
@@ -330,7 +440,7 @@ int vtkMCXNrrdReader::RequestData(
   }
   const std::string problem = mcxio::RunReaderStage(
     this, [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
-    [] { return std::string(); });
+    [] { return std::string(); }, true);
   if (!problem.empty())
   {
     output->Initialize();

@@ -14,10 +14,15 @@
  * - a header with space dimension 3 and no space: taken as LPS;
  * - 3D-left-handed, the time spaces and unknown names are errors, as are
  *   space directions that are missing, not finite, zero or span no volume.
- * A header without any space field keeps VTK's axis-aligned placement
- * (spacings, origin 0). A first axis of 9 or fewer samples that the header
- * calls spatial (a space direction, or the kind domain or space) stays an
- * axis, where vtkNrrdReader would read it as the voxels' components. An error is one vtkErrorMacro
+ * Space names are compared as teem compares them (any case, without spaces
+ * or hyphens). A header without any space field keeps VTK's axis-aligned
+ * placement (spacings, origin 0). The axes are the header's own: a first
+ * axis is the voxels' components when its space direction is "none" or its
+ * kind no domain (else, without either, when it has at most 9 samples, as
+ * vtkNrrdReader guesses), whatever order the fields come in; 2 or 3 spatial
+ * axes; a non-spatial axis after them is an error. Raw data shorter than
+ * the header claims is an error before the read (VTK's reader only warns
+ * and leaves zeros). An error is one vtkErrorMacro
  * line naming the file and leaves an empty output.
  */
 #ifndef vtkMCXNrrdReader_h
@@ -27,6 +32,7 @@
 #include "vtkNrrdReader.h"
 
 #include <string> // for the placement's problems
+#include <vector> // for the data files
 
 class MONTECARLOXRAYIO_EXPORT vtkMCXNrrdReader : public vtkNrrdReader
 {
@@ -56,6 +62,16 @@ protected:
 private:
   vtkMCXNrrdReader(const vtkMCXNrrdReader&) = delete;
   void operator=(const vtkMCXNrrdReader&) = delete;
+
+  // "" or why the header's dimension and sizes are no image VTK's reader
+  // can read (checked before it reads them).
+  static std::string CheckLayout(const std::string& header);
+  // The extent, components and spacings of the header's own sizes.
+  void SetLayout(const std::string& header);
+
+  // The files that hold the voxels, and their bytes, as the header says.
+  std::vector<std::string> DataFileNames() const;
+  unsigned long long DataBytes() const;
 
   std::string PlacementProblem; // from the last ReadHeader
   bool Failed = false;          // the last RequestInformation reported an error

@@ -1,22 +1,41 @@
 #include "vtkMCXReaderErrorsPrivate.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMCXFirstErrorObserver.h"
 #include "vtkNew.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtksys/SystemTools.hxx"
 
+#include <exception>
 #include <new>
 
 namespace mcxio
 {
 
 std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& stage,
-  const std::function<std::string()>& problem)
+  const std::function<std::string()>& problem, bool warningsAreErrors)
 {
   vtkNew<vtkMCXFirstErrorObserver> error;
   error->ObserveAlgorithm(reader);
+  // A short read is only a warning of vtkImageReader2's: a volume's data.
+  std::string warning;
+  vtkNew<vtkCallbackCommand> warnings;
+  warnings->SetClientData(&warning);
+  warnings->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      auto* first = static_cast<std::string*>(clientData);
+      if (first->empty() && callData)
+      {
+        *first = vtkMCXFirstErrorObserver::MessageOf(static_cast<const char*>(callData));
+      }
+    });
+  const unsigned long tag =
+    warningsAreErrors ? reader->AddObserver(vtkCommand::WarningEvent, warnings) : 0;
   int result = 0;
   std::string thrown;
   try
@@ -27,10 +46,22 @@ std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& sta
   {
     thrown = "out of memory";
   }
+  catch (const std::exception& e)
+  {
+    thrown = std::string("the reader failed (") + e.what() + ")";
+  }
+  if (warningsAreErrors)
+  {
+    reader->RemoveObserver(tag);
+  }
   error->StopObserving();
   if (!error->GetErrorText().empty())
   {
     return error->GetErrorText();
+  }
+  if (!warning.empty())
+  {
+    return warning;
   }
   const std::string found = problem();
   if (!found.empty())
@@ -54,6 +85,22 @@ void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVecto
     outputVector->GetInformationObject(0)->Set(
       vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
   }
+}
+
+std::string DescribeShortRawData(
+  const std::vector<std::string>& files, unsigned long long offset, unsigned long long total)
+{
+  const unsigned long long each = files.empty() ? 0 : total / files.size();
+  for (const std::string& file : files)
+  {
+    const unsigned long long size = vtksys::SystemTools::FileLength(file);
+    if (size < offset || size - offset < each)
+    {
+      return "truncated: the header claims " + std::to_string(each) + " bytes of voxels in '" +
+        file + "', which holds " + std::to_string(size > offset ? size - offset : 0);
+    }
+  }
+  return std::string();
 }
 
 } // namespace mcxio

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 class vtkAlgorithm;
 class vtkInformationVector;
@@ -13,18 +14,26 @@ namespace mcxio
 {
 
 /// Runs stage (a superclass's request) on reader, whose error reports (and
-/// its executive's) are kept instead of printed. Returns the first report's
-/// message; else what problem() says afterwards; else "the reader failed"
-/// when stage returned 0, "out of memory" when it threw std::bad_alloc;
-/// else "".
+/// its executive's; with warningsAreErrors its warnings too, as the short
+/// read of a data file) are kept instead of printed. Returns the first
+/// report's message; else what problem() says afterwards; else "out of
+/// memory" or the exception's text when stage threw, "the reader failed"
+/// when it returned 0; else "".
 std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& stage,
-  const std::function<std::string()>& problem);
+  const std::function<std::string()>& problem, bool warningsAreErrors = false);
 
 /// Says "cannot read 'path': problem" once as reader's error and, given
 /// outputVector, sets an empty whole extent: a failed request would make the
 /// executive say it again. (The caller sets its error code.)
 void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
   const std::string& problem);
+
+/// "" when the raw (uncompressed) data files hold the bytes a header
+/// claims: files[0] from offset on holds total bytes, or, for several
+/// files, each holds total / files.size() from offset on; else the reason
+/// (a short read is only a warning of vtkImageReader2's, and leaves zeros).
+std::string DescribeShortRawData(
+  const std::vector<std::string>& files, unsigned long long offset, unsigned long long total);
 
 } // namespace mcxio
 

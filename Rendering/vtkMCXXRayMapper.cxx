@@ -263,7 +263,7 @@ struct vtkMCXXRayMapper::vtkInternals
     producer->Update(outputPort);
     vtkPolyData* cloud = vtkPolyData::SafeDownCast(self->GetInputDataObject(0, 0));
     vtkDataArray* integral =
-      cloud ? cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName()) : nullptr;
+      cloud ? cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName()) : nullptr;
     if (!integral || integral->GetNumberOfTuples() < 1)
     {
       vtkErrorWithObjectMacro(
@@ -282,7 +282,7 @@ struct vtkMCXXRayMapper::vtkInternals
   // version (a scan of every weight), not on every progressive frame.
   bool UpdateWeights(vtkMCXXRayMapper* self, vtkPolyData* cloud)
   {
-    vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName());
+    vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXTypes::PointWeightName());
     if (weights && weights == this->CheckedWeights &&
       weights->GetMTime() == this->CheckedWeightsTime &&
       weights->GetNumberOfTuples() == cloud->GetNumberOfPoints())
@@ -368,7 +368,7 @@ struct vtkMCXXRayMapper::vtkInternals
     this->NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
     this->EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
     const double integral =
-      cloud->GetFieldData()->GetArray(vtkMCXPointSampler::IntegralName())->GetTuple1(0);
+      cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0);
     this->ScaledIntegral = integral * std::fabs(vtkMatrix4x4::Determinant(m));
     // A view-ordered cloud's control image holds for its own frame (no prop
     // matrix) with every sample visible.
@@ -689,14 +689,14 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
   output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
   vtkNew<vtkDoubleArray> values;
-  values->SetName(vtkMCXProjectorBase::LineIntegralName());
+  values->SetName(vtkMCXTypes::LineIntegralName());
   values->SetNumberOfValues(static_cast<vtkIdType>(in.Image.NumberOfPixels()));
   const std::uint64_t count = in.Image.Count();
   in.Image.ToValues(in.SampleWeight(), values->GetPointer(0));
   output->GetPointData()->SetScalars(values);
   mcx::AddFieldValue(
-    output->GetFieldData(), vtkMCXProjectorBase::SampleCountName(), static_cast<long long>(count));
-  mcx::AddFieldValue(output->GetFieldData(), vtkMCXProjectorBase::EstimatedRelativeErrorName(),
+    output->GetFieldData(), vtkMCXTypes::SampleCountName(), static_cast<long long>(count));
+  mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::EstimatedRelativeErrorName(),
     this->GetEstimatedRelativeError());
 }
 

@@ -29,7 +29,7 @@
  *
  * When the renderer also holds visible opaque geometry, samples behind it in
  * the depth buffer do not count; without any, no depth work is done. A
- * cloud of voxel centres (vtkMCXPointSampler::FOOTPRINT) is deposited as
+ * cloud of voxel centres (vtkMCXTypes::FOOTPRINT) is deposited as
  * footprints, as vtkMCXProjector deposits it (the same image for the same
  * camera); behind opaque geometry a footprint is tested pixel by pixel at
  * its voxel centre's depth.
@@ -184,7 +184,7 @@ public:
    * The first image after a change has at least 2^InitialSampleExponent - 1
    * points (default 14), however little time is allocated.
    */
-  vtkSetClampMacro(InitialSampleExponent, int, 1, vtkMCXPointSampler::MaximumPointCloudExponent);
+  vtkSetClampMacro(InitialSampleExponent, int, 1, vtkMCXTypes::MaximumPointCloudExponent);
   vtkGetMacro(InitialSampleExponent, int);
   ///@}
 

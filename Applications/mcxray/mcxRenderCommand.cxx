@@ -69,7 +69,7 @@ options:
   --tf SPEC             transfer function: value:weight,value:weight,... in data
                         units (held constant beyond its end points), or a preset:
                         %s. Default: raw
-  --samples N           number of samples, rounded up to 2^m - 1 (default 16777215)
+  --samples N           number of samples, rounded up to 2^m - 1 (default 4194303)
   --target-error E      choose the sample count for a relative RMS error E (a
                         pilot run of 65535 samples measures the image; up to
                         2^30 - 1 samples); replaces --samples
@@ -139,7 +139,7 @@ options:
   --help                this text
 )";
 
-const long long DefaultSamples = 16777215;
+const long long DefaultSamples = (1LL << vtkMCXTypes::DefaultSampleExponent) - 1;
 
 double Seconds(std::chrono::steady_clock::time_point since)
 {
@@ -207,7 +207,7 @@ void CheckCombinations(const Settings& settings)
     Fail("--stored-points applies to the Monte Carlo methods, not to reference");
   }
   if (settings.StoredPoints &&
-    settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+    settings.Samples > (1LL << vtkMCXTypes::MaximumPointCloudExponent) - 1)
   {
     Fail("--stored-points holds at most 2^30 - 1 points; use fewer --samples or the default "
          "off-line projection");
@@ -379,7 +379,7 @@ private:
   vtkDataArray* Levels() const
   {
     return this->Index->GetOutput()->GetFieldData()->GetArray(
-      vtkMCXDensityIndex::LevelValuesName());
+      vtkMCXTypes::LevelValuesName());
   }
 
   // The lowest and highest density level (what the raw TF spans), over
@@ -507,12 +507,12 @@ private:
       line << "reference:   " << seconds << " s (exact line integrals, "
            << fields->GetArray("RaysPerPixelAxis")->GetTuple1(0)
            << "^2 rays per pixel, estimated relative error "
-           << fields->GetArray(vtkMCXProjectorBase::EstimatedRelativeErrorName())->GetTuple1(0)
+           << fields->GetArray(vtkMCXTypes::EstimatedRelativeErrorName())->GetTuple1(0)
            << ")";
     }
     else
     {
-      const double samples = fields->GetArray(vtkMCXProjectorBase::SampleCountName())->GetTuple1(0);
+      const double samples = fields->GetArray(vtkMCXTypes::SampleCountName())->GetTuple1(0);
       line << (this->Options.StoredPoints ? "projection:  "
                                           : "sampling + projection (off-line, fused): ")
            << seconds << " s (" << static_cast<long long>(samples);
@@ -525,7 +525,7 @@ private:
       {
         line << " samples, " << samples / seconds / 1e6
              << " M samples/s, estimated relative RMS error "
-             << fields->GetArray(vtkMCXProjectorBase::EstimatedRelativeErrorName())->GetTuple1(0)
+             << fields->GetArray(vtkMCXTypes::EstimatedRelativeErrorName())->GetTuple1(0)
              << ")";
       }
     }

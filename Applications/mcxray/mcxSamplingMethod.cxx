@@ -2,33 +2,32 @@
 
 #include "mcxFail.h"
 
-#include "vtkMCXPointSampler.h"
+#include "vtkMCXTypes.h"
 
 namespace mcxapp
 {
 
 bool IsSamplingMethod(const std::string& method)
 {
-  return method == "hybrid" || method == "mc" || method == "qmc";
+  const int strategy = vtkMCXTypes::StrategyFromName(method.c_str());
+  return strategy == vtkMCXTypes::HYBRID || strategy == vtkMCXTypes::MONTE_CARLO ||
+    strategy == vtkMCXTypes::QUASI_MONTE_CARLO;
 }
 
 bool IsCloudMethod(const std::string& method)
 {
-  return IsSamplingMethod(method) || method == "every-voxel" || method == "view-ordered";
+  return vtkMCXTypes::StrategyFromName(method.c_str()) >= 0;
 }
 
 int StrategyOf(const std::string& method)
 {
-  return method == "mc"       ? vtkMCXPointSampler::MONTE_CARLO
-    : method == "qmc"         ? vtkMCXPointSampler::QUASI_MONTE_CARLO
-    : method == "every-voxel"  ? vtkMCXPointSampler::EVERY_VOXEL
-    : method == "view-ordered" ? vtkMCXPointSampler::VIEW_ORDERED
-                               : vtkMCXPointSampler::HYBRID;
+  const int strategy = vtkMCXTypes::StrategyFromName(method.c_str());
+  return strategy >= 0 ? strategy : vtkMCXTypes::HYBRID;
 }
 
 void CheckKernel(const std::string& kernel)
 {
-  if (kernel != "tent" && kernel != "box")
+  if (vtkMCXTypes::KernelFromName(kernel.c_str()) < 0)
   {
     Fail("unknown --kernel '" + kernel + "' (expected tent or box)");
   }
@@ -36,7 +35,7 @@ void CheckKernel(const std::string& kernel)
 
 void CheckDeposit(const std::string& deposit)
 {
-  if (deposit != "footprint" && deposit != "point")
+  if (vtkMCXTypes::DepositFromName(deposit.c_str()) < 0)
   {
     Fail("unknown --deposit '" + deposit + "' (expected footprint or point)");
   }
@@ -44,12 +43,14 @@ void CheckDeposit(const std::string& deposit)
 
 int DepositOf(const std::string& deposit)
 {
-  return deposit == "point" ? vtkMCXPointSampler::POINT : vtkMCXPointSampler::FOOTPRINT;
+  const int value = vtkMCXTypes::DepositFromName(deposit.c_str());
+  return value >= 0 ? value : vtkMCXTypes::FOOTPRINT;
 }
 
 int KernelOf(const std::string& kernel)
 {
-  return kernel == "box" ? vtkMCXPointSampler::BOX : vtkMCXPointSampler::TENT;
+  const int value = vtkMCXTypes::KernelFromName(kernel.c_str());
+  return value >= 0 ? value : vtkMCXTypes::TENT;
 }
 
 } // namespace mcxapp

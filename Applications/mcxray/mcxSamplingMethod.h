@@ -1,4 +1,5 @@
-// The names of --method, --kernel and --deposit, and the sampler's constants for them.
+// The names of --method, --kernel and --deposit, and their vtkMCXTypes constants
+// (the names are vtkMCXTypes's: StrategyFromName and the like).
 #ifndef mcxSamplingMethod_h
 #define mcxSamplingMethod_h
 
@@ -13,7 +14,7 @@ bool IsSamplingMethod(const std::string& method);
 /// point cloud.
 bool IsCloudMethod(const std::string& method);
 
-/// vtkMCXPointSampler's strategy for a sampling method.
+/// The vtkMCXTypes strategy of a sampling method.
 int StrategyOf(const std::string& method);
 
 /// Fails unless kernel is tent or box.
@@ -22,10 +23,10 @@ void CheckKernel(const std::string& kernel);
 /// Fails unless deposit is footprint or point.
 void CheckDeposit(const std::string& deposit);
 
-/// vtkMCXPointSampler's deposit for footprint or point.
+/// The vtkMCXTypes deposit of footprint or point.
 int DepositOf(const std::string& deposit);
 
-/// vtkMCXPointSampler's kernel for tent or box.
+/// The vtkMCXTypes kernel of tent or box.
 int KernelOf(const std::string& kernel);
 
 } // namespace mcxapp

@@ -76,7 +76,7 @@ controls: sliders for the TF window (centre and width, in data units);
   p switches parallel / perspective; r resets the camera; q quits.
 )";
 
-const long long DefaultSamples = (1LL << 22) - 1;
+const long long DefaultSamples = (1LL << vtkMCXTypes::DefaultSampleExponent) - 1;
 
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
@@ -92,7 +92,7 @@ void CheckCombinations(const Settings& settings)
   }
   CheckKernel(settings.Kernel);
   CheckDeposit(settings.Deposit);
-  if (settings.Samples > (1LL << vtkMCXPointSampler::MaximumPointCloudExponent) - 1)
+  if (settings.Samples > (1LL << vtkMCXTypes::MaximumPointCloudExponent) - 1)
   {
     Fail("the viewer holds at most 2^30 - 1 points");
   }

@@ -142,8 +142,10 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   if (!message.empty() || !image || image->GetNumberOfPoints() == 0 ||
     !image->GetPointData()->GetScalars())
   {
-    error = "cannot read '" + path + "'" +
-      (message.empty() ? std::string(": no volume data") : ": " + message);
+    // The project's readers name the file themselves: said once.
+    const std::string own = "cannot read '" + path + "': ";
+    error = message.compare(0, own.size(), own) == 0 ? message
+      : own + (message.empty() ? std::string("no volume data") : message);
     return nullptr;
   }
   const std::string placement = vtkMCXPatientSpace::DescribeUnusablePlacement(image);

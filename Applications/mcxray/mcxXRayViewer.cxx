@@ -191,7 +191,7 @@ void XRayViewer::SetTransferFunctionWindow(double centre, double width)
 
 void XRayViewer::OrderByTheCurrentView()
 {
-  if (this->Sampler->GetStrategy() == vtkMCXPointSampler::VIEW_ORDERED)
+  if (this->Sampler->GetStrategy() == vtkMCXTypes::VIEW_ORDERED)
   {
     const int* size = this->Window->GetSize();
     this->Sampler->SetOrderingView(this->Renderer->GetActiveCamera(), size[0], size[1]);
@@ -217,7 +217,7 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
   vtkMCXXRayMapper* mapper = this->Mapper;
   std::ostringstream text;
   text.precision(3);
-  const bool everyVoxel = this->Sampler->GetStrategy() == vtkMCXPointSampler::EVERY_VOXEL;
+  const bool everyVoxel = this->Sampler->GetStrategy() == vtkMCXTypes::EVERY_VOXEL;
   const long long total = everyVoxel
     ? static_cast<long long>(this->Sampler->GetOutput()->GetNumberOfPoints())
     : static_cast<long long>(this->Sampler->GetNumberOfSamples());
@@ -322,7 +322,7 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
     case '=':
     case '-':
       // An every-voxel cloud has no sample count to change.
-      handled = viewer->Sampler->GetStrategy() != vtkMCXPointSampler::EVERY_VOXEL;
+      handled = viewer->Sampler->GetStrategy() != vtkMCXTypes::EVERY_VOXEL;
       if (handled)
       {
         const int step = key == '-' ? -1 : 1;

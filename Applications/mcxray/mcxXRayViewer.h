@@ -6,6 +6,7 @@
 #ifndef mcxXRayViewer_h
 #define mcxXRayViewer_h
 
+#include "vtkMCXTypes.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
@@ -31,10 +32,10 @@ namespace mcxapp
 struct ViewerOptions
 {
   std::string TransferFunction = "raw";
-  int SampleExponent = 22; // 4 M points
-  int Strategy = 0;        // vtkMCXPointSampler::HYBRID
-  int Kernel = 0;          // vtkMCXPointSampler::TENT
-  int Deposit = 1;         // vtkMCXPointSampler::FOOTPRINT
+  int SampleExponent = vtkMCXTypes::DefaultSampleExponent;
+  int Strategy = vtkMCXTypes::HYBRID;
+  int Kernel = vtkMCXTypes::TENT;
+  int Deposit = vtkMCXTypes::FOOTPRINT;
   unsigned long long Seed = 0;
   int Size[2] = { 768, 768 };
   bool OffScreen = false;

@@ -88,7 +88,7 @@ def main():
     projector = mcxray.vtkMCXProjector()
     projector.SetInputConnection(index.GetOutputPort())
     projector.SetTransferFunction(tf)
-    projector.SetDeposit(mcxray.vtkMCXPointSampler.FOOTPRINT)  # far less error per sample than POINT
+    projector.SetDeposit(mcxray.vtkMCXTypes.FOOTPRINT)  # far less error per sample than POINT
     projector.SetNumberOfSamples(args.samples)
     projector.SetDetectorAxisU(1, 0, 0)  # a frontal view along +y, z up
     projector.SetDetectorAxisV(0, 0, 1)

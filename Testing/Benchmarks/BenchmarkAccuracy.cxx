@@ -136,11 +136,11 @@ int main(int argc, char* argv[])
     int Strategy;
     int Deposit;
   };
-  const Method methods[] = { { "hybrid", vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::POINT },
-    { "mc", vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::POINT },
-    { "qmc", vtkMCXPointSampler::QUASI_MONTE_CARLO, vtkMCXPointSampler::POINT },
-    { "hybrid footprint", vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::FOOTPRINT },
-    { "mc footprint", vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::FOOTPRINT } };
+  const Method methods[] = { { "hybrid", vtkMCXTypes::HYBRID, vtkMCXTypes::POINT },
+    { "mc", vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::POINT },
+    { "qmc", vtkMCXTypes::QUASI_MONTE_CARLO, vtkMCXTypes::POINT },
+    { "hybrid footprint", vtkMCXTypes::HYBRID, vtkMCXTypes::FOOTPRINT },
+    { "mc footprint", vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::FOOTPRINT } };
   for (const Case& c : cases)
   {
     vtkSmartPointer<vtkImageData> volume = mcxbench::ReadInStoredFrame(c.File, c.Name);
@@ -204,7 +204,7 @@ int main(int argc, char* argv[])
       {
         for (int m : exponents)
         {
-          if (method.Deposit == vtkMCXPointSampler::FOOTPRINT && m > 24)
+          if (method.Deposit == vtkMCXTypes::FOOTPRINT && m > 24)
           {
             continue; // far below the reference's own error already
           }
@@ -226,12 +226,12 @@ int main(int argc, char* argv[])
     {
       double seconds = 0;
       auto reference = Reference(index, tf, views[0].Camera, size, tolerance, 9, seconds);
-      for (int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+      for (int deposit : { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT })
       {
         for (double target : { 0.05, 0.02, 0.01 })
         {
           auto projector =
-            MakeProjector(index, tf, views[0].Camera, size, 0, vtkMCXPointSampler::HYBRID, deposit);
+            MakeProjector(index, tf, views[0].Camera, size, 0, vtkMCXTypes::HYBRID, deposit);
           projector->SetTargetRelativeError(target);
           projector->SetMaximumSampleExponent(quick ? 20 : 28);
           const Clock::time_point start = Clock::now();
@@ -341,7 +341,7 @@ int main(int argc, char* argv[])
     for (double r : { 0.0, 2.0, 4.0, 8.0, 16.0 })
     {
       auto projector = MakeProjector(index, tf, camera, pixels, r > 0 ? m : m + 4,
-        vtkMCXPointSampler::HYBRID, r > 0 ? vtkMCXPointSampler::FOOTPRINT : vtkMCXPointSampler::POINT);
+        vtkMCXTypes::HYBRID, r > 0 ? vtkMCXTypes::FOOTPRINT : vtkMCXTypes::POINT);
       projector->SetFootprintReach(r > 0 ? r : 16.0);
       projector->Update(); // the tables once, then a timed run
       projector->Modified();

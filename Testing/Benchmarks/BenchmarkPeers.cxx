@@ -129,7 +129,7 @@ struct Run
 };
 
 Run Render(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera, int size, int m,
-  int deposit, vtkImageData* reference, int strategy = vtkMCXPointSampler::HYBRID)
+  int deposit, vtkImageData* reference, int strategy = vtkMCXTypes::HYBRID)
 {
   Run run;
   std::vector<double> seconds;
@@ -230,7 +230,7 @@ bool RenderWithVTK(vtkImageData* volume, vtkPiecewiseFunction* tf, vtkCamera* ca
     return false;
   }
   vtkDataArray* exact =
-    reference->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
+    reference->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName());
   double scale = 1.0;
   for (int attempt = 0; attempt < 12; ++attempt, scale /= 4)
   {
@@ -522,7 +522,7 @@ int main(int argc, char* argv[])
       // Each deposit's sweep; the first run that reaches each target.
       Run reached[2][2]; // [deposit][target]
       bool found[2][2] = { { false, false }, { false, false } };
-      const int deposits[2] = { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT };
+      const int deposits[2] = { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT };
       for (int d = 0; d < 2; ++d)
       {
         const std::array<int, 2>& span = d == 0 ? pointRange : footprintRange;
@@ -551,8 +551,8 @@ int main(int argc, char* argv[])
       if (c.EveryVoxel)
       {
         // The fused DRR of every voxel once: one run, no sample count.
-        const Run every = Render(index, tf, camera, size, 0, vtkMCXPointSampler::FOOTPRINT,
-          reference, vtkMCXPointSampler::EVERY_VOXEL);
+        const Run every = Render(index, tf, camera, size, 0, vtkMCXTypes::FOOTPRINT,
+          reference, vtkMCXTypes::EVERY_VOXEL);
         peers << Quoted(c.Name) << ',' << size << ",MonteCarloXRay,every voxel footprint,"
               << every.Samples << ',' << every.Seconds << ',' << every.Error << '\n';
         nonsense += std::isfinite(every.Error) && every.Seconds > 0 ? 0 : 1;
@@ -594,19 +594,19 @@ int main(int argc, char* argv[])
         const int m = static_cast<int>(std::lround(std::log2(reached[1][0].Samples + 1)));
         const int viewOrderedM = ViewOrderedExponentForTarget(
           index, tf, camera, size, reference, Targets[0], footprintRange[0], m);
-        for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL,
-               vtkMCXPointSampler::VIEW_ORDERED })
+        for (const int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::EVERY_VOXEL,
+               vtkMCXTypes::VIEW_ORDERED })
         {
-          if (strategy == vtkMCXPointSampler::EVERY_VOXEL && !c.EveryVoxel)
+          if (strategy == vtkMCXTypes::EVERY_VOXEL && !c.EveryVoxel)
           {
             continue;
           }
           const EditResult edit = MeasureTransferFunctionEdit(index, tf, camera, size,
-            strategy == vtkMCXPointSampler::VIEW_ORDERED ? viewOrderedM : m, strategy, reference,
+            strategy == vtkMCXTypes::VIEW_ORDERED ? viewOrderedM : m, strategy, reference,
             quick ? 3 : 9);
           edits << Quoted(c.Name) << ',' << size << ','
-                << (strategy == vtkMCXPointSampler::HYBRID           ? "sampled"
-                       : strategy == vtkMCXPointSampler::EVERY_VOXEL ? "every voxel"
+                << (strategy == vtkMCXTypes::HYBRID           ? "sampled"
+                       : strategy == vtkMCXTypes::EVERY_VOXEL ? "every voxel"
                                                                      : "view ordered")
                 << ',' << edit.Points << ',' << 1000 * edit.FirstRenderSeconds << ','
                 << edit.MedianMilliseconds << ',' << edit.Errors[0] << ',' << edit.Errors[1]

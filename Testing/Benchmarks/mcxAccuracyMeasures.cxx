@@ -46,7 +46,7 @@ double FieldValue(vtkDataObject* data, const char* name)
 
 std::vector<double> Values(vtkImageData* image)
 {
-  vtkDataArray* a = image->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
+  vtkDataArray* a = image->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName());
   std::vector<double> values(static_cast<std::size_t>(a->GetNumberOfTuples()));
   for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
   {
@@ -57,7 +57,7 @@ std::vector<double> Values(vtkImageData* image)
 
 double RelativeRMS(const std::vector<double>& estimate, vtkImageData* reference)
 {
-  vtkDataArray* b = reference->GetPointData()->GetArray(vtkMCXProjectorBase::LineIntegralName());
+  vtkDataArray* b = reference->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName());
   double difference = 0, norm = 0;
   for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
   {

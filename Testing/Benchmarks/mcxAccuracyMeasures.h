@@ -43,8 +43,8 @@ vtkSmartPointer<vtkImageData> Reference(vtkAlgorithm* index, vtkPiecewiseFunctio
 
 /// A Monte Carlo projector on an index, configured for one size x size view.
 vtkSmartPointer<vtkMCXProjector> MakeProjector(vtkAlgorithm* index, vtkPiecewiseFunction* tf,
-  vtkCamera* camera, int size, int exponent, int strategy = vtkMCXPointSampler::HYBRID,
-  int deposit = vtkMCXPointSampler::POINT);
+  vtkCamera* camera, int size, int exponent, int strategy = vtkMCXTypes::HYBRID,
+  int deposit = vtkMCXTypes::POINT);
 
 /// Reads a plastimatch PFM (top row first) into VTK's row order (bottom row
 /// first); false when it is not a size x size PFM.

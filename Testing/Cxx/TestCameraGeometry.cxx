@@ -189,7 +189,7 @@ vtkSmartPointer<vtkMCXReferenceProjector> BoxKernelReference(
 {
   auto reference = vtkSmartPointer<vtkMCXReferenceProjector>::New();
   reference->SetInputConnection(index->GetOutputPort());
-  reference->SetKernel(vtkMCXPointSampler::BOX);
+  reference->SetKernel(vtkMCXTypes::BOX);
   reference->SetCamera(camera);
   reference->SetImageSize(width, height);
   reference->Update();
@@ -202,7 +202,7 @@ vtkSmartPointer<vtkPolyData> UnitWeightCloud(vtkPoints* points)
   auto cloud = vtkSmartPointer<vtkPolyData>::New();
   cloud->SetPoints(points);
   vtkNew<vtkDoubleArray> weight;
-  weight->SetName(vtkMCXPointSampler::SampleWeightName());
+  weight->SetName(vtkMCXTypes::SampleWeightName());
   weight->InsertNextValue(1.0);
   cloud->GetFieldData()->AddArray(weight);
   return cloud;
@@ -454,7 +454,7 @@ TEST(CameraGeometry, ObliqueRaysCrossABoxAlongTheirLength)
   vtkNew<vtkMCXProjector> projector;
   projector->SetInputConnection(index->GetOutputPort());
   projector->SetTransferFunction(tf);
-  projector->SetKernel(vtkMCXPointSampler::BOX);
+  projector->SetKernel(vtkMCXTypes::BOX);
   projector->SetDepositToFootprint();
   projector->SetSampleExponent(20);
   projector->SetCamera(camera);

@@ -43,9 +43,9 @@ void ExpectExactIndex(vtkImageData* volume)
   {
     expected[scalars->GetTuple1(id)].push_back(id);
   }
-  vtkDataArray* values = Field(index, vtkMCXDensityIndex::LevelValuesName());
-  vtkDataArray* offsets = Field(index, vtkMCXDensityIndex::LevelOffsetsName());
-  vtkDataArray* ids = Field(index, vtkMCXDensityIndex::SortedVoxelIdsName());
+  vtkDataArray* values = Field(index, vtkMCXTypes::LevelValuesName());
+  vtkDataArray* offsets = Field(index, vtkMCXTypes::LevelOffsetsName());
+  vtkDataArray* ids = Field(index, vtkMCXTypes::SortedVoxelIdsName());
   ASSERT_NE(nullptr, values);
   ASSERT_EQ(static_cast<vtkIdType>(expected.size()), values->GetNumberOfTuples());
   ASSERT_TRUE(vtkTypeUInt32Array::SafeDownCast(ids) != nullptr);
@@ -62,7 +62,7 @@ void ExpectExactIndex(vtkImageData* volume)
     }
     ++level;
   }
-  EXPECT_EQ(0, Field(index, vtkMCXDensityIndex::NonFiniteVoxelCountName())->GetTuple1(0));
+  EXPECT_EQ(0, Field(index, vtkMCXTypes::NonFiniteVoxelCountName())->GetTuple1(0));
   // Geometry travels unchanged.
   int extent[6], expectedExtent[6];
   index->GetExtent(extent);
@@ -118,8 +118,8 @@ TEST(DensityIndex, FloatDataIsBinnedAndNonFiniteVoxelsAreCounted)
   vtkSmartPointer<vtkImageData> index = Index(volume, 4);
   // Range 0..10, 4 bins of width 2.5: {0, 1, 0.001}, {2.5}, {5}, {10, 9.99};
   // each level is the mean of its values.
-  vtkDataArray* levels = Field(index, vtkMCXDensityIndex::LevelValuesName());
-  vtkDataArray* offsets = Field(index, vtkMCXDensityIndex::LevelOffsetsName());
+  vtkDataArray* levels = Field(index, vtkMCXTypes::LevelValuesName());
+  vtkDataArray* offsets = Field(index, vtkMCXTypes::LevelOffsetsName());
   ASSERT_EQ(4, levels->GetNumberOfTuples());
   const double means[] = { (0.0 + 1.0 + 0.001f) / 3, 2.5, 5.0, (10.0 + 9.99f) / 2 };
   const double counts[] = { 3, 1, 1, 2 };
@@ -128,8 +128,8 @@ TEST(DensityIndex, FloatDataIsBinnedAndNonFiniteVoxelsAreCounted)
     EXPECT_NEAR(means[l], levels->GetTuple1(l), 1e-14);
     EXPECT_EQ(counts[l], offsets->GetTuple1(l + 1) - offsets->GetTuple1(l));
   }
-  EXPECT_EQ(3, Field(index, vtkMCXDensityIndex::NonFiniteVoxelCountName())->GetTuple1(0));
-  EXPECT_DOUBLE_EQ(2.5, Field(index, vtkMCXDensityIndex::LevelBinWidthName())->GetTuple1(0));
+  EXPECT_EQ(3, Field(index, vtkMCXTypes::NonFiniteVoxelCountName())->GetTuple1(0));
+  EXPECT_DOUBLE_EQ(2.5, Field(index, vtkMCXTypes::LevelBinWidthName())->GetTuple1(0));
 }
 
 TEST(DensityIndex, IdenticalForOneAndTwoThreads)
@@ -140,8 +140,8 @@ TEST(DensityIndex, IdenticalForOneAndTwoThreads)
   vtkSmartPointer<vtkImageData> one, two;
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 }, [&]() { one = Index(volume); });
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 }, [&]() { two = Index(volume); });
-  for (const char* name : { vtkMCXDensityIndex::LevelValuesName(),
-         vtkMCXDensityIndex::LevelOffsetsName(), vtkMCXDensityIndex::SortedVoxelIdsName() })
+  for (const char* name : { vtkMCXTypes::LevelValuesName(),
+         vtkMCXTypes::LevelOffsetsName(), vtkMCXTypes::SortedVoxelIdsName() })
   {
     vtkDataArray* a = Field(one, name);
     vtkDataArray* b = Field(two, name);
@@ -162,5 +162,5 @@ TEST(DensityIndex, RejectsMultiComponentScalars)
   index->SetInputData(volume);
   index->Update(); // reports an error, produces no index
   EXPECT_EQ(
-    nullptr, index->GetOutput()->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName()));
+    nullptr, index->GetOutput()->GetFieldData()->GetArray(vtkMCXTypes::LevelValuesName()));
 }

@@ -53,8 +53,8 @@ vtkMultiProcessController* Controller()
 
 struct Settings
 {
-  int Strategy = vtkMCXPointSampler::HYBRID;
-  int Deposit = vtkMCXPointSampler::POINT;
+  int Strategy = vtkMCXTypes::HYBRID;
+  int Deposit = vtkMCXTypes::POINT;
   bool Perspective = false;
   double TargetError = 0.0;
 };
@@ -171,19 +171,19 @@ TEST(Distributed, ImagesAreTheSingleProcessImagesBitForBit)
   auto tf = Ramp(500, 3000);
   for (const bool perspective : { false, true })
   {
-    for (const int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+    for (const int deposit : { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT })
     {
       // Every voxel too: each process deposits its slab's voxels, numbered
       // by their ids in the whole volume.
-      for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO,
-             vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::EVERY_VOXEL })
+      for (const int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::QUASI_MONTE_CARLO,
+             vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::EVERY_VOXEL })
       {
         Settings settings;
         settings.Strategy = strategy;
         settings.Deposit = deposit;
         settings.Perspective = perspective;
         const std::string what = std::string(perspective ? "perspective" : "parallel") +
-          (deposit == vtkMCXPointSampler::POINT ? " point" : " footprint") + " strategy " +
+          (deposit == vtkMCXTypes::POINT ? " point" : " footprint") + " strategy " +
           std::to_string(strategy);
         ExpectSameImage(Project(reader->GetOutputPort(), tf, settings, nullptr),
           Project(reader->GetOutputPort(), tf, settings, Controller()), what);
@@ -199,7 +199,7 @@ TEST(Distributed, TargetErrorChoosesTheSameSampleCount)
   auto tf = Ramp(500, 3000);
   Settings settings;
   settings.TargetError = 0.05;
-  settings.Deposit = vtkMCXPointSampler::FOOTPRINT;
+  settings.Deposit = vtkMCXTypes::FOOTPRINT;
   ExpectSameImage(Project(reader->GetOutputPort(), tf, settings, nullptr),
     Project(reader->GetOutputPort(), tf, settings, Controller()), "target error");
 }
@@ -217,12 +217,12 @@ TEST(Distributed, FloatDataIsBinnedAlikeOnEveryPiece)
   auto producer = Produce(volume);
   vtkAlgorithmOutput* port = producer->GetOutputPort();
   auto tf = Ramp(-1.0, 1.5);
-  for (const int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+  for (const int deposit : { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT })
   {
     Settings settings;
     settings.Deposit = deposit;
     ExpectSameImage(Project(port, tf, settings, nullptr), Project(port, tf, settings, Controller()),
-      deposit == vtkMCXPointSampler::POINT ? "float point" : "float footprint");
+      deposit == vtkMCXTypes::POINT ? "float point" : "float footprint");
   }
 }
 
@@ -238,11 +238,11 @@ TEST(Distributed, MoreProcessesThanSlicesAndZeroWeightPieces)
   auto tf = Ramp(99, 110);
   for (const bool perspective : { false, true })
   {
-    for (const int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+    for (const int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::EVERY_VOXEL })
     {
       Settings settings;
       settings.Perspective = perspective;
-      settings.Deposit = vtkMCXPointSampler::FOOTPRINT;
+      settings.Deposit = vtkMCXTypes::FOOTPRINT;
       settings.Strategy = strategy;
       ExpectSameImage(Project(port, tf, settings, nullptr),
         Project(port, tf, settings, Controller()),

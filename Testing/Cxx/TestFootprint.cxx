@@ -109,23 +109,23 @@ struct Scene
   // A stored footprint cloud of this scene: 2^m - 1 sampled points, or
   // every voxel (EVERY_VOXEL: m unused); not yet updated.
   vtkSmartPointer<vtkMCXPointSampler> FootprintCloud(
-    int m, int strategy = vtkMCXPointSampler::HYBRID) const
+    int m, int strategy = vtkMCXTypes::HYBRID) const
   {
     auto sampler = vtkSmartPointer<vtkMCXPointSampler>::New();
     sampler->SetInputConnection(this->Index->GetOutputPort());
     sampler->SetTransferFunction(this->TF);
-    sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    sampler->SetDeposit(vtkMCXTypes::FOOTPRINT);
     sampler->SetStrategy(strategy);
     sampler->SetSampleExponent(m);
     return sampler;
   }
 
   vtkSmartPointer<vtkImageData> Footprint(vtkCamera* camera, int size, int m, int seed = 1,
-    int strategy = vtkMCXPointSampler::HYBRID) const
+    int strategy = vtkMCXTypes::HYBRID) const
   {
     vtkNew<vtkMCXProjector> projector;
     this->Configure(projector.Get(), camera, size);
-    projector->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    projector->SetDeposit(vtkMCXTypes::FOOTPRINT);
     projector->SetStrategy(strategy);
     projector->SetSampleExponent(m);
     projector->SetSeed(seed);
@@ -223,7 +223,7 @@ TEST(Footprint, MassIsConservedWhenTheImageCoversTheSupport)
     projector->SetDetectorAxisU(0, 0.6, 0.8);
     projector->SetDetectorAxisV(1, 0, 0);
     projector->SetDefaultImageSize(size);
-    projector->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    projector->SetDeposit(vtkMCXTypes::FOOTPRINT);
     projector->SetSampleExponent(18);
     projector->Update();
     vtkImageData* image = projector->GetOutput();
@@ -261,7 +261,7 @@ TEST(Footprint, MassIsConservedWhenTheKernelIsSplit)
     projector->SetDetectorAxisU(1, 0, 0);
     projector->SetDetectorAxisV(0, 1, 0);
     projector->SetDefaultImageSize(size);
-    projector->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    projector->SetDeposit(vtkMCXTypes::FOOTPRINT);
     projector->SetSampleExponent(16);
     projector->Update();
     vtkImageData* image = projector->GetOutput();
@@ -280,7 +280,7 @@ TEST(Footprint, ImagesAreBitIdenticalForOneAndTwoThreads)
   {
     auto camera = scene.Camera(view);
     vtkSmartPointer<vtkImageData> one, two;
-    for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+    for (int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::EVERY_VOXEL })
     {
       vtkSMPTools::LocalScope(
         vtkSMPTools::Config{ 1 }, [&]() { one = scene.Footprint(camera, 96, 18, 9, strategy); });
@@ -312,7 +312,7 @@ TEST(Footprint, ErrorEstimateIsCalibrated)
     auto camera = scene.Camera(view);
     auto reference = scene.Reference(camera, 128);
     // Plain Monte Carlo's voxel choice keeps M^-1/2: no calibration there.
-    for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::MONTE_CARLO })
+    for (int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::MONTE_CARLO })
     {
       for (int m : { 16, 18, 20 })
       {
@@ -380,7 +380,7 @@ TEST(Footprint, TargetAccuracyIsMet)
   {
     vtkNew<vtkMCXProjector> projector;
     scene.Configure(projector.Get(), camera, 128);
-    projector->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+    projector->SetDeposit(vtkMCXTypes::FOOTPRINT);
     projector->SetTargetRelativeError(target);
     projector->SetSampleExponent(0);
     projector->Update();
@@ -447,7 +447,7 @@ TEST(Footprint, StoredCloudsTakeTheProjectorsReach)
   const double whole = project(16.0), split = project(0.5);
   vtkNew<vtkMCXProjector> fused;
   scene.Configure(fused.Get(), camera, 128);
-  fused->SetDeposit(vtkMCXPointSampler::FOOTPRINT);
+  fused->SetDeposit(vtkMCXTypes::FOOTPRINT);
   fused->SetSampleExponent(18);
   fused->SetFootprintReach(0.5);
   fused->Update();
@@ -479,7 +479,7 @@ TEST(Footprint, EveryVoxelOnceIsNearTheReference)
   centres->SetDataTypeToFloat();
   centres->SetNumberOfPoints(n);
   vtkNew<vtkFloatArray> weights;
-  weights->SetName(vtkMCXPointSampler::PointWeightName());
+  weights->SetName(vtkMCXTypes::PointWeightName());
   weights->SetNumberOfValues(n);
   double total = 0;
   vtkIdType nonzero = 0;
@@ -501,7 +501,7 @@ TEST(Footprint, EveryVoxelOnceIsNearTheReference)
     weights->SetValue(
       i, static_cast<float>(weights->GetValue(i) * (static_cast<double>(n) / total)));
   }
-  auto everyVoxel = scene.FootprintCloud(0, vtkMCXPointSampler::EVERY_VOXEL);
+  auto everyVoxel = scene.FootprintCloud(0, vtkMCXTypes::EVERY_VOXEL);
   everyVoxel->Update();
   EXPECT_EQ(nonzero, everyVoxel->GetOutput()->GetNumberOfPoints());
   // The sampled cloud it is compared with has more points: 2^m - 1 >= nonzero.
@@ -538,7 +538,7 @@ TEST(Footprint, EveryVoxelOnceIsNearTheReference)
     // points and weights, which round a few phases the other way (measured:
     // 0.6 to 2.9e-5 apart, 80 to 950 times less than either's error; other
     // phases, as a stored cloud's, would put them 2e-3 apart).
-    auto fused = scene.Footprint(camera, 128, 0, 0, vtkMCXPointSampler::EVERY_VOXEL);
+    auto fused = scene.Footprint(camera, 128, 0, 0, vtkMCXTypes::EVERY_VOXEL);
     const double fusedError = mcxtest::RelativeRMS(fused, reference);
     const double fromHandMade = mcxtest::RelativeRMS(fused, projector->GetOutput());
     std::cout << "view " << view << ": every voxel (" << nonzero << " points) " << every
@@ -618,7 +618,7 @@ TEST(ViewOrder, StratifiesTheOrderingViewAndStaysUnbiasedInOthers)
   const Scene scene = FineCTHead();
   const int size = 48;
   auto ordering = scene.Camera(0);
-  for (int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+  for (int deposit : { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT })
   {
     for (int view = 0; view < 3; ++view)
     {
@@ -626,7 +626,7 @@ TEST(ViewOrder, StratifiesTheOrderingViewAndStaysUnbiasedInOthers)
       auto reference = scene.Reference(camera, size);
       for (int m : { 16, 20 })
       {
-        auto ordered = scene.FootprintCloud(m, vtkMCXPointSampler::VIEW_ORDERED);
+        auto ordered = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
         ordered->SetDeposit(deposit);
         ordered->SetOrderingView(ordering, size, size);
         auto hybrid = scene.FootprintCloud(m);
@@ -646,7 +646,7 @@ TEST(ViewOrder, StratifiesTheOrderingViewAndStaysUnbiasedInOthers)
                   << orderedError / bound << ", hybrid " << hybridError / bound
                   << " of the Monte Carlo bound " << bound << "; estimate "
                   << estimate / orderedError << " of the error" << std::endl;
-        if (view == 0 && deposit == vtkMCXPointSampler::FOOTPRINT)
+        if (view == 0 && deposit == vtkMCXTypes::FOOTPRINT)
         {
           EXPECT_LT(orderedError, 0.3 * hybridError) << "m " << m;
           EXPECT_LT(orderedError, (m == 16 ? 0.18 : 0.12) * bound) << "m " << m;
@@ -712,7 +712,7 @@ TEST(ViewOrder, ControlImageCutsTheOrderingViewsErrorAndKeepsItsGuarantees)
     auto reference = scene.Reference(camera, size);
     for (int m : { 14, 18 })
     {
-      auto sampler = scene.FootprintCloud(m, vtkMCXPointSampler::VIEW_ORDERED);
+      auto sampler = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
       sampler->SetOrderingView(camera, size, size);
       sampler->ControlVariateOff();
       auto plain = Copy(ProjectCloud(sampler->GetOutputPort(), camera, size));
@@ -764,7 +764,7 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads },
       [&]()
       {
-        auto sampler = scene.FootprintCloud(15, vtkMCXPointSampler::VIEW_ORDERED);
+        auto sampler = scene.FootprintCloud(15, vtkMCXTypes::VIEW_ORDERED);
         sampler->SetOrderingView(perspective, size, size);
         sampler->SetControlVariate(control);
         image = Copy(ProjectCloud(sampler->GetOutputPort(), camera, size));
@@ -787,7 +787,7 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
   EXPECT_TRUE(SameImage(project(2, moved, false), project(2, moved, true)));
   EXPECT_FALSE(SameImage(controlled, project(2, moved, true)));
 
-  auto sampler = scene.FootprintCloud(15, vtkMCXPointSampler::VIEW_ORDERED);
+  auto sampler = scene.FootprintCloud(15, vtkMCXTypes::VIEW_ORDERED);
   sampler->SetOrderingView(perspective, size, size);
   sampler->Update();
   auto plain = project(2, perspective, false);
@@ -804,8 +804,8 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
   {
     vtkNew<vtkPolyData> cloud;
     cloud->DeepCopy(sampler->GetOutput());
-    vtkDataArray* image = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName());
-    vtkDataArray* view = cloud->GetFieldData()->GetArray(vtkMCXPointSampler::ControlViewName());
+    vtkDataArray* image = cloud->GetFieldData()->GetArray(vtkMCXTypes::ControlImageName());
+    vtkDataArray* view = cloud->GetFieldData()->GetArray(vtkMCXTypes::ControlViewName());
     ASSERT_TRUE(image && view);
     if (damage == 0)
     {
@@ -830,7 +830,7 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
       }
       vtkNew<vtkPolyData> moved;
       moved->DeepCopy(cloud);
-      moved->GetFieldData()->RemoveArray(vtkMCXPointSampler::ControlImageName());
+      moved->GetFieldData()->RemoveArray(vtkMCXTypes::ControlImageName());
       EXPECT_TRUE(SameImage(projectCloud(moved), projectCloud(cloud)));
       EXPECT_FALSE(SameImage(plain, projectCloud(cloud)));
       continue;
@@ -872,9 +872,9 @@ bool SameCloud(vtkPolyData* a, vtkPolyData* b, vtkIdType count = -1)
   const float* pa = static_cast<const float*>(a->GetPoints()->GetVoidPointer(0));
   const float* pb = static_cast<const float*>(b->GetPoints()->GetVoidPointer(0));
   auto* wa =
-    vtkFloatArray::SafeDownCast(a->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName()));
+    vtkFloatArray::SafeDownCast(a->GetPointData()->GetArray(vtkMCXTypes::PointWeightName()));
   auto* wb =
-    vtkFloatArray::SafeDownCast(b->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName()));
+    vtkFloatArray::SafeDownCast(b->GetPointData()->GetArray(vtkMCXTypes::PointWeightName()));
   return wa && wb && std::equal(pa, pa + 3 * n, pb) &&
     std::equal(wa->GetPointer(0), wa->GetPointer(0) + n, wb->GetPointer(0));
 }
@@ -887,7 +887,7 @@ TEST(ViewOrder, SameCloudForAnyThreadsPrefixesAndTFEditsWithoutSortingAgain)
   auto lateral = scene.Camera(0), oblique = scene.Camera(1);
   auto cloud = [&](vtkCamera* camera, int m)
   {
-    auto sampler = scene.FootprintCloud(m, vtkMCXPointSampler::VIEW_ORDERED);
+    auto sampler = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
     sampler->SetOrderingView(camera, 64, 64);
     sampler->Update();
     return sampler;
@@ -930,7 +930,7 @@ TEST(ViewOrder, MassIsConservedAndAViewIsRequired)
   // the integral: the image covering the support holds the integral.
   Scene scene(
     "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
-  auto sampler = scene.FootprintCloud(14, vtkMCXPointSampler::VIEW_ORDERED);
+  auto sampler = scene.FootprintCloud(14, vtkMCXTypes::VIEW_ORDERED);
   vtkNew<vtkMCXFirstErrorObserver> errors;
   errors->ObserveAlgorithm(sampler);
   sampler->Update();
@@ -962,7 +962,7 @@ TEST(ViewOrder, AnAbortDuringTheControlsProjectionLeavesNoCloudAndTheNextUpdateF
   Scene scene(
     "CT head", Read(MCXRAY_TEST_DATA_DIR "/ct_head_headsq.vti"), { { 400, 0 }, { 3926, 1 } });
   auto camera = scene.Camera(2);
-  auto sampler = scene.FootprintCloud(14, vtkMCXPointSampler::VIEW_ORDERED);
+  auto sampler = scene.FootprintCloud(14, vtkMCXTypes::VIEW_ORDERED);
   sampler->SetOrderingView(camera, 40, 40);
   struct Stopper
   {
@@ -988,19 +988,19 @@ TEST(ViewOrder, AnAbortDuringTheControlsProjectionLeavesNoCloudAndTheNextUpdateF
   ASSERT_TRUE(stopper.Stopped);
   EXPECT_EQ(0, sampler->GetOutput()->GetNumberOfPoints());
   EXPECT_FALSE(
-    sampler->GetOutput()->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName()));
+    sampler->GetOutput()->GetFieldData()->GetArray(vtkMCXTypes::ControlImageName()));
 
   sampler->SetAbortExecute(0);
   sampler->Modified();
   sampler->Update();
-  auto fresh = scene.FootprintCloud(14, vtkMCXPointSampler::VIEW_ORDERED);
+  auto fresh = scene.FootprintCloud(14, vtkMCXTypes::VIEW_ORDERED);
   fresh->SetOrderingView(camera, 40, 40);
   fresh->Update();
   EXPECT_TRUE(SameCloud(fresh->GetOutput(), sampler->GetOutput()));
   vtkDataArray* made =
-    sampler->GetOutput()->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName());
+    sampler->GetOutput()->GetFieldData()->GetArray(vtkMCXTypes::ControlImageName());
   vtkDataArray* expected =
-    fresh->GetOutput()->GetFieldData()->GetArray(vtkMCXPointSampler::ControlImageName());
+    fresh->GetOutput()->GetFieldData()->GetArray(vtkMCXTypes::ControlImageName());
   ASSERT_TRUE(made && expected);
   ASSERT_EQ(expected->GetNumberOfTuples(), made->GetNumberOfTuples());
   for (vtkIdType p = 0; p < made->GetNumberOfTuples(); ++p)

@@ -557,7 +557,7 @@ TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)
   for (const bool footprint : { false, true })
   {
     scene.Sampler->SetDeposit(
-      footprint ? vtkMCXPointSampler::FOOTPRINT : vtkMCXPointSampler::POINT);
+      footprint ? vtkMCXTypes::FOOTPRINT : vtkMCXTypes::POINT);
     scene.Sampler->Update();
     vtkNew<vtkPolyData> cloud;
     cloud->DeepCopy(scene.Sampler->GetOutput());
@@ -567,7 +567,7 @@ TEST(Mapper, WeightedCloudEqualsTheOfflineProjectorsAndFollowsItsWeights)
     auto unweighted = scene.OnScreen();
 
     vtkNew<vtkFloatArray> weights;
-    weights->SetName(vtkMCXPointSampler::PointWeightName());
+    weights->SetName(vtkMCXTypes::PointWeightName());
     weights->SetNumberOfValues(n);
     for (vtkIdType i = 0; i < n; ++i)
     {
@@ -1247,7 +1247,7 @@ TEST(Mapper, RadiographPhysicsMatchesTheOfflineFilter)
     prefixRadiograph->SetInputData(prefix);
     prefixRadiograph->Update();
     const char* name =
-      c.NegativeLog ? vtkMCXRadiograph::AttenuationName() : vtkMCXRadiograph::IntensityName();
+      c.NegativeLog ? vtkMCXTypes::AttenuationName() : vtkMCXTypes::IntensityName();
     vtkDataArray* expected = radiograph->GetOutput()->GetPointData()->GetArray(name);
     ASSERT_NE(nullptr, expected) << c.Name;
     const double window =
@@ -1351,7 +1351,7 @@ TEST(Mapper, PutsEachPointInVTKsPixel)
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
   vtkNew<vtkDoubleArray> integral;
-  integral->SetName(vtkMCXPointSampler::IntegralName());
+  integral->SetName(vtkMCXTypes::IntegralName());
   integral->InsertNextValue(static_cast<double>(points->GetNumberOfPoints()));
   cloud->GetFieldData()->AddArray(integral);
   scene.Mapper->SetInputDataObject(cloud);

@@ -188,7 +188,7 @@ void ExpectEveryVoxelOnce(vtkPolyData* cloud, vtkImageData* volume, vtkPiecewise
     count += w > 0 ? 1 : 0;
   }
   ASSERT_EQ(count, cloud->GetNumberOfPoints());
-  vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXPointSampler::PointWeightName());
+  vtkDataArray* weights = cloud->GetPointData()->GetArray(vtkMCXTypes::PointWeightName());
   ASSERT_NE(nullptr, weights);
   ASSERT_EQ(count, weights->GetNumberOfTuples());
   std::vector<int> seen(static_cast<std::size_t>(volume->GetNumberOfPoints()), 0);

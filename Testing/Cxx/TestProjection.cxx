@@ -126,8 +126,8 @@ TEST(Projection, ParallelViewsConvergeWithinTheMonteCarloBound)
   {
     auto reference = scene.Reference(view, 48);
     const double integral = mcxtest::FieldValue(reference, "Integral");
-    for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID,
-           vtkMCXPointSampler::QUASI_MONTE_CARLO })
+    for (int strategy : { vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::HYBRID,
+           vtkMCXTypes::QUASI_MONTE_CARLO })
     {
       for (int m : { 14, 18, 22 })
       {
@@ -165,8 +165,8 @@ TEST(Projection, HybridIsMoreAccurateThanMonteCarlo)
     double hybrid = 0, plain = 0;
     for (vtkTypeUInt64 seed = 0; seed < seeds; ++seed)
     {
-      auto h = scene.MonteCarlo(nullptr, size, m, vtkMCXPointSampler::HYBRID, seed);
-      auto p = scene.MonteCarlo(nullptr, size, m, vtkMCXPointSampler::MONTE_CARLO, seed);
+      auto h = scene.MonteCarlo(nullptr, size, m, vtkMCXTypes::HYBRID, seed);
+      auto p = scene.MonteCarlo(nullptr, size, m, vtkMCXTypes::MONTE_CARLO, seed);
       EXPECT_GT(mcxtest::RelativeRMS(h, p), 0.0) << "the strategy changes the samples";
       hybrid += mcxtest::RelativeRMS(h, reference) / seeds;
       plain += mcxtest::RelativeRMS(p, reference) / seeds;
@@ -184,9 +184,9 @@ TEST(Projection, PixelSumTimesAreaIsTheIntegral)
   // voxel's kernel past the framing, and weighted shares round to 2^-32 of
   // a count per pixel).
   Scene scene;
-  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+  for (int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::EVERY_VOXEL })
   {
-    for (int deposit : { vtkMCXPointSampler::POINT, vtkMCXPointSampler::FOOTPRINT })
+    for (int deposit : { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT })
     {
       vtkNew<vtkMCXProjector> projector;
       projector->SetInputConnection(scene.Index->GetOutputPort());
@@ -201,7 +201,7 @@ TEST(Projection, PixelSumTimesAreaIsTheIntegral)
       vtkImageData* image = projector->GetOutput();
       const double sum = mcxtest::LineIntegralSum(image);
       const double integral = mcxtest::FieldValue(image, "Integral");
-      const double tolerance = deposit == vtkMCXPointSampler::FOOTPRINT ? 1e-8 : 1e-12;
+      const double tolerance = deposit == vtkMCXTypes::FOOTPRINT ? 1e-8 : 1e-12;
       std::cout << "strategy " << strategy << " deposit " << deposit << ": relative loss "
                 << 1.0 - sum * PixelArea(image) / integral << std::endl;
       EXPECT_NEAR(integral, sum * PixelArea(image), tolerance * integral)
@@ -220,7 +220,7 @@ TEST(Projection, EveryVoxelTakesNoTarget)
   {
     vtkNew<vtkMCXProjector> projector;
     scene.Configure(projector.Get(), nullptr, 16);
-    projector->SetStrategy(vtkMCXPointSampler::EVERY_VOXEL);
+    projector->SetStrategy(vtkMCXTypes::EVERY_VOXEL);
     projector->SetTargetRelativeError(quantization ? 0.0 : 0.02);
     projector->SetTargetQuantizationLevels(quantization ? 256 : 0);
     vtkNew<vtkMCXFirstErrorObserver> errors;
@@ -267,17 +267,17 @@ TEST(Projection, SettingsNoSetterCanClampAreErrors)
     EXPECT_EQ(0, projector->GetOutput()->GetNumberOfPoints()) << c.Expected;
   }
   vtkNew<vtkMCXProjector> projector;
-  projector->SetStrategy(vtkMCXPointSampler::QUASI_MONTE_CARLO);
+  projector->SetStrategy(vtkMCXTypes::QUASI_MONTE_CARLO);
   vtkNew<vtkMCXFirstErrorObserver> errors;
   errors->ObserveAlgorithm(projector);
-  projector->SetStrategy(vtkMCXPointSampler::VIEW_ORDERED);
+  projector->SetStrategy(vtkMCXTypes::VIEW_ORDERED);
   errors->StopObserving();
   EXPECT_EQ("SetStrategy: VIEW_ORDERED sorts a vtkMCXPointSampler's cloud for one view; the "
             "projector's own samples cannot take it, so the strategy stays 2.",
     errors->GetErrorText());
-  EXPECT_EQ(vtkMCXPointSampler::QUASI_MONTE_CARLO, projector->GetStrategy());
+  EXPECT_EQ(vtkMCXTypes::QUASI_MONTE_CARLO, projector->GetStrategy());
   projector->SetStrategy(99);
-  EXPECT_EQ(vtkMCXPointSampler::EVERY_VOXEL, projector->GetStrategy());
+  EXPECT_EQ(vtkMCXTypes::EVERY_VOXEL, projector->GetStrategy());
 }
 
 TEST(Projection, EveryVoxelWarnsWhenItsImageHasRandomParts)
@@ -293,15 +293,15 @@ TEST(Projection, EveryVoxelWarnsWhenItsImageHasRandomParts)
     const char* Expected; // in the warning; nullptr: none
   };
   const Case cases[] = {
-    { vtkMCXPointSampler::FOOTPRINT, 16.0, nullptr },
-    { vtkMCXPointSampler::FOOTPRINT, 0.5, "footprints are split with a random part" },
-    { vtkMCXPointSampler::POINT, 16.0, "the point deposit draws each kernel offset at random" },
+    { vtkMCXTypes::FOOTPRINT, 16.0, nullptr },
+    { vtkMCXTypes::FOOTPRINT, 0.5, "footprints are split with a random part" },
+    { vtkMCXTypes::POINT, 16.0, "the point deposit draws each kernel offset at random" },
   };
   for (const Case& c : cases)
   {
     vtkNew<vtkMCXProjector> projector;
     scene.Configure(projector.Get(), nullptr, 32);
-    projector->SetStrategy(vtkMCXPointSampler::EVERY_VOXEL);
+    projector->SetStrategy(vtkMCXTypes::EVERY_VOXEL);
     projector->SetDeposit(c.Deposit);
     projector->SetFootprintReach(c.Reach);
     std::string warnings;
@@ -408,7 +408,7 @@ TEST(Projection, PerspectiveViewConvergesWithinItsBound)
     const double degrees = vtkMath::DegreesFromRadians(std::atan(std::sqrt(x * x + y * y)));
     return degrees < 8 ? -1 : (degrees < 14 ? 0 : 1);
   };
-  for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID })
+  for (int strategy : { vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::HYBRID })
   {
     auto image = scene.MonteCarlo(camera, size, exponent, strategy, 3);
     const double error = mcxtest::RelativeRMS(image, reference);
@@ -451,9 +451,9 @@ TEST(Projection, ImagesAreBitIdenticalForOneAndTwoThreads)
   {
     vtkSmartPointer<vtkImageData> one, two;
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 },
-      [&]() { one = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
+      [&]() { one = scene.MonteCarlo(camera, 64, 20, vtkMCXTypes::HYBRID, 9); });
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ 2 },
-      [&]() { two = scene.MonteCarlo(camera, 64, 20, vtkMCXPointSampler::HYBRID, 9); });
+      [&]() { two = scene.MonteCarlo(camera, 64, 20, vtkMCXTypes::HYBRID, 9); });
     vtkDataArray* a = mcxtest::LineIntegral(one);
     vtkDataArray* b = mcxtest::LineIntegral(two);
     ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
@@ -475,7 +475,7 @@ TEST(Projection, ConstantSlabHasAnalyticLineIntegrals)
     VTK_UNSIGNED_SHORT, dims, [](int, int, int) { return 4.0; }, spacing);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  for (int kernel : { vtkMCXPointSampler::TENT, vtkMCXPointSampler::BOX })
+  for (int kernel : { vtkMCXTypes::TENT, vtkMCXTypes::BOX })
   {
     vtkNew<vtkMCXReferenceProjector> reference;
     reference->SetInputConnection(index->GetOutputPort());
@@ -615,7 +615,7 @@ TEST(Projection, TheVolumeFramesTheImageWhereTheDataPlaceIt)
 TEST(Projection, WideVoxelIdsGiveTheSameImage)
 {
   // 64-bit ids (the path of volumes above 2^32 voxels) must change nothing.
-  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::EVERY_VOXEL })
+  for (int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::EVERY_VOXEL })
   {
     Scene scene;
     auto narrow = scene.MonteCarlo(nullptr, 32, 16, strategy, 2);
@@ -623,7 +623,7 @@ TEST(Projection, WideVoxelIdsGiveTheSameImage)
     auto wide = scene.MonteCarlo(nullptr, 32, 16, strategy, 2);
     ASSERT_NE(nullptr,
       vtkTypeUInt64Array::SafeDownCast(scene.Index->GetOutput()->GetFieldData()->GetArray(
-        vtkMCXDensityIndex::SortedVoxelIdsName())));
+        vtkMCXTypes::SortedVoxelIdsName())));
     vtkDataArray* a = mcxtest::LineIntegral(narrow);
     vtkDataArray* b = mcxtest::LineIntegral(wide);
     for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
@@ -654,8 +654,8 @@ TEST(Projection, ErrorEstimateTracksTheTrueError)
   const double window = std::exp(4.5 / std::sqrt(n));
   // Narrow enough that an estimate sqrt(2) too small fails.
   EXPECT_LT(window * window, std::sqrt(2.0));
-  for (int strategy : { vtkMCXPointSampler::MONTE_CARLO, vtkMCXPointSampler::HYBRID,
-         vtkMCXPointSampler::QUASI_MONTE_CARLO })
+  for (int strategy : { vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::HYBRID,
+         vtkMCXTypes::QUASI_MONTE_CARLO })
   {
     for (int m : { 14, 18, 22 })
     {
@@ -665,7 +665,7 @@ TEST(Projection, ErrorEstimateTracksTheTrueError)
       const double monteCarlo = mcxtest::ExpectedRelativeRMS(
         reference, integral, PixelArea(reference), std::ldexp(1.0, m) - 1);
       EXPECT_GT(estimate, truth / window) << "strategy " << strategy << " m " << m;
-      if (strategy == vtkMCXPointSampler::MONTE_CARLO)
+      if (strategy == vtkMCXTypes::MONTE_CARLO)
       {
         EXPECT_LT(estimate, truth * window) << "m " << m;
       }
@@ -692,7 +692,7 @@ TEST(Projection, PerspectiveErrorEstimateTracksTheTrueError)
   EXPECT_LT(window * window, std::sqrt(2.0));
   for (int m : { 14, 18, 22 })
   {
-    auto image = scene.MonteCarlo(camera, size, m, vtkMCXPointSampler::MONTE_CARLO, 6);
+    auto image = scene.MonteCarlo(camera, size, m, vtkMCXTypes::MONTE_CARLO, 6);
     const double truth = mcxtest::RelativeRMS(image, reference);
     const double estimate = mcxtest::FieldValue(image, "EstimatedRelativeError");
     EXPECT_GT(estimate, truth / window) << "m " << m;

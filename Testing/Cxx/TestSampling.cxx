@@ -45,7 +45,7 @@ TEST(PointSampler, WeightIsTheIntegralOverM)
   vtkNew<vtkPiecewiseFunction> tf; // 0 -> 0, 3 -> 6, linear: g = 2 f
   tf->AddPoint(0, 0);
   tf->AddPoint(3, 6);
-  auto cloud = Sample(index, 10, vtkMCXPointSampler::HYBRID, tf);
+  auto cloud = Sample(index, 10, vtkMCXTypes::HYBRID, tf);
   double sum = 0;
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)
@@ -84,7 +84,7 @@ TEST(PointSampler, PointsLieInTheKernelSupportOfTheirVoxelInWorldSpace)
   volume->SetDirectionMatrix(c, -s, 0, s, c, 0, 0, 0, 1);
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  auto cloud = Sample(index, 14, vtkMCXPointSampler::HYBRID, nullptr);
+  auto cloud = Sample(index, 14, vtkMCXTypes::HYBRID, nullptr);
   double voxel[3];
   volume->TransformIndexToPhysicalPoint(5, 0, 12, voxel); // extent start + (3, 1, 2)
   const double axes[3][3] = { { c, s, 0 }, { -s, c, 0 }, { 0, 0, 1 } };
@@ -119,8 +119,8 @@ TEST(PointSampler, HaltonPrefixIsExactlyTheSmallerRun)
     VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::QUASI_MONTE_CARLO,
-         vtkMCXPointSampler::MONTE_CARLO })
+  for (int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::QUASI_MONTE_CARLO,
+         vtkMCXTypes::MONTE_CARLO })
   {
     auto big = Sample(index, 16, strategy, nullptr);
     auto small = Sample(index, 9, strategy, nullptr);
@@ -145,8 +145,8 @@ TEST(PointSampler, SameSeedSamePointsForOneAndTwoThreads)
     VTK_SHORT, dims, [&](int i, int j, int k) { return mcxtest::Phantom(i, j, k, dims); });
   vtkNew<vtkMCXDensityIndex> index;
   index->SetInputData(volume);
-  for (int strategy : { vtkMCXPointSampler::HYBRID, vtkMCXPointSampler::MONTE_CARLO,
-         vtkMCXPointSampler::QUASI_MONTE_CARLO })
+  for (int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::MONTE_CARLO,
+         vtkMCXTypes::QUASI_MONTE_CARLO })
   {
     vtkSmartPointer<vtkPolyData> one, two, otherSeed;
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 },
@@ -172,7 +172,7 @@ TEST(PointSampler, ZeroTransferFunctionGivesNoPoints)
   vtkNew<vtkPiecewiseFunction> zero;
   zero->AddPoint(0, 0);
   zero->AddPoint(255, 0);
-  auto cloud = Sample(index, 10, vtkMCXPointSampler::HYBRID, zero);
+  auto cloud = Sample(index, 10, vtkMCXTypes::HYBRID, zero);
   EXPECT_EQ(0, cloud->GetNumberOfPoints());
   EXPECT_EQ(0.0, mcxtest::FieldValue(cloud, "Integral"));
 }

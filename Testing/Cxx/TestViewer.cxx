@@ -207,7 +207,7 @@ TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
   // sorted for that view, all of its points, with its control image (not
   // in the moved view before the edit).
   mcxapp::ViewerOptions options;
-  options.Strategy = vtkMCXPointSampler::VIEW_ORDERED;
+  options.Strategy = vtkMCXTypes::VIEW_ORDERED;
   options.SampleExponent = 16;
   options.Size[0] = options.Size[1] = Size;
   options.OffScreen = true;
@@ -252,7 +252,7 @@ TEST(Viewer, EveryVoxelSession)
   // estimate; + and - leave the cloud alone; a preset reruns the sampler
   // once, for a cloud of the voxels it keeps.
   mcxapp::ViewerOptions options;
-  options.Strategy = vtkMCXPointSampler::EVERY_VOXEL;
+  options.Strategy = vtkMCXTypes::EVERY_VOXEL;
   options.TransferFunction = "bone";
   options.Size[0] = options.Size[1] = Size;
   options.OffScreen = true;

@@ -260,7 +260,7 @@ inline WeightMoments MeasureSampledWeights(vtkAlgorithmOutput* index, vtkPiecewi
   vtkNew<vtkMCXPointSampler> sampler;
   sampler->SetInputConnection(index);
   sampler->SetTransferFunction(tf);
-  sampler->SetStrategy(vtkMCXPointSampler::MONTE_CARLO);
+  sampler->SetStrategy(vtkMCXTypes::MONTE_CARLO);
   sampler->SetSampleExponent(exponent);
   sampler->SetSeed(11);
   sampler->Update();

@@ -92,7 +92,7 @@ class Mapper(unittest.TestCase):
         # E sum_p (v_p - r_p)^2 <= B = (W / A) sum_p r_p; the test allows 2 B
         # (the sum runs over thousands of pixels, its spread is a few % of B)
         # plus the reference's own error e ||r|| (triangle inequality).
-        scene = Scene(20, strategy=mcxray.vtkMCXPointSampler.MONTE_CARLO, seed=11)
+        scene = Scene(20, strategy=mcxray.vtkMCXTypes.MONTE_CARLO, seed=11)
         camera = scene.renderer.GetActiveCamera()
         camera.SetFocalPoint(102, 102, 70)
         camera.SetPosition(102, -500, 70)

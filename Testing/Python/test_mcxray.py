@@ -49,10 +49,10 @@ class Package(unittest.TestCase):
 
     def test_constants_are_wrapped(self):
         sampler = mcxray.vtkMCXPointSampler()
-        sampler.SetStrategy(mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO)
+        sampler.SetStrategy(mcxray.vtkMCXTypes.QUASI_MONTE_CARLO)
         self.assertEqual(2, sampler.GetStrategy())
         sampler.SetKernelToBox()
-        self.assertEqual(mcxray.vtkMCXPointSampler.BOX, sampler.GetKernel())
+        self.assertEqual(mcxray.vtkMCXTypes.BOX, sampler.GetKernel())
 
 
 class Pipeline(unittest.TestCase):
@@ -103,7 +103,7 @@ class Pipeline(unittest.TestCase):
         projector = mcxray.vtkMCXProjector()
         projector.SetInputConnection(self.index.GetOutputPort())
         projector.SetTransferFunction(self.tf)
-        projector.SetStrategy(mcxray.vtkMCXPointSampler.MONTE_CARLO)
+        projector.SetStrategy(mcxray.vtkMCXTypes.MONTE_CARLO)
         projector.SetSeed(3)
         projector.SetSampleExponent(20)
         projector.SetImageSize(64, 48)
@@ -157,7 +157,7 @@ class Pipeline(unittest.TestCase):
         bound = weight / (spacing[0] * spacing[1]) * exact.sum()
         allowed = (0.4 * math.sqrt(bound) + exact_error * numpy.linalg.norm(exact)) ** 2
         self.assertLess(((values - exact) ** 2).sum(), allowed)
-        self.assertEqual(mcxray.vtkMCXPointSampler.FOOTPRINT, projector.GetDeposit())
+        self.assertEqual(mcxray.vtkMCXTypes.FOOTPRINT, projector.GetDeposit())
 
     def test_tf_edit_resamples_without_reindexing(self):
         runs = {"index": 0, "sampler": 0}

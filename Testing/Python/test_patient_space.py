@@ -1,7 +1,7 @@
 """One patient, one X-ray: the same oblique CT (turned 25 degrees about z and
 12 about x, rescale slope 0.5 and intercept -2048 where the format has them)
 written as a DICOM series (pydicom), a NIfTI file with a sform and one with a
-qform only (nibabel), NRRD in LPS and in RAS, a MetaImage with a
+qform only (nibabel), NRRD in LPS, RAS and LAS, a MetaImage with a
 TransformMatrix and a VTI with a direction matrix; then
 
 - each reader's placement of marker voxels against where the file's own
@@ -14,7 +14,12 @@ TransformMatrix and a VTI with a direction matrix; then
   with its detector turned by the patient matrix (plastimatch ignores a
   volume's direction cosines), within plastimatch's own sampling error;
 - headers whose orientation cannot be honoured: one line and exit status 2
-  under mcxray, one VTK error and an empty output in Python.
+  under mcxray, one VTK error and an empty output in Python;
+- the header variants the NRRD and MetaImage readers meet (2-D and vector
+  NRRD with the space before the sizes, a short spatial first axis, detached
+  headers, an AnatomicalOrientation beside an identity matrix) and broken
+  layouts (sizes before the dimension, a negative size, a trailing
+  non-spatial axis, data cut short): placed, or one error and no crash.
 
     python3 test_patient_space.py MCXRAY_EXECUTABLE
 """
@@ -150,7 +155,8 @@ def vector(v):
 
 
 def write_nrrd(path, hu, space, directions=None):
-    sign = numpy.array([-1, -1, 1]) if space == "right-anterior-superior" else numpy.ones(3)
+    sign = {"right-anterior-superior": numpy.array([-1, -1, 1]),
+            "left-anterior-superior": numpy.array([1, -1, 1])}.get(space, numpy.ones(3))
     steps = TURN @ numpy.diag(SPACING)
     directions = directions or " ".join(vector(sign * steps[:, a]) for a in range(3))
     header = ("NRRD0004\ntype: int16\ndimension: 3\nspace: %s\nsizes: %d %d %d\n"
@@ -190,6 +196,43 @@ def write_vti(path, hu):
     writer.SetFileName(path)
     writer.SetInputData(image)
     writer.Write()
+
+
+def header_fields(path, separator):
+    """The "key<separator>value" lines of a text header, up to its data."""
+    fields = {}
+    with open(path, "rb") as f:
+        for raw in f:
+            line = raw.decode("latin-1").rstrip("\r\n")
+            if not line or line.startswith("ElementDataFile"):
+                break
+            if separator in line:
+                key, value = line.split(separator, 1)
+                fields[key.strip()] = value.strip()
+    return fields
+
+
+def nrrd_point(path, index):
+    """The NRRD format's definition: space origin + sum of index x space
+    direction, in the header's space (RAS, LAS or LPS here), then in LPS."""
+    f = header_fields(path, ": ")
+    vectors = [numpy.array([float(x) for x in v.strip("()").split(",")])
+               for v in f["space directions"].split()]
+    point = numpy.array([float(x) for x in f["space origin"].strip("()").split(",")])
+    point = point + sum(i * v for i, v in zip(index, vectors))
+    to_lps = {"right-anterior-superior": [-1, -1, 1], "left-anterior-superior": [1, -1, 1],
+              "left-posterior-superior": [1, 1, 1]}[f["space"]]
+    return point * to_lps
+
+
+def metaimage_point(path, index):
+    """ITK's reading of MetaImage: Offset + sum of index x spacing x
+    TransformMatrix row (the world is LPS)."""
+    f = header_fields(path, " = ")
+    rows = numpy.array([float(x) for x in f["TransformMatrix"].split()]).reshape(3, 3)
+    spacing = [float(x) for x in f["ElementSpacing"].split()]
+    offset = numpy.array([float(x) for x in f["Offset"].split()])
+    return offset + sum(i * s * r for i, s, r in zip(index, spacing, rows))
 
 
 def read_with(cls, path):
@@ -253,6 +296,7 @@ class PatientSpace(unittest.TestCase):
         write_nifti(w("qform.nii"), hu, "qform")
         write_nrrd(w("lps.nrrd"), hu, "left-posterior-superior")
         write_nrrd(w("ras.nrrd"), hu, "right-anterior-superior")
+        write_nrrd(w("las.nrrd"), hu, "left-anterior-superior")
         write_metaimage(w("turned.mha"), hu, TURN.T, ORIGIN)
         write_vti(w("turned.vti"), hu)
         cls.files = {
@@ -261,6 +305,7 @@ class PatientSpace(unittest.TestCase):
             "NIfTI qform only": (w("qform.nii"), mcxray.vtkMCXNIFTIReader),
             "NRRD in LPS": (w("lps.nrrd"), mcxray.vtkMCXNrrdReader),
             "NRRD in RAS": (w("ras.nrrd"), mcxray.vtkMCXNrrdReader),
+            "NRRD in LAS": (w("las.nrrd"), mcxray.vtkMCXNrrdReader),
             "MetaImage": (w("turned.mha"), mcxray.vtkMCXMetaImageReader),
             "VTI": (w("turned.vti"), vtkXMLImageDataReader),
         }
@@ -285,10 +330,11 @@ class PatientSpace(unittest.TestCase):
                 affine = nibabel.load(path).affine  # nibabel's choice: sform, else qform
                 ras = affine @ numpy.array(list(index) + [1.0])
                 point = numpy.array([-ras[0], -ras[1], ras[2]])
-            elif name == "NRRD in RAS":
-                ras = ORIGIN * [-1, -1, 1] + (TURN @ numpy.diag(SPACING) * [[-1], [-1], [1]]) @ index
-                point = ras * [-1, -1, 1]
-            else:  # LPS by the format's definition: origin + sum of index x step
+            elif name.startswith("NRRD"):
+                point = nrrd_point(path, index)
+            elif name == "MetaImage":
+                point = metaimage_point(path, index)
+            else:  # VTI: origin + direction x (spacing x index), as written
                 point = lps(index)
             expected[value] = point
         return expected
@@ -415,6 +461,111 @@ class PatientSpace(unittest.TestCase):
                 volume, errors = read_with(cls, path)
                 self.assertEqual(1, len(errors), errors)
                 self.assertEqual(0, volume.GetNumberOfPoints())
+
+
+class HeaderVariants(unittest.TestCase):
+    """Small files whose expected placement is worked out from the header's
+    own definition here."""
+
+    def setUp(self):
+        self.work = tempfile.mkdtemp(prefix="mcxray-header-variants-")
+
+    def tearDown(self):
+        shutil.rmtree(self.work)
+
+    def write(self, name, data):
+        path = os.path.join(self.work, name)
+        with open(path, "wb") as f:
+            f.write(data)
+        return path
+
+    def read(self, cls, path):
+        volume, errors = read_with(cls, path)
+        self.assertEqual([], errors)
+        return volume
+
+    def assert_at(self, volume, index, expected):
+        point = [0.0, 0.0, 0.0]
+        volume.TransformIndexToPhysicalPoint(*index, point)
+        self.assertLess(numpy.abs(numpy.array(point) - expected).max(), 1e-9, (index, point, expected))
+
+    def test_a_2d_nrrd_with_its_space_before_its_sizes(self):
+        # teem, ITK and Slicer write "space" before "sizes"; vtkNrrdReader
+        # sizes the axes by it. One RAS slice: (x, y) -> (-x, -y).
+        path = self.write("slice.nrrd", b"NRRD0004\ntype: uint8\ndimension: 2\nspace: RAS\n"
+                          b"sizes: 16 12\nspace directions: (0,2,0) (1,0,0)\nencoding: raw\n"
+                          b"space origin: (5,6,7)\n\n" + bytes(range(192)))
+        volume = self.read(mcxray.vtkMCXNrrdReader, path)
+        self.assertEqual((16, 12, 1), volume.GetDimensions())
+        self.assert_at(volume, (3, 4, 0), numpy.array([-(5 + 4), -(6 + 6), 7]))
+        self.assertEqual(3 + 4 * 16, volume.GetPointData().GetScalars().GetTuple1(3 + 4 * 16))
+
+    def test_a_vector_nrrd_with_its_space_before_its_sizes(self):
+        path = self.write("vectors.nrrd", b"NRRD0004\ntype: uint8\ndimension: 4\nspace: LPS\n"
+                          b"sizes: 3 10 11 12\n"
+                          b"space directions: none (1,0,0) (0,1,0) (0,0,1)\nencoding: raw\n\n" +
+                          bytes(3 * 10 * 11 * 12))
+        volume = self.read(mcxray.vtkMCXNrrdReader, path)
+        self.assertEqual((10, 11, 12), volume.GetDimensions())
+        self.assertEqual(3, volume.GetNumberOfScalarComponents())
+
+    def test_a_short_first_axis_with_a_direction_stays_an_axis(self):
+        # vtkNrrdReader takes a first axis of at most 9 samples for components.
+        path = self.write("short.nrrd", b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 6 7 8\n"
+                          b"space: LPS\nspace directions: (2,0,0) (0,3,0) (0,0,4)\nencoding: raw\n\n" +
+                          bytes(6 * 7 * 8))
+        volume = self.read(mcxray.vtkMCXNrrdReader, path)
+        self.assertEqual((6, 7, 8), volume.GetDimensions())
+        self.assert_at(volume, (5, 6, 7), numpy.array([10, 18, 28]))
+
+    def test_detached_headers(self):
+        self.write("data.raw", bytes(4 * 5 * 6 * 2))
+        nhdr = self.write("detached.nhdr", b"NRRD0004\ntype: short\ndimension: 3\n"
+                          b"space: left-anterior-superior\nsizes: 4 5 6\n"
+                          b"space directions: (1,0,0) (0,1,0) (0,0,1)\nencoding: raw\n"
+                          b"endian: little\nspace origin: (1,2,3)\ndata file: data.raw\n")
+        volume = self.read(mcxray.vtkMCXNrrdReader, nhdr)
+        self.assert_at(volume, (1, 1, 1), numpy.array([2, -3, 4]))  # LAS: y negated
+        mhd = self.write("detached.mhd", b"NDims = 3\nTransformMatrix = 0 1 0 -1 0 0 0 0 1\n"
+                         b"Offset = 1 2 3\nElementSpacing = 1 2 3\nDimSize = 4 5 6\n"
+                         b"ElementType = MET_SHORT\nElementDataFile = data.raw\n")
+        volume = self.read(mcxray.vtkMCXMetaImageReader, mhd)
+        # Row a of TransformMatrix is axis a: i runs along +y, j along -x.
+        self.assert_at(volume, (1, 1, 1), numpy.array([1 - 2, 2 + 1, 3 + 3]))
+
+    def test_anatomical_orientation_beside_an_identity_matrix_is_ignored_as_itk_does(self):
+        for orientation in (b"LPS", b"RAI", b"???"):
+            path = self.write("ao.mha", b"NDims = 3\nTransformMatrix = 1 0 0 0 1 0 0 0 1\n"
+                              b"Offset = 0 0 0\nAnatomicalOrientation = " + orientation +
+                              b"\nElementSpacing = 1 1 1\nDimSize = 2 2 2\nElementType = MET_UCHAR\n"
+                              b"ElementDataFile = LOCAL\n" + bytes(8))
+            volume = self.read(mcxray.vtkMCXMetaImageReader, path)
+            self.assert_at(volume, (1, 1, 1), numpy.array([1, 1, 1]))
+
+    def test_broken_layouts_are_one_error_and_no_crash(self):
+        nrrd = b"NRRD0004\ntype: uint8\n"
+        cases = {
+            "sizes-first.nrrd": nrrd + b"sizes: 4 4 4\ndimension: 3\nencoding: raw\n\n" + bytes(64),
+            "negative.nrrd": nrrd + b"dimension: 3\nsizes: -5 10 11\nencoding: raw\n\n" + bytes(64),
+            "gradients.nrrd": nrrd + b"dimension: 4\nspace: LPS\nsizes: 4 4 4 3\n"
+            b"space directions: (1,0,0) (0,1,0) (0,0,1) none\nencoding: raw\n\n" + bytes(192),
+            "short-data.nrrd": nrrd + b"dimension: 3\nsizes: 10 10 10\nencoding: raw\n\n" + bytes(980),
+            "short-data.mha": b"NDims = 3\nDimSize = 10 10 10\nElementType = MET_UCHAR\n"
+            b"ElementDataFile = LOCAL\n" + bytes(980),
+        }
+        for name, data in cases.items():
+            with self.subTest(name):
+                path = self.write(name, data)
+                cls = "vtkMCXNrrdReader" if name.endswith(".nrrd") else "vtkMCXMetaImageReader"
+                run = subprocess.run(
+                    [sys.executable, "-c", "import mcxray\nr = mcxray.%s()\nr.SetFileName(%r)\n"
+                     "r.Update()\nprint('points', r.GetOutput().GetNumberOfPoints())" % (cls, path)],
+                    capture_output=True, text=True, timeout=120)
+                self.assertEqual(0, run.returncode, run.stderr)
+                self.assertIn("points 0", run.stdout)
+                errors = [line for line in run.stderr.splitlines() if "ERR|" in line or "ERROR:" in line]
+                self.assertEqual(1, len(errors), run.stderr)
+                self.assertIn(name, errors[0])
 
 
 if __name__ == "__main__":

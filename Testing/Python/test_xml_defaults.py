@@ -13,15 +13,15 @@ XML = sys.argv.pop(1) if len(sys.argv) > 1 else None
 
 # Enumeration entries (by text) and the C++ constants they stand for.
 CONSTANTS = {
-    "Hybrid": mcxray.vtkMCXPointSampler.HYBRID,
-    "Monte Carlo": mcxray.vtkMCXPointSampler.MONTE_CARLO,
-    "Quasi-Monte Carlo": mcxray.vtkMCXPointSampler.QUASI_MONTE_CARLO,
-    "Every voxel": mcxray.vtkMCXPointSampler.EVERY_VOXEL,
-    "View ordered": mcxray.vtkMCXPointSampler.VIEW_ORDERED,
-    "Tent (trilinear)": mcxray.vtkMCXPointSampler.TENT,
-    "Box (nearest)": mcxray.vtkMCXPointSampler.BOX,
-    "Point": mcxray.vtkMCXPointSampler.POINT,
-    "Footprint": mcxray.vtkMCXPointSampler.FOOTPRINT,
+    "Hybrid": mcxray.vtkMCXTypes.HYBRID,
+    "Monte Carlo": mcxray.vtkMCXTypes.MONTE_CARLO,
+    "Quasi-Monte Carlo": mcxray.vtkMCXTypes.QUASI_MONTE_CARLO,
+    "Every voxel": mcxray.vtkMCXTypes.EVERY_VOXEL,
+    "View ordered": mcxray.vtkMCXTypes.VIEW_ORDERED,
+    "Tent (trilinear)": mcxray.vtkMCXTypes.TENT,
+    "Box (nearest)": mcxray.vtkMCXTypes.BOX,
+    "Point": mcxray.vtkMCXTypes.POINT,
+    "Footprint": mcxray.vtkMCXTypes.FOOTPRINT,
     "Film": mcxray.vtkMCXXRayMapper.FILM,
     "Additive": mcxray.vtkMCXXRayMapper.ADDITIVE,
 }

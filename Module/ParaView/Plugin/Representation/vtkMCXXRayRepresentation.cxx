@@ -134,9 +134,9 @@ vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
   this->Aggregate->SetInputConnection(this->Index->GetOutputPort());
   // The interactive preview's 4 M points; the mapper is the only consumer of
   // the cloud, so a TF edit may rewrite it in place.
-  this->Sampler->SetSampleExponent(DefaultSampleExponent);
+  this->Sampler->SetSampleExponent(vtkMCXTypes::DefaultSampleExponent);
   this->Sampler->ReusePointsOn();
-  this->Sampler->SetDeposit(vtkMCXPointSampler::FOOTPRINT); // far less noise for the same points
+  this->Sampler->SetDeposit(vtkMCXTypes::FOOTPRINT); // far less noise for the same points
   this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
   this->Volume->SetMapper(this->Mapper);
   this->Volume->SetVisibility(false);
@@ -293,7 +293,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     // cloud the renders draw, so that a large point count makes camera
     // motion use the interactive budget.
     // An every-voxel cloud holds at most each voxel once, with its weight.
-    const double cloudKiB = this->Sampler->GetStrategy() == vtkMCXPointSampler::EVERY_VOXEL
+    const double cloudKiB = this->Sampler->GetStrategy() == vtkMCXTypes::EVERY_VOXEL
       ? (this->DeliveredIndex ? 16.0 * this->DeliveredIndex->GetNumberOfPoints() / 1024.0 : 0.0)
       : 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
     const double indexKiB =
@@ -457,7 +457,7 @@ void vtkMCXXRayRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* fu
 
 void vtkMCXXRayRepresentation::OrderForView(vtkPVRenderView* view)
 {
-  if (!view || this->Sampler->GetStrategy() != vtkMCXPointSampler::VIEW_ORDERED)
+  if (!view || this->Sampler->GetStrategy() != vtkMCXTypes::VIEW_ORDERED)
   {
     return;
   }
@@ -474,7 +474,7 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
     return;
   }
   // The index's density levels, lowest and highest.
-  vtkDataArray* levels = index->GetFieldData()->GetArray(vtkMCXDensityIndex::LevelValuesName());
+  vtkDataArray* levels = index->GetFieldData()->GetArray(vtkMCXTypes::LevelValuesName());
   if (!levels || levels->GetNumberOfTuples() < 1)
   {
     return;

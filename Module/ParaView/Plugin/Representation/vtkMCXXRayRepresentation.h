@@ -57,9 +57,6 @@ public:
    */
   void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
 
-  /** The sampler's exponent until set: 2^22 - 1 points, the interactive preview. */
-  static constexpr int DefaultSampleExponent = 22;
-
   ///@{
   /** Forwarded to the sampler (see vtkMCXPointSampler). */
   void SetSampleExponent(int exponent);
