@@ -38,17 +38,6 @@
 
 vtkStandardNewMacro(vtkMCXPointSampler);
 
-// The public constants are the core's, seen from VTK.
-static_assert(vtkMCXTypes::HYBRID == static_cast<int>(mcx::Strategy::Hybrid) &&
-    vtkMCXTypes::MONTE_CARLO == static_cast<int>(mcx::Strategy::MonteCarlo) &&
-    vtkMCXTypes::QUASI_MONTE_CARLO == static_cast<int>(mcx::Strategy::QuasiMonteCarlo),
-  "strategy values differ from mcx::Strategy");
-static_assert(vtkMCXTypes::TENT == static_cast<int>(mcx::Kernel::Tent) &&
-    vtkMCXTypes::BOX == static_cast<int>(mcx::Kernel::Box),
-  "kernel values differ from mcx::Kernel");
-static_assert(
-  vtkMCXTypes::LargestSampleExponent == static_cast<int>(mcx::MaximumSampleExponent),
-  "the largest sample exponent differs from the core's");
 vtkCxxSetObjectMacro(vtkMCXPointSampler, TransferFunction, vtkPiecewiseFunction);
 vtkInformationKeyRestrictedMacro(vtkMCXPointSampler, SUPPORT_CORNERS, DoubleVector, 24);
 

@@ -63,7 +63,7 @@ public:
 
   ///@{
   /**
-   * M = 2^SampleExponent - 1 samples (default m = 20).
+   * M = 2^SampleExponent - 1 samples (default vtkMCXTypes::DefaultSampleExponent, 22).
    * SetNumberOfSamples(n) picks the smallest m with 2^m - 1 >= n.
    */
   vtkSetClampMacro(SampleExponent, int, 0, vtkMCXTypes::MaximumPointCloudExponent);
@@ -167,12 +167,13 @@ public:
 
   ///@{
   /**
-   * POINT (default): each point is a sample's position, its voxel centre
-   * plus a random offset from the kernel, and projectors count it where it
-   * lands. FOOTPRINT: each point is the chosen voxel's centre, and projectors
-   * (vtkMCXProjector, vtkMCXXRayMapper) deposit the voxel's kernel footprint
-   * over the pixels it reaches (see vtkMCXProjector): the same memory per
-   * point, far less noise. The choice travels in the field data.
+   * FOOTPRINT (default): each point is the chosen voxel's centre, and
+   * projectors (vtkMCXProjector, vtkMCXXRayMapper) deposit the voxel's
+   * kernel footprint over the pixels it reaches (see vtkMCXProjector).
+   * POINT (the paper's): each point is a sample's position, its voxel
+   * centre plus a random offset from the kernel, and projectors count it
+   * where it lands: the same memory per point, far more noise. The choice
+   * travels in the field data.
    */
   vtkSetClampMacro(Deposit, int, vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT);
   vtkGetMacro(Deposit, int);

@@ -27,8 +27,8 @@
  * random), and with a stratified voxel choice (HYBRID, QUASI_MONTE_CARLO)
  * the error falls about as M^-1 instead of M^-1/2. A kernel reaching more than FootprintReach
  * pixels along a projected voxel axis is split into a random coarse part and a deposited fine part,
- * which bounds a sample's cost and keeps the estimate unbiased. POINT (the default) is the paper's
- * estimator: one count where the sample's random offset lands. The estimand is the same.
+ * which bounds a sample's cost and keeps the estimate unbiased. FOOTPRINT is the default; POINT is
+ * the paper's estimator: one count where the sample's random offset lands. The estimand is the same.
  *
  * Target-accuracy controls (index input): with TargetRelativeError or
  * TargetQuantizationLevels set, a pilot run (at least 2^16 - 1 samples, about
@@ -58,7 +58,8 @@ public:
 
   ///@{
   /**
-   * With an index input: M = 2^SampleExponent - 1 samples (default m = 24),
+   * With an index input: M = 2^SampleExponent - 1 samples (default
+   * vtkMCXTypes::DefaultSampleExponent, 22),
    * the sampling strategy (vtkMCXTypes::HYBRID, MONTE_CARLO,
    * QUASI_MONTE_CARLO, or EVERY_VOXEL: each voxel of non-zero weight once,
    * weighted by its TF weight over the mean, never stored; SampleExponent
@@ -80,7 +81,7 @@ public:
 
   ///@{
   /**
-   * vtkMCXTypes::POINT (default) or FOOTPRINT, and the footprint's
+   * vtkMCXTypes::FOOTPRINT (default) or POINT, and the footprint's
    * reach in pixels per projected voxel axis (default 16, 0.5 to 32).
    */
   vtkSetClampMacro(Deposit, int, vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT);

@@ -5,9 +5,9 @@
  *          limits and default, and the names of the data arrays.
  *
  * One home for them: the sampler, the projectors, the mapper, the ParaView
- * XML (its enumerations, checked against these values by Python.Types) and
- * the mcxray command (its option names, StrategyFromName and the like) all
- * read them here. Only static members; nothing to instantiate.
+ * XML (its enumerations and defaults, checked against these values by
+ * Python.XMLDefaults) and the mcxray command (its option names, through
+ * StrategyFromName and the like) all read them here. Only static members.
  */
 #ifndef vtkMCXTypes_h
 #define vtkMCXTypes_h

@@ -415,42 +415,24 @@ int vtkMCXNrrdReader::RequestInformation(
     problem = mcxio::DescribeShortRawData(this->DataFileNames(),
       this->DataFiles->GetNumberOfValues() > 0 ? 0 : this->GetHeaderSize(), this->DataBytes());
   }
-  this->Failed = !problem.empty();
+  const mcxio::Placement placement{ this->DataOrigin, this->DataSpacing, this->DataDirection };
+  this->Failed = !mcxio::FinishInformation(this, outputVector, this->FileName, problem, placement);
   if (this->Failed)
   {
     this->SetErrorCode(vtkErrorCode::FileFormatError);
-    mcxio::ReportReaderFailure(this, outputVector, this->FileName, problem);
-    return 1;
   }
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Set(vtkDataObject::ORIGIN(), this->DataOrigin, 3);
-  outInfo->Set(vtkDataObject::SPACING(), this->DataSpacing, 3);
-  outInfo->Set(vtkDataObject::DIRECTION(), this->DataDirection, 9);
   return 1;
 }
 
 int vtkMCXNrrdReader::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
-  if (this->Failed)
+  const mcxio::Placement placement{ this->DataOrigin, this->DataSpacing, this->DataDirection };
+  if (!mcxio::ReadPlaced(this, outputVector, this->FileName, this->Failed,
+        [&] { return this->Superclass::RequestData(request, inputVector, outputVector); }, placement))
   {
-    output->Initialize();
-    return 1; // reported by RequestInformation
-  }
-  const std::string problem = mcxio::RunReaderStage(
-    this, [&] { return this->Superclass::RequestData(request, inputVector, outputVector); },
-    [] { return std::string(); }, true);
-  if (!problem.empty())
-  {
-    output->Initialize();
     this->SetErrorCode(vtkErrorCode::FileFormatError);
-    mcxio::ReportReaderFailure(this, nullptr, this->FileName, problem);
-    return 1;
   }
-  output->SetOrigin(this->DataOrigin);
-  output->SetSpacing(this->DataSpacing);
-  output->SetDirectionMatrix(this->DataDirection);
   return 1;
 }
 

@@ -3,6 +3,8 @@
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMCXFirstErrorObserver.h"
@@ -85,6 +87,43 @@ void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVecto
     outputVector->GetInformationObject(0)->Set(
       vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
   }
+}
+
+bool FinishInformation(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
+  const std::string& problem, const Placement& placement)
+{
+  if (!problem.empty())
+  {
+    ReportReaderFailure(reader, outputVector, path, problem);
+    return false;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Set(vtkDataObject::ORIGIN(), placement.Origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), placement.Spacing, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), placement.Direction, 9);
+  return true;
+}
+
+bool ReadPlaced(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
+  bool informationFailed, const std::function<int()>& read, const Placement& placement)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (informationFailed)
+  {
+    output->Initialize();
+    return true; // said by the information request
+  }
+  const std::string problem = RunReaderStage(reader, read, [] { return std::string(); }, true);
+  if (!problem.empty())
+  {
+    output->Initialize();
+    ReportReaderFailure(reader, nullptr, path, problem);
+    return false;
+  }
+  output->SetOrigin(placement.Origin);
+  output->SetSpacing(placement.Spacing);
+  output->SetDirectionMatrix(placement.Direction);
+  return true;
 }
 
 std::string DescribeShortRawData(

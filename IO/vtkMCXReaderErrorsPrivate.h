@@ -28,6 +28,28 @@ std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& sta
 void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
   const std::string& problem);
 
+/// Where an extended image reader places its volume: its DataOrigin,
+/// DataSpacing and DataDirection, in LPS.
+struct Placement
+{
+  const double* Origin;
+  const double* Spacing;
+  const double* Direction;
+};
+
+/// Ends a reader's RequestInformation: with a problem, says it once
+/// (ReportReaderFailure, empty extent) and returns false; else puts the
+/// placement in the output information and returns true.
+bool FinishInformation(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
+  const std::string& problem, const Placement& placement);
+
+/// A reader's RequestData: an empty output after a failed information
+/// request (said there), else read() (the superclass's request; a warning
+/// counts as an error) and the placement set on the output. Returns false,
+/// the output empty and the failure said once, when the read failed.
+bool ReadPlaced(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
+  bool informationFailed, const std::function<int()>& read, const Placement& placement);
+
 /// "" when the raw (uncompressed) data files hold the bytes a header
 /// claims: files[0] from offset on holds total bytes, or, for several
 /// files, each holds total / files.size() from offset on; else the reason

@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -67,6 +68,7 @@ vtkSmartPointer<vtkMCXProjectorBase> NewProjector(bool reference, int m = 18)
     return exact;
   }
   auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
+  monteCarlo->SetDeposit(vtkMCXTypes::POINT); // the paper's estimator: one sample, one pixel
   monteCarlo->SetSampleExponent(m);
   return monteCarlo;
 }
@@ -82,12 +84,13 @@ Outcome Project(vtkImageData* volume, vtkPiecewiseFunction* tf, bool reference, 
   if (reference)
   {
     auto exact = vtkSmartPointer<vtkMCXReferenceProjector>::New();
-    exact->SetRelativeTolerance(1e-4);
+    exact->SetRelativeTolerance(std::min(1e-4, ReferenceTolerance));
     projector = exact;
   }
   else
   {
     auto monteCarlo = vtkSmartPointer<vtkMCXProjector>::New();
+    monteCarlo->SetDeposit(vtkMCXTypes::POINT); // as NewProjector
     monteCarlo->SetSampleExponent(m);
     monteCarlo->SetStrategy(strategy);
     projector = monteCarlo;

@@ -77,10 +77,12 @@ struct Scene
     return reference->GetOutput();
   }
 
+  // The paper's point estimator (these tests hold its binomial bounds).
   vtkSmartPointer<vtkImageData> MonteCarlo(
     vtkCamera* camera, int size, int m, int strategy, vtkTypeUInt64 seed)
   {
     vtkNew<vtkMCXProjector> projector;
+    projector->SetDeposit(vtkMCXTypes::POINT);
     this->Configure(projector.Get(), camera, size);
     projector->SetSampleExponent(m);
     projector->SetStrategy(strategy);
@@ -334,6 +336,7 @@ TEST(Projection, HaltonPrefixHasTheErrorOfItsOwnSize)
   sampler->SetInputConnection(scene.Index->GetOutputPort());
   sampler->SetTransferFunction(scene.TF);
   sampler->SetSampleExponent(20);
+  sampler->SetDeposit(vtkMCXTypes::POINT); // sample positions, copied without the field data
   sampler->Update();
   vtkPolyData* cloud = sampler->GetOutput();
   for (int k : { 12, 16, 20 })

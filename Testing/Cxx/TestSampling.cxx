@@ -26,6 +26,7 @@ vtkSmartPointer<vtkPolyData> Sample(vtkMCXDensityIndex* index, int m, int strate
   sampler->SetInputConnection(index->GetOutputPort());
   sampler->SetSampleExponent(m);
   sampler->SetStrategy(strategy);
+  sampler->SetDeposit(vtkMCXTypes::POINT); // the paper's samples: positions with kernel offsets
   sampler->SetTransferFunction(tf);
   sampler->SetOutputPointsPrecision(precision);
   sampler->SetSeed(seed);

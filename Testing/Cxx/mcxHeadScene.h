@@ -42,6 +42,7 @@ struct HeadScene
     this->Sampler->SetTransferFunction(this->TransferFunction);
     this->Sampler->SetSampleExponent(exponent);
     this->Sampler->SetSeed(7);
+    this->Sampler->SetDeposit(vtkMCXTypes::POINT); // the tests' baselines; footprint tests set it
     this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
     this->Volume->SetMapper(this->Mapper);
     this->Renderer->AddVolume(this->Volume);

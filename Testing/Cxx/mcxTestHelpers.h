@@ -261,6 +261,7 @@ inline WeightMoments MeasureSampledWeights(vtkAlgorithmOutput* index, vtkPiecewi
   sampler->SetInputConnection(index);
   sampler->SetTransferFunction(tf);
   sampler->SetStrategy(vtkMCXTypes::MONTE_CARLO);
+  sampler->SetDeposit(vtkMCXTypes::POINT); // positions with their kernel offsets
   sampler->SetSampleExponent(exponent);
   sampler->SetSeed(11);
   sampler->Update();
