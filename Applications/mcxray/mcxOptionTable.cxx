@@ -4,6 +4,8 @@
 #include "mcxOptionValues.h"
 #include "mcxSettings.h"
 
+#include <algorithm>
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -138,11 +140,14 @@ const Option Options[] = {
   { "--coordinates", Both, true,
     [](Settings& s, const Argument& a)
     {
-      if (a.Value != "lps" && a.Value != "ras")
+      std::string value = a.Value;
+      std::transform(value.begin(), value.end(), value.begin(),
+        [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      if (value != "lps" && value != "ras")
       {
         Fail("bad --coordinates '" + a.Value + "' (expected lps or ras)");
       }
-      s.RASCoordinates = a.Value == "ras";
+      s.RASCoordinates = value == "ras";
     } },
   // An image may be large; a window must fit a screen.
   { "--size", Render, true, [](Settings& s, const Argument& a) { SetSize(s, a, 1, 65536); } },

@@ -111,12 +111,14 @@ options:
                         these selects it): source-to-axis distance (default 1000),
                         source-to-image distance (1500), detector pixels (512x512)
                         and pitch (0.8), gantry angle (0: source on +x, the
-                        patient's left, turning about z), isocentre (default:
-                        the volume's centre). Image columns run along +y at
-                        angle 0, rows along +z, as in plastimatch drr; replaces
-                        --view, --camera, --size and --pixel-spacing
-  --coordinates C       lps (default) or ras: the points of --camera and
-                        --isocenter are in RAS (x to the patient's right, y
+                        patient's left, turning about z towards +y, so 90
+                        puts it posterior: plastimatch's angle a is -a
+                        here), isocentre (default: the volume's centre).
+                        Image columns run along +y at angle 0, rows along +z,
+                        as in plastimatch drr; replaces --view, --camera,
+                        --size and --pixel-spacing
+  --coordinates C       lps (default) or ras (any case): the points of --camera
+                        and --isocenter are in RAS (x to the patient's right, y
                         anterior) and are taken to LPS by negating x and y;
                         --view and --gantry name patient directions either way
   --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)

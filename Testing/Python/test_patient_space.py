@@ -417,7 +417,7 @@ class PatientSpace(unittest.TestCase):
         images = {}
         for name, extra in {
             "lps": ["--isocenter", ",".join(repr(float(x)) for x in iso)],
-            "ras": ["--coordinates", "ras", "--isocenter", "%r,%r,%r" % (-iso[0], -iso[1], iso[2])],
+            "ras": ["--coordinates", "RAS", "--isocenter", "%r,%r,%r" % (-iso[0], -iso[1], iso[2])],
             "ras points read as lps": ["--isocenter", "%r,%r,%r" % (-iso[0], -iso[1], iso[2])],
         }.items():
             output = os.path.join(self.work, "iso-%s.vti" % name.replace(" ", "-"))
