@@ -495,9 +495,24 @@ private:
     vtkImageData* image = projector->GetOutput();
     if (IsFirstProcess())
     {
+      WarnWhenTheViewMissesTheVolume(image);
       this->LogProjection(image, seconds, noisy);
     }
     return image;
+  }
+
+  // An empty image of a volume that holds something: most often a point
+  // given in the wrong world (RAS for LPS), said before the image is written.
+  static void WarnWhenTheViewMissesTheVolume(vtkImageData* image)
+  {
+    vtkDataArray* values = image->GetPointData()->GetScalars();
+    vtkDataArray* integral = image->GetFieldData()->GetArray(vtkMCXTypes::IntegralName());
+    if (values && integral && integral->GetTuple1(0) > 0 && values->GetRange()[1] == 0)
+    {
+      std::cerr << "mcxray: warning: the image holds none of the volume: the view misses it "
+                   "(check --camera, --isocenter and --coordinates)"
+                << std::endl;
+    }
   }
 
   void LogProjection(vtkImageData* image, double seconds, bool noisy) const

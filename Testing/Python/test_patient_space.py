@@ -444,6 +444,18 @@ class PatientSpace(unittest.TestCase):
         self.assertTrue(numpy.array_equal(cameras["lps"], cameras["ras"]))
         self.assertGreater(cameras["lps"].max(), 0)
 
+    def test_a_view_that_misses_the_volume_says_so(self):
+        # A point in the wrong world (RAS given as LPS) can aim the view past
+        # the patient: the empty image comes with one warning line.
+        output = os.path.join(self.work, "missed.vti")
+        result = render(self.files["VTI"][0], output, "--isocenter", "2000,2000,0")
+        self.assertEqual(0, result.returncode, result.stderr)
+        self.assertEqual(0.0, read_vti_image(output).max())
+        lines = result.stderr.strip().splitlines()
+        self.assertEqual(1, len(lines), lines)
+        self.assertIn("the image holds none of the volume", lines[0])
+        self.assertEqual("", render(self.files["VTI"][0], output).stderr)
+
     def test_headers_whose_orientation_cannot_be_honoured_are_one_error(self):
         hu = self.hu
         cases = {
