@@ -314,6 +314,16 @@ std::string vtkMCXNrrdReader::CheckLayout(const std::string& header)
       return "the NRRD header's sizes '" + fields["sizes"] + "' are not all between 1 and 2^31 - 1";
     }
   }
+  std::vector<std::string> entries;
+  std::istringstream kinds(fields["kinds"]);
+  std::string firstKind;
+  if (ParseDirections(fields["space directions"], entries) && !entries.empty() &&
+    (kinds >> firstKind) &&
+    (entries[0] == "none") == (firstKind == "domain" || firstKind == "space"))
+  {
+    return "the NRRD header's kinds and space directions disagree about its first axis ('" +
+      firstKind + "', '" + entries[0] + "')";
+  }
   const long long spatial = dimension - (LeadingComponentAxis(fields) ? 1 : 0);
   if (spatial < 2 || spatial > 3)
   {

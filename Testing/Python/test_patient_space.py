@@ -569,6 +569,9 @@ class HeaderVariants(unittest.TestCase):
             "gradients.nrrd": nrrd + b"dimension: 4\nspace: LPS\nsizes: 4 4 4 3\n"
             b"space directions: (1,0,0) (0,1,0) (0,0,1) none\nencoding: raw\n\n" + bytes(192),
             "short-data.nrrd": nrrd + b"dimension: 3\nsizes: 10 10 10\nencoding: raw\n\n" + bytes(980),
+            "kinds-disagree.nrrd": nrrd + b"dimension: 3\nspace: LPS\nsizes: 4 4 4\n"
+            b"space directions: none (0,2,0) (0,0,2)\nkinds: domain domain domain\nencoding: raw\n\n" +
+            bytes(64),
             "short-data.mha": b"NDims = 3\nDimSize = 10 10 10\nElementType = MET_UCHAR\n"
             b"ElementDataFile = LOCAL\n" + bytes(980),
         }
