@@ -118,15 +118,11 @@ std::string vtkMCXMetaImageReader::Place()
     }
   }
   double spacing[3], direction[9];
-  std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, spacing, direction);
-  if (problem.empty())
-  {
-    problem =
-      vtkMCXPatientSpace::DescribeUnusableExtent(origin, spacing, direction, this->DataExtent);
-  }
+  const std::string problem =
+    vtkMCXPatientSpace::PlaceAxisSteps(steps, origin, this->DataExtent, spacing, direction);
   if (!problem.empty())
   {
-    return "the header's placement cannot be used: " + problem;
+    return problem;
   }
   this->SetDataOrigin(origin);
   this->SetDataSpacing(spacing);

@@ -99,15 +99,9 @@ std::string vtkMCXNIFTIReader::Place(vtkInformation* readerInfo)
         toLPS[r] * (form ? form->GetElement(r, c) : (r == c ? 1.0 : 0.0)) * stored[c];
     }
   }
-  std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, this->Spacing, this->Direction);
-  if (problem.empty())
-  {
-    int extent[6];
-    readerInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-    problem = vtkMCXPatientSpace::DescribeUnusableExtent(
-      this->Origin, this->Spacing, this->Direction, extent);
-  }
-  return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
+  int extent[6];
+  readerInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  return vtkMCXPatientSpace::PlaceAxisSteps(steps, this->Origin, extent, this->Spacing, this->Direction);
 }
 
 int vtkMCXNIFTIReader::RequestInformation(

@@ -265,12 +265,7 @@ std::string vtkMCXNrrdReader::PlaceHeader(const std::string& header, const int e
       origin[r] = sign[r] * o[r];
     }
   }
-  std::string problem = vtkMCXPatientSpace::SplitAxisSteps(steps, spacing, direction);
-  if (problem.empty())
-  {
-    problem = vtkMCXPatientSpace::DescribeUnusableExtent(origin, spacing, direction, extent);
-  }
-  return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
+  return vtkMCXPatientSpace::PlaceAxisSteps(steps, origin, extent, spacing, direction);
 }
 
 std::string vtkMCXNrrdReader::CheckLayout(const std::string& header)

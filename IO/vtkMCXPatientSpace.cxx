@@ -106,6 +106,17 @@ std::string vtkMCXPatientSpace::DescribeUnusableExtent(
   return std::string();
 }
 
+std::string vtkMCXPatientSpace::PlaceAxisSteps(const double steps[9], const double origin[3],
+  const int extent[6], double spacing[3], double direction[9])
+{
+  std::string problem = SplitAxisSteps(steps, spacing, direction);
+  if (problem.empty())
+  {
+    problem = DescribeUnusableExtent(origin, spacing, direction, extent);
+  }
+  return problem.empty() ? problem : "the header's placement cannot be used: " + problem;
+}
+
 std::string vtkMCXPatientSpace::DescribeUnusablePlacement(vtkImageData* volume)
 {
   if (!volume)

@@ -57,6 +57,14 @@ public:
   static std::string DescribeUnusableExtent(const double origin[3], const double spacing[3],
     const double direction[9], const int extent[6]);
 
+  /**
+   * A reader's placement from its header: SplitAxisSteps, then
+   * DescribeUnusableExtent with origin and extent. Returns "" on success,
+   * else "the header's placement cannot be used: " and the reason.
+   */
+  static std::string PlaceAxisSteps(const double steps[9], const double origin[3],
+    const int extent[6], double spacing[3], double direction[9]);
+
   /** Negates x and y of a point or vector given in RAS, making it LPS (and back). */
   static void FlipRightAnterior(double point[3]);
 

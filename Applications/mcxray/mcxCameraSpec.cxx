@@ -124,20 +124,4 @@ void AxisViewDetector(const std::string& axis, double detectorU[3], double detec
   detectorV[found->second == 2 ? 1 : 2] = 1;
 }
 
-void FlipCameraRightAnterior(vtkCamera* camera)
-{
-  double position[3], focal[3], up[3];
-  camera->GetPosition(position);
-  camera->GetFocalPoint(focal);
-  camera->GetViewUp(up);
-  for (double* point : { position, focal, up })
-  {
-    point[0] = -point[0];
-    point[1] = -point[1];
-  }
-  camera->SetPosition(position);
-  camera->SetFocalPoint(focal);
-  camera->SetViewUp(up);
-}
-
 } // namespace mcxapp

@@ -16,10 +16,6 @@ namespace mcxapp
 /// a malformed or degenerate one.
 vtkSmartPointer<vtkCamera> ParseCamera(const std::string& text);
 
-/// Takes a camera given in RAS to patient space (LPS) and back: x and y of
-/// its position, focal point and view-up negated.
-void FlipCameraRightAnterior(vtkCamera* camera);
-
 /// The detector axes of a parallel view along axis (+x, -x, +y, -y, +z or
 /// -z): the two remaining world axes in x, y, z order, never mirrored.
 void AxisViewDetector(const std::string& axis, double detectorU[3], double detectorV[3]);

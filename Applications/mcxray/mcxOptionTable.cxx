@@ -4,6 +4,8 @@
 #include "mcxOptionValues.h"
 #include "mcxSettings.h"
 
+#include "vtkMCXPatientSpace.h"
+
 #include <algorithm>
 #include <cctype>
 #include <string>
@@ -251,8 +253,7 @@ bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
   {
     // Points given in RAS, taken to patient space (LPS) once; the camera
     // when it is parsed (ChooseView).
-    settings.Radiograph.Isocenter[0] = -settings.Radiograph.Isocenter[0];
-    settings.Radiograph.Isocenter[1] = -settings.Radiograph.Isocenter[1];
+    vtkMCXPatientSpace::FlipRightAnterior(settings.Radiograph.Isocenter);
   }
   return true;
 }

@@ -23,6 +23,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMCXDensityIndex.h"
+#include "vtkMCXPatientSpace.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
 #include "vtkMCXRadiograph.h"
@@ -237,6 +238,23 @@ struct ViewChoice
   double DetectorU[3] = { 0, 0, 0 };
   double DetectorV[3] = { 0, 0, 0 };
 };
+
+// A camera given in RAS, taken to patient space (LPS): x and y of its
+// position, focal point and view-up negated.
+void FlipCameraRightAnterior(vtkCamera* camera)
+{
+  double position[3], focal[3], up[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  camera->GetViewUp(up);
+  for (double* point : { position, focal, up })
+  {
+    vtkMCXPatientSpace::FlipRightAnterior(point);
+  }
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focal);
+  camera->SetViewUp(up);
+}
 
 ViewChoice ChooseView(const Settings& settings)
 {
