@@ -1,10 +1,34 @@
 /**
  * @class   vtkMCXXRayMapper
- * @brief   Draws a vtkMCXPointSampler point cloud as an X-ray image of the
- *          renderer's active camera, refining progressively.
+ * @brief   Draws a volume, or a vtkMCXPointSampler point cloud, as an X-ray
+ *          image of the renderer's active camera, refining progressively.
  *
- * The input is the sampler's point cloud (points in Halton order, carrying
- * "Integral" in field data). Each render projects a prefix of 2^k - 1 points
+ * A drop-in volume mapper: an application that shows a vtkImageData with
+ * vtkSmartVolumeMapper switches to an X-ray by changing the mapper:
+ * @code
+ * vtkNew<vtkMCXXRayMapper> mapper;             // was vtkSmartVolumeMapper
+ * mapper->SetInputConnection(reader->GetOutputPort());
+ * volume->SetMapper(mapper);
+ * volume->GetProperty()->SetScalarOpacity(tf); // X-ray weight per data value
+ * renderWindow->Render();
+ * @endcode
+ * With image data as input the mapper owns the pipeline of the method: it
+ * indexes the volume's density array (vtkMCXDensityIndex; the point scalars,
+ * or the array chosen with SelectScalarArray and a field-data ScalarMode),
+ * once, and samples it (vtkMCXPointSampler, with this mapper's
+ * SampleExponent, Strategy, Kernel, Deposit and Seed) under the TF of the
+ * vtkVolume's property: its scalar opacity function of component 0, read as
+ * an X-ray weight g per data value (for radiograph physics an attenuation
+ * coefficient per world unit, vtkMCXAttenuationFunction); colour,
+ * shading and the opacity unit distance do not apply. A TF edit re-samples
+ * in O(M) without re-indexing; a view-ordered strategy is sorted for the view
+ * on the first render and again after a TF or setting change (not on camera
+ * moves alone). A density index (vtkMCXDensityIndex's output) is taken as it
+ * is, without indexing again.
+ *
+ * A point cloud input (vtkMCXPointSampler's output: points in Halton order,
+ * carrying "Integral" in field data) is drawn as it is, and the property is
+ * unused. Each render projects a prefix of 2^k - 1 points
  * for the active camera (parallel or perspective, the same geometry and
  * weights as vtkMCXProjector) at the viewport's resolution into an exact
  * integer accumulation buffer; pixel values are line integrals of g in TF
@@ -13,12 +37,12 @@
  * It is a volume mapper (for a vtkVolume) because volumes render after the
  * opaque and translucent geometry: the depth buffer is complete when the
  * mapper reads it, and ParaView and VTK treat the prop as the volume it
- * stands for. The vtkVolume's matrix moves the cloud; its property is unused.
+ * stands for. The vtkVolume's matrix moves the volume.
  *
  * Work follows what changed:
  * - a different camera, viewport, prop matrix, occluding depth or input
- *   restarts the projection (a TF edit reaches the mapper as a new input from
- *   the sampler, which resamples without re-indexing);
+ *   restarts the projection (a TF edit re-samples the cloud, which is a new
+ *   input; re-sampling does not re-index);
  * - a display change (window, level, inversion) only redraws the accumulated
  *   buffer;
  * - otherwise, with ProgressiveRefinement on, each render adds the largest
@@ -55,10 +79,16 @@
 
 #include "MonteCarloXRayRenderingModule.h" // for export macro
 #include "vtkAbstractVolumeMapper.h"
-#include "vtkMCXPointSampler.h" // for the sample-count limits
-#include "vtkMCXRadiograph.h"   // for the radiograph limits
+#include "vtkMCXRadiograph.h" // for the radiograph limits
+#include "vtkMCXTypes.h"      // for the sampling settings and limits
 
+#include <string> // for SelectDensityArray
+
+class vtkDataArray;
+class vtkMCXDensityIndex;
+class vtkMCXPointSampler;
 class vtkImageData;
+class vtkPolyData;
 class vtkInformationIntegerKey;
 
 class MONTECARLOXRAYRENDERING_EXPORT vtkMCXXRayMapper : public vtkAbstractVolumeMapper
@@ -67,6 +97,36 @@ public:
   static vtkMCXXRayMapper* New();
   vtkTypeMacro(vtkMCXXRayMapper, vtkAbstractVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The input: a volume (its density array is indexed and sampled here), a
+   * density index, or a vtkMCXPointSampler's cloud. SetInputConnection
+   * takes the same from a pipeline.
+   */
+  void SetInputData(vtkImageData* volume);
+  void SetInputData(vtkPolyData* cloud);
+  ///@}
+
+  ///@{
+  /**
+   * How an image input is sampled (vtkMCXPointSampler's settings, defaults
+   * and ranges): 2^SampleExponent - 1 points (default
+   * vtkMCXTypes::DefaultSampleExponent), the strategy (HYBRID), the kernel
+   * (TENT), the deposit (FOOTPRINT) and the seed (0). A point-cloud input
+   * carries its own.
+   */
+  vtkSetClampMacro(SampleExponent, int, 0, vtkMCXTypes::MaximumPointCloudExponent);
+  vtkGetMacro(SampleExponent, int);
+  vtkSetClampMacro(Strategy, int, vtkMCXTypes::HYBRID, vtkMCXTypes::VIEW_ORDERED);
+  vtkGetMacro(Strategy, int);
+  vtkSetClampMacro(Kernel, int, vtkMCXTypes::TENT, vtkMCXTypes::BOX);
+  vtkGetMacro(Kernel, int);
+  vtkSetClampMacro(Deposit, int, vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT);
+  vtkGetMacro(Deposit, int);
+  vtkSetClampMacro(Seed, vtkTypeInt64, 0, VTK_TYPE_INT64_MAX);
+  vtkGetMacro(Seed, vtkTypeInt64);
+  ///@}
 
   ///@{
   /**
@@ -190,7 +250,7 @@ public:
 
   ///@{
   /**
-   * For a footprint cloud (vtkMCXPointSampler::SetDepositToFootprint): a
+   * For a footprint cloud (the FOOTPRINT deposit): a
    * kernel reaching more than this many pixels along a projected voxel axis
    * is split into a random coarse part and a deposited fine part (default 16,
    * 0.5 to 32; see vtkMCXProjector::SetFootprintReach).
@@ -201,6 +261,29 @@ public:
 
   /** Number of points in the image on screen. */
   vtkTypeInt64 GetNumberOfAccumulatedSamples();
+
+  /**
+   * For an image input: brings the input up to date and indexes it now
+   * (otherwise the first render does), so that an application can show the
+   * indexing's progress (observe GetDensityIndex()) before the first frame.
+   */
+  void UpdateDensityIndex();
+
+  ///@{
+  /**
+   * The index and the sampler this mapper uses for an image input, for
+   * progress observers and tests; set them up through the mapper's own
+   * settings (they are overwritten at each render).
+   */
+  vtkMCXDensityIndex* GetDensityIndex();
+  vtkMCXPointSampler* GetPointSampler();
+  ///@}
+
+  /**
+   * Number of points of the cloud drawn (the input's, or the one sampled
+   * from an image input); 0 before the first render.
+   */
+  vtkTypeInt64 GetNumberOfInputPoints();
 
   /** True when the image on screen holds every point of the input. */
   bool IsRefinementComplete();
@@ -264,6 +347,11 @@ protected:
   /** Seconds this render may spend projecting: allocated, capped by MaximumRenderTime. */
   double RenderTimeBudget(vtkVolume* volume) const;
 
+  int SampleExponent = vtkMCXTypes::DefaultSampleExponent;
+  int Strategy = vtkMCXTypes::HYBRID;
+  int Kernel = vtkMCXTypes::TENT;
+  int Deposit = vtkMCXTypes::FOOTPRINT;
+  vtkTypeInt64 Seed = 0;
   double ColorWindow = 1.0;
   double ColorLevel = 0.5;
   bool AutomaticWindowLevel = true;
@@ -296,6 +384,15 @@ private:
   static vtkInformationIntegerKey* FILM_LAID();
   static vtkInformationIntegerKey* FILM_RESET_INSTALLED();
   bool TakeFilm(vtkRenderer* renderer, vtkVolume* volume);
+  /// The one-component point array of image to index (the scalars, or the
+  /// one SelectScalarArray chose); null with problem set when there is none.
+  vtkDataArray* SelectDensityArray(vtkImageData* image, std::string& problem);
+  /// The world corners of the input's support; false when it has none.
+  bool SupportCorners(vtkDataObject* input, double corners[24]);
+  /// Connects the index (a volume) and the sampler to an image input and
+  /// applies the sampling settings; false, reported if asked, when the
+  /// volume has no density array.
+  bool ConnectImageInput(vtkImageData* image, bool report);
   void operator=(const vtkMCXXRayMapper&) = delete;
 
   struct vtkInternals;

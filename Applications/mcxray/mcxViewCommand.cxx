@@ -159,7 +159,7 @@ void BuildIndex(XRayViewer& view, const ErrorCapture& capture, ProgressBar& prog
 {
   progress.Watch(view.GetIndex());
   progress.Begin("index");
-  view.GetIndex()->Update();
+  view.GetMapper()->UpdateDensityIndex();
   progress.End();
   capture.FailOnWatchedError();
 }

@@ -8,8 +8,6 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInteractorStyleTrackballCamera.h"
-#include "vtkMCXDensityIndex.h"
-#include "vtkMCXPointSampler.h"
 #include "vtkMCXXRayMapper.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -22,6 +20,7 @@
 #include "vtkTextActor.h"
 #include "vtkTextProperty.h"
 #include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
 
 #include <cmath>
 #include <cstdio>
@@ -71,16 +70,14 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   }
   this->TransferFunction->DeepCopy(tf);
 
-  this->Index->SetInputData(volume);
-  this->Sampler->SetInputConnection(this->Index->GetOutputPort());
-  this->Sampler->SetTransferFunction(this->TransferFunction);
-  this->Sampler->ReusePointsOn(); // the mapper is the cloud's only consumer
-  this->Sampler->SetSampleExponent(options.SampleExponent);
-  this->Sampler->SetStrategy(options.Strategy);
-  this->Sampler->SetKernel(options.Kernel);
-  this->Sampler->SetDeposit(options.Deposit);
-  this->Sampler->SetSeed(options.Seed);
-  this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
+  // The mapper indexes and samples the volume under the property's TF.
+  this->Mapper->SetInputData(volume);
+  this->Mapper->SetSampleExponent(options.SampleExponent);
+  this->Mapper->SetStrategy(options.Strategy);
+  this->Mapper->SetKernel(options.Kernel);
+  this->Mapper->SetDeposit(options.Deposit);
+  this->Mapper->SetSeed(static_cast<vtkTypeInt64>(options.Seed));
+  this->Volume->GetProperty()->SetScalarOpacity(this->TransferFunction);
   this->Volume->SetMapper(this->Mapper);
   this->Renderer->AddVolume(this->Volume);
   this->Renderer->SetBackground(0, 0, 0);
@@ -113,7 +110,6 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   camera->SetPosition(centre[0], centre[1] - 1.0, centre[2]);
   camera->SetViewUp(0, 0, 1);
   this->Renderer->ResetCamera(bounds);
-  this->OrderByTheCurrentView();
 
   // Density-axis sliders span the data range; the width may reach all of it.
   const double span =
@@ -185,17 +181,7 @@ void XRayViewer::SetTransferFunctionWindow(double centre, double width)
   window->ClampingOn();
   window->AddPoint(points[0], points[1]);
   window->AddPoint(points[2], points[3]);
-  this->OrderByTheCurrentView();
   this->TransferFunction->DeepCopy(window);
-}
-
-void XRayViewer::OrderByTheCurrentView()
-{
-  if (this->Sampler->GetStrategy() == vtkMCXTypes::VIEW_ORDERED)
-  {
-    const int* size = this->Window->GetSize();
-    this->Sampler->SetOrderingView(this->Renderer->GetActiveCamera(), size[0], size[1]);
-  }
 }
 
 bool XRayViewer::ApplyPreset(const std::string& name)
@@ -206,7 +192,6 @@ bool XRayViewer::ApplyPreset(const std::string& name)
   {
     return false;
   }
-  this->OrderByTheCurrentView();
   this->TransferFunction->DeepCopy(tf);
   this->UpdateSlidersFromTransferFunction();
   return true;
@@ -217,10 +202,8 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
   vtkMCXXRayMapper* mapper = this->Mapper;
   std::ostringstream text;
   text.precision(3);
-  const bool everyVoxel = this->Sampler->GetStrategy() == vtkMCXTypes::EVERY_VOXEL;
-  const long long total = everyVoxel
-    ? static_cast<long long>(this->Sampler->GetOutput()->GetNumberOfPoints())
-    : static_cast<long long>(this->Sampler->GetNumberOfSamples());
+  const bool everyVoxel = mapper->GetStrategy() == vtkMCXTypes::EVERY_VOXEL;
+  const long long total = static_cast<long long>(mapper->GetNumberOfInputPoints());
   text << Thousands(mapper->GetNumberOfAccumulatedSamples()) << " of " << Thousands(total)
        << (everyVoxel ? " voxels   " : " samples   ");
   if (withFrameTime)
@@ -322,12 +305,12 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
     case '=':
     case '-':
       // An every-voxel cloud has no sample count to change.
-      handled = viewer->Sampler->GetStrategy() != vtkMCXTypes::EVERY_VOXEL;
+      handled = viewer->Mapper->GetStrategy() != vtkMCXTypes::EVERY_VOXEL;
       if (handled)
       {
         const int step = key == '-' ? -1 : 1;
-        viewer->Sampler->SetSampleExponent(std::max(
-          10, std::min(MaximumViewerExponent, viewer->Sampler->GetSampleExponent() + step)));
+        viewer->Mapper->SetSampleExponent(std::max(
+          10, std::min(MaximumViewerExponent, viewer->Mapper->GetSampleExponent() + step)));
       }
       break;
     default:

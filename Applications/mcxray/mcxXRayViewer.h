@@ -7,6 +7,7 @@
 #define mcxXRayViewer_h
 
 #include "vtkMCXTypes.h"
+#include "vtkMCXXRayMapper.h" // for the index and sampler getters
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
@@ -78,8 +79,9 @@ public:
   vtkRenderWindowInteractor* GetInteractor() { return this->Interactor; }
   vtkRenderer* GetRenderer() { return this->Renderer; }
   vtkMCXXRayMapper* GetMapper() { return this->Mapper; }
-  vtkMCXDensityIndex* GetIndex() { return this->Index; }
-  vtkMCXPointSampler* GetSampler() { return this->Sampler; }
+  /// The mapper's own index and sampler (it indexes and samples the volume).
+  vtkMCXDensityIndex* GetIndex() { return this->Mapper->GetDensityIndex(); }
+  vtkMCXPointSampler* GetSampler() { return this->Mapper->GetPointSampler(); }
   vtkPiecewiseFunction* GetTransferFunction() { return this->TransferFunction; }
   vtkSliderWidget* GetCentreSlider() { return this->CentreSlider; }
   vtkSliderWidget* GetWidthSlider() { return this->WidthSlider; }
@@ -93,10 +95,6 @@ private:
   void AddSlider(
     vtkSliderWidget* slider, const char* title, double lowest, double highest, double y);
   void UpdateSlidersFromTransferFunction();
-  /// A view-ordered cloud (VIEW_ORDERED) follows the camera and window of
-  /// now: called before each TF edit, so a TF edit after a camera move
-  /// sorts the voxels for the new view, and camera moves alone do not.
-  void OrderByTheCurrentView();
 
   std::string ErrorMessage;
   double DataRange[2] = { 0, 1 };
@@ -105,8 +103,6 @@ private:
   bool OverlayCurrent = false;
   std::string OverlayState;
   vtkNew<vtkPiecewiseFunction> TransferFunction;
-  vtkNew<vtkMCXDensityIndex> Index;
-  vtkNew<vtkMCXPointSampler> Sampler;
   vtkNew<vtkMCXXRayMapper> Mapper;
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkRenderer> Renderer;

@@ -45,7 +45,7 @@ def accumulated_samples(representation):
 
 def sampler_of(representation):
     """Messages leaving the representation's sampler as the last result."""
-    return ["Invoke %s GetMapper" % obj(representation), "Invoke result() GetInputAlgorithm"]
+    return ["Invoke %s GetMapper" % obj(representation), "Invoke result() GetPointSampler"]
 
 
 def as_array(image, name):

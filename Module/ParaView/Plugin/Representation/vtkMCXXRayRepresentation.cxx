@@ -4,7 +4,6 @@
 #include "vtkMCXAgreeingExecutivePrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributedPrivate.h"
-#include "vtkMCXPointSampler.h"
 #include "vtkMCXXRayMapper.h"
 #include "vtkMCXXRayRepresentationExecutive.h"
 
@@ -28,6 +27,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTrivialProducer.h"
 #include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,15 +129,11 @@ vtkMCXXRayRepresentation::vtkMCXXRayRepresentation()
   executive->Delete();
   vtkMath::UninitializeBounds(this->DataBounds);
   // Until the colour map provides one: the default ramp, once the index is known.
-  this->Sampler->SetTransferFunction(this->DefaultRamp);
+  this->Volume->GetProperty()->SetScalarOpacity(this->DefaultRamp);
   this->Index->SetInputConnection(this->Slab->GetOutputPort());
   this->Aggregate->SetInputConnection(this->Index->GetOutputPort());
-  // The interactive preview's 4 M points; the mapper is the only consumer of
-  // the cloud, so a TF edit may rewrite it in place.
-  this->Sampler->SetSampleExponent(vtkMCXTypes::DefaultSampleExponent);
-  this->Sampler->ReusePointsOn();
-  this->Sampler->SetDeposit(vtkMCXTypes::FOOTPRINT); // far less noise for the same points
-  this->Mapper->SetInputConnection(this->Sampler->GetOutputPort());
+  // The mapper samples the delivered index under the property's TF (and
+  // sorts a view-ordered cloud for the view on a TF edit).
   this->Volume->SetMapper(this->Mapper);
   this->Volume->SetVisibility(false);
 }
@@ -259,11 +255,11 @@ int vtkMCXXRayRepresentation::RequestData(
         0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
     }
     this->Aggregate->Update();
-    // The volume is hidden and the sampler leaves the view's piece until the
+    // The volume is hidden and the mapper leaves the view's piece until the
     // new index is delivered (REQUEST_RENDER shows and connects them again):
     // the view empties the piece in between, and asks the visible props'
     // bounds first, which would sample that.
-    this->Sampler->RemoveAllInputConnections(0);
+    this->Mapper->RemoveAllInputConnections(0);
     this->Volume->SetVisibility(false);
     this->DeliveredIndex = vtkSmartPointer<vtkImageData>::New();
     this->DeliveredIndex->ShallowCopy(this->Aggregate->GetOutput());
@@ -285,17 +281,14 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   }
   if (request == vtkPVView::REQUEST_UPDATE())
   {
-    // A view-ordered cloud is sorted for the view as it is when the
-    // representation updates (a property edit), not at each camera move.
-    this->OrderForView(vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW())));
     // Only the index travels to the rendering processes: 4 or 8 bytes a voxel.
     // The size that decides on interactive (LOD) renders is that of the
     // cloud the renders draw, so that a large point count makes camera
     // motion use the interactive budget.
     // An every-voxel cloud holds at most each voxel once, with its weight.
-    const double cloudKiB = this->Sampler->GetStrategy() == vtkMCXTypes::EVERY_VOXEL
+    const double cloudKiB = this->Mapper->GetStrategy() == vtkMCXTypes::EVERY_VOXEL
       ? (this->DeliveredIndex ? 16.0 * this->DeliveredIndex->GetNumberOfPoints() / 1024.0 : 0.0)
-      : 12.0 * std::ldexp(1.0, this->Sampler->GetSampleExponent()) / 1024.0;
+      : 12.0 * std::ldexp(1.0, this->Mapper->GetSampleExponent()) / 1024.0;
     const double indexKiB =
       this->DeliveredIndex ? this->DeliveredIndex->GetActualMemorySize() : 0.0;
     const bool parallel = IsParallelServer();
@@ -346,7 +339,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
   else if (request == vtkPVView::REQUEST_RENDER())
   {
     // An empty delivery (no density array: reported on the data server)
-    // draws nothing and asks nothing of the sampler.
+    // draws nothing and asks nothing of the mapper.
     vtkAlgorithmOutput* producer = vtkPVRenderView::GetPieceProducer(inInfo, this);
     vtkDataObject* piece = producer && producer->GetProducer()
       ? producer->GetProducer()->GetOutputDataObject(producer->GetIndex())
@@ -354,19 +347,16 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
     vtkImageData* index = vtkImageData::SafeDownCast(piece);
     if (index && index->GetNumberOfPoints() > 0)
     {
-      this->Sampler->SetInputConnection(producer);
-      this->UseDefaultRampUnlessColoured(index);
-      // A TF edit re-samples without updating the representation: it too
-      // sorts for the view as it is (the control image holds only there).
-      vtkPiecewiseFunction* tf = this->Sampler->GetTransferFunction();
-      if (tf && tf->GetMTime() > this->OrderedForTransferFunction)
+      if (this->Mapper->GetNumberOfInputConnections(0) != 1 ||
+        this->Mapper->GetInputConnection(0, 0) != producer)
       {
-        this->OrderForView(vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW())));
+        this->Mapper->SetInputConnection(producer);
       }
+      this->UseDefaultRampUnlessColoured(index);
     }
     else
     {
-      this->Sampler->RemoveAllInputConnections(0);
+      this->Mapper->RemoveAllInputConnections(0);
     }
     // While the camera moves (an interactive, LOD render), each frame
     // projects only what fits the interactive budget; the still render that
@@ -445,26 +435,15 @@ void vtkMCXXRayRepresentation::SetVisibility(bool visible)
 {
   this->Superclass::SetVisibility(visible);
   // Shown only once the view has connected the delivered index.
-  this->Volume->SetVisibility(visible && this->Sampler->GetNumberOfInputConnections(0) > 0);
+  this->Volume->SetVisibility(visible && this->Mapper->GetNumberOfInputConnections(0) > 0);
 }
 
 void vtkMCXXRayRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* function)
 {
   this->OpacityFunction = function;
-  this->Sampler->SetTransferFunction(function ? function : this->DefaultRamp.GetPointer());
+  this->Volume->GetProperty()->SetScalarOpacity(
+    function ? function : this->DefaultRamp.GetPointer());
   this->MarkModified();
-}
-
-void vtkMCXXRayRepresentation::OrderForView(vtkPVRenderView* view)
-{
-  if (!view || this->Sampler->GetStrategy() != vtkMCXTypes::VIEW_ORDERED)
-  {
-    return;
-  }
-  const int* size = view->GetSize();
-  this->Sampler->SetOrderingView(view->GetActiveCamera(), size[0], size[1]);
-  vtkPiecewiseFunction* tf = this->Sampler->GetTransferFunction();
-  this->OrderedForTransferFunction = tf ? tf->GetMTime() : 0;
 }
 
 void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
@@ -490,32 +469,32 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
     this->DefaultRamp->AddPoint(low, 0.0);
     this->DefaultRamp->AddPoint(high, 1.0);
   }
-  this->Sampler->SetTransferFunction(this->DefaultRamp);
+  this->Volume->GetProperty()->SetScalarOpacity(this->DefaultRamp);
 }
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)
 {
-  this->Sampler->SetSampleExponent(exponent);
+  this->Mapper->SetSampleExponent(exponent);
 }
 
 void vtkMCXXRayRepresentation::SetStrategy(int strategy)
 {
-  this->Sampler->SetStrategy(strategy);
+  this->Mapper->SetStrategy(strategy);
 }
 
 void vtkMCXXRayRepresentation::SetKernel(int kernel)
 {
-  this->Sampler->SetKernel(kernel);
+  this->Mapper->SetKernel(kernel);
 }
 
 void vtkMCXXRayRepresentation::SetDeposit(int deposit)
 {
-  this->Sampler->SetDeposit(deposit);
+  this->Mapper->SetDeposit(deposit);
 }
 
 void vtkMCXXRayRepresentation::SetSeed(vtkTypeInt64 seed)
 {
-  this->Sampler->SetSeed(seed);
+  this->Mapper->SetSeed(seed);
 }
 
 void vtkMCXXRayRepresentation::SetFootprintReach(double reach)
@@ -584,7 +563,6 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Slab: " << this->Slab.GetPointer() << "\n";
   os << indent << "Index: " << this->Index.GetPointer() << "\n";
   os << indent << "Aggregate: " << this->Aggregate.GetPointer() << "\n";
-  os << indent << "Sampler: " << this->Sampler.GetPointer() << "\n";
   os << indent << "Mapper: " << this->Mapper.GetPointer() << "\n";
   os << indent << "Volume: " << this->Volume.GetPointer() << "\n";
   os << indent << "DeliveredIndex: " << this->DeliveredIndex.GetPointer() << "\n";
@@ -596,7 +574,6 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
   os << indent << "StreamedProgress: " << this->StreamedProgress << "\n";
   os << indent << "ToldServerCannotRender: " << this->ToldServerCannotRender << "\n";
-  os << indent << "OrderedForTransferFunction: " << this->OrderedForTransferFunction << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

@@ -4,10 +4,11 @@
  *
  * The data server builds the density index of the selected point array
  * (vtkMCXDensityIndex) and delivers it, without the voxel values, to the
- * rendering processes; there a vtkMCXPointSampler draws points under the
- * scalar opacity function of the colour-map editor and a vtkMCXXRayMapper
- * renders them in the view, refining progressively. An opacity edit
- * re-samples only; it neither re-indexes nor re-delivers the data.
+ * rendering processes; there a vtkMCXXRayMapper takes it as its input,
+ * samples it under the scalar opacity function of the colour-map editor (set
+ * on its volume's property) and renders it in the view, refining
+ * progressively. An opacity edit re-samples only; it neither re-indexes nor
+ * re-delivers the data.
  *
  * On a parallel server (pvserver or pvbatch under mpirun) each process reads
  * and indexes only its z-slab of the volume, and the slabs' indices are
@@ -33,7 +34,6 @@ class vtkPolyData;
 class vtkPVRenderView;
 class vtkMCXAggregateIndex;
 class vtkMCXDensityIndex;
-class vtkMCXPointSampler;
 class vtkMCXXRayMapper;
 class vtkPiecewiseFunction;
 class vtkTrivialProducer;
@@ -58,7 +58,7 @@ public:
   void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
 
   ///@{
-  /** Forwarded to the sampler (see vtkMCXPointSampler). */
+  /** Forwarded to the mapper (see vtkMCXXRayMapper's sampling settings). */
   void SetSampleExponent(int exponent);
   void SetStrategy(int strategy);
   void SetKernel(int kernel);
@@ -123,7 +123,6 @@ protected:
   vtkNew<vtkTrivialProducer> Slab; // this process's part of the input, with the whole extent
   vtkNew<vtkMCXDensityIndex> Index;
   vtkNew<vtkMCXAggregateIndex> Aggregate; // the whole index, on the first process
-  vtkNew<vtkMCXPointSampler> Sampler;
   vtkNew<vtkMCXXRayMapper> Mapper;
   vtkNew<vtkVolume> Volume;
   vtkSmartPointer<vtkImageData> DeliveredIndex;
@@ -139,15 +138,10 @@ protected:
   vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
   vtkTypeInt64 StreamedProgress = -1;  // the mapper's projecting renders at the last streaming pass
   bool ToldServerCannotRender = false; // the warning is given once
-  // The sampler's TF as it was when a view-ordered cloud last took the
-  // view: an edit since then sorts for the view as it is now.
-  vtkMTimeType OrderedForTransferFunction = 0;
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
   void UseDefaultRampUnlessColoured(vtkImageData* index);
-  /// A view-ordered sampler sorts for the view as it is now.
-  void OrderForView(vtkPVRenderView* view);
   bool ServerRenders(); // the view's server processes can render
   void operator=(const vtkMCXXRayRepresentation&) = delete;
 };
