@@ -30,17 +30,13 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // for KeptPoints
 
-#include <memory> // for KeptVoxels
-#include <vector> // for MakeEveryVoxelPoints
-
-namespace mcx
-{
-struct IndexView;
-}
+#include <memory> // for EveryVoxel and ViewOrdered
 
 class vtkCamera;
 class vtkImageData;
 class vtkInformationDoubleVectorKey;
+class vtkMCXEveryVoxelSampling;
+class vtkMCXViewOrderedSampling;
 class vtkPiecewiseFunction;
 class vtkPoints;
 
@@ -242,37 +238,22 @@ protected:
   int OutputPointsPrecision = SINGLE_PRECISION;
   /// The last cloud's points, kept for ReusePoints.
   vtkSmartPointer<vtkPoints> KeptPoints;
-  /// EVERY_VOXEL with ReusePoints: the last cloud's voxels, kept while the
-  /// index, the kept levels and the point settings stay the same.
-  struct EveryVoxelCloud;
-  std::unique_ptr<EveryVoxelCloud> KeptVoxels;
   int NumberOfOrderingBins = 16;
   bool ControlVariate = true;
-  /// SetOrderingView's geometry (null: none) and the last VIEW_ORDERED
-  /// sort, kept while the index, the view and the bins stay the same.
-  struct OrderingView;
-  std::unique_ptr<OrderingView> Ordering;
-  struct SortedView;
-  std::unique_ptr<SortedView> KeptViewOrder;
+  /// EVERY_VOXEL, with its kept cloud (vtkMCXEveryVoxelSamplingPrivate.h).
+  std::unique_ptr<vtkMCXEveryVoxelSampling> EveryVoxel;
+  /// VIEW_ORDERED: SetOrderingView's geometry and the kept sort
+  /// (vtkMCXViewOrderedSamplingPrivate.h).
+  std::unique_ptr<vtkMCXViewOrderedSampling> ViewOrdered;
 
 private:
-  /// RequestData of EVERY_VOXEL.
-  int RequestEveryVoxel(vtkImageData* input, vtkPolyData* output);
+  /// RequestData of HYBRID, MONTE_CARLO and QUASI_MONTE_CARLO.
+  int RequestSampled(vtkImageData* input, vtkPolyData* output);
   /// RequestData of VIEW_ORDERED.
   int RequestViewOrdered(vtkImageData* input, vtkPolyData* output);
-  /// The view order of `view` for the ordering view: the kept one when it
-  /// fits, else sorted now; null after an error or an abort (`completed`).
-  SortedView* ViewOrderFor(const mcx::IndexView& view, bool& completed);
-  /// The bins' images of `sorted` for the control (kept, or projected now);
-  /// false after an error or an abort (`completed`).
-  bool ProjectBinsFor(const mcx::IndexView& view, SortedView& sorted, bool& completed);
   /// A cloud's points: KeptPoints refilled, or new ones; null (and an
   /// error) when `count` points cannot be allocated.
   vtkSmartPointer<vtkPoints> CloudPoints(vtkPolyData* output, int type, vtkIdType count);
-  /// The every-voxel cloud's points and levels; false when the index's ids
-  /// are not distinct voxel ids, `completed` false when aborted.
-  bool MakeEveryVoxelPoints(const mcx::IndexView& view, const std::vector<char>& kept,
-    EveryVoxelCloud& cloud, bool& completed);
 
   /// KeptPoints when ReusePoints allows to refill them: of `type` and
   /// `count`, held by nothing but this filter and `output`; else null.

@@ -1,0 +1,392 @@
+// One thread's deposits into its image sums (ThreadSums): a sample as a
+// point where it lands or as its voxel's footprint (a FootprintLadder's
+// table), each also counted once in the control images when controlled. A
+// SampleAccumulator hands one to each chunk of work (Local()); it is a view
+// of the accumulator's state, cheap to copy. Apart from the accumulator
+// because this is the per-sample inner loop, read and tuned on its own.
+#ifndef mcxThreadImage_h
+#define mcxThreadImage_h
+
+#include "mcxDepositSettings.h"
+#include "mcxFixedPoint.h"
+#include "mcxFootprint.h"
+#include "mcxFootprintLadder.h"
+#include "mcxPixelBinner.h"
+#include "mcxPrefetch.h"
+#include "mcxRandom.h"
+#include "mcxSampleGenerator.h"
+#include "mcxThreadSums.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace mcx
+{
+
+template <typename Executor>
+class SampleAccumulator;
+
+/// One thread's image; get it once per chunk of work, inside the executor's For.
+class ThreadImage
+{
+public:
+  /// Deposits sample k at p by the accumulator's deposit, counting
+  /// `weight` times (finite, >= 0).
+  void Deposit(std::uint64_t k, const double p[3], double weight = 1.0) const
+  {
+    if (this->Ladder)
+    {
+      this->DepositFootprint(k, p, weight);
+    }
+    else
+    {
+      this->DepositPoint(k, p, weight);
+    }
+  }
+
+  /// One count (times the perspective weight and the point's `weight`)
+  /// where p lands.
+  void DepositPoint(std::uint64_t k, const double p[3], double weight = 1.0) const
+  {
+    std::int64_t pixel;
+    FixedSum increment;
+    if (this->Binner->Bin(p, pixel, increment, weight) &&
+      (!this->DepthLimits || this->Binner->Depth(p) < this->DepthLimits[pixel]))
+    {
+      this->Add(k, pixel, increment);
+      if (this->Controlled && this->Binner->Bin(p, pixel, increment))
+      {
+        this->Sums->Add(k < this->Split ? 2 : 3, pixel, increment);
+      }
+    }
+  }
+
+  /// The footprint of the voxel centred at p (its random part, if the
+  /// plan has one, drawn from the footprint stream of sample k), scaled
+  /// by `weight`.
+  void DepositFootprint(std::uint64_t k, const double centre[3], double weight = 1.0) const
+  {
+    PreparedFootprint footprint;
+    if (this->PrepareFootprint(k, centre, footprint, weight))
+    {
+      this->AddFootprint(footprint);
+    }
+  }
+
+  /// A footprint located and ready to add (PrepareFootprint).
+  struct PreparedFootprint
+  {
+    const double* Shares = nullptr;            // of its phase, over its support
+    const std::uint64_t* Increments = nullptr; // the same, in fixed point
+    std::int64_t Entries = 0;                  // of either
+    std::int64_t Origin[2] = { 0, 0 };         // the pixel of their first entry
+    std::int64_t Stride = 0;                   // entries per row
+    std::int64_t Columns[2] = { 0, -1 };       // the image's pixels it reaches, inclusive
+    std::int64_t Rows[2] = { 0, -1 };
+    double F = 1.0;        // the perspective scale of the shares, times the point's weight
+    double ControlF = 1.0; // the perspective scale alone (the control images' F)
+    double Depth = 0.0;    // along the view, for the depth limits
+    bool FirstHalf = false;
+    bool Weighted = false; // a weight other than 1: the shares scaled by F in any view
+  };
+
+  /// Whether AddFootprint scales the shares (by F) rather than adding the
+  /// parallel view's exact integer increments.
+  bool ScalesShares(const PreparedFootprint& footprint) const
+  {
+    return this->Binner->IsPerspective() || footprint.Weighted;
+  }
+
+  /// Everything of DepositFootprint but the pixel updates: true when a
+  /// footprint is left to add (AddFootprint); false when the sample misses
+  /// the image or was deposited as a point (beyond the tabulated depths).
+  /// `weight` (finite, >= 0) scales the footprint.
+  bool PrepareFootprint(std::uint64_t k, const double centre[3], PreparedFootprint& footprint,
+    double weight = 1.0) const
+  {
+    CounterRandom random(this->FootprintKey, k);
+    double fx, fy, f, w;
+    if (!this->Binner->Locate(centre, fx, fy, f, w))
+    {
+      return false;
+    }
+    const FootprintTable* table = this->Ladder->Select(w, 1.0 - random.NextOpenClosed());
+    double p[3] = { centre[0], centre[1], centre[2] };
+    if (!table)
+    {
+      // Beyond the tabulated depths (an eye inside the volume): a point
+      // from the whole kernel, unbiased as well.
+      for (double& coordinate : p)
+      {
+        coordinate += KernelOffsetFromUniform(this->Reconstruction, 1.0 - random.NextOpenClosed());
+      }
+      this->DepositPoint(k, p, weight);
+      return false;
+    }
+    if (table->Plan().IsRandom())
+    {
+      double uniform[3][2], offset[3];
+      for (auto& pair : uniform)
+      {
+        pair[0] = 1.0 - random.NextOpenClosed();
+        pair[1] = 1.0 - random.NextOpenClosed();
+      }
+      table->Plan().RandomOffset(uniform, offset);
+      this->Offset(offset, p);
+      if (!this->Binner->Locate(p, fx, fy, f, w))
+      {
+        return false;
+      }
+    }
+    return this->PlaceFootprint(*table, k, p, fx, fy, f, weight, random, footprint);
+  }
+
+  /// Asks for the cache lines that AddFootprint(footprint) will touch, so
+  /// that a stored cloud, whose samples reach the image at random (Halton
+  /// order), does not wait for them one footprint at a time.
+  void Prefetch(const PreparedFootprint& footprint) const
+  {
+    const std::int64_t width = this->Binner->GetWidth();
+    const std::uint64_t* low = this->Sums->LowWords(footprint.FirstHalf ? 0 : 1);
+    const std::uint64_t* control =
+      this->Controlled ? this->Sums->LowWords(footprint.FirstHalf ? 2 : 3) : nullptr;
+    for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
+    {
+      const std::int64_t first = y * width + footprint.Columns[0];
+      const std::int64_t last = y * width + footprint.Columns[1];
+      for (std::int64_t pixel = first; pixel <= last; pixel += 8) // 8 sums per 64-byte line
+      {
+        PrefetchForWriting(low + pixel);
+        if (control)
+        {
+          PrefetchForWriting(control + pixel);
+        }
+      }
+      PrefetchForWriting(low + last);
+      if (control)
+      {
+        PrefetchForWriting(control + last);
+      }
+      if (this->DepthLimits)
+      {
+        PrefetchForReading(this->DepthLimits + first);
+        PrefetchForReading(this->DepthLimits + last);
+      }
+    }
+    const char* values = this->ScalesShares(footprint)
+      ? reinterpret_cast<const char*>(footprint.Shares)
+      : reinterpret_cast<const char*>(footprint.Increments);
+    for (std::int64_t byte = 0; byte < 8 * footprint.Entries; byte += 64)
+    {
+      PrefetchForReading(values + byte);
+    }
+  }
+
+  /// Adds a prepared footprint to the thread's image (a weight of 0 adds
+  /// nothing there), and once, unweighted, to its control image when
+  /// controlled.
+  void AddFootprint(const PreparedFootprint& footprint) const
+  {
+    const bool scales = this->ScalesShares(footprint);
+    if (footprint.F != 0.0 || !scales)
+    {
+      if (footprint.FirstHalf)
+      {
+        this->AddShares<0>(footprint, footprint.F, scales);
+      }
+      else
+      {
+        this->AddShares<1>(footprint, footprint.F, scales);
+      }
+    }
+    if (this->Controlled)
+    {
+      const bool perspective = this->Binner->IsPerspective();
+      if (footprint.FirstHalf)
+      {
+        this->AddShares<2>(footprint, footprint.ControlF, perspective);
+      }
+      else
+      {
+        this->AddShares<3>(footprint, footprint.ControlF, perspective);
+      }
+    }
+  }
+
+private:
+  template <typename Executor>
+  friend class SampleAccumulator;
+
+  // The rest of PrepareFootprint, once the sample's table is chosen and its
+  // point p (pixel coordinates fx, fy, perspective scale f) is located:
+  // the centre's pixel and phase, rounded at random from `random`, and the
+  // part of the phase's support within the image.
+  bool PlaceFootprint(const FootprintTable& table, std::uint64_t k, const double p[3], double fx,
+    double fy, double f, double weight, CounterRandom& random, PreparedFootprint& footprint) const
+  {
+    const int rx = table.Reach(0), ry = table.Reach(1);
+    const int width = this->Binner->GetWidth(), height = this->Binner->GetHeight();
+    if (!(fx > -rx - 1.0 && fy > -ry - 1.0 && fx < width + rx + 1.0 && fy < height + ry + 1.0))
+    {
+      return false; // the footprint misses the image (also keeps the casts below defined)
+    }
+    // The centre's pixel and phase, rounded at random to a tabulated phase.
+    // Phases() is a power of two: shifts divide q by it, rounding down
+    // (those of the non-negative q or ~q, whose results C++17 defines).
+    const int phases = table.Phases(), shift = table.PhaseShift();
+    std::int64_t cell[2];
+    int phase[2];
+    const double position[2] = { fx, fy };
+    for (int a = 0; a < 2; ++a)
+    {
+      const double t = position[a] * phases;
+      const double lower = std::floor(t);
+      std::int64_t q =
+        static_cast<std::int64_t>(lower) + ((1.0 - random.NextOpenClosed()) < t - lower ? 1 : 0);
+      cell[a] = q >= 0 ? q >> shift : ~(~q >> shift);
+      phase[a] = static_cast<int>(q - cell[a] * phases);
+    }
+    if (cell[0] + rx < 0 || cell[1] + ry < 0 || cell[0] - rx >= width || cell[1] - ry >= height)
+    {
+      return false;
+    }
+    // Only the phase's support, within the image: the table has room for
+    // every phase, a footprint fills only part of it.
+    const FootprintTable::Support& support = table.SupportOf(phase[0], phase[1]);
+    const std::int64_t left = cell[0] - rx, bottom = cell[1] - ry;
+    footprint.Columns[0] = std::max<std::int64_t>(0, left + support.Columns[0]);
+    footprint.Columns[1] = std::min<std::int64_t>(width - 1, left + support.Columns[1]);
+    footprint.Rows[0] = std::max<std::int64_t>(0, bottom + support.Rows[0]);
+    footprint.Rows[1] = std::min<std::int64_t>(height - 1, bottom + support.Rows[1]);
+    if (footprint.Columns[0] > footprint.Columns[1] || footprint.Rows[0] > footprint.Rows[1])
+    {
+      return false; // the support misses the image, or the phase has no shares
+    }
+    footprint.Origin[0] = left + support.Columns[0];
+    footprint.Origin[1] = bottom + support.Rows[0];
+    footprint.Stride = support.Width();
+    footprint.Entries = static_cast<std::int64_t>(support.Width()) * support.Height();
+    footprint.Shares = table.Shares(phase[0], phase[1]);
+    footprint.Increments = table.Increments(phase[0], phase[1]);
+    footprint.F = f * weight;
+    footprint.ControlF = f;
+    footprint.Weighted = weight != 1.0;
+    footprint.Depth = this->DepthLimits ? this->Binner->Depth(p) : 0.0;
+    footprint.FirstHalf = k < this->Split;
+    return true;
+  }
+
+  // Adds the footprint's table entries of its phase to every pixel it
+  // reaches that lies in front of the pixel's depth limit, in the
+  // thread's image Half (0: the first Halton half; 2 and 3: the control's
+  // halves): the shares scaled by F when `scales` (perspective views,
+  // weighted points), else the parallel view's exact integer increments.
+  template <int Half>
+  void AddShares(const PreparedFootprint& footprint, double F, bool scales) const
+  {
+    const std::int64_t x0 = footprint.Columns[0], x1 = footprint.Columns[1];
+    const std::int64_t width = this->Binner->GetWidth();
+    const double depth = footprint.Depth;
+    // Locals, not members: the rare carry calls out of the loop, after
+    // which members would be read again for every pixel.
+    ThreadSums& sums = *this->Sums;
+    std::uint64_t* low = sums.LowWords(Half);
+    const double* limits = this->DepthLimits;
+    // The pixels of the support, the depth test hoisted out of the loop.
+    auto visit = [&](auto add)
+    {
+      for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
+      {
+        const std::int64_t row = (y - footprint.Origin[1]) * footprint.Stride - footprint.Origin[0];
+        const std::int64_t first = y * width;
+        if (limits)
+        {
+          for (std::int64_t x = x0; x <= x1; ++x)
+          {
+            if (depth < limits[first + x])
+            {
+              add(first + x, row + x);
+            }
+          }
+        }
+        else
+        {
+          for (std::int64_t x = x0; x <= x1; ++x)
+          {
+            add(first + x, row + x);
+          }
+        }
+      }
+    };
+    if (scales)
+    {
+      // round(2^32 F share), as FixedIncrement(F * share): scaling by 2^32 is exact.
+      const double scale = F * FixedOne;
+      const double* shares = footprint.Shares;
+      if (scale < 9.2e18)
+      {
+        // Shares are at most 1, so scale * share + 0.5 stays below 9.2e18
+        // (doubles there are 1024 apart): every increment fits the signed
+        // cast, the same values as below without a test per pixel.
+        visit(
+          [&](std::int64_t pixel, std::int64_t entry)
+          {
+            sums.AddWord(Half, low, pixel,
+              static_cast<std::uint64_t>(static_cast<std::int64_t>(scale * shares[entry] + 0.5)));
+          });
+        return;
+      }
+      visit(
+        [&](std::int64_t pixel, std::int64_t entry)
+        {
+          const double scaled = scale * shares[entry] + 0.5;
+          if (scaled < 9.2e18)
+          {
+            // Through a signed cast: one instruction where an unsigned
+            // one branches on 2^63 (the same truncation in this range).
+            sums.AddWord(
+              Half, low, pixel, static_cast<std::uint64_t>(static_cast<std::int64_t>(scaled)));
+          }
+          else
+          {
+            sums.Add(Half, pixel, UInt128FromDouble(scaled));
+          }
+        });
+      return;
+    }
+    const std::uint64_t* increments = footprint.Increments;
+    visit([&](std::int64_t pixel, std::int64_t entry)
+      { sums.AddWord(Half, low, pixel, increments[entry]); });
+  }
+
+  // p += the voxel matrix times an offset in voxels (the source frame is
+  // voxel coordinates for the fused projector, world for a stored cloud).
+  void Offset(const double offset[3], double p[3]) const
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      const double* row = this->VoxelMatrix + 3 * r;
+      p[r] += row[0] * offset[0] + row[1] * offset[1] + row[2] * offset[2];
+    }
+  }
+
+  void Add(std::uint64_t k, std::int64_t pixel, FixedSum increment) const
+  {
+    this->Sums->Add(k < this->Split ? 0 : 1, pixel, increment);
+  }
+
+  ThreadSums* Sums;
+  bool Controlled;
+  const PixelBinner* Binner;
+  const FootprintLadder* Ladder;
+  const double* DepthLimits;
+  std::uint64_t Split;
+  std::uint64_t FootprintKey;
+  Kernel Reconstruction;
+  const double* VoxelMatrix;
+};
+
+} // namespace mcx
+
+#endif

@@ -1,0 +1,372 @@
+#include "vtkMCXIndexProjectionPrivate.h"
+
+#include "mcxEveryVoxelSource.h"
+#include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXProjectionPrivate.h"
+#include "vtkMCXProjector.h"
+
+#include "vtkCommunicator.h"
+#include "vtkImageData.h"
+#include "vtkMultiProcessController.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace
+{
+using mcx::Accumulator;
+using mcx::CollectSums;
+using mcx::Projection;
+using mcx::RandomPartsOf;
+
+// Stage 1b: samples generated from the index and deposited as they come,
+// never stored. Under a controller of several processes the index is this
+// process's piece: it deposits the samples whose voxels it holds, and the
+// processes add their sums, so that every one holds the single-process image.
+class IndexProjection
+{
+public:
+  IndexProjection(vtkAlgorithm* self, const mcx::ProjectionGeometry& geometry,
+    vtkMultiProcessController* controller, const int wholeExtent[6])
+    : Self(self)
+    , Geometry(geometry)
+    , Controller(mcx::IsDistributed(controller) ? controller : nullptr)
+  {
+    std::copy(wholeExtent, wholeExtent + 6, this->WholeExtent);
+  }
+
+  /// Reads the index and evaluates the TF; false (reported) when no image
+  /// can be made (on every process, when distributed).
+  bool Prepare(vtkImageData* index, vtkPiecewiseFunction* tf)
+  {
+    const bool prepared = this->Controller
+      ? mcx::PrepareDistributedSampling(this->Self, "project", index, tf, this->Controller,
+          this->WholeExtent, this->Levels, this->View, this->Table, this->Integral)
+      : mcx::PrepareSampling(
+          this->Self, "project", index, tf, this->View, this->Table, this->Integral);
+    if (prepared && this->EveryVoxel)
+    {
+      this->WeighEveryVoxel(tf);
+    }
+    return prepared;
+  }
+
+  bool IsEmpty() const { return this->Table.IsEmpty(); }
+
+  /// The image of 2^m - 1 samples, progress running from progressBegin to progressEnd.
+  Projection Project(unsigned m, double progressBegin, double progressEnd) const
+  {
+    Projection projection;
+    projection.Count = mcx::SampleCount(m);
+    projection.Integral = this->Integral;
+    projection.SampleWeight =
+      projection.Count > 0 ? this->Integral / static_cast<double>(projection.Count) : 0.0;
+    this->Run(projection,
+      [&](Accumulator& accumulator)
+      {
+        accumulator.SetSplit(mcx::FirstHalfSize(projection.Count));
+        if (m == 0)
+        {
+          return true;
+        }
+        return this->View.WideIds
+          ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
+          : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
+      });
+    return projection;
+  }
+
+  /// The image of every voxel of non-zero weight once (EveryVoxel), each
+  /// weighted by its level's weight over the mean: the points carry the
+  /// integral together, as a stored every-voxel cloud's do.
+  Projection ProjectEveryVoxel() const
+  {
+    Projection projection;
+    projection.EveryVoxel = true;
+    projection.Count = static_cast<std::uint64_t>(this->KeptVoxelCount);
+    projection.Integral = this->Integral;
+    // The weights' sum over the whole volume, each weight rounded to fixed
+    // point as the deposits take it (summed in double: the same on every
+    // process), in counts.
+    double carried = 0.0;
+    for (std::int64_t l = 0; l < this->View.NumberOfLevels; ++l)
+    {
+      carried += static_cast<double>(this->View.LevelOffsets[l + 1] - this->View.LevelOffsets[l]) *
+        mcx::ToDouble(mcx::FixedIncrement(this->LevelWeights[static_cast<std::size_t>(l)]));
+    }
+    carried /= mcx::FixedOne;
+    projection.SampleWeight = carried > 0 ? this->Integral / carried : 0.0;
+    this->Run(projection,
+      [&](Accumulator& accumulator)
+      {
+        return this->View.WideIds ? this->DepositEveryVoxel<std::uint64_t>(accumulator)
+                                  : this->DepositEveryVoxel<std::uint32_t>(accumulator);
+      });
+    return projection;
+  }
+
+  mcx::Strategy Method =
+    mcx::Strategy::Hybrid; // with EveryVoxel: Hybrid, which no voxel choice uses
+  bool EveryVoxel = false; // vtkMCXTypes::EVERY_VOXEL instead of Method (set before Prepare)
+  mcx::Kernel Reconstruction = mcx::Kernel::Tent;
+  std::uint64_t Seed = 0;
+  mcx::Deposit DepositMode = mcx::Deposit::Point;
+  double FootprintReach = 16.0;
+
+private:
+  // Deposits into a new accumulator for the view, then collects the sums
+  // into the projection (added over the processes when distributed).
+  template <typename Deposit>
+  void Run(Projection& projection, Deposit&& deposit) const
+  {
+    Accumulator accumulator;
+    double origin[3], matrix[9];
+    this->View.SourceToWorld(origin, matrix);
+    const mcx::DepositSettings settings = this->Settings();
+    accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), settings);
+    projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
+    projection.RandomParts = RandomPartsOf(accumulator, settings, this->FootprintReach);
+    std::string error;
+    try
+    {
+      projection.Completed = deposit(accumulator);
+      CollectSums(accumulator, projection);
+    }
+    catch (const std::bad_alloc&)
+    {
+      error = "out of memory projecting into " + std::to_string(this->Geometry.Size[0]) + " x " +
+        std::to_string(this->Geometry.Size[1]) + " pixels";
+    }
+    if (this->Controller)
+    {
+      // Every process reaches this point, whatever happened to it; an abort
+      // on any process leaves the image incomplete on all.
+      error = mcx::FirstErrorOfAll(this->Controller, error);
+      if (error.empty())
+      {
+        const int completed = projection.Completed ? 1 : 0;
+        int everywhere = 0;
+        this->Controller->AllReduce(&completed, &everywhere, 1, vtkCommunicator::MIN_OP);
+        projection.Completed = everywhere == 1;
+        if (projection.Completed)
+        {
+          mcx::SumExactly(this->Controller, projection.Sums);
+        }
+      }
+    }
+    if (!error.empty())
+    {
+      throw std::runtime_error(error);
+    }
+  }
+
+  // Each level's every-voxel weight (the TF's over the mean of the kept
+  // voxels', 0 for a level kept out) and the whole volume's kept voxels.
+  void WeighEveryVoxel(vtkPiecewiseFunction* tf)
+  {
+    std::vector<double> weights = this->View.EvaluateTransferFunction(tf);
+    std::vector<char> kept;
+    this->KeptVoxelCount = this->View.KeepLevels(weights, kept);
+    const double total = this->Table.WeightSum();
+    this->LevelWeights.assign(weights.size(), 0.0);
+    for (std::size_t l = 0; l < weights.size(); ++l)
+    {
+      this->LevelWeights[l] = kept[l]
+        ? mcx::EveryVoxelWeight(weights[l], static_cast<double>(this->KeptVoxelCount), total)
+        : 0.0;
+    }
+  }
+
+  // This process's kept voxels, each deposited once (ProjectEveryVoxel).
+  template <typename IdType>
+  bool DepositEveryVoxel(Accumulator& accumulator) const
+  {
+    mcx::EveryVoxelSource<IdType> source;
+    source.SortedIds = this->View.IdPointer<IdType>();
+    source.LevelOffsets =
+      this->View.PieceOffsets ? this->View.PieceOffsets : this->View.LevelOffsets;
+    source.NumberOfLevels = this->View.NumberOfLevels;
+    source.LevelWeights = this->LevelWeights.data();
+    source.Decoder = mcx::VoxelDecoder<IdType>(static_cast<std::uint64_t>(this->View.Dimensions[0]),
+      static_cast<std::uint64_t>(this->View.Dimensions[1]));
+    std::copy(this->View.PieceStart, this->View.PieceStart + 3, source.PieceStart);
+    for (int a = 0; a < 2; ++a)
+    {
+      source.WholeDimensions[a] =
+        static_cast<std::uint64_t>(this->View.Extent[2 * a + 1] - this->View.Extent[2 * a] + 1);
+    }
+    source.Reconstruction = this->Reconstruction;
+    source.Centres = this->DepositMode == mcx::Deposit::Footprint;
+    source.Seed = this->Seed;
+    source.Prepare();
+    accumulator.SetSplit(0); // no halves: nothing to estimate
+    return mcx::BatchedFor(this->Self, source.Size(), 0.0, 1.0,
+      [&](std::uint64_t b, std::uint64_t e)
+      {
+        const Accumulator::ThreadImage image = accumulator.Local();
+        source.Generate(b, e,
+          [&](std::uint64_t k, const double p[3], double weight) { image.Deposit(k, p, weight); });
+      });
+  }
+
+  // The deposit, with the support's depth range (perspective footprints).
+  mcx::DepositSettings Settings() const
+  {
+    mcx::DepositSettings settings;
+    settings.Mode = this->DepositMode;
+    settings.Reconstruction = this->Reconstruction;
+    settings.Seed = this->Seed;
+    settings.Reach = this->FootprintReach;
+    settings.Stratified = this->Method != mcx::Strategy::MonteCarlo;
+    double corners[24];
+    mcx::ComputeSupportCorners(this->View.Extent, this->View.Origin, this->View.Spacing,
+      this->View.Direction, mcx::KernelRadius(this->Reconstruction), corners);
+    mcx::SupportDepthRange(this->Geometry, corners, settings.Depths);
+    return settings;
+  }
+
+  template <typename IdType>
+  bool Generate(
+    unsigned m, Accumulator& accumulator, double progressBegin, double progressEnd) const
+  {
+    mcx::SampleSource<IdType> source = this->View.MakeSource<IdType>(this->Table);
+    source.Method = this->Method;
+    source.Reconstruction = this->Reconstruction;
+    source.Seed = this->Seed;
+    source.Exponent = m;
+    source.Centres = this->DepositMode == mcx::Deposit::Footprint;
+    // The runs of sample ranks this piece deposits (all of them for a whole
+    // index), laid end to end.
+    const auto runs = source.PieceRanks();
+    std::vector<std::uint64_t> ends(runs.size());
+    std::uint64_t total = 0;
+    for (std::size_t r = 0; r < runs.size(); ++r)
+    {
+      total += runs[r].second - runs[r].first;
+      ends[r] = total;
+    }
+    return mcx::BatchedFor(this->Self, total, progressBegin, progressEnd,
+      [&](std::uint64_t b, std::uint64_t e)
+      {
+        const Accumulator::ThreadImage image = accumulator.Local();
+        auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
+        std::size_t r =
+          static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
+        for (; r < runs.size() && b < e; ++r)
+        {
+          const std::uint64_t runBegin = ends[r] - (runs[r].second - runs[r].first);
+          const std::uint64_t stop = std::min(e, ends[r]);
+          source.Generate(
+            runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
+          b = stop;
+        }
+      });
+  }
+
+  vtkAlgorithm* Self;
+  const mcx::ProjectionGeometry& Geometry;
+  vtkMultiProcessController* Controller;
+  int WholeExtent[6];
+  mcx::DistributedLevels Levels;
+  mcx::IndexView View;
+  mcx::TransferTable Table;
+  double Integral = 0.0;
+  std::vector<double> LevelWeights; // per level, with EveryVoxel
+  std::int64_t KeptVoxelCount = 0;  // in the whole volume, with EveryVoxel
+};
+
+// The sample count a target asks for, measured on a projection.
+double SamplesNeeded(const Projection& projection, double targetError, int targetLevels)
+{
+  double needed = 0.0;
+  if (targetError > 0)
+  {
+    const double ratio = projection.EstimatedError() / targetError;
+    needed = std::max(needed,
+      static_cast<double>(projection.Count) *
+        std::pow(ratio, 1.0 / mcx::ErrorDecayExponent(projection.FallsAsInverseM)));
+  }
+  if (targetLevels > 0)
+  {
+    needed = std::max(needed, mcx::QuantizationSampleCount(projection.Sums, targetLevels));
+  }
+  return needed;
+}
+
+// Stage 2 (target controls): a pilot run (about 4 samples per pixel)
+// measures the image; the sample count is then scaled to meet the target and
+// re-checked on the larger run (up to three times), within
+// [pilot, maximumExponent].
+Projection ProjectToTarget(const IndexProjection& sampler, const mcx::ProjectionGeometry& geometry,
+  double targetError, int targetLevels, unsigned maximumExponent)
+{
+  const long long pixels = static_cast<long long>(geometry.Size[0]) * geometry.Size[1];
+  unsigned m = std::min(maximumExponent,
+    std::max(static_cast<unsigned>(vtkMCXTypes::PilotSampleExponent),
+      mcx::ExponentForSampleCount(4 * pixels)));
+  Projection projection = sampler.Project(m, 0.0, 0.05);
+  const double passEnd[] = { 0.8, 0.95, 1.0 };
+  for (int pass = 0; pass < 3 && projection.Completed; ++pass)
+  {
+    const double needed = SamplesNeeded(projection, targetError, targetLevels);
+    const unsigned next = std::min(maximumExponent,
+      mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
+    if (next <= m)
+    {
+      break;
+    }
+    m = next;
+    projection = sampler.Project(m, pass == 0 ? 0.05 : passEnd[pass - 1], passEnd[pass]);
+  }
+  return projection;
+}
+}
+
+namespace mcx
+{
+bool ProjectIndex(vtkMCXProjector* self, vtkImageData* index, const int wholeExtent[6],
+  const mcx::ProjectionGeometry& geometry, Projection& projection)
+{
+  const bool targeted =
+    self->GetTargetRelativeError() > 0 || self->GetTargetQuantizationLevels() > 0;
+  IndexProjection sampler(self, geometry, self->GetController(), wholeExtent);
+  sampler.EveryVoxel = self->GetStrategy() == vtkMCXTypes::EVERY_VOXEL;
+  if (sampler.EveryVoxel && targeted)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Cannot project: every voxel is taken once (Strategy EVERY_VOXEL), so there is no sample "
+      "count for TargetRelativeError or TargetQuantizationLevels to choose; set them to 0.");
+    return false;
+  }
+  sampler.Method =
+    sampler.EveryVoxel ? mcx::Strategy::Hybrid : static_cast<mcx::Strategy>(self->GetStrategy());
+  sampler.Reconstruction = static_cast<mcx::Kernel>(self->GetKernel());
+  sampler.Seed = static_cast<std::uint64_t>(self->GetSeed());
+  sampler.DepositMode = static_cast<mcx::Deposit>(self->GetDeposit());
+  sampler.FootprintReach = self->GetFootprintReach();
+  if (!sampler.Prepare(index, self->GetTransferFunction()))
+  {
+    return false;
+  }
+  if (sampler.EveryVoxel)
+  {
+    projection = sampler.ProjectEveryVoxel();
+    return true;
+  }
+  // Under a target SampleExponent is ignored (0 included).
+  const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(self->GetSampleExponent());
+  projection = !sampler.IsEmpty() && targeted
+    ? ProjectToTarget(sampler, geometry, self->GetTargetRelativeError(),
+        self->GetTargetQuantizationLevels(),
+        static_cast<unsigned>(self->GetMaximumSampleExponent()))
+    : sampler.Project(m, 0.0, 1.0);
+  return true;
+}
+}

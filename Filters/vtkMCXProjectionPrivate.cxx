@@ -1,0 +1,37 @@
+#include "vtkMCXProjectionPrivate.h"
+
+#include <sstream>
+
+namespace mcx
+{
+std::string RandomPartsOf(
+  const Accumulator& accumulator, const mcx::DepositSettings& settings, double footprintReach)
+{
+  if (accumulator.ErrorFallsAsInverseM())
+  {
+    return std::string();
+  }
+  if (settings.Mode == mcx::Deposit::Point)
+  {
+    return "the point deposit draws each kernel offset at random";
+  }
+  std::ostringstream parts;
+  parts << "voxels reach more than FootprintReach (" << footprintReach
+        << ") pixels here, so their footprints are split with a random part";
+  return parts.str();
+}
+
+void CollectSums(Accumulator& accumulator, Projection& projection)
+{
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  projection.Sums.assign(2 * pixels, mcx::FixedSum(0));
+  if (accumulator.IsControlled())
+  {
+    projection.OnceSums.assign(2 * pixels, mcx::FixedSum(0));
+    accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels,
+      projection.OnceSums.data(), projection.OnceSums.data() + pixels);
+    return;
+  }
+  accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels);
+}
+}

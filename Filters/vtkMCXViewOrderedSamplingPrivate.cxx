@@ -1,0 +1,477 @@
+#include "vtkMCXViewOrderedSamplingPrivate.h"
+
+#include "mcxControlImage.h"
+#include "mcxPixelBinner.h"
+#include "mcxProjectionGeometry.h"
+#include "mcxSampleAccumulator.h"
+#include "mcxViewOrder.h"
+#include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXCloudDepositPrivate.h"
+#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXPointSampler.h"
+#include "vtkMCXSMPExecutorPrivate.h"
+#include "vtkMCXSampledCloudPrivate.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace
+{
+// GeneratePoints for a view order: the bins are the table's levels, and
+// each point's weight (w / the bin's mean w) goes to weights[k].
+template <typename IdType, typename Real>
+bool GenerateViewOrderedPoints(vtkAlgorithm* self, const mcx::IndexView& view,
+  const mcx::ViewOrder<IdType>& order, const mcx::TransferTable& binTable,
+  const std::vector<double>& levelRatios, mcx::Kernel kernel, vtkTypeUInt64 seed, unsigned m,
+  bool centres, Real* points, float* weights)
+{
+  mcx::SampleSource<IdType> source = view.MakeSource<IdType>(binTable);
+  source.SortedIds = order.Ids.data();
+  source.LevelOffsets = order.BinOffsets.data();
+  source.NumberOfLevels = order.NumberOfBins();
+  source.LevelInBin = order.LevelInBin.data();
+  source.BinFirstLevel = order.BinFirstLevel.data();
+  source.LevelRatio = levelRatios.data();
+  source.Centres = centres;
+  source.Method = mcx::Strategy::Hybrid;
+  source.Reconstruction = kernel;
+  source.Seed = seed;
+  source.Exponent = m;
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  auto store = [&](std::uint64_t k, const double p[3], double weight)
+  {
+    mcx::StoreInWorld(origin, matrix, p, points + 3 * k);
+    weights[k] = static_cast<float>(weight);
+  };
+  return mcx::BatchedFor(
+    self, source.NumberOfStorageItems(), 0.55, 1.0,
+    [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
+}
+
+// Each bin's voxels of `order` projected once each, footprints of `kernel`
+// in `geometry` (voxel coordinates, as the sort located them): bins x
+// pixels sums in the accumulator's fixed-point units (2^32 a whole voxel),
+// the bins' images of the control (mcxControlImage.h). Their footprints
+// round at random from a stream of their own, the same for every seed, so
+// a new seed keeps them. Progress runs from progressBegin to progressEnd;
+// false when aborted.
+template <typename IdType>
+bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
+  const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry, mcx::Kernel kernel,
+  double progressBegin, double progressEnd, std::vector<double>& images)
+{
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  mcx::DepositSettings settings; // samples in voxel coordinates: the identity VoxelMatrix
+  settings.Mode = mcx::Deposit::Footprint;
+  settings.Reconstruction = kernel;
+  if (geometry.Perspective)
+  {
+    double corners[24];
+    mcx::ComputeSupportCorners(
+      view.Extent, view.Origin, view.Spacing, view.Direction, mcx::KernelRadius(kernel), corners);
+    mcx::SupportDepthRange(geometry, corners, settings.Depths);
+  }
+  mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
+  accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  const std::int64_t bins = order.NumberOfBins();
+  const mcx::VoxelDecoder<IdType> decoder(
+    static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
+  const double voxels = static_cast<double>(std::max<std::int64_t>(1, order.BinOffsets.back()));
+  images.assign(static_cast<std::size_t>(bins) * pixels, 0.0);
+  std::vector<mcx::FixedSum> all(pixels), firstHalf(pixels);
+  for (std::int64_t b = 0; b < bins; ++b)
+  {
+    const std::int64_t first = order.BinOffsets[static_cast<std::size_t>(b)];
+    const std::int64_t last = order.BinOffsets[static_cast<std::size_t>(b + 1)];
+    const double span = progressEnd - progressBegin;
+    const bool completed = mcx::BatchedFor(self, static_cast<std::uint64_t>(last - first),
+      progressBegin + span * static_cast<double>(first) / voxels,
+      progressBegin + span * static_cast<double>(last) / voxels,
+      [&](std::uint64_t begin, std::uint64_t end)
+      {
+        const auto image = accumulator.Local();
+        for (std::uint64_t i = begin; i < end; ++i)
+        {
+          const std::uint64_t k = static_cast<std::uint64_t>(first) + i;
+          std::uint64_t voxel[3];
+          decoder.Decode(order.Ids[k], voxel[0], voxel[1], voxel[2]);
+          const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
+            static_cast<double>(voxel[2]) };
+          image.Deposit(k, p);
+        }
+      });
+    if (!completed)
+    {
+      return false;
+    }
+    std::fill(all.begin(), all.end(), mcx::FixedSum(0));
+    accumulator.Collect(all.data(), firstHalf.data());
+    double* image = images.data() + static_cast<std::size_t>(b) * pixels;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      image[p] = mcx::ToDouble(all[p]);
+    }
+  }
+  return true;
+}
+
+// The control image (line integrals) of the TF whose weight on each bin is
+// binMeans[b]: the bins' images weighed by it, scaled so that it carries
+// the cloud's integral as the cloud does. Empty when no bin has weight.
+std::vector<double> ControlImage(const std::vector<double>& binImages,
+  const std::vector<double>& binMeans, const std::vector<std::int64_t>& binOffsets, double integral,
+  const mcx::ProjectionGeometry& geometry)
+{
+  const std::size_t bins = binMeans.size();
+  const std::size_t pixels = bins > 0 ? binImages.size() / bins : 0;
+  double weightedVoxels = 0.0; // the integral in units of one voxel of weight 1
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    weightedVoxels += binMeans[b] * static_cast<double>(binOffsets[b + 1] - binOffsets[b]);
+  }
+  if (!(weightedVoxels > 0) || pixels == 0)
+  {
+    return std::vector<double>();
+  }
+  const double scale = integral / weightedVoxels / (mcx::FixedOne * geometry.BeamCrossSection());
+  std::vector<double> control(pixels, 0.0);
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    const double weight = binMeans[b] * scale;
+    if (weight == 0.0)
+    {
+      continue;
+    }
+    const double* image = binImages.data() + b * pixels;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      control[p] += weight * image[p];
+    }
+  }
+  return control;
+}
+}
+
+// SetOrderingView's copy of the camera's geometry.
+struct vtkMCXViewOrderedSampling::OrderingView
+{
+  mcx::ProjectionGeometry Geometry;
+};
+
+// A view order and what it was sorted for.
+struct vtkMCXViewOrderedSampling::SortedView
+{
+  vtkDataArray* Ids = nullptr; // the index's sorted ids: compared only, never dereferenced
+  vtkMTimeType IdsTime = 0;
+  double World[12] = { 0 }; // the index's source-to-world origin and matrix
+  mcx::ProjectionGeometry Geometry;
+  int Bins = 0;
+  mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
+  mcx::ViewOrder<std::uint64_t> Wide;   // or 64-bit (WideIds)
+  // The control's bins' images (ProjectBins), and the kernel they were
+  // projected with; empty until a controlled cloud needs them.
+  std::vector<double> BinImages;
+  int BinKernel = -1;
+
+  std::int64_t BinsOf(bool wideIds) const
+  {
+    return wideIds ? this->Wide.NumberOfBins() : this->Narrow.NumberOfBins();
+  }
+
+  void Describe(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins)
+  {
+    this->Ids = view.Ids;
+    this->IdsTime = view.Ids->GetMTime();
+    view.SourceToWorld(this->World, this->World + 3);
+    this->Geometry = geometry;
+    this->Bins = bins;
+  }
+
+  bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins) const
+  {
+    SortedView wanted;
+    wanted.Describe(view, geometry, bins);
+    return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
+      std::equal(this->World, this->World + 12, wanted.World) &&
+      mcx::SameGeometry(this->Geometry, wanted.Geometry) && this->Bins == wanted.Bins;
+  }
+};
+
+vtkMCXViewOrderedSampling::vtkMCXViewOrderedSampling() = default;
+
+vtkMCXViewOrderedSampling::~vtkMCXViewOrderedSampling() = default;
+
+bool vtkMCXViewOrderedSampling::SetView(vtkObject* self, vtkCamera* camera, int width, int height)
+{
+  std::unique_ptr<OrderingView> ordering;
+  if (camera && width > 0 && height > 0)
+  {
+    ordering.reset(new OrderingView);
+    const int size[2] = { width, height };
+    const std::string problem = mcx::GeometryFromCamera(camera, size, 0.0, 0.0, ordering->Geometry);
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(self, "Cannot order by this view: " << problem);
+      return false;
+    }
+  }
+  if (!ordering && !this->Ordering)
+  {
+    return false;
+  }
+  if (ordering && this->Ordering && mcx::SameGeometry(ordering->Geometry, this->Ordering->Geometry))
+  {
+    return false;
+  }
+  this->Ordering = std::move(ordering);
+  return true;
+}
+
+bool vtkMCXViewOrderedSampling::HasView() const
+{
+  return this->Ordering != nullptr;
+}
+
+void vtkMCXViewOrderedSampling::ForgetOrder()
+{
+  this->KeptViewOrder.reset();
+}
+
+vtkMCXViewOrderedSampling::Outcome vtkMCXViewOrderedSampling::Sample(vtkMCXPointSampler* sampler,
+  const mcx::IndexView& view, double integral, const PointAllocator& allocate, Cloud& cloud)
+{
+  if (!this->Ordering)
+  {
+    vtkErrorWithObjectMacro(sampler,
+      "Cannot sample in view order: no view to order by (call "
+      "SetOrderingView(camera, width, height) first).");
+    return Outcome::Failed;
+  }
+  if (view.PieceOffsets)
+  {
+    vtkErrorWithObjectMacro(sampler,
+      "Cannot sample in view order: the index is one piece of a distributed volume, "
+      "and the view order needs the whole volume in one process (use HYBRID).");
+    return Outcome::Failed;
+  }
+  std::vector<double> weights = view.EvaluateTransferFunction(sampler->GetTransferFunction());
+  std::vector<char> kept;
+  view.KeepLevels(weights, kept); // the weights as the table takes them
+  bool completed = true;
+  SortedView* sorted = this->ViewOrderFor(sampler, view, completed);
+  if (!sorted)
+  {
+    return completed ? Outcome::Failed : Outcome::Aborted;
+  }
+  if (sampler->GetControlVariate() && !this->ProjectBinsFor(sampler, view, *sorted, completed))
+  {
+    return completed ? Outcome::Failed : Outcome::Aborted;
+  }
+  const bool allocated = view.WideIds ? this->Generate(sampler, view, sorted->Wide, weights,
+                                          integral, *sorted, allocate, cloud, completed)
+                                      : this->Generate(sampler, view, sorted->Narrow, weights,
+                                          integral, *sorted, allocate, cloud, completed);
+  if (!allocated)
+  {
+    return Outcome::Failed;
+  }
+  return completed ? Outcome::Made : Outcome::Aborted;
+}
+
+template <typename Order>
+bool vtkMCXViewOrderedSampling::Generate(vtkMCXPointSampler* sampler, const mcx::IndexView& view,
+  const Order& order, const std::vector<double>& weights, double integral, const SortedView& sorted,
+  const PointAllocator& allocate, Cloud& cloud, bool& completed)
+{
+  std::vector<double> binMeans, levelRatios;
+  order.Weights(weights.data(), view.LevelOffsets, binMeans, levelRatios);
+  const mcx::TransferTable binTable =
+    mcx::BuildTransferTable(binMeans.data(), order.BinOffsets.data(), order.NumberOfBins());
+  const unsigned m = binTable.IsEmpty() ? 0u : static_cast<unsigned>(sampler->GetSampleExponent());
+  cloud.Exponent = m;
+  if (sampler->GetControlVariate() && m > 0)
+  {
+    cloud.Control =
+      ControlImage(sorted.BinImages, binMeans, order.BinOffsets, integral, sorted.Geometry);
+    cloud.ControlView = sorted.Geometry;
+  }
+  const int pointType =
+    sampler->GetOutputPointsPrecision() == vtkAlgorithm::DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
+  const vtkIdType count = static_cast<vtkIdType>(mcx::SampleCount(m));
+  cloud.Points = allocate(pointType, count);
+  if (!cloud.Points)
+  {
+    return false;
+  }
+  cloud.Weights = vtkSmartPointer<vtkFloatArray>::New();
+  cloud.Weights->SetName(vtkMCXTypes::PointWeightName());
+  cloud.Weights->SetNumberOfValues(count);
+  const auto kernel = static_cast<mcx::Kernel>(sampler->GetKernel());
+  const bool centres = sampler->GetDeposit() == vtkMCXTypes::FOOTPRINT;
+  const auto seed = static_cast<vtkTypeUInt64>(sampler->GetSeed());
+  void* raw = cloud.Points->GetVoidPointer(0);
+  float* w = cloud.Weights->GetPointer(0);
+  completed = count == 0 ||
+    (pointType == VTK_DOUBLE
+        ? GenerateViewOrderedPoints(sampler, view, order, binTable, levelRatios, kernel, seed, m,
+            centres, static_cast<double*>(raw), w)
+        : GenerateViewOrderedPoints(sampler, view, order, binTable, levelRatios, kernel, seed, m,
+            centres, static_cast<float*>(raw), w));
+  return true;
+}
+
+void vtkMCXViewOrderedSampling::WriteControl(const Cloud& cloud, vtkFieldData* fd)
+{
+  if (cloud.Control.empty())
+  {
+    return;
+  }
+  vtkNew<vtkDoubleArray> image;
+  image->SetName(vtkMCXTypes::ControlImageName());
+  image->SetNumberOfValues(static_cast<vtkIdType>(cloud.Control.size()));
+  std::copy(cloud.Control.begin(), cloud.Control.end(), image->GetPointer(0));
+  fd->AddArray(image);
+  vtkNew<vtkDoubleArray> controlView;
+  controlView->SetName(vtkMCXTypes::ControlViewName());
+  controlView->SetNumberOfValues(mcx::GeometryValueCount);
+  mcx::GeometryToValues(cloud.ControlView, controlView->GetPointer(0));
+  fd->AddArray(controlView);
+  fd->AddArray(mcx::ControlPointsOf(cloud.Points));
+}
+bool vtkMCXViewOrderedSampling::ProjectBinsFor(
+  vtkMCXPointSampler* sampler, const mcx::IndexView& view, SortedView& sorted, bool& completed)
+{
+  completed = true;
+  if (!sorted.BinImages.empty() && sorted.BinKernel == sampler->GetKernel())
+  {
+    return true;
+  }
+  sorted.BinImages = std::vector<double>(); // not held while new ones are made
+  const double pixels = static_cast<double>(sorted.Geometry.Size[0]) * sorted.Geometry.Size[1];
+  const double bins = static_cast<double>(sorted.BinsOf(view.WideIds));
+  // The images (8 bytes a bin and pixel), the threads' sums (16) and their collection (32).
+  if (!mcx::CheckMemory(sampler,
+        pixels * (8.0 * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 32.0),
+        "The control image's " + std::to_string(static_cast<long long>(bins)) + " bin images"))
+  {
+    return false;
+  }
+  const auto kernel = static_cast<mcx::Kernel>(sampler->GetKernel());
+  std::vector<double> images;
+  completed = view.WideIds
+    ? ProjectBins(sampler, view, sorted.Wide, sorted.Geometry, kernel, 0.3, 0.55, images)
+    : ProjectBins(sampler, view, sorted.Narrow, sorted.Geometry, kernel, 0.3, 0.55, images);
+  if (completed)
+  {
+    sorted.BinImages = std::move(images);
+    sorted.BinKernel = sampler->GetKernel();
+  }
+  return completed;
+}
+
+vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
+  vtkMCXPointSampler* sampler, const mcx::IndexView& view, bool& completed)
+{
+  completed = true;
+  const mcx::ProjectionGeometry& geometry = this->Ordering->Geometry;
+  if (this->KeptViewOrder &&
+    this->KeptViewOrder->Fits(view, geometry, sampler->GetNumberOfOrderingBins()))
+  {
+    return this->KeptViewOrder.get();
+  }
+  this->KeptViewOrder.reset(); // not held while a new one is sorted
+  const std::int64_t voxels = view.LevelOffsets[view.NumberOfLevels];
+  const std::int64_t pixels = static_cast<std::int64_t>(geometry.Size[0]) * geometry.Size[1];
+  const std::int64_t cells = pixels + 1; // the last: voxels off the image
+  std::vector<std::int64_t> binFirstLevel = mcx::GroupLevelsIntoBins(
+    view.LevelValues, view.NumberOfLevels, sampler->GetNumberOfOrderingBins());
+  const std::int64_t keys = (static_cast<std::int64_t>(binFirstLevel.size()) - 1) * cells;
+  const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
+  if (!mcx::CheckMemory(sampler,
+        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 1.0) +
+          8.0 * static_cast<double>(layout.NumberOfChunks + 1) * static_cast<double>(keys),
+        "The view order of " + std::to_string(voxels) + " voxels"))
+  {
+    return nullptr;
+  }
+  std::unique_ptr<SortedView> sorted(new SortedView);
+  sorted->Describe(view, geometry, sampler->GetNumberOfOrderingBins());
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  const mcx::PixelBinner binner(geometry, origin, matrix);
+  auto progress = [sampler](double fraction)
+  {
+    sampler->UpdateProgress((sampler->GetControlVariate() ? 0.3 : 0.5) * fraction);
+    return !sampler->GetAbortExecute();
+  };
+  auto sort = [&](auto& order)
+  {
+    using IdType = typename std::decay_t<decltype(order.Ids)>::value_type;
+    const mcx::VoxelDecoder<IdType> decoder(static_cast<std::uint64_t>(view.Dimensions[0]),
+      static_cast<std::uint64_t>(view.Dimensions[1]));
+    auto cellOf = [&](IdType id)
+    {
+      std::uint64_t voxel[3];
+      decoder.Decode(id, voxel[0], voxel[1], voxel[2]);
+      const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
+        static_cast<double>(voxel[2]) };
+      double fx, fy, f, inverseDepth;
+      mcx::ViewCell where;
+      if (!binner.Locate(p, fx, fy, f, inverseDepth) || !(fx >= 0 && fx < geometry.Size[0]) ||
+        !(fy >= 0 && fy < geometry.Size[1]))
+      {
+        where.Cell = pixels;
+        return where;
+      }
+      where.Cell = static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * geometry.Size[0];
+      where.Position = mcx::PositionInPixel(fx, fy);
+      return where;
+    };
+    return order.Build(mcx::SMPExecutor(), view.IdPointer<IdType>(), view.LevelOffsets,
+      view.NumberOfLevels, std::move(binFirstLevel), cells, cellOf, progress);
+  };
+  if (!(view.WideIds ? sort(sorted->Wide) : sort(sorted->Narrow)))
+  {
+    completed = false;
+    return nullptr;
+  }
+  this->KeptViewOrder = std::move(sorted);
+  return this->KeptViewOrder.get();
+}
+
+void vtkMCXViewOrderedSampling::PrintSelf(std::ostream& os, vtkIndent indent) const
+{
+  os << indent << "OrderingView: ";
+  if (this->Ordering)
+  {
+    const mcx::ProjectionGeometry& g = this->Ordering->Geometry;
+    os << (g.Perspective ? "perspective" : "parallel") << ", " << g.Size[0] << " x " << g.Size[1]
+       << " pixels, looking along (" << g.W[0] << ", " << g.W[1] << ", " << g.W[2] << ")\n";
+  }
+  else
+  {
+    os << "(none)\n";
+  }
+  os << indent << "KeptViewOrder: "
+     << (this->KeptViewOrder ? static_cast<vtkIdType>(this->KeptViewOrder->Narrow.Ids.size() +
+                                 this->KeptViewOrder->Wide.Ids.size())
+                             : 0)
+     << " voxels\n";
+}
