@@ -185,8 +185,10 @@ public:
 
   /// Adds a prepared footprint to the thread's image (a weight of 0 adds
   /// nothing there), and once, unweighted, to its control image when
-  /// controlled.
-  void AddFootprint(const PreparedFootprint& footprint) const
+  /// controlled. Kept out of line (GCC's attribute; other compilers ignore
+  /// it): inlined into the sample source's loop it left its share loops out
+  /// of line and the loop itself too, 4 % more instructions per footprint.
+  [[gnu::noinline]] void AddFootprint(const PreparedFootprint& footprint) const
   {
     const bool scales = this->ScalesShares(footprint);
     if (footprint.F != 0.0 || !scales)
