@@ -5,6 +5,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMCXPatientSpace.h"
+#include "mcxHeaderCheck.h"
 #include "vtkMCXReaderErrorsPrivate.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -133,9 +134,15 @@ std::string vtkMCXMetaImageReader::Place()
 int vtkMCXMetaImageReader::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  std::string problem = mcxio::RunReaderStage(
-    this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
-    [] { return std::string(); });
+  std::string problem = this->CheckHeader
+    ? mcxio::DescribeHeaderProblem(this->FileName, &mcxio::CheckMetaImageHeader)
+    : std::string();
+  if (problem.empty())
+  {
+    problem = mcxio::RunReaderStage(
+      this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+      [] { return std::string(); });
+  }
   if (problem.empty())
   {
     problem = this->Place();
@@ -164,5 +171,6 @@ int vtkMCXMetaImageReader::RequestData(
 void vtkMCXMetaImageReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "CheckHeader: " << this->CheckHeader << "\n";
   os << indent << "Failed (last information request): " << this->Failed << "\n";
 }

@@ -10,7 +10,7 @@
 #include "mcxProgressBar.h"
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
-#include "mcxVolumeReader.h"
+#include "mcxBundledVolume.h"
 #include "mcxXRayViewer.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
@@ -221,7 +221,7 @@ int RunView(int argc, char* argv[])
   std::string error;
   mcx::SetMemoryBudget(settings.MemoryLimit);
   vtkSmartPointer<vtkImageData> volume =
-    ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
+    mcxio::ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
   if (!volume)
   {
     Fail(error);

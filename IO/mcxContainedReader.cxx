@@ -1,3 +1,6 @@
+// The contained read (mcxContainedReader.h): the child that reads under an
+// address-space limit and hands the volume over through a memfd, and the
+// parent that waits within the time limit and takes the volume over.
 #include "mcxContainedReader.h"
 
 #include "mcxByteSize.h"
@@ -29,7 +32,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace mcxapp
+namespace mcxio
 {
 
 namespace
@@ -217,9 +220,50 @@ bool WaitFor(pid_t child, double seconds, int& status)
   }
 }
 
+// The handed-over volume (the header's voxels, consistent with its data
+// bytes) copied out of the shared file; null with error set when its sizes
+// disagree, it exceeds the budget or cannot be allocated.
+vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header,
+  std::uint64_t voxels, const std::string& path, const ReadLimits& limits,
+  const std::string& memoryBudgetName, std::string& error)
+{
+  auto scalars = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
+  const std::uint64_t values = voxels * static_cast<std::uint64_t>(header.Components);
+  if (!scalars || values * static_cast<std::uint64_t>(scalars->GetDataTypeSize()) != header.DataBytes)
+  {
+    error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
+    return nullptr;
+  }
+  if (limits.MemoryBytes > 0 && header.DataBytes > limits.MemoryBytes)
+  {
+    error = "cannot read '" + path + "': the volume needs " + mcx::DescribeBytes(double(header.DataBytes)) +
+      ", more than the memory budget of " + mcx::DescribeBytes(double(limits.MemoryBytes)) +
+      " (" + memoryBudgetName + ")";
+    return nullptr;
+  }
+  scalars->SetNumberOfComponents(header.Components);
+  if (!scalars->Allocate(static_cast<vtkIdType>(values)))
+  {
+    error = "cannot read '" + path + "': cannot allocate " + mcx::DescribeBytes(double(header.DataBytes));
+    return nullptr;
+  }
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
+  std::memcpy(scalars->GetVoidPointer(0), bytes + header.DataOffset,
+    static_cast<std::size_t>(header.DataBytes));
+  scalars->SetName(std::string(bytes + sizeof(header) + header.MessageBytes,
+    static_cast<std::size_t>(header.NameBytes)).c_str());
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->SetExtent(header.Extent);
+  volume->SetSpacing(header.Spacing);
+  volume->SetOrigin(header.Origin);
+  volume->SetDirectionMatrix(header.Direction);
+  volume->GetPointData()->SetScalars(scalars);
+  return volume;
+}
+
 // The volume from the shared file, its sizes checked against each other.
 vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const ReadLimits& limits,
-  bool& readHere, std::string& error)
+  const std::string& memoryBudgetName, bool& readHere, std::string& error)
 {
   readHere = false;
   struct stat info;
@@ -270,40 +314,7 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
   }
   else
   {
-    auto scalars = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
-    const std::uint64_t values = voxels * static_cast<std::uint64_t>(header.Components);
-    if (!scalars || values * static_cast<std::uint64_t>(scalars->GetDataTypeSize()) != header.DataBytes)
-    {
-      error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
-    }
-    else if (limits.MemoryBytes > 0 && header.DataBytes > limits.MemoryBytes)
-    {
-      error = "cannot read '" + path + "': the volume needs " + mcx::DescribeBytes(double(header.DataBytes)) +
-        ", more than the memory budget of " + mcx::DescribeBytes(double(limits.MemoryBytes)) +
-        " (--memory-limit)";
-    }
-    else
-    {
-      scalars->SetNumberOfComponents(header.Components);
-      if (!scalars->Allocate(static_cast<vtkIdType>(values)))
-      {
-        error = "cannot read '" + path + "': cannot allocate " + mcx::DescribeBytes(double(header.DataBytes));
-      }
-      else
-      {
-        scalars->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
-        std::memcpy(scalars->GetVoidPointer(0), bytes + header.DataOffset,
-          static_cast<std::size_t>(header.DataBytes));
-        scalars->SetName(std::string(bytes + sizeof(header) + header.MessageBytes,
-          static_cast<std::size_t>(header.NameBytes)).c_str());
-        volume = vtkSmartPointer<vtkImageData>::New();
-        volume->SetExtent(header.Extent);
-        volume->SetSpacing(header.Spacing);
-        volume->SetOrigin(header.Origin);
-        volume->SetDirectionMatrix(header.Direction);
-        volume->GetPointData()->SetScalars(scalars);
-      }
-    }
+    volume = CopyVolume(bytes, header, voxels, path, limits, memoryBudgetName, error);
   }
   ::munmap(mapped, size);
   return volume;
@@ -354,7 +365,7 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
     std::ostringstream seconds;
     seconds << std::setprecision(3) << limits.Seconds;
     error = "cannot read '" + path + "': the reader did not finish within " + seconds.str() +
-      " s (a corrupt file? --read-timeout sets the limit)";
+      " s (a corrupt file? " + limits.SecondsName + " sets the limit)";
   }
   else if (WIFSIGNALED(status))
   {
@@ -373,7 +384,7 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   else
   {
     bool readHere = false;
-    volume = TakeOver(fd, path, limits, readHere, error);
+    volume = TakeOver(fd, path, limits, options.MemoryBudgetName, readHere, error);
     if (readHere)
     {
       VolumeReadOptions here = options;
@@ -385,4 +396,4 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   return volume;
 }
 
-} // namespace mcxapp
+} // namespace mcxio
