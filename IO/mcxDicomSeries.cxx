@@ -24,7 +24,7 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
 {
   vtkNew<vtkMCXDICOMSeriesReader> reader;
   reader->SetDirectoryName(folder.c_str());
-  reader->SetSeriesIndex(series - 1); // counted from 1; 0 (none) is -1
+  reader->SetSeriesIndex(series - 1);    // counted from 1; 0 (none) is -1
   vtkNew<vtkMCXFirstErrorObserver> read; // the reader's report, said once below
   read->ObserveAlgorithm(reader);
   reader->Update();

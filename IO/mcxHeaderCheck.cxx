@@ -43,7 +43,8 @@ std::vector<std::string> DataFiles(const std::string& header)
   return PatternFiles(header, name, files, error) ? files : std::vector<std::string>();
 }
 
-bool CheckVolumeHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error)
+bool CheckVolumeHeader(
+  const std::string& path, unsigned long long& claimedBytes, std::string& error)
 {
   claimedBytes = 0;
   if (vtksys::SystemTools::FileIsDirectory(path))

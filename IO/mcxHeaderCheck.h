@@ -32,7 +32,8 @@ constexpr double LargestCompressionRatio = 1032.0;
 /// checked by the reader). Returns false with error set to the reason
 /// (without the file name); on success claimedBytes is the size of the
 /// voxel data the header claims (0 where the format does not say).
-bool CheckVolumeHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
+bool CheckVolumeHeader(
+  const std::string& path, unsigned long long& claimedBytes, std::string& error);
 
 ///@{
 /// One format's check, whatever path's extension (the format readers run
@@ -42,12 +43,16 @@ bool CheckVolumeHeader(const std::string& path, unsigned long long& claimedBytes
 /// (mcxNrrdHeaderCheck.cxx); legacy VTK structured points
 /// (mcxLegacyVTKHeaderCheck.cxx); SLC (mcxSLCHeaderCheck.cxx); VTK XML image
 /// data (mcxXMLImageHeaderCheck.cxx).
-bool CheckNiftiHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
-bool CheckMetaImageHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
+bool CheckNiftiHeader(
+  const std::string& path, unsigned long long& claimedBytes, std::string& error);
+bool CheckMetaImageHeader(
+  const std::string& path, unsigned long long& claimedBytes, std::string& error);
 bool CheckNrrdHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
-bool CheckLegacyVTKHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
+bool CheckLegacyVTKHeader(
+  const std::string& path, unsigned long long& claimedBytes, std::string& error);
 bool CheckSLCHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
-bool CheckXMLImageHeader(const std::string& path, unsigned long long& claimedBytes, std::string& error);
+bool CheckXMLImageHeader(
+  const std::string& path, unsigned long long& claimedBytes, std::string& error);
 ///@}
 
 } // namespace mcxio

@@ -61,7 +61,8 @@ std::string Dimensions(const std::vector<long long>& dims)
 
 // dims' product times elementBytes, without overflow; false (error set)
 // for a side below 1 or above LargestSide, or a product beyond 2^63.
-bool Product(const std::vector<long long>& dims, Bytes elementBytes, Bytes& bytes, std::string& error)
+bool Product(
+  const std::vector<long long>& dims, Bytes elementBytes, Bytes& bytes, std::string& error)
 {
   if (dims.empty())
   {
@@ -89,8 +90,8 @@ bool Product(const std::vector<long long>& dims, Bytes elementBytes, Bytes& byte
 }
 
 // Raw data must be all there; compressed data within deflate's ratio.
-bool CheckAvailable(Bytes claimed, Bytes available, bool compressed, const std::vector<long long>& dims,
-  std::string& error)
+bool CheckAvailable(Bytes claimed, Bytes available, bool compressed,
+  const std::vector<long long>& dims, std::string& error)
 {
   if (!compressed && available < claimed)
   {
@@ -134,7 +135,8 @@ bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std:
   }
   // At most LargestHeader bytes, whatever the lines (one huge line included).
   std::ifstream file(path, std::ios::binary);
-  std::string text(static_cast<std::size_t>(std::min<Bytes>(FileSize(path), LargestHeader + 1)), '\0');
+  std::string text(
+    static_cast<std::size_t>(std::min<Bytes>(FileSize(path), LargestHeader + 1)), '\0');
   file.read(&text[0], static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(file.gcount()));
   std::istringstream in(text);
@@ -223,7 +225,8 @@ static bool IsNumberPattern(const std::string& pattern)
     ++i;
   }
   const std::size_t digits = i;
-  while (i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])) && i - digits < 2)
+  while (
+    i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])) && i - digits < 2)
   {
     ++i;
   }
@@ -268,7 +271,8 @@ bool PatternFiles(const std::string& header, const std::string& spec,
 }
 
 // The sizes of a pattern's files added up (PatternFiles), or false.
-static bool PatternSize(const std::string& header, const std::string& spec, Bytes& total, std::string& error)
+static bool PatternSize(
+  const std::string& header, const std::string& spec, Bytes& total, std::string& error)
 {
   std::vector<std::string> files;
   if (!PatternFiles(header, spec, files, error))

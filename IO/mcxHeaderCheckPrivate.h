@@ -30,11 +30,12 @@ std::string Dimensions(const std::vector<long long>& dims); // "512x512x300"
 
 /// dims' product times elementBytes, without overflow; false (error set)
 /// for a side below 1 or above LargestSide, or a product beyond 2^63.
-bool Product(const std::vector<long long>& dims, Bytes elementBytes, Bytes& bytes, std::string& error);
+bool Product(
+  const std::vector<long long>& dims, Bytes elementBytes, Bytes& bytes, std::string& error);
 
 /// Raw data must be all there; compressed data within deflate's ratio.
-bool CheckAvailable(Bytes claimed, Bytes available, bool compressed, const std::vector<long long>& dims,
-  std::string& error);
+bool CheckAvailable(Bytes claimed, Bytes available, bool compressed,
+  const std::vector<long long>& dims, std::string& error);
 
 /// Whitespace-separated integers, all of text; false for none.
 bool ParseIntegers(const std::string& text, std::vector<long long>& values);
@@ -42,7 +43,7 @@ bool ParseIntegers(const std::string& text, std::vector<long long>& values);
 struct TextHeader
 {
   std::map<std::string, std::string> Fields; // keys in lower case
-  Bytes End = 0;                              // where the data of an attached header begin
+  Bytes End = 0;                             // where the data of an attached header begin
 };
 
 /// MetaImage: lines up to and including ElementDataFile; NRRD: lines up to

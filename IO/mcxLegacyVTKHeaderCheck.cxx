@@ -59,7 +59,8 @@ bool SkipFieldData(std::istream& in, bool binary, Bytes fileSize)
     {
       std::string rest;
       std::getline(in, rest); // the end of the array's line
-      in.seekg(static_cast<std::streamoff>(values) * static_cast<std::streamoff>(element), std::ios::cur);
+      in.seekg(
+        static_cast<std::streamoff>(values) * static_cast<std::streamoff>(element), std::ios::cur);
     }
     else
     {

@@ -58,7 +58,8 @@ bool CheckMetaImageHeader(const std::string& path, Bytes& claimed, std::string& 
     error = "the MetaImage header's ElementNumberOfChannels is not 1 to 64";
     return false;
   }
-  if (!Product(dims, element * static_cast<Bytes>(channels.empty() ? 1 : channels[0]), claimed, error))
+  if (!Product(
+        dims, element * static_cast<Bytes>(channels.empty() ? 1 : channels[0]), claimed, error))
   {
     return false;
   }

@@ -37,15 +37,30 @@ Bytes NiftiElementBytes(int datatype)
 {
   switch (datatype)
   {
-    case 2: case 256: return 1;                    // uint8, int8
-    case 4: case 512: return 2;                    // int16, uint16
-    case 8: case 16: case 768: return 4;           // int32, float32, uint32
-    case 64: case 1024: case 1280: return 8;       // float64, int64, uint64
-    case 128: return 3;                            // RGB24
-    case 2304: return 4;                           // RGBA32
-    case 32: return 8;                             // complex64
-    case 1792: return 16;                          // complex128
-    default: return 0;
+    case 2:
+    case 256:
+      return 1; // uint8, int8
+    case 4:
+    case 512:
+      return 2; // int16, uint16
+    case 8:
+    case 16:
+    case 768:
+      return 4; // int32, float32, uint32
+    case 64:
+    case 1024:
+    case 1280:
+      return 8; // float64, int64, uint64
+    case 128:
+      return 3; // RGB24
+    case 2304:
+      return 4; // RGBA32
+    case 32:
+      return 8; // complex64
+    case 1792:
+      return 16; // complex128
+    default:
+      return 0;
   }
 }
 
@@ -60,14 +75,14 @@ Bytes GzipLength(const std::string& path, Bytes limit)
   std::vector<char> buffer(1 << 20);
   Bytes total = 0;
   int n = 0;
-  while (total <= limit && (n = gzread(in, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
+  while (
+    total <= limit && (n = gzread(in, buffer.data(), static_cast<unsigned>(buffer.size()))) > 0)
   {
     total += static_cast<Bytes>(n);
   }
   gzclose(in);
   return total;
 }
-
 
 // The first 540 bytes of the file (decompressed): how many were read.
 int ReadHeaderBytes(const std::string& path, bool compressed, unsigned char (&header)[540])
@@ -102,7 +117,8 @@ bool CheckNiftiHeader(const std::string& path, Bytes& claimed, std::string& erro
   const int size = Field<std::int32_t>(header, 0, false);
   const bool swap = size != 348 && size != 540;
   const int version = Field<std::int32_t>(header, 0, swap) == 348 ? 1 : 2;
-  if (Field<std::int32_t>(header, 0, swap) != (version == 1 ? 348 : 540) || (version == 2 && got < 540))
+  if (Field<std::int32_t>(header, 0, swap) != (version == 1 ? 348 : 540) ||
+    (version == 2 && got < 540))
   {
     error = "not a NIfTI file (sizeof_hdr is neither 348 nor 540)";
     return false;

@@ -64,8 +64,8 @@ bool CheckNrrdHeader(const std::string& path, Bytes& claimed, std::string& error
     return false;
   }
   const std::string encoding = Lower(f["encoding"]);
-  const bool compressed = encoding == "gzip" || encoding == "gz" || encoding == "bzip2" ||
-    encoding == "bz2";
+  const bool compressed =
+    encoding == "gzip" || encoding == "gz" || encoding == "bzip2" || encoding == "bz2";
   const bool text = encoding == "ascii" || encoding == "text" || encoding == "txt";
   if (!compressed && !text && encoding != "raw")
   {
@@ -88,8 +88,8 @@ bool CheckNrrdHeader(const std::string& path, Bytes& claimed, std::string& error
   const Bytes needed = text ? claimed / element * 2 - 1 : claimed;
   if (text && available < needed)
   {
-    error = "truncated: the header claims " + Dimensions(dims) + " voxels as text, the file holds " +
-      mcx::DescribeBytes(static_cast<double>(available));
+    error = "truncated: the header claims " + Dimensions(dims) +
+      " voxels as text, the file holds " + mcx::DescribeBytes(static_cast<double>(available));
     return false;
   }
   return text || CheckAvailable(claimed, available, compressed, dims, error);

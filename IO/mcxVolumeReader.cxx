@@ -103,7 +103,8 @@ vtkSmartPointer<vtkImageData> ReadWith(
   {
     // The project's readers name the file themselves: said once.
     const std::string own = "cannot read '" + path + "': ";
-    error = message.compare(0, own.size(), own) == 0 ? message
+    error = message.compare(0, own.size(), own) == 0
+      ? message
       : own + (message.empty() ? std::string("no volume data") : message);
     return nullptr;
   }
@@ -143,8 +144,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   if (memoryBudget > 0 && claimed > memoryBudget)
   {
     error = "cannot read '" + path + "': its voxels need " + mcx::DescribeBytes(double(claimed)) +
-      ", more than the memory budget of " + mcx::DescribeBytes(double(memoryBudget)) +
-      " (" + options.MemoryBudgetName + ")";
+      ", more than the memory budget of " + mcx::DescribeBytes(double(memoryBudget)) + " (" +
+      options.MemoryBudgetName + ")";
     return nullptr;
   }
   if (vtksys::SystemTools::FileIsDirectory(path))

@@ -18,7 +18,7 @@ namespace mcxio
 struct VolumeReadOptions
 {
   unsigned long long MemoryBudget = 0; // bytes the claimed voxels may take; 0: any
-  int DicomSeries = 0;                  // a folder's series (1, 2, ...); 0: its only one
+  int DicomSeries = 0;                 // a folder's series (1, 2, ...); 0: its only one
   // How the caller's user sets the two, named in the messages that ask for
   // them (vtkMCXVolumeReader's setters; the command line's options).
   std::string MemoryBudgetName = "SetMemoryBudget";

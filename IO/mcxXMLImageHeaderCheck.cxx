@@ -33,9 +33,9 @@ std::string Attribute(const std::string& tag, const std::string& name)
 
 Bytes XMLElementBytes(const std::string& type)
 {
-  static const std::map<std::string, Bytes> sizes = { { "Int8", 1 }, { "UInt8", 1 },
-    { "Int16", 2 }, { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 },
-    { "UInt64", 8 }, { "Float32", 4 }, { "Float64", 8 } };
+  static const std::map<std::string, Bytes> sizes = { { "Int8", 1 }, { "UInt8", 1 }, { "Int16", 2 },
+    { "UInt16", 2 }, { "Int32", 4 }, { "UInt32", 4 }, { "Int64", 8 }, { "UInt64", 8 },
+    { "Float32", 4 }, { "Float64", 8 } };
   const auto found = sizes.find(type);
   return found == sizes.end() ? 0 : found->second;
 }
@@ -116,9 +116,9 @@ bool CheckAppendedData(const std::string& path, const std::string& head, const s
     error = "truncated: the image's compressed data end inside their block table";
     return false;
   }
-  const double total = blocks == 0
-    ? 0.0
-    : static_cast<double>(blocks - 1) * blockSize + static_cast<double>(lastSize ? lastSize : blockSize);
+  const double total = blocks == 0 ? 0.0
+                                   : static_cast<double>(blocks - 1) * blockSize +
+      static_cast<double>(lastSize ? lastSize : blockSize);
   if (total != static_cast<double>(claimed))
   {
     error = "the image's compressed blocks hold " + mcx::DescribeBytes(total) +
@@ -182,12 +182,13 @@ bool PieceDimensions(const std::string& pieceText, const std::vector<long long>&
   for (int a = 0; inside && a < 3; ++a)
   {
     pieceDims[a] = piece[2 * a + 1] - piece[2 * a] + 1;
-    inside = piece[2 * a] >= whole[2 * a] && piece[2 * a + 1] <= whole[2 * a + 1] &&
-      pieceDims[a] >= 0;
+    inside =
+      piece[2 * a] >= whole[2 * a] && piece[2 * a + 1] <= whole[2 * a + 1] && pieceDims[a] >= 0;
   }
   if (!inside)
   {
-    error = "the piece extent '" + pieceText + "' does not lie in the WholeExtent '" + wholeText + "'";
+    error =
+      "the piece extent '" + pieceText + "' does not lie in the WholeExtent '" + wholeText + "'";
     return false;
   }
   return true;
@@ -195,17 +196,20 @@ bool PieceDimensions(const std::string& pieceText, const std::vector<long long>&
 
 // The tag of the first array of the point data after from ("" when there
 // is none) and the bytes of one of its values (1 without an array).
-bool FirstPointArray(const std::string& head, std::size_t from, std::string& tag, Bytes& value,
-  std::string& error)
+bool FirstPointArray(
+  const std::string& head, std::size_t from, std::string& tag, Bytes& value, std::string& error)
 {
   const std::size_t pointData = head.find("<PointData", from);
-  const std::size_t pointDataEnd = head.find("</PointData", pointData == std::string::npos ? 0 : pointData);
-  std::size_t array = pointData == std::string::npos ? std::string::npos : head.find("<DataArray", pointData);
+  const std::size_t pointDataEnd =
+    head.find("</PointData", pointData == std::string::npos ? 0 : pointData);
+  std::size_t array =
+    pointData == std::string::npos ? std::string::npos : head.find("<DataArray", pointData);
   if (array != std::string::npos && pointDataEnd != std::string::npos && array > pointDataEnd)
   {
     array = std::string::npos;
   }
-  tag = array == std::string::npos ? std::string() : head.substr(array, head.find('>', array) - array);
+  tag =
+    array == std::string::npos ? std::string() : head.substr(array, head.find('>', array) - array);
   value = 1;
   if (tag.empty())
   {
@@ -276,8 +280,9 @@ bool CheckXMLImageHeader(const std::string& path, Bytes& claimed, std::string& e
   Bytes pieceBytes = 0;
   const bool emptyPiece = pieceDims[0] < 1 || pieceDims[1] < 1 || pieceDims[2] < 1;
   return CheckAvailable(claimed, FileSize(path), !raw, dims, error) &&
-    (tag.empty() || emptyPiece || (Product(pieceDims, value, pieceBytes, error) &&
-      CheckAppendedData(path, head, tag, pieceBytes, error)));
+    (tag.empty() || emptyPiece ||
+      (Product(pieceDims, value, pieceBytes, error) &&
+        CheckAppendedData(path, head, tag, pieceBytes, error)));
 }
 
 } // namespace mcxio

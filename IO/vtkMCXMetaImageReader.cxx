@@ -1,11 +1,11 @@
 #include "vtkMCXMetaImageReader.h"
 
+#include "mcxHeaderCheck.h"
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMCXPatientSpace.h"
-#include "mcxHeaderCheck.h"
 #include "vtkMCXReaderErrorsPrivate.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -140,7 +140,8 @@ int vtkMCXMetaImageReader::RequestInformation(
   if (problem.empty())
   {
     problem = mcxio::RunReaderStage(
-      this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+      this,
+      [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
       [] { return std::string(); });
   }
   if (problem.empty())

@@ -420,7 +420,8 @@ int vtkMCXNrrdReader::RequestInformation(
   if (problem.empty())
   {
     problem = mcxio::RunReaderStage(
-      this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+      this,
+      [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
       [this] { return this->PlacementProblem; });
   }
   if (problem.empty() && this->Encoding == ENCODING_RAW)

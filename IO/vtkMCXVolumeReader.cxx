@@ -81,7 +81,9 @@ std::string vtkMCXVolumeReader::Read()
   {
     this->Volume = mcxio::ReadVolume(this->FileName, options, error);
   }
-  return this->Volume ? std::string() : (error.empty() ? "cannot read '" + std::string(this->FileName) + "'" : error);
+  return this->Volume
+    ? std::string()
+    : (error.empty() ? "cannot read '" + std::string(this->FileName) + "'" : error);
 }
 
 int vtkMCXVolumeReader::RequestInformation(
@@ -97,7 +99,8 @@ int vtkMCXVolumeReader::RequestInformation(
   {
     // One line, said here; an empty extent, not a failed request (which the
     // executive would report again).
-    this->SetErrorCode(this->FileName ? vtkErrorCode::FileFormatError : vtkErrorCode::NoFileNameError);
+    this->SetErrorCode(
+      this->FileName ? vtkErrorCode::FileFormatError : vtkErrorCode::NoFileNameError);
     vtkErrorMacro(<< this->Error);
     const int empty[6] = { 0, -1, 0, -1, 0, -1 };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);

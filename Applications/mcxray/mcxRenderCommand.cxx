@@ -1,5 +1,6 @@
 #include "mcxRenderCommand.h"
 
+#include "mcxBundledVolume.h"
 #include "mcxCameraSpec.h"
 #include "mcxContainedReader.h"
 #include "mcxErrorCapture.h"
@@ -12,7 +13,6 @@
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxTransferFunctionSpec.h"
-#include "mcxBundledVolume.h"
 #include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 

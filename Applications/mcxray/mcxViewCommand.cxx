@@ -1,5 +1,6 @@
 #include "mcxViewCommand.h"
 
+#include "mcxBundledVolume.h"
 #include "mcxContainedReader.h"
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
@@ -10,7 +11,6 @@
 #include "mcxProgressBar.h"
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
-#include "mcxBundledVolume.h"
 #include "mcxXRayViewer.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
