@@ -117,17 +117,21 @@ int vtkMCXVolumeReader::RequestInformation(
   vtkDataArray* scalars = this->Volume->GetPointData()->GetScalars();
   vtkDataObject::SetPointDataActiveScalarInfo(
     outInfo, scalars->GetDataType(), scalars->GetNumberOfComponents());
+  // Any piece (ParaView's processes each ask for theirs): cut from the volume.
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   return 1;
 }
 
 int vtkMCXVolumeReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkImageData* output = vtkImageData::GetData(outInfo);
   output->Initialize();
-  if (this->Volume)
+  if (this->Volume) // else said by RequestInformation
   {
-    output->ShallowCopy(this->Volume); // said by RequestInformation otherwise
+    output->ShallowCopy(this->Volume);
+    output->Crop(outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()));
   }
   return 1;
 }

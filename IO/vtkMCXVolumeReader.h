@@ -22,7 +22,8 @@
  *
  * The volume is read whole when the pipeline first asks for information
  * (several formats place the volume only once read, and the child reads in
- * one go) and again after a setting changes; RequestData hands it over.
+ * one go) and again after a setting changes; RequestData hands it over,
+ * cut to the requested extent (a piece of ParaView's, say).
  */
 #ifndef vtkMCXVolumeReader_h
 #define vtkMCXVolumeReader_h

@@ -200,6 +200,15 @@ class GoodFiles(unittest.TestCase):
         placed = volume_of(read("vtkMCXVolumeReader", nrrd)[0])
         self.assertEqual((-10.0, 20.0, 30.0), placed[1])
         self.assertEqual((0.5, 0.75, 2.0), placed[2])
+        # A piece (what each of ParaView's processes asks for) is cut from it.
+        reader = mcxray.vtkMCXVolumeReader()
+        reader.SetFileName(nrrd)
+        reader.UpdateExtent((1, 3, 0, 3, 1, 2))
+        piece = reader.GetOutput()
+        self.assertEqual((1, 3, 0, 3, 1, 2), piece.GetExtent())
+        whole = placed[4].reshape(3, 4, 5)  # z, y, x
+        self.assertTrue(numpy.array_equal(whole[1:3, 0:4, 1:4].ravel(),
+                                          vtk_to_numpy(piece.GetPointData().GetScalars())))
 
     def test_the_bundled_ct_reads_as_vtk_reads_it(self):
         path = os.path.join(DATA, "ct_head_headsq.vti")
