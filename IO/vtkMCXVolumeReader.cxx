@@ -99,14 +99,16 @@ int vtkMCXVolumeReader::RequestInformation(
   {
     // One line, said here; an empty extent, not a failed request (which the
     // executive would report again).
-    this->SetErrorCode(
-      this->FileName ? vtkErrorCode::FileFormatError : vtkErrorCode::NoFileNameError);
+    // The code set without Modified(): a changed code would make the next
+    // update read (and say) it all again.
+    this->ErrorCode =
+      this->FileName ? vtkErrorCode::FileFormatError : vtkErrorCode::NoFileNameError;
     vtkErrorMacro(<< this->Error);
     const int empty[6] = { 0, -1, 0, -1, 0, -1 };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
     return 1;
   }
-  this->SetErrorCode(vtkErrorCode::NoError);
+  this->ErrorCode = vtkErrorCode::NoError;
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->Volume->GetExtent(), 6);
   outInfo->Set(vtkDataObject::SPACING(), this->Volume->GetSpacing(), 3);
   outInfo->Set(vtkDataObject::ORIGIN(), this->Volume->GetOrigin(), 3);
