@@ -1,5 +1,6 @@
 #include "vtkMCXMetaImageReader.h"
 
+#include "mcxHeaderCheck.h"
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -133,9 +134,16 @@ std::string vtkMCXMetaImageReader::Place()
 int vtkMCXMetaImageReader::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  std::string problem = mcxio::RunReaderStage(
-    this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
-    [] { return std::string(); });
+  std::string problem = this->CheckHeader
+    ? mcxio::DescribeHeaderProblem(this->FileName, &mcxio::CheckMetaImageHeader)
+    : std::string();
+  if (problem.empty())
+  {
+    problem = mcxio::RunReaderStage(
+      this,
+      [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+      [] { return std::string(); });
+  }
   if (problem.empty())
   {
     problem = this->Place();
@@ -164,5 +172,6 @@ int vtkMCXMetaImageReader::RequestData(
 void vtkMCXMetaImageReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "CheckHeader: " << this->CheckHeader << "\n";
   os << indent << "Failed (last information request): " << this->Failed << "\n";
 }

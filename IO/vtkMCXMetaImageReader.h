@@ -13,7 +13,8 @@
  * plastimatch do, ignored: writers use it in both senses (ITK writes "RAI"
  * for the identity, others "LPS" for the same matrix), so it says nothing
  * the matrix does not. A matrix that is not finite or spans no volume, and
- * a non-finite or far origin, are errors. An error is one vtkErrorMacro
+ * a non-finite or far origin, are errors. The header is checked against the
+ * file first (CheckHeader). An error is one vtkErrorMacro
  * line naming the file and leaves an empty output.
  */
 #ifndef vtkMCXMetaImageReader_h
@@ -29,6 +30,19 @@ public:
   vtkTypeMacro(vtkMCXMetaImageReader, vtkMetaImageReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  ///@{
+  /**
+   * Whether RequestInformation checks the header against the file (CheckMetaImageHeader in
+   * mcxHeaderCheck.h: sizes, type, the bytes the data hold) before the
+   * superclass trusts it (default: on). A failed check is one vtkErrorMacro
+   * line, the text mcxray prints, and an empty output. vtkMCXVolumeReader
+   * turns it off: it checked the header itself.
+   */
+  vtkSetMacro(CheckHeader, bool);
+  vtkGetMacro(CheckHeader, bool);
+  vtkBooleanMacro(CheckHeader, bool);
+  ///@}
+
 protected:
   vtkMCXMetaImageReader() = default;
   ~vtkMCXMetaImageReader() override = default;
@@ -43,6 +57,7 @@ private:
   // Reads the header's placement into the Data* members; "" or the reason.
   std::string Place();
 
+  bool CheckHeader = true;
   bool Failed = false; // the last RequestInformation reported an error
 };
 

@@ -1,5 +1,7 @@
 #include "vtkMCXNIFTIReader.h"
 
+#include "mcxHeaderCheck.h"
+
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
@@ -10,6 +12,7 @@
 #include "vtkInformationVector.h"
 #include "vtkMCXFirstErrorObserver.h"
 #include "vtkMCXPatientSpace.h"
+#include "vtkMCXReaderErrorsPrivate.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkObjectFactory.h"
@@ -111,6 +114,10 @@ int vtkMCXNIFTIReader::RequestInformation(
   vtkImageData::GetData(outInfo)->Initialize(); // no stale volume after a failure
   const std::string path = this->FileName ? this->FileName : "";
   std::string problem = path.empty() ? "no FileName is set" : std::string();
+  if (problem.empty() && this->CheckHeader)
+  {
+    problem = mcxio::DescribeHeaderProblem(this->FileName, &mcxio::CheckNiftiHeader);
+  }
   if (problem.empty())
   {
     this->Reader->SetFileName(path.c_str());
@@ -207,6 +214,7 @@ void vtkMCXNIFTIReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "Reader: " << this->Reader.GetPointer() << "\n";
+  os << indent << "CheckHeader: " << this->CheckHeader << "\n";
   os << indent << "Failed (last information request): " << this->Failed << "\n";
   os << indent << "Origin (LPS): " << this->Origin[0] << " " << this->Origin[1] << " "
      << this->Origin[2] << "\n";

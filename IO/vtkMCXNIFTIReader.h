@@ -13,7 +13,9 @@
  *   direction matrix; a form that places no volume is an error;
  * - values = scl_slope x stored + scl_inter (float64), unless scl_slope is 0
  *   (no scaling, as NIfTI-1 says) or the pair is 1 and 0.
- * An error is one vtkErrorMacro line (the wrapped reader's own reports are
+ * The header is checked against the file first (CheckHeader: a negative
+ * dimension or data shorter than the header claims is an error before VTK's
+ * reader allocates). An error is one vtkErrorMacro line (the wrapped reader's own reports are
  * folded into it) and leaves an empty output.
  */
 #ifndef vtkMCXNIFTIReader_h
@@ -43,6 +45,19 @@ public:
   /** 1 if the file name ends in .nii or .nii.gz (what ParaView asks a reader). */
   int CanReadFile(const char* name);
 
+  ///@{
+  /**
+   * Whether RequestInformation checks the header against the file (CheckNiftiHeader in
+   * mcxHeaderCheck.h: sizes, type, the bytes the data hold) before the
+   * superclass trusts it (default: on). A failed check is one vtkErrorMacro
+   * line, the text mcxray prints, and an empty output. vtkMCXVolumeReader
+   * turns it off: it checked the header itself.
+   */
+  vtkSetMacro(CheckHeader, bool);
+  vtkGetMacro(CheckHeader, bool);
+  vtkBooleanMacro(CheckHeader, bool);
+  ///@}
+
 protected:
   vtkMCXNIFTIReader();
   ~vtkMCXNIFTIReader() override;
@@ -65,6 +80,7 @@ private:
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 }; // LPS
 
   vtkNew<vtkNIFTIImageReader> Reader;
+  bool CheckHeader = true;
   bool Failed = false; // the last RequestInformation reported an error
 };
 

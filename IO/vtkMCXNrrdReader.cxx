@@ -1,5 +1,7 @@
 #include "vtkMCXNrrdReader.h"
 
+#include "mcxHeaderCheck.h"
+
 #include "vtkCharArray.h"
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -412,9 +414,16 @@ int vtkMCXNrrdReader::RequestInformation(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->PlacementProblem.clear();
-  std::string problem = mcxio::RunReaderStage(
-    this, [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
-    [this] { return this->PlacementProblem; });
+  std::string problem = this->CheckHeader
+    ? mcxio::DescribeHeaderProblem(this->FileName, &mcxio::CheckNrrdHeader)
+    : std::string();
+  if (problem.empty())
+  {
+    problem = mcxio::RunReaderStage(
+      this,
+      [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+      [this] { return this->PlacementProblem; });
+  }
   if (problem.empty() && this->Encoding == ENCODING_RAW)
   {
     problem = mcxio::DescribeShortRawData(this->DataFileNames(),
@@ -444,6 +453,7 @@ int vtkMCXNrrdReader::RequestData(
 void vtkMCXNrrdReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "CheckHeader: " << this->CheckHeader << "\n";
   os << indent << "Failed (last information request): " << this->Failed << "\n";
   os << indent << "PlacementProblem: " << this->PlacementProblem << "\n";
 }

@@ -22,7 +22,8 @@
  * vtkNrrdReader guesses), whatever order the fields come in; 2 or 3 spatial
  * axes; a non-spatial axis after them is an error. Raw data shorter than
  * the header claims is an error before the read (VTK's reader only warns
- * and leaves zeros). An error is one vtkErrorMacro
+ * and leaves zeros); the whole header is checked against the file before
+ * VTK's reader parses it (CheckHeader). An error is one vtkErrorMacro
  * line naming the file and leaves an empty output.
  */
 #ifndef vtkMCXNrrdReader_h
@@ -51,6 +52,19 @@ public:
   static std::string PlaceHeader(const std::string& header, const int extent[6],
     const double vtkSpacing[3], double origin[3], double spacing[3], double direction[9]);
 
+  ///@{
+  /**
+   * Whether RequestInformation checks the header against the file (CheckNrrdHeader in
+   * mcxHeaderCheck.h: sizes, type, the bytes the data hold) before the
+   * superclass trusts it (default: on). A failed check is one vtkErrorMacro
+   * line, the text mcxray prints, and an empty output. vtkMCXVolumeReader
+   * turns it off: it checked the header itself.
+   */
+  vtkSetMacro(CheckHeader, bool);
+  vtkGetMacro(CheckHeader, bool);
+  vtkBooleanMacro(CheckHeader, bool);
+  ///@}
+
 protected:
   vtkMCXNrrdReader();
   ~vtkMCXNrrdReader() override = default;
@@ -73,6 +87,7 @@ private:
   std::vector<std::string> DataFileNames() const;
   unsigned long long DataBytes() const;
 
+  bool CheckHeader = true;
   std::string PlacementProblem; // from the last ReadHeader
   bool Failed = false;          // the last RequestInformation reported an error
 };

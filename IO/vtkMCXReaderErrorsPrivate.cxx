@@ -126,6 +126,17 @@ bool ReadPlaced(vtkAlgorithm* reader, vtkInformationVector* outputVector, const 
   return true;
 }
 
+std::string DescribeHeaderProblem(const char* path, HeaderCheck check)
+{
+  if (!path || !*path || !vtksys::SystemTools::PathExists(path))
+  {
+    return std::string();
+  }
+  unsigned long long claimed = 0;
+  std::string problem;
+  return check(path, claimed, problem) ? std::string() : problem;
+}
+
 std::string DescribeShortRawData(
   const std::vector<std::string>& files, unsigned long long offset, unsigned long long total)
 {

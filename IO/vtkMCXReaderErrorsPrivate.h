@@ -50,6 +50,14 @@ bool FinishInformation(vtkAlgorithm* reader, vtkInformationVector* outputVector,
 bool ReadPlaced(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
   bool informationFailed, const std::function<int()>& read, const Placement& placement);
 
+/// A format's header check (mcxHeaderCheck.h: CheckNrrdHeader, ...).
+using HeaderCheck = bool (*)(const std::string&, unsigned long long&, std::string&);
+
+/// "" when path's header passes check (or path names no file: the reader
+/// says so itself), else the reason, the same text mcxray prints after
+/// "cannot read 'path': ". Runs before a VTK reader trusts the header.
+std::string DescribeHeaderProblem(const char* path, HeaderCheck check);
+
 /// "" when the raw (uncompressed) data files hold the bytes a header
 /// claims: files[0] from offset on holds total bytes, or, for several
 /// files, each holds total / files.size() from offset on; else the reason

@@ -84,7 +84,7 @@ void CheckOutputIsNotInput(
   {
     AddDicomFiles(input, 4, inputs);
   }
-  for (const std::string& data : DataFiles(input))
+  for (const std::string& data : mcxio::DataFiles(input))
   {
     inputs.push_back(data);
   }

@@ -1,5 +1,6 @@
 #include "mcxRenderCommand.h"
 
+#include "mcxBundledVolume.h"
 #include "mcxCameraSpec.h"
 #include "mcxContainedReader.h"
 #include "mcxErrorCapture.h"
@@ -12,7 +13,6 @@
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxTransferFunctionSpec.h"
-#include "mcxVolumeReader.h"
 #include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
@@ -288,7 +288,7 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
   const auto start = std::chrono::steady_clock::now();
   std::string error;
   vtkSmartPointer<vtkImageData> volume =
-    ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
+    mcxio::ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
   if (!volume)
   {
     if (!IsFirstProcess())

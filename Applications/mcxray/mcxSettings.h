@@ -51,10 +51,11 @@ struct Settings
 
 /// The reader's limits the options set: --read-timeout and --memory-limit
 /// (else the machine's physical memory).
-inline ReadLimits ReadLimitsOf(const Settings& settings)
+inline mcxio::ReadLimits ReadLimitsOf(const Settings& settings)
 {
-  ReadLimits limits;
+  mcxio::ReadLimits limits;
   limits.Seconds = settings.ReadTimeout;
+  limits.SecondsName = "--read-timeout";
   // Both at most 2^62 bytes (--memory-limit 2^60), so the cast is exact.
   limits.MemoryBytes = static_cast<unsigned long long>(
     settings.MemoryLimit > 0 ? settings.MemoryLimit : mcx::MemoryBudget());
@@ -62,10 +63,12 @@ inline ReadLimits ReadLimitsOf(const Settings& settings)
 }
 
 /// How the options ask the input to be read (--series).
-inline VolumeReadOptions ReadOptionsOf(const Settings& settings)
+inline mcxio::VolumeReadOptions ReadOptionsOf(const Settings& settings)
 {
-  VolumeReadOptions options;
+  mcxio::VolumeReadOptions options;
   options.DicomSeries = settings.DicomSeries;
+  options.MemoryBudgetName = "--memory-limit";
+  options.DicomSeriesName = "--series N";
   return options;
 }
 

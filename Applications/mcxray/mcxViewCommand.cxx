@@ -1,5 +1,6 @@
 #include "mcxViewCommand.h"
 
+#include "mcxBundledVolume.h"
 #include "mcxContainedReader.h"
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
@@ -10,7 +11,6 @@
 #include "mcxProgressBar.h"
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
-#include "mcxVolumeReader.h"
 #include "mcxXRayViewer.h"
 #include "vtkMCXMemoryCheckPrivate.h"
 
@@ -221,7 +221,7 @@ int RunView(int argc, char* argv[])
   std::string error;
   mcx::SetMemoryBudget(settings.MemoryLimit);
   vtkSmartPointer<vtkImageData> volume =
-    ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
+    mcxio::ReadVolumeContained(input, ReadOptionsOf(settings), ReadLimitsOf(settings), error);
   if (!volume)
   {
     Fail(error);

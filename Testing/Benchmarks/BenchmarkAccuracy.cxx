@@ -266,7 +266,7 @@ int main(int argc, char* argv[])
   {
     std::string error;
     vtkSmartPointer<vtkImageData> head =
-      mcxapp::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
+      mcxio::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
     double range[2] = { 0, 1 };
     vtkSmartPointer<vtkPiecewiseFunction> tf =
       mcxapp::MakeTransferFunction("1000:0,1500:1", range, error);
@@ -321,7 +321,7 @@ int main(int argc, char* argv[])
     reach << "deposit,reach,samples,seconds,true_error,error_x_sqrt_seconds\n";
     std::string error;
     vtkSmartPointer<vtkImageData> head =
-      mcxapp::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
+      mcxio::ReadVolume(std::string(MCXRAY_TEST_DATA_DIR) + "/ct_head_headsq.vti", error);
     double range[2] = { 0, 1 };
     vtkSmartPointer<vtkPiecewiseFunction> tf =
       mcxapp::MakeTransferFunction("1000:0,1500:1", range, error);

@@ -154,7 +154,7 @@ bool ParseArguments(int argc, char* argv[], const char* program, const std::stri
 vtkSmartPointer<vtkImageData> ReadInStoredFrame(const std::string& path, const std::string& name)
 {
   std::string error;
-  vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
+  vtkSmartPointer<vtkImageData> volume = mcxio::ReadVolume(path, error);
   if (!volume)
   {
     std::cerr << "skipping " << name << ": " << error << std::endl;

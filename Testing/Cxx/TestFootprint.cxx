@@ -155,7 +155,7 @@ struct Scene
 vtkSmartPointer<vtkImageData> Read(const std::string& path)
 {
   std::string error;
-  vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
+  vtkSmartPointer<vtkImageData> volume = mcxio::ReadVolume(path, error);
   EXPECT_TRUE(error.empty()) << error;
   return volume;
 }

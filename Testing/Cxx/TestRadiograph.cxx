@@ -403,7 +403,7 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   MCXTEST_NEED_FILE(path);
   MCXTEST_NEED(std::system("plastimatch --version > /dev/null 2>&1") == 0, "plastimatch");
   std::string error;
-  vtkSmartPointer<vtkImageData> volume = mcxapp::ReadVolume(path, error);
+  vtkSmartPointer<vtkImageData> volume = mcxio::ReadVolume(path, error);
   ASSERT_TRUE(volume) << error;
   const std::string work =
     vtksys::SystemTools::GetCurrentWorkingDirectory() + "/radiograph-plastimatch";

@@ -1,4 +1,4 @@
-// The command line's readers (mcxapp::ReadVolume) against the files
+// The checked readers (mcxio::ReadVolume, IO/) against the files
 // themselves, read a second way: NIfTI headers written here with known
 // sform, qform and scl_slope/scl_inter, the shared NIfTI files parsed by hand
 // (zlib), and the shared DICOM series parsed by hand. Each stored voxel must
@@ -270,7 +270,7 @@ void NiftiVoxel(const Nifti& h, std::size_t v, int& i, int& j, int& k)
 vtkSmartPointer<vtkImageData> ReadOurs(const std::string& path)
 {
   std::string error;
-  auto volume = mcxapp::ReadVolume(path, error);
+  auto volume = mcxio::ReadVolume(path, error);
   EXPECT_TRUE(volume) << error;
   return volume;
 }

@@ -26,12 +26,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   unsigned long long claimed = 0;
   std::string error;
-  const bool valid = mcxapp::CheckVolumeHeader(path, claimed, error);
+  const bool valid = mcxio::CheckVolumeHeader(path, claimed, error);
   if (!valid && error.empty())
   {
     __builtin_trap(); // a refusal must say why (Fail makes it one line)
   }
-  mcxapp::DataFiles(path);
+  mcxio::DataFiles(path);
   std::remove(path.c_str());
   return 0;
 }

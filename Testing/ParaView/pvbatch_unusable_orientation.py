@@ -2,8 +2,11 @@
 honoured (a NaN space direction, a zero TransformMatrix row, an origin of
 1e308, a space with no place in patient space), opened with File > Open's
 reader (the plugin's), is one error of the reader naming the file and an
-empty output: never an axis-aligned volume, never a crash. The driver
-(unusable_orientation.sh) counts the error lines.
+empty output: never an axis-aligned volume, never a crash. So is a header
+that claims far more voxels than its file holds: the readers check it
+against the file before VTK's reader trusts it, with mcxray's message
+("truncated: the header claims ..."). The driver (unusable_orientation.sh)
+counts the error lines.
 
     pvbatch pvbatch_unusable_orientation.py PLUGIN
 """
@@ -38,6 +41,10 @@ cases = {
     "far-origin.nrrd": nrrd("RAS", "(1,0,0) (0,1,0) (0,0,1)", "(1e308,0,0)"),
     "zero-row.mha": metaimage("0 0 0 0 1 0 0 0 1", "0 0 0"),
     "far-offset.mha": metaimage("1 0 0 0 1 0 0 0 1", "1e308 0 0"),
+    # Lying headers: 400 x 500 x 600 voxels claimed, 4 x 5 x 6 held.
+    "lying-sizes.nrrd": nrrd("LPS", "(1,0,0) (0,1,0) (0,0,1)").replace(b"sizes: 4 5 6", b"sizes: 400 500 600"),
+    "lying-sizes.mha": metaimage("1 0 0 0 1 0 0 0 1", "0 0 0").replace(b"DimSize = 4 5 6",
+                                                                         b"DimSize = 400 500 600"),
 }
 for name, header in cases.items():
     path = os.path.join(work, name)
@@ -53,4 +60,4 @@ for name, header in cases.items():
 shutil.rmtree(work)
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
-print("%d files with unusable orientations read as empty outputs" % len(cases))
+print("%d files with unusable orientations or lying headers read as empty outputs" % len(cases))

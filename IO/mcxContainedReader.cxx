@@ -1,3 +1,6 @@
+// The contained read (mcxContainedReader.h): the child that reads under an
+// address-space limit and hands the volume over through a memfd, and the
+// parent that waits within the time limit and takes the volume over.
 #include "mcxContainedReader.h"
 
 #include "mcxByteSize.h"
@@ -29,7 +32,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace mcxapp
+namespace mcxio
 {
 
 namespace
@@ -42,7 +45,8 @@ struct Handover
   std::int32_t Failed = 1; // 0: the volume follows; NotHandedOver: read it in the parent
   std::int32_t ScalarType = 0;
   std::int32_t Components = 0;
-  std::int32_t Extent[6] = { 0, -1, 0, -1, 0, -1 }; // not only the size: the start places the volume
+  // Not only the size: the start places the volume.
+  std::int32_t Extent[6] = { 0, -1, 0, -1, 0, -1 };
   double Spacing[3] = { 1, 1, 1 };
   double Origin[3] = { 0, 0, 0 };
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
@@ -80,7 +84,8 @@ bool WriteAll(int fd, const void* data, std::uint64_t bytes)
   const auto* p = static_cast<const char*>(data);
   while (bytes > 0)
   {
-    const ssize_t n = ::write(fd, p, static_cast<std::size_t>(std::min<std::uint64_t>(bytes, 1 << 30)));
+    const ssize_t n =
+      ::write(fd, p, static_cast<std::size_t>(std::min<std::uint64_t>(bytes, 1 << 30)));
     if (n < 0 && errno == EINTR)
     {
       continue;
@@ -183,21 +188,27 @@ std::string SignalName(int signal)
 {
   switch (signal)
   {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGABRT: return "SIGABRT";
-    case SIGILL: return "SIGILL";
-    case SIGKILL: return "SIGKILL";
-    default: return "signal " + std::to_string(signal);
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGABRT:
+      return "SIGABRT";
+    case SIGILL:
+      return "SIGILL";
+    case SIGKILL:
+      return "SIGKILL";
+    default:
+      return "signal " + std::to_string(signal);
   }
 }
 
 // Waits for the child at most `seconds`; false (child killed) past it.
 bool WaitFor(pid_t child, double seconds, int& status)
 {
-  const auto deadline =
-    std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   std::chrono::milliseconds pause(1);
   for (;;)
   {
@@ -217,9 +228,54 @@ bool WaitFor(pid_t child, double seconds, int& status)
   }
 }
 
+// The handed-over volume (the header's voxels, consistent with its data
+// bytes) copied out of the shared file; null with error set when its sizes
+// disagree, it exceeds the budget or cannot be allocated.
+vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header, std::uint64_t voxels,
+  const std::string& path, const ReadLimits& limits, const std::string& memoryBudgetName,
+  std::string& error)
+{
+  auto scalars =
+    vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
+  const std::uint64_t values = voxels * static_cast<std::uint64_t>(header.Components);
+  if (!scalars ||
+    values * static_cast<std::uint64_t>(scalars->GetDataTypeSize()) != header.DataBytes)
+  {
+    error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
+    return nullptr;
+  }
+  if (limits.MemoryBytes > 0 && header.DataBytes > limits.MemoryBytes)
+  {
+    error = "cannot read '" + path + "': the volume needs " +
+      mcx::DescribeBytes(double(header.DataBytes)) + ", more than the memory budget of " +
+      mcx::DescribeBytes(double(limits.MemoryBytes)) + " (" + memoryBudgetName + ")";
+    return nullptr;
+  }
+  scalars->SetNumberOfComponents(header.Components);
+  if (!scalars->Allocate(static_cast<vtkIdType>(values)))
+  {
+    error =
+      "cannot read '" + path + "': cannot allocate " + mcx::DescribeBytes(double(header.DataBytes));
+    return nullptr;
+  }
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
+  std::memcpy(scalars->GetVoidPointer(0), bytes + header.DataOffset,
+    static_cast<std::size_t>(header.DataBytes));
+  scalars->SetName(std::string(
+    bytes + sizeof(header) + header.MessageBytes, static_cast<std::size_t>(header.NameBytes))
+                     .c_str());
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->SetExtent(header.Extent);
+  volume->SetSpacing(header.Spacing);
+  volume->SetOrigin(header.Origin);
+  volume->SetDirectionMatrix(header.Direction);
+  volume->GetPointData()->SetScalars(scalars);
+  return volume;
+}
+
 // The volume from the shared file, its sizes checked against each other.
 vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const ReadLimits& limits,
-  bool& readHere, std::string& error)
+  const std::string& memoryBudgetName, bool& readHere, std::string& error)
 {
   readHere = false;
   struct stat info;
@@ -232,7 +288,8 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
   void* mapped = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
   if (mapped == MAP_FAILED)
   {
-    error = "cannot read '" + path + "': cannot map the volume (" + mcx::DescribeBytes(double(size)) + ")";
+    error = "cannot read '" + path + "': cannot map the volume (" +
+      mcx::DescribeBytes(double(size)) + ")";
     return nullptr;
   }
   const auto* bytes = static_cast<const char*>(mapped);
@@ -246,8 +303,7 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
       static_cast<std::int64_t>(header.Extent[2 * a + 1]) - header.Extent[2 * a] + 1;
     voxels *= static_cast<std::uint64_t>(std::max<std::int64_t>(side, 0));
   }
-  if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 ||
-    header.MessageBytes > size - sizeof(header))
+  if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 || header.MessageBytes > size - sizeof(header))
   {
     error = "cannot read '" + path + "': the reader ended without a result";
   }
@@ -270,40 +326,7 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
   }
   else
   {
-    auto scalars = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
-    const std::uint64_t values = voxels * static_cast<std::uint64_t>(header.Components);
-    if (!scalars || values * static_cast<std::uint64_t>(scalars->GetDataTypeSize()) != header.DataBytes)
-    {
-      error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
-    }
-    else if (limits.MemoryBytes > 0 && header.DataBytes > limits.MemoryBytes)
-    {
-      error = "cannot read '" + path + "': the volume needs " + mcx::DescribeBytes(double(header.DataBytes)) +
-        ", more than the memory budget of " + mcx::DescribeBytes(double(limits.MemoryBytes)) +
-        " (--memory-limit)";
-    }
-    else
-    {
-      scalars->SetNumberOfComponents(header.Components);
-      if (!scalars->Allocate(static_cast<vtkIdType>(values)))
-      {
-        error = "cannot read '" + path + "': cannot allocate " + mcx::DescribeBytes(double(header.DataBytes));
-      }
-      else
-      {
-        scalars->SetNumberOfTuples(static_cast<vtkIdType>(voxels));
-        std::memcpy(scalars->GetVoidPointer(0), bytes + header.DataOffset,
-          static_cast<std::size_t>(header.DataBytes));
-        scalars->SetName(std::string(bytes + sizeof(header) + header.MessageBytes,
-          static_cast<std::size_t>(header.NameBytes)).c_str());
-        volume = vtkSmartPointer<vtkImageData>::New();
-        volume->SetExtent(header.Extent);
-        volume->SetSpacing(header.Spacing);
-        volume->SetOrigin(header.Origin);
-        volume->SetDirectionMatrix(header.Direction);
-        volume->GetPointData()->SetScalars(scalars);
-      }
-    }
+    volume = CopyVolume(bytes, header, voxels, path, limits, memoryBudgetName, error);
   }
   ::munmap(mapped, size);
   return volume;
@@ -354,13 +377,14 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
     std::ostringstream seconds;
     seconds << std::setprecision(3) << limits.Seconds;
     error = "cannot read '" + path + "': the reader did not finish within " + seconds.str() +
-      " s (a corrupt file? --read-timeout sets the limit)";
+      " s (a corrupt file? " + limits.SecondsName + " sets the limit)";
   }
   else if (WIFSIGNALED(status))
   {
     error = "cannot read '" + path + "': the reader crashed (" + SignalName(WTERMSIG(status)) +
       "): the file is corrupt, does not match its header, or needs more memory than the budget" +
-      (limits.MemoryBytes > 0 ? " of " + mcx::DescribeBytes(double(limits.MemoryBytes)) : std::string());
+      (limits.MemoryBytes > 0 ? " of " + mcx::DescribeBytes(double(limits.MemoryBytes))
+                              : std::string());
   }
   else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
   {
@@ -373,7 +397,7 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   else
   {
     bool readHere = false;
-    volume = TakeOver(fd, path, limits, readHere, error);
+    volume = TakeOver(fd, path, limits, options.MemoryBudgetName, readHere, error);
     if (readHere)
     {
       VolumeReadOptions here = options;
@@ -385,4 +409,4 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   return volume;
 }
 
-} // namespace mcxapp
+} // namespace mcxio

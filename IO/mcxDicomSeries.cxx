@@ -1,27 +1,37 @@
+// The DICOM series of the checked read (mcxDicomSeries.h).
 #include "mcxDicomSeries.h"
 
 #include "vtkImageData.h"
+#ifdef MCXRAY_IO_DICOM
 #include "vtkMCXDICOMSeriesReader.h"
+#endif
 #include "vtkMCXFirstErrorObserver.h"
 #include "vtkNew.h"
 
-namespace mcxapp
+namespace mcxio
 {
 
+#ifndef MCXRAY_IO_DICOM
 vtkSmartPointer<vtkImageData> ReadDicomSeries(
-  const std::string& folder, int series, std::string& error)
+  const std::string& folder, int, const std::string&, std::string& error)
+{
+  error = "cannot read '" + folder + "': this build reads no DICOM series (it has no vtk-dicom)";
+  return nullptr;
+}
+#else
+vtkSmartPointer<vtkImageData> ReadDicomSeries(
+  const std::string& folder, int series, const std::string& seriesName, std::string& error)
 {
   vtkNew<vtkMCXDICOMSeriesReader> reader;
   reader->SetDirectoryName(folder.c_str());
-  reader->SetSeriesIndex(series - 1); // --series counts from 1; 0 (none) is -1
+  reader->SetSeriesIndex(series - 1);    // counted from 1; 0 (none) is -1
   vtkNew<vtkMCXFirstErrorObserver> read; // the reader's report, said once below
   read->ObserveAlgorithm(reader);
   reader->Update();
   read->StopObserving();
   if (reader->GetErrorCode() == vtkMCXDICOMSeriesReader::SeriesChoiceError)
   {
-    // The reader's list counts from 0 and names its setter; ours counts as
-    // --series does.
+    // The reader's list counts from 0 and names its setter; ours counts from 1.
     const int count = reader->GetNumberOfSeries();
     std::string list;
     for (int s = 0; s < count; ++s)
@@ -30,7 +40,7 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
     }
     error = "'" + folder + "' holds " + std::to_string(count) + " DICOM series" +
       (series > count ? "; there is no series " + std::to_string(series) : std::string()) +
-      "; choose one with --series N: " + list;
+      "; choose one with " + seriesName + ": " + list;
     return nullptr;
   }
   if (!read->GetErrorText().empty())
@@ -42,5 +52,6 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
   volume->ShallowCopy(reader->GetOutput());
   return volume;
 }
+#endif
 
-} // namespace mcxapp
+} // namespace mcxio

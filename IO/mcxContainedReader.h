@@ -13,23 +13,27 @@
 
 class vtkImageData;
 
-namespace mcxapp
+namespace mcxio
 {
 
 struct ReadLimits
 {
   double Seconds = 300.0;             // the reader is stopped after this long
   unsigned long long MemoryBytes = 0; // the child's address-space limit; 0: none
+  // How the caller's user sets Seconds, named in the message of a reader
+  // stopped by it (vtkMCXVolumeReader's setter; the command line's option).
+  std::string SecondsName = "SetTimeLimit";
 };
 
 /// ReadVolume (checked headers first, then the VTK reader) in a child
-/// process within limits (options.MemoryBudget is limits.MemoryBytes): the
+/// process within limits (options.MemoryBudget is limits.MemoryBytes; POSIX
+/// only: fork, memfd_create, setrlimit): the
 /// scalars with their geometry (spacing, origin, direction), or null with
 /// error set to one line that says what went wrong (the reader's own
 /// message, its signal, or the time limit).
 vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   const VolumeReadOptions& options, const ReadLimits& limits, std::string& error);
 
-} // namespace mcxapp
+} // namespace mcxio
 
 #endif

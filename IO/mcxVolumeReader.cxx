@@ -1,0 +1,174 @@
+// The format dispatch of the checked read (mcxVolumeReader.h): header check,
+// memory budget, then the project's or VTK's reader by extension, its first
+// error folded into one line.
+#include "mcxVolumeReader.h"
+
+#include "mcxByteSize.h"
+#include "mcxDicomSeries.h"
+#include "mcxHeaderCheck.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkImageReader2.h"
+#include "vtkMCXFirstErrorObserver.h"
+#include "vtkMCXMetaImageReader.h"
+#include "vtkMCXNIFTIReader.h"
+#include "vtkMCXNrrdReader.h"
+#include "vtkMCXPatientSpace.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkSLCReader.h"
+#include "vtkStructuredPointsReader.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <cctype>
+
+namespace mcxio
+{
+
+namespace
+{
+bool EndsWith(std::string text, const std::string& suffix)
+{
+  std::transform(
+    text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text.size() >= suffix.size() &&
+    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The reader path's extension names, set to read it; null for an unknown
+// extension. The project's readers leave their header check to the caller
+// (ReadVolume checked it already: a gzipped NIfTI is not decompressed twice).
+vtkSmartPointer<vtkAlgorithm> ReaderFor(const std::string& path)
+{
+  if (EndsWith(path, ".vti"))
+  {
+    auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    xml->SetFileName(path.c_str());
+    return xml;
+  }
+  if (EndsWith(path, ".mha") || EndsWith(path, ".mhd"))
+  {
+    auto meta = vtkSmartPointer<vtkMCXMetaImageReader>::New(); // oriented in LPS
+    meta->SetFileName(path.c_str());
+    meta->CheckHeaderOff();
+    return meta;
+  }
+  if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
+  {
+    auto nifti = vtkSmartPointer<vtkMCXNIFTIReader>::New(); // sform/qform in LPS, scaling applied
+    nifti->SetFileName(path.c_str());
+    nifti->CheckHeaderOff();
+    return nifti;
+  }
+  if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
+  {
+    auto nrrd = vtkSmartPointer<vtkMCXNrrdReader>::New(); // its space, oriented in LPS
+    nrrd->SetFileName(path.c_str());
+    nrrd->CheckHeaderOff();
+    return nrrd;
+  }
+  if (EndsWith(path, ".vtk"))
+  {
+    auto legacy = vtkSmartPointer<vtkStructuredPointsReader>::New();
+    legacy->SetFileName(path.c_str());
+    return legacy;
+  }
+  if (EndsWith(path, ".slc"))
+  {
+    auto slc = vtkSmartPointer<vtkSLCReader>::New();
+    slc->SetFileName(path.c_str());
+    return slc;
+  }
+  return nullptr;
+}
+
+// Runs reader (ReaderFor(path)): its volume, or null with error set to its
+// first report, said once.
+vtkSmartPointer<vtkImageData> ReadWith(
+  vtkAlgorithm* reader, const std::string& path, std::string& error)
+{
+  vtkNew<vtkMCXFirstErrorObserver> capture; // the reader's report, said once below
+  capture->ObserveAlgorithm(reader);
+  reader->Update();
+  capture->StopObserving();
+  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  const std::string& message = capture->GetErrorText();
+  if (!message.empty() || !image || image->GetNumberOfPoints() == 0 ||
+    !image->GetPointData()->GetScalars())
+  {
+    // The project's readers name the file themselves: said once.
+    const std::string own = "cannot read '" + path + "': ";
+    error = message.compare(0, own.size(), own) == 0
+      ? message
+      : own + (message.empty() ? std::string("no volume data") : message);
+    return nullptr;
+  }
+  const std::string placement = vtkMCXPatientSpace::DescribeUnusablePlacement(image);
+  if (!placement.empty())
+  {
+    error = "cannot read '" + path + "': the file's placement cannot be used: " + placement;
+    return nullptr;
+  }
+  auto volume = vtkSmartPointer<vtkImageData>::New();
+  volume->ShallowCopy(image);
+  return volume;
+}
+}
+
+vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error)
+{
+  return ReadVolume(path, VolumeReadOptions(), error);
+}
+
+vtkSmartPointer<vtkImageData> ReadVolume(
+  const std::string& path, const VolumeReadOptions& options, std::string& error)
+{
+  const unsigned long long memoryBudget = options.MemoryBudget;
+  if (!vtksys::SystemTools::FileExists(path))
+  {
+    error = "cannot read '" + path + "': no such file or directory";
+    return nullptr;
+  }
+  unsigned long long claimed = 0;
+  std::string problem;
+  if (!CheckVolumeHeader(path, claimed, problem))
+  {
+    error = "cannot read '" + path + "': " + problem;
+    return nullptr;
+  }
+  if (memoryBudget > 0 && claimed > memoryBudget)
+  {
+    error = "cannot read '" + path + "': its voxels need " + mcx::DescribeBytes(double(claimed)) +
+      ", more than the memory budget of " + mcx::DescribeBytes(double(memoryBudget)) + " (" +
+      options.MemoryBudgetName + ")";
+    return nullptr;
+  }
+  if (vtksys::SystemTools::FileIsDirectory(path))
+  {
+    auto series = ReadDicomSeries(path, options.DicomSeries, options.DicomSeriesName, error);
+    const std::string placement =
+      series ? vtkMCXPatientSpace::DescribeUnusablePlacement(series) : std::string();
+    if (!placement.empty())
+    {
+      error = "cannot read '" + path + "': the series' placement cannot be used: " + placement;
+      return nullptr;
+    }
+    return series;
+  }
+  vtkSmartPointer<vtkAlgorithm> reader = ReaderFor(path);
+  if (!reader)
+  {
+    error = "cannot read '" + path +
+      "': unknown format (expected .vti, .mha, .mhd, .nii, .nii.gz, .nrrd, .nhdr, .vtk, .slc or a "
+      "DICOM directory)";
+    return nullptr;
+  }
+  return ReadWith(reader, path, error);
+}
+
+} // namespace mcxio
