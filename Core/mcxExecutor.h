@@ -10,7 +10,7 @@
 //     range-for over the container.
 //
 // The VTK modules hand in mcx::SMPExecutor (vtkSMPTools, in
-// Filters/vtkMCXSMPExecutorPrivate.h); SerialExecutor runs everything in the
+// Filters/vtkMCXSMPExecutor.h); SerialExecutor runs everything in the
 // calling thread. Every kernel that takes an executor gives the same result
 // for any executor and any number of threads.
 #ifndef mcxExecutor_h

@@ -1,9 +1,9 @@
 #include "vtkMCXAggregateIndex.h"
 
 #include "vtkMCXDensityIndex.h"
-#include "vtkMCXDistributedPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXDistributed.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"

@@ -1,9 +1,9 @@
 #include "vtkMCXCloudProjectionPrivate.h"
 
 #include "vtkMCXBatchedForPrivate.h"
-#include "vtkMCXCloudDepositPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXCloudDeposit.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXProjectionPrivate.h"
 #include "vtkMCXTypes.h"
 

@@ -2,11 +2,11 @@
 
 #include "mcxCountingSort.h"
 #include "mcxFixedPoint.h"
-#include "vtkMCXAgreeingExecutivePrivate.h"
-#include "vtkMCXDistributedPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
-#include "vtkMCXSMPExecutorPrivate.h"
+#include "vtkMCXAgreeingExecutive.h"
+#include "vtkMCXDistributed.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
+#include "vtkMCXSMPExecutor.h"
 
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"

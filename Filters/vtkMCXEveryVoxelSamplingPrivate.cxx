@@ -3,10 +3,10 @@
 #include "mcxEveryVoxelOrder.h"
 #include "mcxEveryVoxelSource.h"
 #include "vtkMCXBatchedForPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXPointSampler.h"
-#include "vtkMCXSMPExecutorPrivate.h"
+#include "vtkMCXSMPExecutor.h"
 #include "vtkMCXSampledCloudPrivate.h"
 
 #include "vtkDataArray.h"

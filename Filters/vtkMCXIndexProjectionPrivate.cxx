@@ -2,8 +2,8 @@
 
 #include "mcxEveryVoxelSource.h"
 #include "vtkMCXBatchedForPrivate.h"
-#include "vtkMCXDistributedPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXDistributed.h"
+#include "vtkMCXIndexView.h"
 #include "vtkMCXProjectionPrivate.h"
 #include "vtkMCXProjector.h"
 

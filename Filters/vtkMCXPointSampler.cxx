@@ -8,8 +8,8 @@
 #include "mcxSampleGenerator.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXEveryVoxelSamplingPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXSampledCloudPrivate.h"
 #include "vtkMCXViewOrderedSamplingPrivate.h"
 

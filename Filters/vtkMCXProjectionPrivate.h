@@ -11,7 +11,7 @@
 #include "mcxErrorEstimate.h"
 #include "mcxFixedPoint.h"
 #include "mcxSampleAccumulator.h"
-#include "vtkMCXSMPExecutorPrivate.h"
+#include "vtkMCXSMPExecutor.h"
 
 #include <cmath>
 #include <cstdint>

@@ -7,9 +7,9 @@
 
 #include "mcxSampleGenerator.h"
 #include "vtkMCXCloudProjectionPrivate.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 #include "vtkMCXIndexProjectionPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXIndexView.h"
 #include "vtkMCXProjectionPrivate.h"
 #include "vtkMCXProjectorBaseInternals.h"
 

@@ -2,10 +2,10 @@
 
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleGenerator.h"
-#include "vtkMCXCameraGeometryPrivate.h"
-#include "vtkMCXCloudDepositPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXCameraGeometry.h"
+#include "vtkMCXCloudDeposit.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
 

@@ -2,7 +2,7 @@
 
 #include "mcxRadiographEffects.h"
 #include "vtkMCXProjectorBase.h"
-#include "vtkMCXSMPExecutorPrivate.h"
+#include "vtkMCXSMPExecutor.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"

@@ -3,8 +3,8 @@
 #include "mcxProjectionGeometry.h"
 #include "mcxRayIntegrator.h"
 #include "vtkMCXBatchedForPrivate.h"
-#include "vtkMCXIndexViewPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjectorBaseInternals.h"
 

@@ -1,7 +1,7 @@
 #include "vtkMCXSampledCloudPrivate.h"
 
 #include "mcxProjectionGeometry.h"
-#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXIndexView.h"
 #include "vtkMCXPointSampler.h"
 
 #include "vtkDoubleArray.h"

@@ -3,7 +3,7 @@
 
 #include "mcxHalton.h"
 #include "mcxRadiographEffects.h"
-#include "vtkMCXCloudDepositPrivate.h"
+#include "vtkMCXCloudDeposit.h"
 #include "vtkMCXDensityIndex.h"
 
 #include "vtkAbstractMapper.h"
@@ -16,7 +16,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"
-#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXIndexView.h"
 #include "vtkMCXProjectorBase.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"

@@ -9,7 +9,7 @@
 
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
-#include "vtkMCXSMPExecutorPrivate.h"
+#include "vtkMCXSMPExecutor.h"
 #include "vtkMCXVolumeSamplingPrivate.h"
 #include "vtkMCXXRayDisplayPrivate.h"
 #include "vtkMCXXRayMapper.h"

@@ -13,8 +13,8 @@
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxTransferFunctionSpec.h"
-#include "vtkMCXDistributedPrivate.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXDistributed.h"
+#include "vtkMCXMemoryCheck.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"

@@ -6,7 +6,7 @@
 #include "mcxContainedReader.h"
 #include "mcxImageOutput.h"
 #include "mcxRadiographSettings.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXMemoryCheck.h"
 
 #include <string>
 

@@ -12,7 +12,7 @@
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
 #include "mcxXRayViewer.h"
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXMemoryCheck.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"

@@ -13,7 +13,7 @@
 // generated and deposited, the exact sums added), 2^24 - 1 samples at 256^2,
 // point and footprint deposits, median of 3.
 #include "vtkMCXDensityIndex.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 #include "vtkMCXProjector.h"
 
 #include "vtkCommunicator.h"

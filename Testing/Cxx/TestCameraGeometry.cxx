@@ -5,7 +5,7 @@
 // perspective cameras and square and non-square images, and the pixels our
 // code gives must agree.
 #include "mcxTestHelpers.h"
-#include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXCameraGeometry.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"

@@ -27,7 +27,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkMPIController.h"
 #include "vtkMatrix3x3.h"

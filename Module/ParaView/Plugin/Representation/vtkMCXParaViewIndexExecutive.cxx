@@ -1,7 +1,7 @@
 #include "vtkMCXParaViewIndexExecutive.h"
 
 #include "vtkMCXDensityIndex.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 
 #include "vtkInformation.h"
 #include "vtkObjectFactory.h"

@@ -1,9 +1,9 @@
 #include "vtkMCXXRayRepresentation.h"
 
 #include "vtkMCXAggregateIndex.h"
-#include "vtkMCXAgreeingExecutivePrivate.h"
+#include "vtkMCXAgreeingExecutive.h"
 #include "vtkMCXDensityIndex.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 #include "vtkMCXXRayMapper.h"
 #include "vtkMCXXRayRepresentationExecutive.h"
 

@@ -1,6 +1,6 @@
 #include "vtkMCXXRayRepresentationExecutive.h"
 
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"

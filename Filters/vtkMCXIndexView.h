@@ -1,7 +1,7 @@
 // Read access to the output of vtkMCXDensityIndex for the samplers and
 // projectors, plus the transfer function evaluated per level.
-#ifndef vtkMCXIndexViewPrivate_h
-#define vtkMCXIndexViewPrivate_h
+#ifndef vtkMCXIndexView_h
+#define vtkMCXIndexView_h
 
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxSampleGenerator.h"

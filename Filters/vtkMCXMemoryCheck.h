@@ -4,8 +4,8 @@
 // of aborting the process (std::bad_alloc) or swapping the machine to a
 // halt. The budget is the machine's physical memory unless set (the command
 // line's --memory-limit).
-#ifndef vtkMCXMemoryCheckPrivate_h
-#define vtkMCXMemoryCheckPrivate_h
+#ifndef vtkMCXMemoryCheck_h
+#define vtkMCXMemoryCheck_h
 
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 

@@ -10,8 +10,8 @@
 // own; the plugin's executives for the index and the X-ray representation
 // (Module/ParaView/Plugin/Representation) do the same through
 // UpstreamFailures.
-#ifndef vtkMCXAgreeingExecutivePrivate_h
-#define vtkMCXAgreeingExecutivePrivate_h
+#ifndef vtkMCXAgreeingExecutive_h
+#define vtkMCXAgreeingExecutive_h
 
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "vtkCompositeDataPipeline.h"

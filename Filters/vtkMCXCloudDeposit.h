@@ -1,7 +1,7 @@
 // How a stored cloud asks to be deposited, read from its field data: shared
 // by the off-line projector and the mapper so that both deposit a cloud alike.
-#ifndef vtkMCXCloudDepositPrivate_h
-#define vtkMCXCloudDepositPrivate_h
+#ifndef vtkMCXCloudDeposit_h
+#define vtkMCXCloudDeposit_h
 
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxProjectionGeometry.h"

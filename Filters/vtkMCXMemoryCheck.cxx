@@ -1,4 +1,4 @@
-#include "vtkMCXMemoryCheckPrivate.h"
+#include "vtkMCXMemoryCheck.h"
 
 #include "mcxByteSize.h"
 

@@ -4,8 +4,8 @@
 // image sums, and agreement on failure so that no process waits for one that
 // gave up. Only O(levels) numbers per index and the image sums per
 // projection cross the network; everything else stays with its piece.
-#ifndef vtkMCXDistributedPrivate_h
-#define vtkMCXDistributedPrivate_h
+#ifndef vtkMCXDistributed_h
+#define vtkMCXDistributed_h
 
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxFixedPoint.h"

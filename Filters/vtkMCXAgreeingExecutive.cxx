@@ -1,7 +1,7 @@
-#include "vtkMCXAgreeingExecutivePrivate.h"
+#include "vtkMCXAgreeingExecutive.h"
 
 #include "vtkMCXDensityIndex.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 
 #include "vtkInformation.h"
 #include "vtkInformationIntegerKey.h"

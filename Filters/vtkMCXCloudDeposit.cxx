@@ -1,4 +1,4 @@
-#include "vtkMCXCloudDepositPrivate.h"
+#include "vtkMCXCloudDeposit.h"
 
 #include "vtkMCXPointSampler.h"
 

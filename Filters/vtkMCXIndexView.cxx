@@ -1,7 +1,7 @@
-#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXIndexView.h"
 
 #include "vtkMCXDensityIndex.h"
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 
 #include "mcxProjectionGeometry.h"
 #include "vtkAlgorithm.h"

@@ -1,6 +1,6 @@
-#include "vtkMCXDistributedPrivate.h"
+#include "vtkMCXDistributed.h"
 
-#include "vtkMCXIndexViewPrivate.h"
+#include "vtkMCXIndexView.h"
 
 #include "vtkCommunicator.h"
 #include "vtkDataObject.h"

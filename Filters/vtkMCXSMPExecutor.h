@@ -1,7 +1,7 @@
 // The executor (see Core/mcxExecutor.h) through which the VTK modules hand
 // vtkSMPTools threads to the plain C++ core.
-#ifndef vtkMCXSMPExecutorPrivate_h
-#define vtkMCXSMPExecutorPrivate_h
+#ifndef vtkMCXSMPExecutor_h
+#define vtkMCXSMPExecutor_h
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"

@@ -1,7 +1,7 @@
 // The detector geometry of a vtkCamera, shared by the off-line projectors and
 // the mapper so that both see a camera exactly as VTK's renderer does.
-#ifndef vtkMCXCameraGeometryPrivate_h
-#define vtkMCXCameraGeometryPrivate_h
+#ifndef vtkMCXCameraGeometry_h
+#define vtkMCXCameraGeometry_h
 
 #include "MonteCarloXRayFiltersModule.h" // for the export macro
 #include "mcxProjectionGeometry.h"

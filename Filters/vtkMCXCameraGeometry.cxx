@@ -1,4 +1,4 @@
-#include "vtkMCXCameraGeometryPrivate.h"
+#include "vtkMCXCameraGeometry.h"
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
