@@ -30,8 +30,8 @@ std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
       rows[r][c] = m->GetElement(r, c);
     }
   }
-  double a[3][3] = { { rows[0][0], rows[0][1], rows[0][2] },
-    { rows[1][0], rows[1][1], rows[1][2] }, { rows[3][0], rows[3][1], rows[3][2] } };
+  double a[3][3] = { { rows[0][0], rows[0][1], rows[0][2] }, { rows[1][0], rows[1][1], rows[1][2] },
+    { rows[3][0], rows[3][1], rows[3][2] } };
   double eye[3] = { -rows[0][3], -rows[1][3], -rows[3][3] };
   double* system[3] = { a[0], a[1], a[2] };
   if (!vtkMath::SolveLinearSystem(system, eye, 3))
@@ -63,8 +63,7 @@ std::string OffAxisGeometry(vtkCamera* camera, double aspect, double distance,
   {
     sum[i] = rows[2][i] + rows[3][i];
   }
-  const double nearDistance =
-    -(vtkMath::Dot(rows[2], eye) + rows[2][3]) / vtkMath::Dot(sum, w);
+  const double nearDistance = -(vtkMath::Dot(rows[2], eye) + rows[2][3]) / vtkMath::Dot(sum, w);
   if (!(nearDistance > 0) || !std::isfinite(nearDistance))
   {
     return "the camera's off-axis near plane is not in front of the eye";

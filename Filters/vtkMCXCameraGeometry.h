@@ -26,8 +26,8 @@ namespace mcx
 /// parallel camera with shear, off-axis projection or an explicit matrix:
 /// its rays may be oblique to the screen (ProjectionGeometry::Obliquity).
 /// Returns why the camera is unusable, or "".
-MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(vtkCamera* camera, const int size[2],
-  double spacing, double aspect, ProjectionGeometry& g);
+MONTECARLOXRAYFILTERS_EXPORT std::string GeometryFromCamera(
+  vtkCamera* camera, const int size[2], double spacing, double aspect, ProjectionGeometry& g);
 
 } // namespace mcx
 

@@ -59,9 +59,9 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
   DepositSettings settings;
   vtkFieldData* fd = cloud->GetFieldData();
   vtkDataArray* axes = fd ? fd->GetArray(vtkMCXTypes::VoxelAxesName()) : nullptr;
-  const bool footprint = Field(fd, vtkMCXTypes::DepositName(), vtkMCXTypes::POINT) ==
-      vtkMCXTypes::FOOTPRINT &&
-    axes && axes->GetNumberOfValues() == 9;
+  const bool footprint =
+    Field(fd, vtkMCXTypes::DepositName(), vtkMCXTypes::POINT) == vtkMCXTypes::FOOTPRINT && axes &&
+    axes->GetNumberOfValues() == 9;
   if (!footprint)
   {
     return settings;
@@ -69,11 +69,10 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
   settings.Mode = Deposit::Footprint;
   settings.Reach = footprintReach;
   settings.Reconstruction =
-    Field(fd, vtkMCXTypes::KernelName(), 0) == vtkMCXTypes::BOX ? Kernel::Box
-                                                                              : Kernel::Tent;
+    Field(fd, vtkMCXTypes::KernelName(), 0) == vtkMCXTypes::BOX ? Kernel::Box : Kernel::Tent;
   settings.Seed = static_cast<std::uint64_t>(Field(fd, vtkMCXTypes::SeedName(), 0));
-  settings.Stratified = Field(fd, vtkMCXTypes::StrategyName(), vtkMCXTypes::HYBRID) !=
-    vtkMCXTypes::MONTE_CARLO;
+  settings.Stratified =
+    Field(fd, vtkMCXTypes::StrategyName(), vtkMCXTypes::HYBRID) != vtkMCXTypes::MONTE_CARLO;
   for (int i = 0; i < 9; ++i)
   {
     settings.VoxelMatrix[i] =
@@ -131,8 +130,8 @@ DepositSettings CloudDepositSettings(vtkPolyData* cloud, const ProjectionGeometr
 
 bool IsEveryVoxelCloud(vtkPolyData* cloud)
 {
-  return Field(cloud->GetFieldData(), vtkMCXTypes::StrategyName(),
-           vtkMCXTypes::HYBRID) == vtkMCXTypes::EVERY_VOXEL;
+  return Field(cloud->GetFieldData(), vtkMCXTypes::StrategyName(), vtkMCXTypes::HYBRID) ==
+    vtkMCXTypes::EVERY_VOXEL;
 }
 
 std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeometry& geometry)
@@ -256,8 +255,8 @@ vtkDataArray* CloudPointWeights(vtkObject* self, vtkPolyData* cloud, bool& valid
   if (!problem.empty())
   {
     vtkErrorWithObjectMacro(self,
-      "The cloud's " << vtkMCXTypes::PointWeightName()
-                     << " array cannot be used: " << problem << ".");
+      "The cloud's " << vtkMCXTypes::PointWeightName() << " array cannot be used: " << problem
+                     << ".");
     valid = false;
     return nullptr;
   }

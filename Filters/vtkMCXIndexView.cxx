@@ -46,12 +46,9 @@ std::string IndexView::Read(vtkImageData* index)
     return "no index image";
   }
   vtkFieldData* fd = index->GetFieldData();
-  auto* values =
-    vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::LevelValuesName()));
-  auto* offsets =
-    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::LevelOffsetsName()));
-  auto* ids =
-    vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::SortedVoxelIdsName()));
+  auto* values = vtkDoubleArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::LevelValuesName()));
+  auto* offsets = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::LevelOffsetsName()));
+  auto* ids = vtkDataArray::SafeDownCast(fd->GetAbstractArray(vtkMCXTypes::SortedVoxelIdsName()));
   if (!values || !offsets || !ids)
   {
     return "the input is not a density index (run vtkMCXDensityIndex first)";

@@ -29,7 +29,8 @@ MONTECARLOXRAYFILTERS_EXPORT std::string MemoryProblem(double bytes, const std::
 
 /// True when bytes fit the budget; else reports "<what> needs N, more than
 /// the memory budget of B" as an error of self and returns false.
-MONTECARLOXRAYFILTERS_EXPORT bool CheckMemory(vtkObject* self, double bytes, const std::string& what);
+MONTECARLOXRAYFILTERS_EXPORT bool CheckMemory(
+  vtkObject* self, double bytes, const std::string& what);
 
 /// Bytes per pixel of a projection: the per-thread fixed-point sums (all
 /// samples and the first half, 16 bytes each), their collection, the

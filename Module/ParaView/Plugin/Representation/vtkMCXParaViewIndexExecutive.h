@@ -15,7 +15,7 @@
 #define vtkMCXParaViewIndexExecutive_h
 
 #include "MonteCarloXRayParaViewModule.h"   // for export macro
-#include "vtkMCXAgreeingExecutive.h" // for vtkMCXAgreeingExecutive::UpstreamFailures
+#include "vtkMCXAgreeingExecutive.h"        // for vtkMCXAgreeingExecutive::UpstreamFailures
 #include "vtkPVCompositeDataPipeline.h"
 
 class MONTECARLOXRAYPARAVIEW_EXPORT vtkMCXParaViewIndexExecutive : public vtkPVCompositeDataPipeline

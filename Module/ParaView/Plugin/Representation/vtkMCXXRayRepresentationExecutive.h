@@ -15,7 +15,7 @@
 #define vtkMCXXRayRepresentationExecutive_h
 
 #include "MonteCarloXRayParaViewModule.h"   // for export macro
-#include "vtkMCXAgreeingExecutive.h" // for vtkMCXAgreeingExecutive::UpstreamFailures
+#include "vtkMCXAgreeingExecutive.h"        // for vtkMCXAgreeingExecutive::UpstreamFailures
 #include "vtkPVDataRepresentationPipeline.h"
 
 class MONTECARLOXRAYPARAVIEW_EXPORT vtkMCXXRayRepresentationExecutive
