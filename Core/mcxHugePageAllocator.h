@@ -2,10 +2,9 @@
 // at scattered places (a view order's ids, written through a million
 // cursors, and its samples' reads a hundred voxels apart): on Linux it asks
 // for transparent huge pages (madvise), whose 2 MB pages keep the
-// addresses such a pass touches within the TLB's reach. Where the system
-// leaves huge pages to madvise (the default), that took the 402 M-voxel
-// view sort from 21 to 14 s on 2 cores. Elsewhere, and for small arrays,
-// it is the plain allocator.
+// addresses such a pass touches within the TLB's reach, where the system
+// leaves huge pages to madvise (the default). Elsewhere, and for small
+// arrays, it is the plain allocator.
 #ifndef mcxHugePageAllocator_h
 #define mcxHugePageAllocator_h
 

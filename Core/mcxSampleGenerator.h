@@ -197,7 +197,7 @@ struct SampleSource
   /// 2^q runs of 2^q consecutive points written (one per b), and the next
   /// item writes right after them. A block touches 2^(q+1) pages whatever m
   /// is: looping over every b per item instead (2^(m/2) pages) thrashed the
-  /// TLB from m = 22 on, 8 times slower per point. MonteCarlo items are
+  /// TLB for large m. MonteCarlo items are
   /// plain runs of output indices.
   template <typename Sink>
   void GenerateForStorage(std::uint64_t itemBegin, std::uint64_t itemEnd, Sink& sink) const

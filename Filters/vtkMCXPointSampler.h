@@ -77,9 +77,8 @@ public:
    * its weight in the point-data array PointWeight (mean 1, see
    * PointWeightName()), so the image has no voxel-choice noise; the cost of
    * a TF edit grows with those voxels, not with M. It pays where they are
-   * fewer than the samples a target error needs (footprint deposit, 2 % at
-   * 256^2: about 2 M samples for the 1.25 M such voxels of the shared data's
-   * CT body). The points are the voxels in runs of 64 neighbours in
+   * fewer than the samples a target error needs with the footprint deposit
+   * (Documentation/performance.md compares them). The points are the voxels in runs of 64 neighbours in
    * voxel-id order, the runs in base-2 van der Corput (bit-reversed) order,
    * so any prefix is spread over the volume (the mapper's progressive
    * refinement). With ReusePoints on,
@@ -190,8 +189,8 @@ public:
    * off): a TF edit then fills memory that is already mapped. Allocating
    * the cloud again costs little below glibc's 32 MiB mmap limit (the heap
    * recycles the block) but above it the block is unmapped and faulted in
-   * again page by page: regenerating 2^22 points then took about 5 times
-   * as long. Points that something else still holds (a shallow copy, a
+   * again page by page, which costs several regenerations' time
+   * (Documentation/performance.md has the measurement). Points that something else still holds (a shallow copy, a
    * reference from Python, their array taken out) are never rewritten: the
    * cloud then gets new ones. The price: while it is on, the sampler holds
    * the last cloud's memory even after the pipeline releases its output
