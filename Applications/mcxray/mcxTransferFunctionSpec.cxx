@@ -101,4 +101,59 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
   return tf;
 }
 
+namespace
+{
+// Where the product of mu and the weight changes slope: the data range's
+// ends, air, and the weight's points inside the range.
+std::vector<double> ProductNodes(vtkPiecewiseFunction* weight, double air, const double range[2])
+{
+  std::vector<double> nodes = { range[0], range[1] };
+  if (air > range[0] && air < range[1])
+  {
+    nodes.push_back(air);
+  }
+  for (int i = 0; weight && i < weight->GetSize(); ++i)
+  {
+    double node[4];
+    weight->GetNodeValue(i, node);
+    if (node[0] > range[0] && node[0] < range[1])
+    {
+      nodes.push_back(node[0]);
+    }
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+}
+
+vtkSmartPointer<vtkPiecewiseFunction> MakeWeightedAttenuation(
+  vtkPiecewiseFunction* weight, double water, double airValue, const double dataRange[2])
+{
+  const double shift = airValue + 1000.0; // value = HU + shift
+  vtkNew<vtkPiecewiseFunction> mu;
+  vtkNew<vtkMCXAttenuationFunction> attenuation;
+  attenuation->SetWaterAttenuation(water);
+  attenuation->SetHounsfieldRange(
+    std::min(-1000.0, dataRange[0] - shift), std::max(-999.0, dataRange[1] - shift));
+  attenuation->FillTransferFunction(mu);
+  auto product = vtkSmartPointer<vtkPiecewiseFunction>::New();
+  product->ClampingOn();
+  const std::vector<double> nodes = ProductNodes(weight, -1000.0 + shift, dataRange);
+  // Between nodes mu and the weight are linear, their product quadratic:
+  // 16 chords hold it within 0.1 %.
+  const int chords = nodes.size() > 1 ? 16 : 1;
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+  {
+    const double step = n + 1 < nodes.size() ? (nodes[n + 1] - nodes[n]) / chords : 0.0;
+    for (int c = 0; c < (n + 1 < nodes.size() ? chords : 1); ++c)
+    {
+      const double value = nodes[n] + c * step;
+      const double w = weight ? std::min(1.0, std::max(0.0, weight->GetValue(value))) : 1.0;
+      product->AddPoint(value, mu->GetValue(value - shift) * w);
+    }
+  }
+  return product;
+}
+
 } // namespace mcxapp

@@ -21,6 +21,14 @@ const char* TransferFunctionPresetHelp();
 vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
   const std::string& spec, const double dataRange[2], std::string& error);
 
+/// The attenuation of a radiograph of the tissue `weight` selects: mu =
+/// water (1 + HU / 1000) per world unit (0 at and below air), HU = value -
+/// airValue - 1000 (airValue -1000 for CT in HU), times the weight clamped to
+/// [0, 1] (a null weight selects all tissue). Exact at the weight's points
+/// and the data range's ends, between them within 0.1 % of its largest value.
+vtkSmartPointer<vtkPiecewiseFunction> MakeWeightedAttenuation(
+  vtkPiecewiseFunction* weight, double water, double airValue, const double dataRange[2]);
+
 } // namespace mcxapp
 
 #endif

@@ -45,7 +45,8 @@ the image's estimated relative error.
 INPUT   a volume, as for mcxray render (default: the bundled CT head).
 
 options:
-  --tf SPEC          initial transfer function (as for mcxray render; default raw)
+  --tf SPEC          initial transfer function (as for mcxray render; default
+                     raw); mu or mu=MU_WATER: the attenuation of all tissue
   --samples N        points in the cloud, rounded up to 2^m - 1 (default 4194303)
   --method M         hybrid (default), mc, qmc, every-voxel (each voxel of
                      non-zero weight once, weighted: no sampling noise; replaces
@@ -65,15 +66,23 @@ options:
                      a cone-beam radiograph view as for mcxray render (the
                      detector's pixels become the window)
   --beer-lambert, --i0 I, --photons N, --noise-seed N, --negative-log
-                     radiograph physics as for mcxray render (with --tf mu)
+                     radiograph physics as for mcxray render; the TF then
+                     selects tissue of mu, as with key b
   --screenshot FILE  no window: render off screen until all points count,
                      save the window as FILE (.png) and exit
   --help             this text
 
-controls: sliders for the TF window (centre and width, in data units);
-  keys 1 raw, 2 bone, 3 soft-tissue presets; + / - double or halve the points;
-  i inverts the display; b switches Beer-Lambert intensity on and off;
-  p switches parallel / perspective; r resets the camera; q quits.
+controls: sliders for the TF window (centre and width, in data units; while
+  one is dragged each frame draws a first image under the window of before,
+  and the release refines it and sets the window again);
+  keys 1 raw (in a radiograph: all tissue), 2 bone, 3 soft-tissue presets;
+  + / - double or halve the points; i inverts the display; b switches the
+  radiograph on and off: the Beer-Lambert intensity I0 exp(-line integral of
+  mu x TF), mu = 0.02 (1 + HU/1000) per mm (0 at air; --tf mu=MU sets the
+  water value), the TF clipped to 0..1 selecting the tissue (a volume not in
+  HU takes its lowest value for air, with a warning); p switches parallel /
+  perspective; r resets the camera; q quits. The overlay and the sliders
+  invert with the film: light on dark air, dark on light air.
 )";
 
 const long long DefaultSamples = (1LL << vtkMCXTypes::DefaultSampleExponent) - 1;
@@ -152,6 +161,7 @@ void ConfigureRadiograph(
     view.GetRenderer()->GetActiveCamera()->DeepCopy(radiograph.MakeCamera(volume, size, spacing));
   }
   radiograph.Configure(view.GetMapper());
+  view.FollowRadiographPhysics();
 }
 
 // The index is built before the first frame, with a progress bar.

@@ -2,16 +2,22 @@
 
 #include "mcxTransferFunctionSpec.h"
 
+#include "vtkActor2D.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCommand.h"
+#include "vtkCoordinate.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkMCXXRayMapper.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper2D.h"
+#include "vtkProperty2D.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -22,8 +28,10 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <sstream>
 
 namespace mcxapp
@@ -37,8 +45,62 @@ constexpr double InteractiveRate = 30.0;
 constexpr int MaximumViewerExponent = 28;
 
 const char* const KeyHelp =
-  "keys: 1 raw, 2 bone, 3 soft tissue, +/- points, i invert, b Beer-Lambert, "
-  "p projection, r reset camera, q quit";
+  "keys: 1 raw (all), 2 bone, 3 soft tissue, +/- points, i invert, "
+  "b radiograph (Beer-Lambert of mu(HU) x TF), p projection, r reset camera, q quit";
+
+// The controls' ink on dark film; on light film each colour is inverted, as
+// the film is, and drawn on a light backing instead of a dark one.
+const double OverlayInk[3] = { 1.0, 0.85, 0.2 };
+const double SliderInk[3] = { 1.0, 1.0, 1.0 };
+const double SelectedInk[3] = { 1.0, 0.2, 0.2 };
+// Behind the controls the film keeps 30 % of its contrast: the ink reads at
+// a WCAG contrast of 4.5 or more whatever film lies behind it.
+constexpr double BackingOpacity = 0.7;
+// The backing behind the sliders, their labels and titles (normalized viewport).
+const double SliderBackingBox[4] = { 0.2, 0.98, 0.01, 0.25 };
+
+void SetColour(const double ink[3], bool inverted, double colour[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    colour[c] = inverted ? 1.0 - ink[c] : ink[c];
+  }
+}
+
+void SetTextInk(vtkTextProperty* text, const double ink[3], bool inverted)
+{
+  double colour[3];
+  SetColour(ink, inverted, colour);
+  text->SetColor(colour);
+}
+
+void SetPropertyInk(vtkProperty2D* property, const double ink[3], bool inverted)
+{
+  double colour[3];
+  SetColour(ink, inverted, colour);
+  property->SetColor(colour);
+}
+
+// What the window's values are.
+const char* DisplayedQuantity(vtkMCXXRayMapper* mapper)
+{
+  if (mapper->GetNegativeLog())
+  {
+    return "-ln I/I0";
+  }
+  return mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 ? "intensity I"
+                                                                      : "TF x length";
+}
+
+bool IsIntegerType(int type)
+{
+  return type != VTK_FLOAT && type != VTK_DOUBLE;
+}
+
+bool IsAttenuationSpec(const std::string& spec)
+{
+  return spec == "mu" || spec.rfind("mu=", 0) == 0;
+}
 
 std::string Thousands(long long n)
 {
@@ -60,15 +122,16 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
     return;
   }
   scalars->GetRange(this->DataRange);
-  std::string error;
-  vtkSmartPointer<vtkPiecewiseFunction> tf =
-    MakeTransferFunction(options.TransferFunction, this->DataRange, error);
-  if (!tf)
+  if (IsIntegerType(scalars->GetDataType()))
   {
-    this->ErrorMessage = error;
+    this->LabelFormat = "%.0f";
+  }
+  // CT in HU reaches air (-1000); elsewhere the lowest value counts as air.
+  this->AirValue = this->DataRange[0] <= -500.0 ? -1000.0 : this->DataRange[0];
+  if (!this->ReadTransferFunctionOption(options.TransferFunction))
+  {
     return;
   }
-  this->TransferFunction->DeepCopy(tf);
 
   // The mapper indexes and samples the volume under the property's TF.
   this->Mapper->SetInputData(volume);
@@ -81,13 +144,7 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   this->Volume->SetMapper(this->Mapper);
   this->Renderer->AddVolume(this->Volume);
   this->Renderer->SetBackground(0, 0, 0);
-
-  this->Overlay->GetTextProperty()->SetFontSize(14);
-  this->Overlay->GetTextProperty()->SetColor(1.0, 0.85, 0.2);
-  this->Overlay->GetTextProperty()->SetVerticalJustificationToTop();
-  this->Overlay->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
-  this->Overlay->SetPosition(0.01, 0.99);
-  this->Renderer->AddActor2D(this->Overlay);
+  this->SetUpOverlay();
 
   this->Window->SetSize(options.Size[0], options.Size[1]);
   this->Window->SetOffScreenRendering(options.OffScreen ? 1 : 0);
@@ -115,10 +172,13 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   const double span =
     this->DataRange[1] > this->DataRange[0] ? this->DataRange[1] - this->DataRange[0] : 1.0;
   // Each slider's value sits above its track and its title below: 0.13 of
-  // the window apart, the upper title stays clear of the lower value.
+  // the window apart, the upper title stays clear of the lower value. The
+  // backing goes first: it is drawn under them.
+  this->AddSliderBacking();
   this->AddSlider(this->CentreSlider, "TF centre", this->DataRange[0], this->DataRange[1], 0.19);
   this->AddSlider(this->WidthSlider, "TF width", span / 1000.0, 2.0 * span, 0.06);
   this->UpdateSlidersFromTransferFunction();
+  this->MatchControlsToFilm();
 
   // Our key handler runs before the style's and swallows the keys it uses
   // (the style would toggle stereo on '3' and pick on 'p').
@@ -132,6 +192,64 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   this->RenderEndCommand->SetCallback(&XRayViewer::OnRenderEnd);
   this->Renderer->AddObserver(vtkCommand::EndEvent, this->RenderEndCommand);
   this->Overlay->SetInput(KeyHelp);
+}
+
+// --tf: a weight (a preset or points), or mu: all tissue, as attenuation.
+bool XRayViewer::ReadTransferFunctionOption(const std::string& spec)
+{
+  std::string error;
+  vtkSmartPointer<vtkPiecewiseFunction> tf = MakeTransferFunction(spec, this->DataRange, error);
+  if (!tf)
+  {
+    this->ErrorMessage = error;
+    return false;
+  }
+  this->AttenuationAsked = IsAttenuationSpec(spec);
+  if (this->AttenuationAsked)
+  {
+    this->WaterAttenuation = tf->GetValue(0.0); // mu at 0 HU
+    tf = MakeTransferFunction("raw", this->DataRange, error);
+  }
+  this->WeightSelectsAll = spec == "raw" || this->AttenuationAsked;
+  this->Weight->DeepCopy(tf);
+  this->UpdateTransferFunction();
+  return true;
+}
+
+// Text on a backing box that follows the film (MatchControlsToFilm).
+void XRayViewer::SetUpOverlay()
+{
+  vtkTextProperty* text = this->Overlay->GetTextProperty();
+  text->SetFontSize(14);
+  text->SetVerticalJustificationToTop();
+  text->SetBackgroundOpacity(BackingOpacity);
+  this->Overlay->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+  this->Overlay->SetPosition(0.01, 0.99);
+  this->Renderer->AddActor2D(this->Overlay);
+}
+
+void XRayViewer::AddSliderBacking()
+{
+  const double* box = SliderBackingBox;
+  vtkNew<vtkPoints> corners;
+  corners->InsertNextPoint(box[0], box[2], 0);
+  corners->InsertNextPoint(box[1], box[2], 0);
+  corners->InsertNextPoint(box[1], box[3], 0);
+  corners->InsertNextPoint(box[0], box[3], 0);
+  vtkNew<vtkCellArray> quad;
+  const vtkIdType ids[4] = { 0, 1, 2, 3 };
+  quad->InsertNextCell(4, ids);
+  vtkNew<vtkPolyData> rectangle;
+  rectangle->SetPoints(corners);
+  rectangle->SetPolys(quad);
+  vtkNew<vtkCoordinate> viewport;
+  viewport->SetCoordinateSystemToNormalizedViewport();
+  vtkNew<vtkPolyDataMapper2D> mapper;
+  mapper->SetInputData(rectangle);
+  mapper->SetTransformCoordinate(viewport);
+  this->SliderBacking->SetMapper(mapper);
+  this->SliderBacking->GetProperty()->SetOpacity(BackingOpacity);
+  this->Renderer->AddActor2D(this->SliderBacking);
 }
 
 XRayViewer::~XRayViewer() = default;
@@ -152,20 +270,26 @@ void XRayViewer::AddSlider(
   representation->SetTubeWidth(0.005);
   representation->SetTitleHeight(0.02);
   representation->SetLabelHeight(0.02);
-  representation->SetLabelFormat("%.4g");
+  representation->SetLabelFormat(this->LabelFormat.c_str());
   slider->SetInteractor(this->Interactor);
   slider->SetRepresentation(representation);
   slider->SetAnimationModeToJump();
   this->SliderCommand->SetClientData(this);
   this->SliderCommand->SetCallback(&XRayViewer::OnSlider);
   slider->AddObserver(vtkCommand::InteractionEvent, this->SliderCommand);
+  this->DragStartCommand->SetClientData(this);
+  this->DragStartCommand->SetCallback(&XRayViewer::OnDragStart);
+  slider->AddObserver(vtkCommand::StartInteractionEvent, this->DragStartCommand);
+  this->DragEndCommand->SetClientData(this);
+  this->DragEndCommand->SetCallback(&XRayViewer::OnDragEnd);
+  slider->AddObserver(vtkCommand::EndInteractionEvent, this->DragEndCommand);
   slider->EnabledOn();
 }
 
 void XRayViewer::UpdateSlidersFromTransferFunction()
 {
   double range[2];
-  this->TransferFunction->GetRange(range);
+  this->Weight->GetRange(range);
   auto* centre = vtkSliderRepresentation2D::SafeDownCast(this->CentreSlider->GetRepresentation());
   auto* width = vtkSliderRepresentation2D::SafeDownCast(this->WidthSlider->GetRepresentation());
   centre->SetValue(0.5 * (range[0] + range[1]));
@@ -181,7 +305,9 @@ void XRayViewer::SetTransferFunctionWindow(double centre, double width)
   window->ClampingOn();
   window->AddPoint(points[0], points[1]);
   window->AddPoint(points[2], points[3]);
-  this->TransferFunction->DeepCopy(window);
+  this->Weight->DeepCopy(window);
+  this->WeightSelectsAll = false;
+  this->UpdateTransferFunction();
 }
 
 bool XRayViewer::ApplyPreset(const std::string& name)
@@ -192,9 +318,89 @@ bool XRayViewer::ApplyPreset(const std::string& name)
   {
     return false;
   }
-  this->TransferFunction->DeepCopy(tf);
+  this->Weight->DeepCopy(tf);
+  this->WeightSelectsAll = name == "raw";
+  this->UpdateTransferFunction();
   this->UpdateSlidersFromTransferFunction();
   return true;
+}
+
+void XRayViewer::SetRadiograph(bool on)
+{
+  this->Mapper->SetBeerLambert(on);
+  this->FollowRadiographPhysics();
+}
+
+void XRayViewer::FollowRadiographPhysics()
+{
+  this->UpdateTransferFunction();
+  this->MatchControlsToFilm();
+}
+
+bool XRayViewer::HasRadiographPhysics() const
+{
+  vtkMCXXRayMapper* mapper = this->Mapper;
+  return mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 || mapper->GetNegativeLog();
+}
+
+// Air shows the intensity I0 (light) in a Beer-Lambert image, 0 (dark) in
+// a line-integral or -ln image; inverting swaps them.
+bool XRayViewer::AirIsLight() const
+{
+  vtkMCXXRayMapper* mapper = this->Mapper;
+  const bool intensity =
+    (mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0) && !mapper->GetNegativeLog();
+  return intensity != mapper->GetInvertDisplay();
+}
+
+// The controls invert with the film: light ink on a dark backing over dark
+// air, dark ink on a light backing over light air.
+void XRayViewer::MatchControlsToFilm()
+{
+  const bool light = this->AirIsLight();
+  const double paper = light ? 1.0 : 0.0;
+  this->Renderer->SetBackground(paper, paper, paper);
+  vtkTextProperty* text = this->Overlay->GetTextProperty();
+  SetTextInk(text, OverlayInk, light);
+  text->SetBackgroundColor(paper, paper, paper);
+  this->SliderBacking->GetProperty()->SetColor(paper, paper, paper);
+  for (vtkSliderWidget* slider : { this->CentreSlider.Get(), this->WidthSlider.Get() })
+  {
+    auto* representation = vtkSliderRepresentation2D::SafeDownCast(slider->GetRepresentation());
+    SetPropertyInk(representation->GetSliderProperty(), SliderInk, light);
+    SetPropertyInk(representation->GetTubeProperty(), SliderInk, light);
+    SetPropertyInk(representation->GetCapProperty(), SliderInk, light);
+    SetPropertyInk(representation->GetSelectedProperty(), SelectedInk, light);
+    SetTextInk(representation->GetLabelProperty(), SliderInk, light);
+    SetTextInk(representation->GetTitleProperty(), SliderInk, light);
+  }
+}
+
+// The mapper samples the weight, or with radiograph physics the attenuation
+// of the tissue the weight selects; one Modified() per change.
+void XRayViewer::UpdateTransferFunction()
+{
+  if (!(this->AttenuationAsked || this->HasRadiographPhysics()))
+  {
+    this->TransferFunction->DeepCopy(this->Weight);
+    return;
+  }
+  this->WarnIfNotHounsfield();
+  this->TransferFunction->DeepCopy(
+    MakeWeightedAttenuation(this->WeightSelectsAll ? nullptr : this->Weight.Get(),
+      this->WaterAttenuation, this->AirValue, this->DataRange));
+}
+
+void XRayViewer::WarnIfNotHounsfield()
+{
+  if (this->AirValue == -1000.0 || this->NotHounsfieldWarned)
+  {
+    return;
+  }
+  this->NotHounsfieldWarned = true;
+  std::cerr << "mcxray: warning: the radiograph's mu takes CT in HU, but the values "
+            << this->DataRange[0] << " .. " << this->DataRange[1]
+            << " are not CT in HU: the lowest counts as air (-1000 HU)" << std::endl;
 }
 
 std::string XRayViewer::OverlayText(bool withFrameTime) const
@@ -224,10 +430,16 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
     text << "est. error -";
   }
   double range[2];
-  this->TransferFunction->GetRange(range);
-  text << "\nTF " << range[0] << " .. " << range[1] << " (data units)   window "
+  this->Weight->GetRange(range);
+  char lowest[32], highest[32];
+  std::snprintf(lowest, sizeof(lowest), this->LabelFormat.c_str(), range[0]);
+  std::snprintf(highest, sizeof(highest), this->LabelFormat.c_str(), range[1]);
+  const bool attenuation = this->AttenuationAsked || this->HasRadiographPhysics();
+  text << "\nTF " << (attenuation ? "mu(HU) x " : "") << lowest << " .. " << highest
+       << " (data units)   window "
        << mapper->GetDisplayedLevel() - 0.5 * mapper->GetDisplayedWindow() << " .. "
-       << mapper->GetDisplayedLevel() + 0.5 * mapper->GetDisplayedWindow() << " (TF x length)   "
+       << mapper->GetDisplayedLevel() + 0.5 * mapper->GetDisplayedWindow() << " ("
+       << DisplayedQuantity(mapper) << ")   "
        << (this->Renderer->GetActiveCamera()->GetParallelProjection() ? "parallel" : "perspective")
        << (mapper->GetInvertDisplay() ? ", inverted" : "")
        << (mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 ? ", Beer-Lambert" : "")
@@ -270,6 +482,31 @@ void XRayViewer::OnSlider(vtkObject*, unsigned long, void* self, void*)
   viewer->SetTransferFunctionWindow(value(viewer->CentreSlider), value(viewer->WidthSlider));
 }
 
+// While a slider is dragged each frame projects what fits the drag budget,
+// under the window of before the drag (the automatic window would project
+// 4 points a pixel of every edit); the release renders still and
+// re-windows.
+void XRayViewer::OnDragStart(vtkObject*, unsigned long, void* self, void*)
+{
+  auto* viewer = static_cast<XRayViewer*>(self);
+  vtkMCXXRayMapper* mapper = viewer->Mapper;
+  viewer->WindowWasAutomatic = mapper->GetAutomaticWindowLevel();
+  if (viewer->WindowWasAutomatic)
+  {
+    mapper->SetColorWindow(mapper->GetDisplayedWindow());
+    mapper->SetColorLevel(mapper->GetDisplayedLevel());
+    mapper->AutomaticWindowLevelOff();
+  }
+  mapper->SetMaximumRenderTime(viewer->DragRenderTime);
+}
+
+void XRayViewer::OnDragEnd(vtkObject*, unsigned long, void* self, void*)
+{
+  auto* viewer = static_cast<XRayViewer*>(self);
+  viewer->Mapper->SetAutomaticWindowLevel(viewer->WindowWasAutomatic);
+  viewer->Mapper->SetMaximumRenderTime(0.0);
+}
+
 void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
 {
   auto* viewer = static_cast<XRayViewer*>(self);
@@ -288,12 +525,10 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
       break;
     case 'i':
       viewer->Mapper->SetInvertDisplay(!viewer->Mapper->GetInvertDisplay());
-      viewer->Renderer->SetBackground(viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0,
-        viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0,
-        viewer->Mapper->GetInvertDisplay() ? 1.0 : 0.0);
+      viewer->MatchControlsToFilm();
       break;
     case 'b':
-      viewer->Mapper->SetBeerLambert(!viewer->Mapper->GetBeerLambert());
+      viewer->SetRadiograph(!viewer->Mapper->GetBeerLambert());
       break;
     case 'p':
     {
@@ -334,6 +569,7 @@ void XRayViewer::Start()
 void XRayViewer::ShowControls(bool show)
 {
   this->Overlay->SetVisibility(show);
+  this->SliderBacking->SetVisibility(show);
   this->CentreSlider->SetEnabled(show);
   this->WidthSlider->SetEnabled(show);
 }

@@ -3,6 +3,12 @@
 // an overlay with the sample count, frame time and error estimate, and
 // progressive refinement while the view is still. Kept apart from main() so
 // that a test can drive it with events.
+//
+// The TF the keys and sliders set is a weight per data value. With radiograph
+// physics on (key b, or Beer-Lambert, photons or -ln from the command line)
+// the mapper samples an attenuation instead: mu of the HU (water 0.02 per mm,
+// or --tf mu=MU_WATER) times the weight clamped to [0, 1], the raw preset
+// selecting all tissue; --tf mu selects all tissue with physics off too.
 #ifndef mcxXRayViewer_h
 #define mcxXRayViewer_h
 
@@ -13,6 +19,7 @@
 
 #include <string>
 
+class vtkActor2D;
 class vtkCallbackCommand;
 class vtkImageData;
 class vtkMCXDensityIndex;
@@ -71,6 +78,17 @@ public:
   /// A preset by name (raw, bone, soft-tissue); false if unknown.
   bool ApplyPreset(const std::string& name);
 
+  /// Switches the radiograph (key b): Beer-Lambert of the attenuation.
+  void SetRadiograph(bool on);
+
+  /// Brings the TF and the controls in line with the mapper's radiograph
+  /// physics, after a change made on the mapper itself.
+  void FollowRadiographPhysics();
+
+  /// Seconds a frame may spend projecting while a slider is dragged
+  /// (default 1/30); the render at the release has no such limit.
+  void SetDragRenderTime(double seconds) { this->DragRenderTime = seconds; }
+
   /// What the overlay shows for the image on screen (with the last frame
   /// time, or without it: the part that says whether the overlay is stale).
   std::string OverlayText(bool withFrameTime = true) const;
@@ -82,26 +100,52 @@ public:
   /// The mapper's own index and sampler (it indexes and samples the volume).
   vtkMCXDensityIndex* GetIndex() { return this->Mapper->GetDensityIndex(); }
   vtkMCXPointSampler* GetSampler() { return this->Mapper->GetPointSampler(); }
+  /// The TF the mapper samples (the weight, or the radiograph's attenuation).
   vtkPiecewiseFunction* GetTransferFunction() { return this->TransferFunction; }
+  /// The weight the keys and the sliders set.
+  vtkPiecewiseFunction* GetWeight() { return this->Weight; }
   vtkSliderWidget* GetCentreSlider() { return this->CentreSlider; }
   vtkSliderWidget* GetWidthSlider() { return this->WidthSlider; }
   int GetNumberOfFrames() const { return this->Frames; }
+  vtkTextActor* GetOverlay() { return this->Overlay; }
 
 private:
   static void OnChar(vtkObject*, unsigned long, void* self, void*);
   static void OnTimer(vtkObject*, unsigned long, void* self, void*);
   static void OnSlider(vtkObject*, unsigned long, void* self, void*);
   static void OnRenderEnd(vtkObject*, unsigned long, void* self, void*);
+  static void OnDragStart(vtkObject*, unsigned long, void* self, void*);
+  static void OnDragEnd(vtkObject*, unsigned long, void* self, void*);
+  bool ReadTransferFunctionOption(const std::string& spec);
+  void SetUpOverlay();
+  void AddSliderBacking();
   void AddSlider(
     vtkSliderWidget* slider, const char* title, double lowest, double highest, double y);
   void UpdateSlidersFromTransferFunction();
+  bool HasRadiographPhysics() const;
+  bool AirIsLight() const;
+  void MatchControlsToFilm();
+  void UpdateTransferFunction();
+  void WarnIfNotHounsfield();
 
   std::string ErrorMessage;
   double DataRange[2] = { 0, 1 };
+  std::string LabelFormat = "%.4g"; // "%.0f" for integer data
   double LastFrameSeconds = 0.0;
+  double DragRenderTime = 1.0 / 30.0;
+  bool WindowWasAutomatic = true;
+  // The radiograph's attenuation: mu of water per world unit, the data
+  // value of air, whether --tf mu asked for it, whether the weight selects
+  // all tissue (the raw preset).
+  double WaterAttenuation = 0.02;
+  double AirValue = -1000.0;
+  bool AttenuationAsked = false;
+  bool WeightSelectsAll = false;
+  bool NotHounsfieldWarned = false;
   int Frames = 0;
   bool OverlayCurrent = false;
   std::string OverlayState;
+  vtkNew<vtkPiecewiseFunction> Weight;
   vtkNew<vtkPiecewiseFunction> TransferFunction;
   vtkNew<vtkMCXXRayMapper> Mapper;
   vtkNew<vtkVolume> Volume;
@@ -109,12 +153,15 @@ private:
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkRenderWindowInteractor> Interactor;
   vtkNew<vtkTextActor> Overlay;
+  vtkNew<vtkActor2D> SliderBacking;
   vtkNew<vtkSliderWidget> CentreSlider;
   vtkNew<vtkSliderWidget> WidthSlider;
   vtkNew<vtkCallbackCommand> CharCommand;
   vtkNew<vtkCallbackCommand> TimerCommand;
   vtkNew<vtkCallbackCommand> SliderCommand;
   vtkNew<vtkCallbackCommand> RenderEndCommand;
+  vtkNew<vtkCallbackCommand> DragStartCommand;
+  vtkNew<vtkCallbackCommand> DragEndCommand;
 };
 
 } // namespace mcxapp

@@ -8,8 +8,10 @@
 
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -19,6 +21,7 @@
 #include "vtkRenderer.h"
 #include "vtkSliderRepresentation2D.h"
 #include "vtkSliderWidget.h"
+#include "vtkTextActor.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLImageDataReader.h"
@@ -28,7 +31,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -71,6 +78,97 @@ void Drag(vtkRenderWindowInteractor* interactor, int x0, int y0, int x1, int y1)
     interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
   }
   interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
+}
+
+vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  return grab->GetOutput();
+}
+
+// Keeps the frame as a PNG beside the test, to be looked at.
+void SavePNG(vtkImageData* image, const char* name)
+{
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(name);
+  writer->Write();
+}
+
+// WCAG relative luminance of an 8-bit sRGB pixel, 0 (black) to 1 (white).
+double Luminance(const unsigned char* rgb)
+{
+  auto linear = [](unsigned char c)
+  {
+    const double v = c / 255.0;
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  return 0.2126 * linear(rgb[0]) + 0.7152 * linear(rgb[1]) + 0.0722 * linear(rgb[2]);
+}
+
+// WCAG contrast ratio (1 to 21) between the darkest and the brightest 2 %
+// of the pixels in [x0, x1) x [y0, y1): the ink of a control against what
+// it is drawn on (4.5 reads as body text, 3 as large text).
+double RegionContrast(vtkImageData* image, int x0, int y0, int x1, int y1)
+{
+  const int* dims = image->GetDimensions();
+  std::vector<double> values;
+  for (int y = std::max(0, y0); y < std::min(dims[1], y1); ++y)
+  {
+    for (int x = std::max(0, x0); x < std::min(dims[0], x1); ++x)
+    {
+      values.push_back(Luminance(static_cast<unsigned char*>(image->GetScalarPointer(x, y, 0))));
+    }
+  }
+  if (values.empty())
+  {
+    return 0.0; // no region: nothing reads
+  }
+  std::sort(values.begin(), values.end());
+  const double dark = values[values.size() / 50];
+  const double light = values[values.size() - 1 - values.size() / 50];
+  return (light + 0.05) / (dark + 0.05);
+}
+
+// Mean grey (channel 0) of the n x n pixels around the image centre.
+double CentreGrey(vtkImageData* image, int n)
+{
+  const int* dims = image->GetDimensions();
+  double sum = 0;
+  for (int y = dims[1] / 2 - n / 2; y < dims[1] / 2 - n / 2 + n; ++y)
+  {
+    for (int x = dims[0] / 2 - n / 2; x < dims[0] / 2 - n / 2 + n; ++x)
+    {
+      sum += static_cast<unsigned char*>(image->GetScalarPointer(x, y, 0))[0];
+    }
+  }
+  return sum / (n * n);
+}
+
+// A CT phantom in HU (short): air (-1000) around a water cylinder (0 HU,
+// radius 30 mm, along z) holding a bone rod (1000 HU, radius 8 mm); 2 mm voxels.
+vtkSmartPointer<vtkImageData> HounsfieldPhantom()
+{
+  const int dims[3] = { 64, 64, 64 };
+  const double spacing[3] = { 2, 2, 2 };
+  return mcxtest::MakeVolume(
+    VTK_SHORT, dims,
+    [](int i, int j, int)
+    {
+      const double r = 2.0 * std::hypot(i - 31.5, j - 31.5);
+      return r < 8 ? 1000.0 : r < 30 ? 0.0 : -1000.0;
+    },
+    spacing);
+}
+
+std::string Formatted(const char* format, double value)
+{
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
 }
 
 vtkSmartPointer<vtkImageData> BundledCT()
@@ -281,4 +379,205 @@ TEST(Viewer, EveryVoxelSession)
   EXPECT_NE(bone, viewer.GetSampler()->GetOutput()->GetNumberOfPoints());
   EXPECT_EQ(viewer.GetSampler()->GetOutput()->GetNumberOfPoints(),
     viewer.GetMapper()->GetNumberOfAccumulatedSamples());
+}
+
+namespace
+{
+mcxapp::ViewerOptions SmallWindowOptions(int sampleExponent)
+{
+  mcxapp::ViewerOptions options;
+  options.SampleExponent = sampleExponent;
+  options.Size[0] = options.Size[1] = Size;
+  options.OffScreen = true;
+  return options;
+}
+
+// The camera looks beside the volume: the film is all air.
+void LookBesideTheVolume(vtkRenderer* renderer)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  double focal[3], position[3];
+  camera->GetFocalPoint(focal);
+  camera->GetPosition(position);
+  const double shift = 20.0 * camera->GetDistance();
+  camera->SetFocalPoint(focal[0] + shift, focal[1], focal[2]);
+  camera->SetPosition(position[0] + shift, position[1], position[2]);
+}
+}
+
+TEST(Viewer, ControlsReadOnAnyFilm)
+{
+  // Air is black film by default, white film inverted (key i) and in the
+  // Beer-Lambert radiograph (key b): the overlay's text and the sliders must
+  // stand out from either, as body text does (WCAG contrast 4.5 or more).
+  mcxapp::XRayViewer viewer(BundledCT(), SmallWindowOptions(14));
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  LookBesideTheVolume(viewer.GetRenderer());
+  struct Film
+  {
+    const char* Keys;
+    const char* Picture;
+  };
+  for (const Film& film : { Film{ "", "viewer-controls-black-film.png" },
+         Film{ "i", "viewer-controls-inverted-film.png" },
+         Film{ "ib", "viewer-controls-beer-lambert-film.png" } })
+  {
+    for (const char* key = film.Keys; *key; ++key)
+    {
+      Press(interactor, *key);
+    }
+    viewer.RefineUntilComplete();
+    vtkSmartPointer<vtkImageData> image = Grab(viewer.GetRenderWindow());
+    SavePNG(image, film.Picture);
+    // The text's box, from its anchor (top left) on screen.
+    double box[4];
+    viewer.GetOverlay()->GetBoundingBox(viewer.GetRenderer(), box);
+    const int* anchor =
+      viewer.GetOverlay()->GetPositionCoordinate()->GetComputedDisplayValue(viewer.GetRenderer());
+    EXPECT_GT(RegionContrast(image, anchor[0] + static_cast<int>(box[0]),
+                anchor[1] + static_cast<int>(box[2]), anchor[0] + static_cast<int>(box[1]),
+                anchor[1] + static_cast<int>(box[3])),
+      4.5)
+      << film.Picture << ": the overlay's text";
+    EXPECT_GT(RegionContrast(image, Size / 4, Size / 50, Size * 95 / 100, Size / 4), 4.5)
+      << film.Picture << ": the sliders";
+  }
+}
+
+TEST(Viewer, SliderDragDrawsWithinTheBudgetAndTheReleaseRefines)
+{
+  // Each drag step edits the TF (a new cloud): the frame it draws projects
+  // only what fits the drag budget (here none: the first image's
+  // 2^14 - 1 points), keeping the window it had; the release renders still,
+  // with the automatic window (4 points a pixel), and refinement goes on to
+  // all points.
+  mcxapp::XRayViewer viewer(BundledCT(), SmallWindowOptions(20));
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  viewer.RefineUntilComplete();
+  vtkMCXXRayMapper* mapper = viewer.GetMapper();
+  const vtkTypeInt64 all = (1 << 20) - 1;
+  ASSERT_EQ(all, mapper->GetNumberOfAccumulatedSamples());
+  viewer.SetDragRenderTime(1e-9);
+  mcxtest::ExecutionCounter samplerRuns(viewer.GetSampler());
+  auto* centre =
+    vtkSliderRepresentation2D::SafeDownCast(viewer.GetCentreSlider()->GetRepresentation());
+  const double t = (centre->GetValue() - centre->GetMinimumValue()) /
+    (centre->GetMaximumValue() - centre->GetMinimumValue());
+  const double* p1 = centre->GetPoint1Coordinate()->GetValue();
+  const double* p2 = centre->GetPoint2Coordinate()->GetValue();
+  int x = static_cast<int>((p1[0] + t * (p2[0] - p1[0])) * Size);
+  const int y = static_cast<int>(p1[1] * Size);
+  interactor->SetEventInformation(x, y);
+  interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+  interactor->InvokeEvent(vtkCommand::LeftButtonPressEvent);
+  for (int step = 1; step <= 4; ++step)
+  {
+    x += 6;
+    interactor->SetEventInformation(x, y);
+    interactor->InvokeEvent(vtkCommand::MouseMoveEvent);
+    EXPECT_EQ(step, samplerRuns.Count) << "each step samples the edited TF";
+    EXPECT_EQ((1 << 14) - 1, mapper->GetNumberOfAccumulatedSamples()) << "step " << step;
+  }
+  interactor->InvokeEvent(vtkCommand::LeftButtonReleaseEvent);
+  EXPECT_EQ(0.0, mapper->GetMaximumRenderTime());
+  EXPECT_TRUE(mapper->GetAutomaticWindowLevel());
+  EXPECT_GE(mapper->GetNumberOfAccumulatedSamples(), (1 << 19) - 1);
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(all, mapper->GetNumberOfAccumulatedSamples());
+  double range[2];
+  viewer.GetTransferFunction()->GetRange(range);
+  EXPECT_NEAR(centre->GetValue(), 0.5 * (range[0] + range[1]), 1e-6 * centre->GetMaximumValue());
+}
+
+TEST(Viewer, IntegerDataGetsIntegerSliderLabels)
+{
+  // CT in HU (short): whole numbers; data in floats keeps four digits.
+  vtkSmartPointer<vtkImageData> hounsfield = HounsfieldPhantom();
+  mcxapp::XRayViewer viewer(hounsfield, SmallWindowOptions(14));
+  ASSERT_EQ("", viewer.Error());
+  const std::pair<vtkSliderWidget*, double> settings[] = { { viewer.GetCentreSlider(), -312.4 },
+    { viewer.GetWidthSlider(), 412.6 } };
+  for (const auto& setting : settings)
+  {
+    auto* representation =
+      vtkSliderRepresentation2D::SafeDownCast(setting.first->GetRepresentation());
+    representation->SetValue(setting.second);
+    const std::string label =
+      Formatted(representation->GetLabelFormat(), representation->GetValue());
+    EXPECT_EQ(std::to_string(std::lround(setting.second)), label);
+  }
+  vtkNew<vtkImageData> scaled;
+  scaled->DeepCopy(hounsfield);
+  vtkNew<vtkFloatArray> values;
+  values->SetNumberOfValues(hounsfield->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+  {
+    values->SetValue(i, 0.001f * hounsfield->GetPointData()->GetScalars()->GetComponent(i, 0));
+  }
+  scaled->GetPointData()->SetScalars(values);
+  mcxapp::XRayViewer floats(scaled, SmallWindowOptions(14));
+  auto* centre =
+    vtkSliderRepresentation2D::SafeDownCast(floats.GetCentreSlider()->GetRepresentation());
+  centre->SetValue(-0.3124);
+  EXPECT_EQ("-0.3124", Formatted(centre->GetLabelFormat(), centre->GetValue()));
+}
+
+TEST(Viewer, BeerLambertShowsARadiographOfEachPreset)
+{
+  // Key b: the radiograph I0 exp(-line integral of mu), mu from HU (water
+  // 0.02 per mm), the preset selecting the tissue (1 all, 2 bone, 3 soft
+  // tissue). Through the phantom's centre: 44 mm water and 16 mm bone;
+  // air sets the window (0 to 1), so grey = 255 exp(-integral).
+  mcxapp::XRayViewer viewer(HounsfieldPhantom(), SmallWindowOptions(18));
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  viewer.ShowControls(false);
+  testing::internal::CaptureStderr();
+  Press(interactor, 'b');
+  struct Preset
+  {
+    char Key;
+    double Integral;
+  };
+  for (const Preset& preset :
+    { Preset{ '1', 44 * 0.02 + 16 * 0.04 }, Preset{ '2', 16 * 0.04 }, Preset{ '3', 44 * 0.02 } })
+  {
+    Press(interactor, preset.Key);
+    viewer.RefineUntilComplete();
+    vtkSmartPointer<vtkImageData> image = Grab(viewer.GetRenderWindow());
+    SavePNG(image, (std::string("viewer-beer-lambert-preset-") + preset.Key + ".png").c_str());
+    const double expected = 255.0 * std::exp(-preset.Integral);
+    EXPECT_NEAR(expected, CentreGrey(image, 4), 0.15 * expected) << "preset " << preset.Key;
+  }
+  EXPECT_EQ("", testing::internal::GetCapturedStderr()) << "CT in HU: no warning";
+  EXPECT_NEAR(0.02, viewer.GetTransferFunction()->GetValue(0), 1e-9) << "soft tissue: mu";
+  EXPECT_DOUBLE_EQ(0.0, viewer.GetTransferFunction()->GetValue(1000)) << "bone: left out";
+  Press(interactor, 'b'); // back to the weight
+  EXPECT_DOUBLE_EQ(1.0, viewer.GetTransferFunction()->GetValue(0));
+  EXPECT_FALSE(viewer.GetMapper()->GetBeerLambert());
+}
+
+TEST(Viewer, BeerLambertOnDataNotInHounsfieldUnitsWarnsOnce)
+{
+  // The bundled head's values start at 0, not at air's -1000 HU: mu takes
+  // its lowest value for air, and says so once, in one line.
+  mcxapp::XRayViewer viewer(BundledCT(), SmallWindowOptions(14));
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  testing::internal::CaptureStderr();
+  Press(interactor, 'b');
+  Press(interactor, '2');
+  Press(interactor, 'b');
+  Press(interactor, 'b');
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(1, std::count(warnings.begin(), warnings.end(), '\n')) << warnings;
+  EXPECT_EQ(0u, warnings.find("mcxray: warning: ")) << warnings;
+  EXPECT_NE(std::string::npos, warnings.find("not CT in HU")) << warnings;
+  EXPECT_NEAR(0.02, viewer.GetTransferFunction()->GetValue(1000), 1e-9) << "1000 above air: water";
 }
