@@ -38,9 +38,12 @@ class XMLDefaults(unittest.TestCase):
         self.filters = [p for p in self.root.iter("SourceProxy")]
         self.assertGreaterEqual(len(self.filters), 4)
 
+    # ParaView-only subclasses (Module/ParaView) and the class they extend.
+    PARAVIEW_CLASSES = {"vtkMCXViewProjector": "vtkMCXProjector"}
+
     def properties(self):
         for proxy in self.filters:
-            cls = getattr(mcxray, proxy.get("class"))
+            cls = getattr(mcxray, self.PARAVIEW_CLASSES.get(proxy.get("class"), proxy.get("class")))
             for kind in VECTOR_PROPERTIES:
                 for prop in proxy.iter(kind):
                     command = prop.get("command")

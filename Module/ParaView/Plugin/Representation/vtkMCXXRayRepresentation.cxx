@@ -2,6 +2,7 @@
 
 #include "vtkMCXAggregateIndex.h"
 #include "vtkMCXAgreeingExecutivePrivate.h"
+#include "vtkMCXCostPrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributedPrivate.h"
 #include "vtkMCXXRayMapper.h"
@@ -474,7 +475,25 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)
 {
-  this->Mapper->SetSampleExponent(exponent);
+  // The mapper stores the cloud: at most 2^MaximumPointCloudExponent - 1
+  // points. Said before the render that would take the time and memory.
+  const int stored = std::min(std::max(exponent, 0), vtkMCXTypes::MaximumPointCloudExponent);
+  if (stored == this->Mapper->GetSampleExponent())
+  {
+    return;
+  }
+  const std::string cost = mcx::StoredCloudCost(stored);
+  if (stored != exponent)
+  {
+    vtkWarningMacro("X-Ray Sample Exponent " << exponent << " is outside 0-"
+                                             << vtkMCXTypes::MaximumPointCloudExponent << "; using "
+                                             << stored << (cost.empty() ? "." : ": ") << cost);
+  }
+  else if (!cost.empty())
+  {
+    vtkWarningMacro("X-Ray Sample Exponent " << stored << ": " << cost);
+  }
+  this->Mapper->SetSampleExponent(stored);
 }
 
 void vtkMCXXRayRepresentation::SetStrategy(int strategy)
