@@ -2,7 +2,10 @@
 
 1. a cost-growing property is clamped to what its class accepts, says its
    cost in its tooltip, and a request that needs many seconds or a large
-   share of memory warns in one line with its size before it starts.
+   share of memory warns in one line with its size before it starts;
+3. X-Ray Projector makes the image of the active view's camera (again after
+   the camera moves, on UpdatePipeline or a still render of the view), with
+   the footprint deposit, in grey; UseActiveViewCamera=0 keeps the detector.
 
     pvbatch pvbatch_panel.py PLUGIN VOLUME.vti OUTPUT_DIR
 """
@@ -11,12 +14,16 @@ import re
 import sys
 import xml.etree.ElementTree as ET
 
+import numpy
+
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pvbatch_support import check, failures, mapper_call, xray_representation  # noqa: E402
+from pvbatch_support import (  # noqa: E402
+    as_array, check, failures, invoke, mapper_call, obj, xray_representation)
+from vtkmodules.vtkRenderingCore import vtkCamera  # noqa: E402
 
 plugin, volume_path, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -100,6 +107,89 @@ check(len(projector_said.texts) == 1 and re.search(
     r"X-Ray Projector: 1073741823 samples, about \d+ s", projector_said.texts[0]),
     "the projector's long run warned %s" % projector_said.texts)
 Delete(projector)
+
+
+# 3. The projector follows the active view.
+def same(a, b):
+    """The same image up to rounding (the camera is rebuilt from its numbers)."""
+    return a.shape == b.shape and numpy.allclose(a, b, rtol=1e-9, atol=1e-9 * abs(b).max())
+
+
+def projected(proxy):
+    proxy.UpdatePipeline()
+    return as_array(servermanager.Fetch(proxy), "LineIntegral")
+
+
+def reference_image(camera):
+    """vtkMCXProjector's image for a copy of the camera (detector off)."""
+    reference = XRayProjector(Input=index, UseActiveViewCamera=0, ImageSize=[64, 48], SampleExponent=18)
+    copy = vtkCamera()
+    copy.DeepCopy(camera)
+    invoke("Invoke %s SetCamera %s" % (obj(reference.GetClientSideObject()), obj(copy)))
+    image = as_array(servermanager.Fetch(reference), "LineIntegral")
+    Delete(reference)
+    return image
+
+
+follow_view = CreateView("RenderView")
+follow_view.ViewSize = [200, 160]
+SetActiveView(follow_view)
+Show(reader, follow_view)  # an outline, to frame
+follow_view.ResetActiveCameraToNegativeZ()
+follow_view.ResetCamera(False)
+follower = XRayProjector(Input=index, ImageSize=[64, 48], SampleExponent=18)
+check(follower.UseActiveViewCamera == 1, "Use Active View Camera is off by default")
+check(follower.Deposit == "Footprint", "the projector deposits %s by default" % follower.Deposit)
+along_z = projected(follower)
+check(same(along_z, reference_image(follow_view.SMProxy.GetActiveCamera())),
+      "the projector's image is not its view's (looking along -z)")
+# "+Y" in the camera toolbar, then the projector updates: the +Y image.
+follow_view.ResetActiveCameraToPositiveY()
+follow_view.ResetCamera(False)
+along_y = projected(follower)
+expected_y = reference_image(follow_view.SMProxy.GetActiveCamera())
+check(same(along_y, expected_y), "after +Y the image is not the +Y view's")
+check(not same(along_y, along_z), "the +Y image is the -z one")
+check(along_y.max() > 0 and (along_y > 0.05 * along_y.max()).mean() > 0.1,
+      "the +Y image is nearly empty (an edge-on line?): %.3f of the pixels lit" %
+      (along_y > 0.05 * along_y.max()).mean())
+# Shown in the view: grey, and a still render after a camera change re-projects.
+follower_display = Show(follower, follow_view)
+lut = GetColorTransferFunction("LineIntegral")
+points = numpy.array(lut.RGBPoints).reshape(-1, 4)
+check(len(points) >= 2 and numpy.allclose(points[:, 1], points[:, 2]) and numpy.allclose(points[:, 2], points[:, 3])
+      and points[0, 1] < 0.1 and points[-1, 1] > 0.9, "LineIntegral's colour map is not black to white: %s" % points)
+# ... with the automatic window (the X-ray representation's rule) when first shown.
+Render(follow_view)
+
+
+def automatic_window(image):
+    """0 to the 99.5th percentile of the positive 4 x 4 block means."""
+    h, w = image.shape
+    blocks = [image[y:y + 4, x:x + 4].mean() for y in range(0, h, 4) for x in range(0, w, 4)]
+    blocks = sorted(b for b in blocks if b > 0)
+    return blocks[int(0.995 * (len(blocks) - 1))]
+
+
+shown_range = GetColorTransferFunction("LineIntegral").RGBPoints[::4]
+window = automatic_window(along_y)
+check(abs(shown_range[0]) < 1e-12 and abs(shown_range[-1] - window) < 1e-6 * window,
+      "the image was first shown over %s, not the automatic window 0-%g" % (list(shown_range), window))
+check(window < 0.99 * along_y.max(), "the automatic window %g is the image's maximum %g" % (window, along_y.max()))
+follow_view.ResetActiveCameraToNegativeX()
+follow_view.ResetCamera(False)
+Render(follow_view)
+along_x = as_array(servermanager.Fetch(follower), "LineIntegral")
+check(same(along_x, reference_image(follow_view.SMProxy.GetActiveCamera())),
+      "a still render after -X did not re-project for -X")
+SaveScreenshot(os.path.join(output_dir, "projector-follows-view.png"), follow_view, ImageResolution=[200, 160])
+# Off: the explicit detector (rays along -z, U = x, V = y), whatever the view.
+fixed = XRayProjector(Input=index, UseActiveViewCamera=0, ImageSize=[64, 48], SampleExponent=18)
+detector = projected(fixed)
+check(not same(detector, along_x), "UseActiveViewCamera=0 still follows the view")
+check(same(detector, projected(XRayProjector(Input=index, ImageSize=[64, 48], SampleExponent=18,
+                                             UseActiveViewCamera=0, DetectorAxisU=[1, 0, 0]))),
+      "UseActiveViewCamera=0 is not the explicit detector")
 
 if failures:
     print("%d failures" % len(failures))
