@@ -5,7 +5,11 @@
    share of memory warns in one line with its size before it starts;
 3. X-Ray Projector makes the image of the active view's camera (again after
    the camera moves, on UpdatePipeline or a still render of the view), with
-   the footprint deposit, in grey; UseActiveViewCamera=0 keeps the detector.
+   the footprint deposit, in grey; UseActiveViewCamera=0 keeps the detector;
+4. X-Ray Window and X-Ray Level show the automatic window the X-ray uses,
+   unticking X-Ray Automatic Window starts the manual window there, and the
+   automatic window is kept through camera motion and re-colouring by the
+   array already shown (recomputed on a new array or a TF edit).
 
     pvbatch pvbatch_panel.py PLUGIN VOLUME.vti OUTPUT_DIR
 """
@@ -22,7 +26,7 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import (  # noqa: E402
-    as_array, check, failures, invoke, mapper_call, obj, xray_representation)
+    as_array, check, failures, invoke, mapper_call, obj, read_png, xray_representation)
 from vtkmodules.vtkRenderingCore import vtkCamera  # noqa: E402
 
 plugin, volume_path, output_dir = sys.argv[1:4]
@@ -45,6 +49,12 @@ class Warnings:
         # "Warning: In FILE, line N" then the message, which is one line.
         lines = text.strip().split("\n")
         self.texts.append(lines[1] if len(lines) == 2 else text)
+
+
+def screenshot_array(view):
+    path = os.path.join(output_dir, "panel-window.png")
+    SaveScreenshot(path, view, ImageResolution=list(view.ViewSize))
+    return read_png(path).astype(float)
 
 
 def xml_property(proxy_name, property_name):
@@ -108,6 +118,66 @@ check(len(projector_said.texts) == 1 and re.search(
     "the projector's long run warned %s" % projector_said.texts)
 Delete(projector)
 
+
+# 4. The window in the panel.
+window_view = CreateView("RenderView")
+window_view.ViewSize = [200, 160]
+window_view.OrientationAxesVisibility = 0
+window_display = Show(reader, window_view, "UniformGridRepresentation")
+ColorBy(window_display, ("POINTS", "headsq"))
+window_display.SetRepresentationType("Monte Carlo X-Ray")
+window_display.XRaySampleExponent = 18
+GetOpacityTransferFunction("headsq").Points = [400.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
+window_view.ResetActiveCameraToNegativeY()
+window_view.ResetCamera(False)
+Render(window_view)
+window_representation = xray_representation(window_display)
+automatic = (mapper_call(window_representation, "GetDisplayedWindow"),
+             mapper_call(window_representation, "GetDisplayedLevel"))
+check(automatic[0] > 0 and automatic[0] != 1.0, "the automatic window is %s" % (automatic,))
+window_display.UpdatePropertyInformation()
+shown = (window_display.GetPropertyValue("XRayWindowInfo"), window_display.GetPropertyValue("XRayLevelInfo"))
+check(numpy.allclose(shown, automatic, rtol=1e-5), "the panel's window information %s, the X-ray's %s" % (
+    shown, automatic))
+check(numpy.allclose((window_display.XRayWindow, window_display.XRayLevel), automatic, rtol=1e-5),
+      "X-Ray Window/Level show %s, not the automatic %s" % ((window_display.XRayWindow, window_display.XRayLevel),
+                                                           automatic))
+# The rule: kept through camera motion; chosen anew when the points are drawn
+# anew. Colouring again by the array shown keeps it when the TF stays; ParaView
+# grows a TF that does not span the data range to it on re-colouring (its
+# default rescale mode), a TF edit like any other.
+window_view.SMProxy.GetActiveCamera().Azimuth(60)
+Render(window_view)
+kept = mapper_call(window_representation, "GetDisplayedWindow")
+check(kept == automatic[0], "a camera motion changed the window from %g to %g" % (automatic[0], kept))
+GetOpacityTransferFunction("headsq").Points = [0.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
+Render(window_view)
+spanning = mapper_call(window_representation, "GetDisplayedWindow")
+check(spanning != kept, "a TF edit kept the window %g" % kept)
+window_view.SMProxy.GetActiveCamera().Azimuth(-60)
+Render(window_view)
+ColorBy(window_display, ("POINTS", "headsq"))
+Render(window_view)
+check(mapper_call(window_representation, "GetDisplayedWindow") == spanning,
+      "colouring again by the array shown changed the window from %g to %g" % (
+          spanning, mapper_call(window_representation, "GetDisplayedWindow")))
+# A TF edit recomputes it (for the camera of that edit).
+GetOpacityTransferFunction("headsq").Points = [1000.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
+Render(window_view)
+edited = mapper_call(window_representation, "GetDisplayedWindow")
+check(edited != spanning, "a TF edit kept the window %g" % spanning)
+check(abs(window_display.XRayWindow - edited) < 1e-5 * edited,
+      "after the TF edit X-Ray Window shows %g, the X-ray uses %g" % (window_display.XRayWindow, edited))
+# Unticking Automatic Window: the manual window starts where the automatic one was.
+before = screenshot_array(window_view)
+window_display.XRayAutomaticWindow = 0
+Render(window_view)
+manual = (mapper_call(window_representation, "GetColorWindow"), mapper_call(window_representation, "GetColorLevel"))
+check(numpy.allclose(manual, (edited, mapper_call(window_representation, "GetDisplayedLevel")), rtol=1e-5),
+      "unticking Automatic Window gave the manual window %s, not %g" % (manual, edited))
+after = screenshot_array(window_view)
+check(abs(after.mean() - before.mean()) < 0.5, "unticking Automatic Window changed the mean grey %.1f to %.1f" % (
+    before.mean(), after.mean()))
 
 # 3. The projector follows the active view.
 def same(a, b):

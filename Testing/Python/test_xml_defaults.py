@@ -121,7 +121,7 @@ class XMLDefaults(unittest.TestCase):
                    "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
                    "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,
                    "SetProgressiveRefinement": mapper.GetProgressiveRefinement}
-        representation = next(self.root.iter("RepresentationProxy"))
+        representation = next(self.root.iter("MCXXRayRepresentationProxy"))
         checked = 0
         for kind in VECTOR_PROPERTIES:
             for prop in representation.iter(kind):

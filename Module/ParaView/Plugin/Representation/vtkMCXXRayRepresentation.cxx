@@ -533,7 +533,23 @@ void vtkMCXXRayRepresentation::SetCompositing(int compositing)
 
 void vtkMCXXRayRepresentation::SetAutomaticWindowLevel(bool automatic)
 {
+  if (!automatic && this->Mapper->GetAutomaticWindowLevel())
+  {
+    // The manual window starts where the automatic one is.
+    this->Mapper->SetColorWindow(this->Mapper->GetDisplayedWindow());
+    this->Mapper->SetColorLevel(this->Mapper->GetDisplayedLevel());
+  }
   this->Mapper->SetAutomaticWindowLevel(automatic);
+}
+
+double vtkMCXXRayRepresentation::GetDisplayedWindow()
+{
+  return this->Mapper->GetDisplayedWindow();
+}
+
+double vtkMCXXRayRepresentation::GetDisplayedLevel()
+{
+  return this->Mapper->GetDisplayedLevel();
 }
 
 void vtkMCXXRayRepresentation::SetColorWindow(double window)

@@ -70,10 +70,25 @@ public:
   /** Forwarded to the mapper (see vtkMCXXRayMapper). */
   void SetInvertDisplay(bool invert);
   void SetCompositing(int compositing);
-  void SetAutomaticWindowLevel(bool automatic);
   void SetColorWindow(double window);
   void SetColorLevel(double level);
   void SetProgressiveRefinement(bool progressive);
+  ///@}
+
+  ///@{
+  /**
+   * The automatic window (default on), forwarded to the mapper; turning it
+   * off starts the manual window and level where the displayed ones are, so
+   * that the picture does not jump (a window or level set afterwards, or in
+   * the same update as ParaView pushes them, replaces them).
+   */
+  void SetAutomaticWindowLevel(bool automatic);
+  ///@}
+
+  ///@{
+  /** The window and level the last render used (the panel's X-Ray Window/Level information). */
+  double GetDisplayedWindow();
+  double GetDisplayedLevel();
   ///@}
 
   ///@{

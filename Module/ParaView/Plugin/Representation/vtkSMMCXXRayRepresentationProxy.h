@@ -1,0 +1,52 @@
+/**
+ * @class   vtkSMMCXXRayRepresentationProxy
+ * @brief   The client-side proxy of the "Monte Carlo X-Ray" representation:
+ *          shows the automatic window in the panel.
+ *
+ * After each still render of a view that shows it, the proxy reads the
+ * window and level the X-ray used (information properties XRayWindowInfo
+ * and XRayLevelInfo, vtkMCXXRayRepresentation::GetDisplayedWindow and
+ * GetDisplayedLevel) and, while XRayAutomaticWindow is on, sets X-Ray Window
+ * and X-Ray Level to them (not pushed: the mapper ignores them while the
+ * window is automatic). The panel thus shows the automatic values, and
+ * unticking X-Ray Automatic Window starts the manual window from them.
+ */
+#ifndef vtkSMMCXXRayRepresentationProxy_h
+#define vtkSMMCXXRayRepresentationProxy_h
+
+#include "MonteCarloXRayParaViewModule.h" // for export macro
+#include "vtkSMRepresentationProxy.h"
+#include "vtkWeakPointer.h" // for members
+
+class MONTECARLOXRAYPARAVIEW_EXPORT vtkSMMCXXRayRepresentationProxy
+  : public vtkSMRepresentationProxy
+{
+public:
+  static vtkSMMCXXRayRepresentationProxy* New();
+  vtkTypeMacro(vtkSMMCXXRayRepresentationProxy, vtkSMRepresentationProxy);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /** Observes the view's still renders (the first time a view updates it). */
+  void ViewUpdated(vtkSMProxy* view) override;
+
+  /**
+   * Reads the displayed window and, while it is automatic, puts it in X-Ray
+   * Window and X-Ray Level; true when they changed.
+   */
+  bool ShowDisplayedWindow();
+
+protected:
+  vtkSMMCXXRayRepresentationProxy() = default;
+  ~vtkSMMCXXRayRepresentationProxy() override;
+
+private:
+  vtkSMMCXXRayRepresentationProxy(const vtkSMMCXXRayRepresentationProxy&) = delete;
+  void operator=(const vtkSMMCXXRayRepresentationProxy&) = delete;
+
+  void OnRendered(vtkObject*, unsigned long, void* callData);
+
+  vtkWeakPointer<vtkSMProxy> ObservedView;
+  unsigned long RenderObserver = 0;
+};
+
+#endif
