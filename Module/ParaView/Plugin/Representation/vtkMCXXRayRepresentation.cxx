@@ -459,9 +459,10 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
   {
     return;
   }
-  // 0 at the lowest density, 1 at the highest; a constant volume gets 1.
+  // 0 at the lowest density (-200 for CT in HU), 1 at the highest; a
+  // constant volume gets 1.
   const double high = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
-  const double low = std::min(levels->GetTuple1(0), high - 1.0);
+  const double low = std::min(DefaultRampStart(levels->GetTuple1(0), high), high - 1.0);
   double range[2];
   this->DefaultRamp->GetRange(range);
   if (this->DefaultRamp->GetSize() != 2 || range[0] != low || range[1] != high)

@@ -52,8 +52,9 @@ public:
 
   /**
    * The TF from data values to g: the colour map's scalar opacity function.
-   * Without one (not coloured by an array yet), a ramp from 0 at the lowest
-   * density to 1 at the highest, as ParaView's default opacity map.
+   * Without one (not coloured by an array yet), a ramp from 0 at
+   * DefaultRampStart (the lowest density; -200 for CT in HU) to 1 at the
+   * highest.
    */
   void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
 
@@ -118,6 +119,17 @@ public:
   double GetStillRenderTime() const { return this->StillRenderTime; }
   void SetFootprintReach(double reach);
   ///@}
+
+  /**
+   * Where the default TF's ramp starts for densities from low to high: for
+   * CT in Hounsfield units (low below -500, high above 1000) at -200 HU, so
+   * that air and padding weigh nothing and fat little, and bone and soft
+   * tissue read on the first picture; else at the lowest density.
+   */
+  static double DefaultRampStart(double low, double high)
+  {
+    return low < -500.0 && high > 1000.0 ? -200.0 : low;
+  }
 
   /** The mapper, for tests and scripts. */
   vtkMCXXRayMapper* GetMapper();

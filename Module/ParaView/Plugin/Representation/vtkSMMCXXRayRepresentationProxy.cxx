@@ -1,8 +1,13 @@
 #include "vtkSMMCXXRayRepresentationProxy.h"
 
 #include "vtkCommand.h"
+#include "vtkMCXXRayRepresentation.h"
 #include "vtkObjectFactory.h"
+#include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMPropertyHelper.h"
+
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkSMMCXXRayRepresentationProxy);
 
@@ -17,6 +22,7 @@ vtkSMMCXXRayRepresentationProxy::~vtkSMMCXXRayRepresentationProxy()
 void vtkSMMCXXRayRepresentationProxy::ViewUpdated(vtkSMProxy* view)
 {
   this->Superclass::ViewUpdated(view);
+  this->PrepareFirstPicture(view);
   if (view && view != this->ObservedView)
   {
     if (this->ObservedView && this->RenderObserver)
@@ -35,6 +41,44 @@ void vtkSMMCXXRayRepresentationProxy::OnRendered(vtkObject*, unsigned long, void
   if (!(callData && *static_cast<int*>(callData) != 0))
   {
     this->ShowDisplayedWindow();
+  }
+}
+
+void vtkSMMCXXRayRepresentationProxy::PrepareFirstPicture(vtkSMProxy* view)
+{
+  // Only while the X-ray is the representation shown.
+  vtkSMProxy* parent = this->GetParentProxy();
+  if (!view || !parent || !parent->GetProperty("Representation") ||
+    std::string(vtkSMPropertyHelper(parent, "Representation").GetAsString()) !=
+      "Monte Carlo X-Ray" ||
+    !vtkSMPVRepresentationProxy::GetUsingScalarColoring(parent))
+  {
+    return;
+  }
+  vtkSMProxy* opacity = vtkSMPropertyHelper(this, "ScalarOpacityFunction", true).GetAsProxy();
+  if (opacity && opacity != this->PreparedOpacity)
+  {
+    this->PreparedOpacity = opacity;
+    vtkSMPropertyHelper points(opacity, "Points");
+    std::vector<double> ramp = points.GetDoubleArray();
+    // ParaView's default: (x, y, midpoint, sharpness) = (low, 0, 0.5, 0), (high, 1, 0.5, 0).
+    if (ramp.size() == 8 && ramp[1] == 0.0 && ramp[5] == 1.0 && ramp[2] == 0.5 && ramp[3] == 0.0 &&
+      ramp[6] == 0.5 && ramp[7] == 0.0)
+    {
+      const double start = vtkMCXXRayRepresentation::DefaultRampStart(ramp[0], ramp[4]);
+      if (start != ramp[0])
+      {
+        ramp[0] = start;
+        points.Set(ramp.data(), 8);
+        opacity->UpdateVTKObjects();
+      }
+    }
+  }
+  vtkSMProxy* colorMap = vtkSMPropertyHelper(parent, "LookupTable", true).GetAsProxy();
+  if (colorMap && colorMap != this->HiddenBarColorMap)
+  {
+    this->HiddenBarColorMap = colorMap;
+    vtkSMPVRepresentationProxy::SetScalarBarVisibility(parent, view, false);
   }
 }
 
@@ -71,4 +115,6 @@ void vtkSMMCXXRayRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ObservedView: " << this->ObservedView.GetPointer() << "\n";
   os << indent << "RenderObserver: " << this->RenderObserver << "\n";
+  os << indent << "PreparedOpacity: " << this->PreparedOpacity.GetPointer() << "\n";
+  os << indent << "HiddenBarColorMap: " << this->HiddenBarColorMap.GetPointer() << "\n";
 }

@@ -10,6 +10,14 @@
  * and X-Ray Level to them (not pushed: the mapper ignores them while the
  * window is automatic). The panel thus shows the automatic values, and
  * unticking X-Ray Automatic Window starts the manual window from them.
+ *
+ * First pictures that read: when the X-ray is shown coloured by an array
+ * whose opacity function is still ParaView's default (a ramp from 0 at the
+ * data's minimum to 1 at its maximum) and the data are CT in Hounsfield
+ * units, the ramp starts at -200 HU instead
+ * (vtkMCXXRayRepresentation::DefaultRampStart), once per opacity function;
+ * and the colour map's scalar bar, which means nothing for a grey X-ray, is
+ * hidden once per colour map (the legend button shows it again).
  */
 #ifndef vtkSMMCXXRayRepresentationProxy_h
 #define vtkSMMCXXRayRepresentationProxy_h
@@ -35,6 +43,12 @@ public:
    */
   bool ShowDisplayedWindow();
 
+  /**
+   * Starts ParaView's default opacity ramp at -200 HU for CT in HU and hides
+   * the scalar bar, each once per function (see the class comment).
+   */
+  void PrepareFirstPicture(vtkSMProxy* view);
+
 protected:
   vtkSMMCXXRayRepresentationProxy() = default;
   ~vtkSMMCXXRayRepresentationProxy() override;
@@ -46,6 +60,8 @@ private:
   void OnRendered(vtkObject*, unsigned long, void* callData);
 
   vtkWeakPointer<vtkSMProxy> ObservedView;
+  vtkWeakPointer<vtkSMProxy> PreparedOpacity;   // the opacity function last looked at
+  vtkWeakPointer<vtkSMProxy> HiddenBarColorMap; // the colour map whose bar was hidden
   unsigned long RenderObserver = 0;
 };
 
