@@ -9,7 +9,9 @@
 4. X-Ray Window and X-Ray Level show the automatic window the X-ray uses,
    unticking X-Ray Automatic Window starts the manual window there, and the
    automatic window is kept through camera motion and re-colouring by the
-   array already shown (recomputed on a new array or a TF edit).
+   array already shown (recomputed on a new array or a TF edit);
+7. pvpython: XRayDensityIndex(Input=reader) on a reader not yet updated
+   indexes the active scalars (Density left empty), without an error.
 
     pvbatch pvbatch_panel.py PLUGIN VOLUME.vti OUTPUT_DIR
 """
@@ -26,7 +28,7 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import (  # noqa: E402
-    as_array, check, failures, invoke, mapper_call, obj, read_png, xray_representation)
+    as_array, check, failures, invoke, mapper_call, obj, read_png, reply_number, xray_representation)
 from vtkmodules.vtkRenderingCore import vtkCamera  # noqa: E402
 
 plugin, volume_path, output_dir = sys.argv[1:4]
@@ -66,6 +68,21 @@ def xml_property(proxy_name, property_name):
     raise KeyError(property_name)
 
 
+# 7. A reader that has not run yet: ParaView's Density domain has no arrays to
+# choose from and leaves it empty, which means the active point scalars.
+fresh = XMLImageDataReader(FileName=[volume_path])
+fresh_index = XRayDensityIndex(Input=fresh)
+index_errors = []
+fresh_index.GetClientSideObject().AddObserver("ErrorEvent", lambda caller, event: index_errors.append(event))
+fresh_index.UpdatePipeline()
+levels = fresh_index.GetDataInformation().DataInformation.GetArrayInformation("LevelValues", 2)
+level_range = tuple(levels.GetComponentRange(0)) if levels else None
+check(not index_errors, "XRayDensityIndex(Input=reader) failed (%d errors)" % len(index_errors))
+check(level_range == (0.0, 3926.0),
+      "XRayDensityIndex(Input=reader) indexed %s, not the active scalars headsq (0..3926)" % (level_range,))
+Delete(fresh_index)
+Delete(fresh)
+
 # 1. X-Ray Sample Exponent: typed 31, the representation draws 2^30 - 1 at
 # most and says so (with the cloud's size) before the render would start.
 view = CreateView("RenderView")
@@ -82,6 +99,7 @@ check(said.texts and re.search(r"X-Ray Sample Exponent 31 is outside 0-30; using
                                r"a 12\.0 GiB cloud .* and about \d+ min for a full image", said.texts[0]),
       "the warning for 31 does not say the clamp and the size: %s" % said.texts)
 # A cheap exponent says nothing; 26 (768 MiB, about 13 s) says its cost.
+check(display.XRaySampleExponent == 30, "the panel shows exponent %s, the X-ray uses 30" % display.XRaySampleExponent)
 del said.texts[:]
 display.XRaySampleExponent = 20
 check(said.texts == [], "exponent 20 warned: %s" % said.texts)
@@ -110,6 +128,11 @@ projector = XRayProjector(Input=index)
 projector.ImageSize = [32, 32]
 algorithm = projector.GetClientSideObject()
 projector_said = Warnings(algorithm)
+projector.TargetRelativeError = 2.0  # beyond the class's 0-1: the panel shows the 1 it uses
+check(projector.TargetRelativeError == 1.0 and
+      reply_number(invoke("Invoke %s GetTargetRelativeError" % obj(algorithm))) == 1.0,
+      "Target Relative Error 2 reads %g in the panel" % projector.TargetRelativeError)
+projector.TargetRelativeError = 0.0
 projector.SampleExponent = 30
 algorithm.AddObserver("ProgressEvent", lambda caller, event: caller.SetAbortExecute(1))
 projector.UpdatePipeline()

@@ -2,6 +2,16 @@
 
 #include "vtkMCXMemoryCheckPrivate.h"
 
+#include "vtkNew.h"
+#include "vtkSMDoubleRangeDomain.h"
+#include "vtkSMDoubleVectorProperty.h"
+#include "vtkSMIntRangeDomain.h"
+#include "vtkSMIntVectorProperty.h"
+#include "vtkSMPropertyIterator.h"
+#include "vtkSMProxy.h"
+
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 
@@ -71,6 +81,63 @@ std::string ProjectionCost(double samples)
   char text[128];
   std::snprintf(text, sizeof(text), "%.0f samples, about %s", samples, Seconds(seconds).c_str());
   return text;
+}
+
+namespace
+{
+// Clamps the elements of `property` (int or double) to `domain`'s entries
+// (one per element, or the first for all).
+template <typename Property, typename Domain>
+bool ClampElements(Property* property, Domain* domain)
+{
+  if (!property || !domain || property->GetInformationOnly())
+  {
+    return false;
+  }
+  bool changed = false;
+  for (unsigned int i = 0; i < property->GetNumberOfElements(); ++i)
+  {
+    const unsigned int entry = domain->GetNumberOfEntries() > i ? i : 0;
+    auto value = property->GetElement(i);
+    int exists = 0;
+    const auto low = domain->GetMinimum(entry, exists);
+    if (exists && value < low)
+    {
+      value = low;
+    }
+    const auto high = domain->GetMaximum(entry, exists);
+    if (exists && value > high)
+    {
+      value = high;
+    }
+    if (value != property->GetElement(i))
+    {
+      property->SetElement(i, value);
+      changed = true;
+    }
+  }
+  return changed;
+}
+}
+
+bool ClampToRangeDomains(vtkSMProxy* proxy, const std::string& prefix)
+{
+  bool changed = false;
+  vtkNew<vtkSMPropertyIterator> properties;
+  properties->SetProxy(proxy);
+  for (properties->Begin(); !properties->IsAtEnd(); properties->Next())
+  {
+    vtkSMProperty* property = properties->GetProperty();
+    if (std::string(properties->GetKey()).compare(0, prefix.size(), prefix) != 0)
+    {
+      continue;
+    }
+    changed |= ClampElements(
+      vtkSMIntVectorProperty::SafeDownCast(property), property->FindDomain<vtkSMIntRangeDomain>());
+    changed |= ClampElements(vtkSMDoubleVectorProperty::SafeDownCast(property),
+      property->FindDomain<vtkSMDoubleRangeDomain>());
+  }
+  return changed;
 }
 
 } // namespace mcx

@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
+#include "vtkMCXCostPrivate.h"
 #include "vtkMCXTypes.h"
 #include "vtkMCXViewProjector.h"
 #include "vtkObjectFactory.h"
@@ -223,6 +224,8 @@ void vtkSMMCXViewProjectorProxy::UpdateVTKObjects()
     this->Copying = false;
   }
   this->Superclass::UpdateVTKObjects();
+  // The panel shows what the projector uses (its setters clamp silently).
+  mcx::ClampToRangeDomains(this, "");
 }
 
 void vtkSMMCXViewProjectorProxy::UpdatePipeline()

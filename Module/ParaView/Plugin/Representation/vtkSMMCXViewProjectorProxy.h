@@ -29,7 +29,10 @@ public:
   vtkTypeMacro(vtkSMMCXViewProjectorProxy, vtkSMSourceProxy);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /** Copies the active view's camera first. */
+  /**
+   * Copies the active view's camera first; clamps the properties to their
+   * ranges after pushing (the panel shows what the projector uses).
+   */
   void UpdateVTKObjects() override;
   void UpdatePipeline() override;
   void UpdatePipeline(double time) override;

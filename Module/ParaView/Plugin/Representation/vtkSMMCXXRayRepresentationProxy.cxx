@@ -1,6 +1,7 @@
 #include "vtkSMMCXXRayRepresentationProxy.h"
 
 #include "vtkCommand.h"
+#include "vtkMCXCostPrivate.h"
 #include "vtkMCXXRayRepresentation.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPVRepresentationProxy.h"
@@ -17,6 +18,12 @@ vtkSMMCXXRayRepresentationProxy::~vtkSMMCXXRayRepresentationProxy()
   {
     this->ObservedView->RemoveObserver(this->RenderObserver);
   }
+}
+
+void vtkSMMCXXRayRepresentationProxy::UpdateVTKObjects()
+{
+  this->Superclass::UpdateVTKObjects();
+  mcx::ClampToRangeDomains(this, "XRay");
 }
 
 void vtkSMMCXXRayRepresentationProxy::ViewUpdated(vtkSMProxy* view)

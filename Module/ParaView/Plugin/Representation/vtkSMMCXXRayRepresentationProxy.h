@@ -34,6 +34,13 @@ public:
   vtkTypeMacro(vtkSMMCXXRayRepresentationProxy, vtkSMRepresentationProxy);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /**
+   * Pushes the properties, then clamps the X-Ray ones to their ranges (the
+   * classes'), so that the panel shows what the X-ray uses: 31 typed into
+   * X-Ray Sample Exponent reads 30 once the class has clamped and warned.
+   */
+  void UpdateVTKObjects() override;
+
   /** Observes the view's still renders (the first time a view updates it). */
   void ViewUpdated(vtkSMProxy* view) override;
 
