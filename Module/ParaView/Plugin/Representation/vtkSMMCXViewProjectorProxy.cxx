@@ -59,6 +59,10 @@ void vtkSMMCXViewProjectorProxy::CreateVTKObjects()
     return;
   }
   this->Superclass::CreateVTKObjects();
+  if (!this->ObjectsCreated) // a prototype (Location 0) follows no view
+  {
+    return;
+  }
   InstallGreyLineIntegralColorMap();
   vtkSMSessionProxyManager* pxm = this->GetSessionProxyManager();
   vtkSMProxySelectionModel* selection = pxm ? pxm->GetSelectionModel("ActiveView") : nullptr;
@@ -217,12 +221,7 @@ bool vtkSMMCXViewProjectorProxy::CopyActiveViewCamera()
 
 void vtkSMMCXViewProjectorProxy::UpdateVTKObjects()
 {
-  if (!this->Copying)
-  {
-    this->Copying = true;
-    this->CopyActiveViewCamera();
-    this->Copying = false;
-  }
+  this->CopyActiveViewCamera();
   this->Superclass::UpdateVTKObjects();
   // The panel shows what the projector uses (its setters clamp silently).
   mcx::ClampToRangeDomains(this, "");
@@ -254,5 +253,4 @@ void vtkSMMCXViewProjectorProxy::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WindowedColorMap: " << this->WindowedColorMap.GetPointer() << "\n";
   os << indent << "Selection: " << this->Selection.GetPointer() << "\n";
   os << indent << "SelectionObserver: " << this->SelectionObserver << "\n";
-  os << indent << "Copying: " << this->Copying << "\n";
 }

@@ -72,7 +72,6 @@ private:
   vtkWeakPointer<vtkSMProxy> WindowedColorMap; // the colour map given the automatic window
   vtkWeakPointer<vtkObject> Selection;         // the session's "ActiveView" selection model
   unsigned long SelectionObserver = 0;
-  bool Copying = false; // within UpdateVTKObjects after a copy
 };
 
 #endif
