@@ -567,7 +567,13 @@ int vtkMCXDensityIndex::RequestData(
   }
   else
   {
-    scalars = this->GetInputArrayToProcess(0, inputVector);
+    // An empty array name (ParaView's Density before the input has data to
+    // choose from, as in pvpython) means the active point scalars.
+    vtkInformation* chosen = this->GetInputArrayInformation(0);
+    const bool unnamed = chosen && chosen->Has(vtkDataObject::FIELD_NAME()) &&
+      !*chosen->Get(vtkDataObject::FIELD_NAME());
+    scalars =
+      unnamed ? input->GetPointData()->GetScalars() : this->GetInputArrayToProcess(0, inputVector);
     problem = ScalarsProblem(scalars, input->GetNumberOfPoints());
   }
   vtkSmartPointer<vtkImageData> piece;

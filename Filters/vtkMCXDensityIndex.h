@@ -3,7 +3,9 @@
  * @brief   Sorts the voxel ids of a volume by density level (the preprocessing
  *          of hybrid Monte Carlo volume rendering).
  *
- * The input is vtkImageData with one-component point scalars of any type.
+ * The input is vtkImageData with one-component point scalars of any type:
+ * the array SetInputArrayToProcess names, by default (or named "") the
+ * active point scalars.
  * Integer data gets one level per distinct value (exact), and so does
  * floating-point data whose finite values are all whole numbers. Other
  * floating-point data gets NumberOfFloatLevels equal-width bins over its

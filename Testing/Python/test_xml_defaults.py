@@ -35,15 +35,25 @@ def as_list(value):
 class XMLDefaults(unittest.TestCase):
     def setUp(self):
         self.root = ET.parse(XML).getroot()
-        self.filters = [p for p in self.root.iter("SourceProxy")]
+        # X-Ray Projector's proxy is the plugin's own (vtkSMMCXViewProjectorProxy).
+        self.filters = [p for p in self.root.iter() if p.tag in ("SourceProxy", "MCXViewProjectorProxy")]
         self.assertGreaterEqual(len(self.filters), 4)
+
+    # ParaView-only subclasses (Module/ParaView) and the class they extend;
+    # the properties only the subclass has (the view's camera, which the
+    # proxy copies) are not the base class's.
+    PARAVIEW_CLASSES = {"vtkMCXViewProjector": "vtkMCXProjector"}
+    PARAVIEW_ONLY = {"ViewCameraInUse", "ViewCameraPosition", "ViewCameraFocalPoint", "ViewCameraViewUp",
+                     "ViewCameraViewAngle", "ViewCameraParallelScale", "ViewCameraParallelProjection"}
 
     def properties(self):
         for proxy in self.filters:
-            cls = getattr(mcxray, proxy.get("class"))
+            cls = getattr(mcxray, self.PARAVIEW_CLASSES.get(proxy.get("class"), proxy.get("class")))
             for kind in VECTOR_PROPERTIES:
                 for prop in proxy.iter(kind):
                     command = prop.get("command")
+                    if prop.get("name") in self.PARAVIEW_ONLY:
+                        continue
                     if command and command.startswith("Set") and prop.get("default_values") is not None:
                         yield proxy, cls, prop, command[3:]
 
@@ -111,7 +121,7 @@ class XMLDefaults(unittest.TestCase):
                    "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
                    "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,
                    "SetProgressiveRefinement": mapper.GetProgressiveRefinement}
-        representation = next(self.root.iter("RepresentationProxy"))
+        representation = next(self.root.iter("MCXXRayRepresentationProxy"))
         checked = 0
         for kind in VECTOR_PROPERTIES:
             for prop in representation.iter(kind):

@@ -2,6 +2,7 @@
 
 #include "vtkMCXAggregateIndex.h"
 #include "vtkMCXAgreeingExecutive.h"
+#include "vtkMCXCostPrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributed.h"
 #include "vtkMCXXRayMapper.h"
@@ -458,9 +459,10 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
   {
     return;
   }
-  // 0 at the lowest density, 1 at the highest; a constant volume gets 1.
+  // 0 at the lowest density (-200 for CT in HU), 1 at the highest; a
+  // constant volume gets 1.
   const double high = levels->GetTuple1(levels->GetNumberOfTuples() - 1);
-  const double low = std::min(levels->GetTuple1(0), high - 1.0);
+  const double low = std::min(DefaultRampStart(levels->GetTuple1(0), high), high - 1.0);
   double range[2];
   this->DefaultRamp->GetRange(range);
   if (this->DefaultRamp->GetSize() != 2 || range[0] != low || range[1] != high)
@@ -474,7 +476,25 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)
 {
-  this->Mapper->SetSampleExponent(exponent);
+  // The mapper stores the cloud: at most 2^MaximumPointCloudExponent - 1
+  // points. Said before the render that would take the time and memory.
+  const int stored = std::min(std::max(exponent, 0), vtkMCXTypes::MaximumPointCloudExponent);
+  if (stored == this->Mapper->GetSampleExponent())
+  {
+    return;
+  }
+  const std::string cost = mcx::StoredCloudCost(stored);
+  if (stored != exponent)
+  {
+    vtkWarningMacro("X-Ray Sample Exponent " << exponent << " is outside 0-"
+                                             << vtkMCXTypes::MaximumPointCloudExponent << "; using "
+                                             << stored << (cost.empty() ? "." : ": ") << cost);
+  }
+  else if (!cost.empty())
+  {
+    vtkWarningMacro("X-Ray Sample Exponent " << stored << ": " << cost);
+  }
+  this->Mapper->SetSampleExponent(stored);
 }
 
 void vtkMCXXRayRepresentation::SetStrategy(int strategy)
@@ -514,7 +534,23 @@ void vtkMCXXRayRepresentation::SetCompositing(int compositing)
 
 void vtkMCXXRayRepresentation::SetAutomaticWindowLevel(bool automatic)
 {
+  if (!automatic && this->Mapper->GetAutomaticWindowLevel())
+  {
+    // The manual window starts where the automatic one is.
+    this->Mapper->SetColorWindow(this->Mapper->GetDisplayedWindow());
+    this->Mapper->SetColorLevel(this->Mapper->GetDisplayedLevel());
+  }
   this->Mapper->SetAutomaticWindowLevel(automatic);
+}
+
+double vtkMCXXRayRepresentation::GetDisplayedWindow()
+{
+  return this->Mapper->GetDisplayedWindow();
+}
+
+double vtkMCXXRayRepresentation::GetDisplayedLevel()
+{
+  return this->Mapper->GetDisplayedLevel();
 }
 
 void vtkMCXXRayRepresentation::SetColorWindow(double window)

@@ -52,8 +52,9 @@ public:
 
   /**
    * The TF from data values to g: the colour map's scalar opacity function.
-   * Without one (not coloured by an array yet), a ramp from 0 at the lowest
-   * density to 1 at the highest, as ParaView's default opacity map.
+   * Without one (not coloured by an array yet), a ramp from 0 at
+   * DefaultRampStart (the lowest density; -200 for CT in HU) to 1 at the
+   * highest.
    */
   void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
 
@@ -70,10 +71,25 @@ public:
   /** Forwarded to the mapper (see vtkMCXXRayMapper). */
   void SetInvertDisplay(bool invert);
   void SetCompositing(int compositing);
-  void SetAutomaticWindowLevel(bool automatic);
   void SetColorWindow(double window);
   void SetColorLevel(double level);
   void SetProgressiveRefinement(bool progressive);
+  ///@}
+
+  ///@{
+  /**
+   * The automatic window (default on), forwarded to the mapper; turning it
+   * off starts the manual window and level where the displayed ones are, so
+   * that the picture does not jump (a window or level set afterwards, or in
+   * the same update as ParaView pushes them, replaces them).
+   */
+  void SetAutomaticWindowLevel(bool automatic);
+  ///@}
+
+  ///@{
+  /** The window and level the last render used (the panel's X-Ray Window/Level information). */
+  double GetDisplayedWindow();
+  double GetDisplayedLevel();
   ///@}
 
   ///@{
@@ -103,6 +119,17 @@ public:
   double GetStillRenderTime() const { return this->StillRenderTime; }
   void SetFootprintReach(double reach);
   ///@}
+
+  /**
+   * Where the default TF's ramp starts for densities from low to high: for
+   * CT in Hounsfield units (low below -500, high above 1000) at -200 HU, so
+   * that air and padding weigh nothing and fat little, and bone and soft
+   * tissue read on the first picture; else at the lowest density.
+   */
+  static double DefaultRampStart(double low, double high)
+  {
+    return low < -500.0 && high > 1000.0 ? -200.0 : low;
+  }
 
   /** The mapper, for tests and scripts. */
   vtkMCXXRayMapper* GetMapper();

@@ -1,0 +1,154 @@
+#include "vtkMCXViewProjector.h"
+
+#include "vtkMCXCostPrivate.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+
+#include <algorithm>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXViewProjector);
+
+namespace
+{
+// vtkMCXXRayMapper's automatic window, for the image as a whole: 0 to the
+// 99.5th percentile of the positive means of 4 x 4 pixel blocks (the blocks
+// average out the noise that would push a high percentile up). False for an
+// empty image.
+bool AutomaticWindow(vtkDataArray* values, const int dimensions[3], double& window)
+{
+  const int width = dimensions[0];
+  const int height = dimensions[1];
+  std::vector<double> blocks;
+  for (int by = 0; by < height; by += 4)
+  {
+    for (int bx = 0; bx < width; bx += 4)
+    {
+      double sum = 0.0;
+      int n = 0;
+      for (int y = by; y < std::min(height, by + 4); ++y)
+      {
+        for (int x = bx; x < std::min(width, bx + 4); ++x, ++n)
+        {
+          sum += values->GetComponent(static_cast<vtkIdType>(y) * width + x, 0);
+        }
+      }
+      if (sum > 0.0)
+      {
+        blocks.push_back(sum / n);
+      }
+    }
+  }
+  if (blocks.empty())
+  {
+    return false;
+  }
+  auto rank =
+    blocks.begin() + static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(blocks.size() - 1));
+  std::nth_element(blocks.begin(), rank, blocks.end());
+  window = *rank;
+  return true;
+}
+}
+
+vtkMCXViewProjector::vtkMCXViewProjector() = default;
+
+vtkMCXViewProjector::~vtkMCXViewProjector()
+{
+  this->SetCamera(nullptr);
+}
+
+void vtkMCXViewProjector::SetViewCameraInUse(bool use)
+{
+  if (this->ViewCameraInUse != use)
+  {
+    this->ViewCameraInUse = use;
+    this->SetCamera(use ? this->ViewCamera.GetPointer() : nullptr);
+    this->Modified();
+  }
+}
+
+// The camera's own setters mark it modified, and the projector's MTime
+// includes its camera's (vtkMCXProjectorBase::GetMTime).
+void vtkMCXViewProjector::SetViewCameraPosition(double x, double y, double z)
+{
+  this->ViewCamera->SetPosition(x, y, z);
+}
+
+void vtkMCXViewProjector::SetViewCameraFocalPoint(double x, double y, double z)
+{
+  this->ViewCamera->SetFocalPoint(x, y, z);
+}
+
+void vtkMCXViewProjector::SetViewCameraViewUp(double x, double y, double z)
+{
+  this->ViewCamera->SetViewUp(x, y, z);
+}
+
+void vtkMCXViewProjector::SetViewCameraViewAngle(double degrees)
+{
+  this->ViewCamera->SetViewAngle(degrees);
+}
+
+void vtkMCXViewProjector::SetViewCameraParallelScale(double scale)
+{
+  this->ViewCamera->SetParallelScale(scale);
+}
+
+void vtkMCXViewProjector::SetViewCameraParallelProjection(bool parallel)
+{
+  this->ViewCamera->SetParallelProjection(parallel);
+}
+
+int vtkMCXViewProjector::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // An index input projects 2^m - 1 samples, unless every voxel once or a
+  // target chooses the count (from a pilot run, up to the maximum).
+  if (vtkImageData::GetData(inputVector[0], 0) && this->GetStrategy() != vtkMCXTypes::EVERY_VOXEL)
+  {
+    const bool targeted =
+      this->GetTargetRelativeError() > 0.0 || this->GetTargetQuantizationLevels() > 0;
+    const int exponent = targeted ? this->GetMaximumSampleExponent() : this->GetSampleExponent();
+    const std::string cost = mcx::ProjectionCost(std::ldexp(1.0, exponent) - 1.0);
+    if (!cost.empty())
+    {
+      vtkWarningMacro("X-Ray Projector: " << cost << (targeted ? " at most" : "")
+                                          << " before the image is shown.");
+    }
+  }
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  vtkImageData* image = vtkImageData::GetData(outputVector, 0);
+  vtkDataArray* values =
+    image ? image->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName()) : nullptr;
+  double window = 0.0;
+  if (values && AutomaticWindow(values, image->GetDimensions(), window))
+  {
+    vtkNew<vtkDoubleArray> automatic;
+    automatic->SetName(AutomaticWindowName());
+    automatic->InsertNextValue(window);
+    image->GetFieldData()->AddArray(automatic);
+  }
+  return 1;
+}
+
+void vtkMCXViewProjector::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ViewCameraInUse: " << this->ViewCameraInUse << "\n";
+  os << indent << "ViewCamera:\n";
+  this->ViewCamera->PrintSelf(os, indent.GetNextIndent());
+}

@@ -1,0 +1,72 @@
+/**
+ * @class   vtkMCXViewProjector
+ * @brief   ParaView's "X-Ray Projector": vtkMCXProjector for a view's
+ *          camera, that says a long run before it starts.
+ *
+ * With ViewCameraInUse on, the projector projects for the camera given by
+ * the ViewCamera* values (a render view's, copied on the client by
+ * vtkSMMCXViewProjectorProxy): vtkMCXProjectorBase::SetCamera with a
+ * camera of this class's own; off (the default), the explicit detector.
+ *
+ * The output's field data AutomaticWindow (one value) is the window the
+ * X-ray representation would choose for the image (vtkMCXXRayMapper's
+ * rule: the 99.5th percentile of the positive 4 x 4 block means of
+ * LineIntegral), which vtkSMMCXViewProjectorProxy gives the image's colour
+ * map when it is first shown.
+ *
+ * A projection from a density index whose sample count will take more than
+ * about 10 s (2^SampleExponent - 1 samples at about 15 M a second) warns in
+ * one line with the count and the time before it starts, so that a GUI that
+ * is busy for minutes has said why.
+ */
+#ifndef vtkMCXViewProjector_h
+#define vtkMCXViewProjector_h
+
+#include "MonteCarloXRayParaViewModule.h" // for export macro
+#include "vtkMCXProjector.h"
+#include "vtkNew.h" // for members
+
+class vtkCamera;
+
+class MONTECARLOXRAYPARAVIEW_EXPORT vtkMCXViewProjector : public vtkMCXProjector
+{
+public:
+  static vtkMCXViewProjector* New();
+  vtkTypeMacro(vtkMCXViewProjector, vtkMCXProjector);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Project for the ViewCamera* camera (default off: the explicit detector). */
+  void SetViewCameraInUse(bool use);
+  vtkGetMacro(ViewCameraInUse, bool);
+  ///@}
+
+  ///@{
+  /** The view's camera (vtkCamera's values; the defaults are vtkCamera's). */
+  void SetViewCameraPosition(double x, double y, double z);
+  void SetViewCameraFocalPoint(double x, double y, double z);
+  void SetViewCameraViewUp(double x, double y, double z);
+  void SetViewCameraViewAngle(double degrees);
+  void SetViewCameraParallelScale(double scale);
+  void SetViewCameraParallelProjection(bool parallel);
+  vtkCamera* GetViewCamera() { return this->ViewCamera; }
+  ///@}
+
+  /** The name of the output's field data with the automatic window. */
+  static const char* AutomaticWindowName() { return "AutomaticWindow"; }
+
+protected:
+  vtkMCXViewProjector();
+  ~vtkMCXViewProjector() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkNew<vtkCamera> ViewCamera;
+  bool ViewCameraInUse = false;
+
+private:
+  vtkMCXViewProjector(const vtkMCXViewProjector&) = delete;
+  void operator=(const vtkMCXViewProjector&) = delete;
+};
+
+#endif

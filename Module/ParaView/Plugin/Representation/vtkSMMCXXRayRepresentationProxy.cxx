@@ -1,0 +1,127 @@
+#include "vtkSMMCXXRayRepresentationProxy.h"
+
+#include "vtkCommand.h"
+#include "vtkMCXCostPrivate.h"
+#include "vtkMCXXRayRepresentation.h"
+#include "vtkObjectFactory.h"
+#include "vtkSMPVRepresentationProxy.h"
+#include "vtkSMPropertyHelper.h"
+
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkSMMCXXRayRepresentationProxy);
+
+vtkSMMCXXRayRepresentationProxy::~vtkSMMCXXRayRepresentationProxy()
+{
+  if (this->ObservedView && this->RenderObserver)
+  {
+    this->ObservedView->RemoveObserver(this->RenderObserver);
+  }
+}
+
+void vtkSMMCXXRayRepresentationProxy::UpdateVTKObjects()
+{
+  this->Superclass::UpdateVTKObjects();
+  mcx::ClampToRangeDomains(this, "XRay");
+}
+
+void vtkSMMCXXRayRepresentationProxy::ViewUpdated(vtkSMProxy* view)
+{
+  this->Superclass::ViewUpdated(view);
+  this->PrepareFirstPicture(view);
+  if (view && view != this->ObservedView)
+  {
+    if (this->ObservedView && this->RenderObserver)
+    {
+      this->ObservedView->RemoveObserver(this->RenderObserver);
+    }
+    this->ObservedView = view;
+    this->RenderObserver =
+      view->AddObserver(vtkCommand::EndEvent, this, &vtkSMMCXXRayRepresentationProxy::OnRendered);
+  }
+}
+
+void vtkSMMCXXRayRepresentationProxy::OnRendered(vtkObject*, unsigned long, void* callData)
+{
+  // EndEvent's call data: 0 after a still render, 1 after an interactive one.
+  if (!(callData && *static_cast<int*>(callData) != 0))
+  {
+    this->ShowDisplayedWindow();
+  }
+}
+
+void vtkSMMCXXRayRepresentationProxy::PrepareFirstPicture(vtkSMProxy* view)
+{
+  // Only while the X-ray is the representation shown.
+  vtkSMProxy* parent = this->GetParentProxy();
+  if (!view || !parent || !parent->GetProperty("Representation") ||
+    std::string(vtkSMPropertyHelper(parent, "Representation").GetAsString()) !=
+      "Monte Carlo X-Ray" ||
+    !vtkSMPVRepresentationProxy::GetUsingScalarColoring(parent))
+  {
+    return;
+  }
+  vtkSMProxy* opacity = vtkSMPropertyHelper(this, "ScalarOpacityFunction", true).GetAsProxy();
+  if (opacity && opacity != this->PreparedOpacity)
+  {
+    this->PreparedOpacity = opacity;
+    vtkSMPropertyHelper points(opacity, "Points");
+    std::vector<double> ramp = points.GetDoubleArray();
+    // ParaView's default: (x, y, midpoint, sharpness) = (low, 0, 0.5, 0), (high, 1, 0.5, 0).
+    if (ramp.size() == 8 && ramp[1] == 0.0 && ramp[5] == 1.0 && ramp[2] == 0.5 && ramp[3] == 0.0 &&
+      ramp[6] == 0.5 && ramp[7] == 0.0)
+    {
+      const double start = vtkMCXXRayRepresentation::DefaultRampStart(ramp[0], ramp[4]);
+      if (start != ramp[0])
+      {
+        ramp[0] = start;
+        points.Set(ramp.data(), 8);
+        opacity->UpdateVTKObjects();
+      }
+    }
+  }
+  vtkSMProxy* colorMap = vtkSMPropertyHelper(parent, "LookupTable", true).GetAsProxy();
+  if (colorMap && colorMap != this->HiddenBarColorMap)
+  {
+    this->HiddenBarColorMap = colorMap;
+    vtkSMPVRepresentationProxy::SetScalarBarVisibility(parent, view, false);
+  }
+}
+
+bool vtkSMMCXXRayRepresentationProxy::ShowDisplayedWindow()
+{
+  vtkSMProperty* windowInfo = this->GetProperty("XRayWindowInfo");
+  vtkSMProperty* levelInfo = this->GetProperty("XRayLevelInfo");
+  if (!this->ObjectsCreated || !windowInfo || !levelInfo ||
+    vtkSMPropertyHelper(this, "Visibility").GetAsInt() == 0 ||
+    vtkSMPropertyHelper(this, "XRayAutomaticWindow").GetAsInt() == 0)
+  {
+    return false;
+  }
+  this->UpdatePropertyInformation(windowInfo);
+  this->UpdatePropertyInformation(levelInfo);
+  const double window = vtkSMPropertyHelper(windowInfo).GetAsDouble();
+  const double level = vtkSMPropertyHelper(levelInfo).GetAsDouble();
+  bool changed = false;
+  if (vtkSMPropertyHelper(this, "XRayWindow").GetAsDouble() != window)
+  {
+    vtkSMPropertyHelper(this, "XRayWindow").Set(window);
+    changed = true;
+  }
+  if (vtkSMPropertyHelper(this, "XRayLevel").GetAsDouble() != level)
+  {
+    vtkSMPropertyHelper(this, "XRayLevel").Set(level);
+    changed = true;
+  }
+  return changed;
+}
+
+void vtkSMMCXXRayRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ObservedView: " << this->ObservedView.GetPointer() << "\n";
+  os << indent << "RenderObserver: " << this->RenderObserver << "\n";
+  os << indent << "PreparedOpacity: " << this->PreparedOpacity.GetPointer() << "\n";
+  os << indent << "HiddenBarColorMap: " << this->HiddenBarColorMap.GetPointer() << "\n";
+}
