@@ -1,5 +1,7 @@
 #include "vtkMCXXRayMapperInternalsPrivate.h"
 
+#include "mcxAutomaticWindow.h"
+
 #include "mcxHalton.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -69,42 +71,19 @@ bool HidesNothing(
       limits.begin(), limits.end(), [&depths](double limit) { return limit > depths[1]; });
 }
 
-// Window 0 .. the 99.5th percentile of the positive means of 4 x 4 pixel
-// blocks: the blocks average out most of a coarse image's noise, which would
-// otherwise push a high percentile up. False (window unchanged) when the
-// image is empty.
+// Window 0 .. the automatic window (mcxAutomaticWindow.h), level at its
+// middle; false (window unchanged) when the image is empty.
 bool ChooseAutomaticWindow(
   const std::vector<float>& values, int width, int height, double& window, double& level)
 {
-  std::vector<double> blocks;
-  for (int by = 0; by < height; by += 4)
-  {
-    for (int bx = 0; bx < width; bx += 4)
-    {
-      double sum = 0;
-      int n = 0;
-      for (int y = by; y < std::min(height, by + 4); ++y)
-      {
-        for (int x = bx; x < std::min(width, bx + 4); ++x, ++n)
-        {
-          sum += values[static_cast<std::size_t>(y) * width + x];
-        }
-      }
-      if (sum > 0)
-      {
-        blocks.push_back(sum / n);
-      }
-    }
-  }
-  if (blocks.empty())
+  double chosen = 0;
+  if (!mcx::AutomaticWindow(
+        [&values](std::size_t p) { return static_cast<double>(values[p]); }, width, height, chosen))
   {
     return false;
   }
-  auto rank =
-    blocks.begin() + static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(blocks.size() - 1));
-  std::nth_element(blocks.begin(), rank, blocks.end());
-  window = *rank;
-  level = 0.5 * *rank;
+  window = chosen;
+  level = 0.5 * chosen;
   return true;
 }
 

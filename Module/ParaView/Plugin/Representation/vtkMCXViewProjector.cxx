@@ -1,5 +1,6 @@
 #include "vtkMCXViewProjector.h"
 
+#include "mcxAutomaticWindow.h"
 #include "vtkMCXCostPrivate.h"
 
 #include "vtkCamera.h"
@@ -21,43 +22,13 @@ vtkStandardNewMacro(vtkMCXViewProjector);
 
 namespace
 {
-// vtkMCXXRayMapper's automatic window, for the image as a whole: 0 to the
-// 99.5th percentile of the positive means of 4 x 4 pixel blocks (the blocks
-// average out the noise that would push a high percentile up). False for an
-// empty image.
+// vtkMCXXRayMapper's automatic window (mcxAutomaticWindow.h), for the image
+// as a whole; false for an empty image.
 bool AutomaticWindow(vtkDataArray* values, const int dimensions[3], double& window)
 {
-  const int width = dimensions[0];
-  const int height = dimensions[1];
-  std::vector<double> blocks;
-  for (int by = 0; by < height; by += 4)
-  {
-    for (int bx = 0; bx < width; bx += 4)
-    {
-      double sum = 0.0;
-      int n = 0;
-      for (int y = by; y < std::min(height, by + 4); ++y)
-      {
-        for (int x = bx; x < std::min(width, bx + 4); ++x, ++n)
-        {
-          sum += values->GetComponent(static_cast<vtkIdType>(y) * width + x, 0);
-        }
-      }
-      if (sum > 0.0)
-      {
-        blocks.push_back(sum / n);
-      }
-    }
-  }
-  if (blocks.empty())
-  {
-    return false;
-  }
-  auto rank =
-    blocks.begin() + static_cast<std::ptrdiff_t>(0.995 * static_cast<double>(blocks.size() - 1));
-  std::nth_element(blocks.begin(), rank, blocks.end());
-  window = *rank;
-  return true;
+  return mcx::AutomaticWindow([values](std::size_t p)
+    { return values->GetComponent(static_cast<vtkIdType>(p), 0); },
+    dimensions[0], dimensions[1], window);
 }
 }
 
