@@ -49,6 +49,23 @@ Bytes FileSize(const std::string& path)
   return static_cast<Bytes>(vtksys::SystemTools::FileLength(path));
 }
 
+bool RegularFile(const std::string& path, const std::string& what, std::string& error)
+{
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    error = (what.empty() ? std::string("it") : what) + " cannot be opened";
+    return false;
+  }
+  if (!S_ISREG(info.st_mode))
+  {
+    error = (what.empty() ? std::string("it") : what) +
+      " is not a regular file (a pipe, device or socket cannot be read as a volume)";
+    return false;
+  }
+  return true;
+}
+
 std::string Dimensions(const std::vector<long long>& dims)
 {
   std::string text;
@@ -127,10 +144,8 @@ bool ParseIntegers(const std::string& text, std::vector<long long>& values)
 // the first blank line (comments '#' skipped, the magic line first).
 bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std::string& error)
 {
-  struct stat info;
-  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode))
+  if (!RegularFile(path, std::string(), error))
   {
-    error = "not a regular file"; // a FIFO, say, would block the reading
     return false;
   }
   // At most LargestHeader bytes, whatever the lines (one huge line included).
@@ -266,6 +281,10 @@ bool PatternFiles(const std::string& header, const std::string& spec,
       error = "the data file '" + files.back() + "' is missing";
       return false;
     }
+    if (!RegularFile(files.back(), "the data file '" + files.back() + "'", error))
+    {
+      return false;
+    }
   }
   return true;
 }
@@ -319,6 +338,10 @@ bool AvailableData(const std::string& path, const TextHeader& header, const std:
   if (!vtksys::SystemTools::FileExists(file, true))
   {
     error = "the data file '" + file + "' is missing";
+    return false;
+  }
+  if (!RegularFile(file, "the data file '" + file + "'", error))
+  {
     return false;
   }
   available = FileSize(file);

@@ -26,6 +26,12 @@ std::string Lower(std::string text);
 std::string Trim(const std::string& text);
 bool EndsWith(const std::string& text, const std::string& suffix); // any case
 Bytes FileSize(const std::string& path);
+
+/// False (error set) unless path is a regular file: a FIFO, a device or a
+/// socket would block a reader or feed it without end ("/dev/zero").
+/// what names the file in the message ("the data file 'x'"); empty for
+/// the file being checked itself.
+bool RegularFile(const std::string& path, const std::string& what, std::string& error);
 std::string Dimensions(const std::vector<long long>& dims); // "512x512x300"
 
 /// dims' product times elementBytes, without overflow; false (error set)

@@ -186,6 +186,10 @@ bool ReadKeywords(std::ifstream& in, const std::string& path, bool binary, Bytes
 
 bool CheckLegacyVTKHeader(const std::string& path, Bytes& claimed, std::string& error)
 {
+  if (!RegularFile(path, std::string(), error))
+  {
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   Bytes consumed = 0;
   bool binary = false;

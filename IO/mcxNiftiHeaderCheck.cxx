@@ -106,6 +106,10 @@ int ReadHeaderBytes(const std::string& path, bool compressed, unsigned char (&he
 bool CheckNiftiHeader(const std::string& path, Bytes& claimed, std::string& error)
 {
   claimed = 0;
+  if (!RegularFile(path, std::string(), error))
+  {
+    return false;
+  }
   const bool compressed = EndsWith(path, ".gz");
   unsigned char header[540] = { 0 };
   const int got = ReadHeaderBytes(path, compressed, header);

@@ -14,6 +14,10 @@ using namespace check;
 
 bool CheckSLCHeader(const std::string& path, Bytes& claimed, std::string& error)
 {
+  if (!RegularFile(path, std::string(), error))
+  {
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   long long magic = 0, bits = 0;
   std::vector<long long> dims(3, 0);

@@ -26,6 +26,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace mcxio
 {
@@ -87,6 +92,41 @@ vtkSmartPointer<vtkAlgorithm> ReaderFor(const std::string& path)
   return nullptr;
 }
 
+// errno's words as a message continues them ("no such file or directory").
+std::string SystemError(int number)
+{
+  std::string words = std::strerror(number);
+  if (!words.empty())
+  {
+    words[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(words[0])));
+  }
+  return words;
+}
+
+// False with error set to one line naming why path cannot be read at all:
+// empty, missing (errno's words: no such file, permission denied, a
+// loop of links), or not readable by this user.
+bool Accessible(const std::string& path, std::string& error)
+{
+  if (path.empty())
+  {
+    error = "cannot read '': the path is empty";
+    return false;
+  }
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0)
+  {
+    error = "cannot read '" + path + "': " + SystemError(errno);
+    return false;
+  }
+  if (::access(path.c_str(), S_ISDIR(info.st_mode) ? (R_OK | X_OK) : R_OK) != 0)
+  {
+    error = "cannot read '" + path + "': " + SystemError(errno);
+    return false;
+  }
+  return true;
+}
+
 // Runs reader (ReaderFor(path)): its volume, or null with error set to its
 // first report, said once.
 vtkSmartPointer<vtkImageData> ReadWith(
@@ -129,9 +169,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   const std::string& path, const VolumeReadOptions& options, std::string& error)
 {
   const unsigned long long memoryBudget = options.MemoryBudget;
-  if (!vtksys::SystemTools::FileExists(path))
+  if (!Accessible(path, error))
   {
-    error = "cannot read '" + path + "': no such file or directory";
     return nullptr;
   }
   unsigned long long claimed = 0;

@@ -235,6 +235,10 @@ bool FirstPointArray(
 
 bool CheckXMLImageHeader(const std::string& path, Bytes& claimed, std::string& error)
 {
+  if (!RegularFile(path, std::string(), error))
+  {
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   std::string head(65536, '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
