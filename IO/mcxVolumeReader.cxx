@@ -6,6 +6,7 @@
 #include "mcxByteSize.h"
 #include "mcxDicomSeries.h"
 #include "mcxHeaderCheck.h"
+#include "mcxPrintableText.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkDataArray.h"
@@ -165,7 +166,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& e
   return ReadVolume(path, VolumeReadOptions(), error);
 }
 
-vtkSmartPointer<vtkImageData> ReadVolume(
+// ReadVolume before its error is made printable.
+static vtkSmartPointer<vtkImageData> ReadAnyVolume(
   const std::string& path, const VolumeReadOptions& options, std::string& error)
 {
   const unsigned long long memoryBudget = options.MemoryBudget;
@@ -208,6 +210,14 @@ vtkSmartPointer<vtkImageData> ReadVolume(
     return nullptr;
   }
   return ReadWith(reader, path, error);
+}
+
+vtkSmartPointer<vtkImageData> ReadVolume(
+  const std::string& path, const VolumeReadOptions& options, std::string& error)
+{
+  vtkSmartPointer<vtkImageData> volume = ReadAnyVolume(path, options, error);
+  error = mcx::PrintableText(error); // a hostile header's bytes, quoted in it
+  return volume;
 }
 
 } // namespace mcxio

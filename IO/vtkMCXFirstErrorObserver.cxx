@@ -1,5 +1,7 @@
 #include "vtkMCXFirstErrorObserver.h"
 
+#include "mcxPrintableText.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkExecutive.h"
 #include "vtkObjectFactory.h"
@@ -54,5 +56,5 @@ std::string vtkMCXFirstErrorObserver::MessageOf(const std::string& report)
     }
   }
   const std::string message = report.substr(start);
-  return message.substr(0, message.find('\n'));
+  return mcx::PrintableText(message.substr(0, message.find('\n')));
 }

@@ -1,5 +1,7 @@
 #include "vtkMCXNIFTIReader.h"
 
+#include "mcxPrintableText.h"
+
 #include "mcxHeaderCheck.h"
 
 #include "vtkCommand.h"
@@ -134,7 +136,8 @@ int vtkMCXNIFTIReader::RequestInformation(
     // One line: reported here, then an empty extent (not a failed request,
     // which the executive would report again).
     this->SetErrorCode(path.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::FileFormatError);
-    vtkErrorMacro(<< (path.empty() ? problem : "cannot read '" + path + "': " + problem));
+    vtkErrorMacro(<< mcx::PrintableText(
+                    path.empty() ? problem : "cannot read '" + path + "': " + problem));
     const int empty[6] = { 0, -1, 0, -1, 0, -1 };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
     return 1;
@@ -179,7 +182,7 @@ int vtkMCXNIFTIReader::RequestData(
     this->Reader->GetOutput()->ReleaseData();
     this->Reader->Modified();
     this->SetErrorCode(vtkErrorCode::FileFormatError);
-    vtkErrorMacro(<< "cannot read '" << path << "': " << problem);
+    vtkErrorMacro(<< mcx::PrintableText("cannot read '" + path + "': " + problem));
     return 1;
   }
   output->ShallowCopy(image);

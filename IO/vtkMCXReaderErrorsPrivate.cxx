@@ -1,5 +1,7 @@
 #include "vtkMCXReaderErrorsPrivate.h"
 
+#include "mcxPrintableText.h"
+
 #include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
@@ -80,7 +82,8 @@ std::string RunReaderStage(vtkAlgorithm* reader, const std::function<int()>& sta
 void ReportReaderFailure(vtkAlgorithm* reader, vtkInformationVector* outputVector, const char* path,
   const std::string& problem)
 {
-  vtkErrorWithObjectMacro(reader, << "cannot read '" << (path ? path : "") << "': " << problem);
+  vtkErrorWithObjectMacro(reader, << mcx::PrintableText("cannot read '" +
+                                    std::string(path ? path : "") + "': " + problem));
   if (outputVector)
   {
     const int empty[6] = { 0, -1, 0, -1, 0, -1 };
