@@ -112,6 +112,15 @@ void CheckOutputDirectory(const std::string& path)
   {
     Fail("cannot write '" + path + "': it is a directory");
   }
+  // The image is written beside the output and renamed over it: over a
+  // device, pipe or socket (/dev/null, /dev/stdout's link, a FIFO) that
+  // would replace the node itself, as root even /dev's.
+  struct stat info;
+  if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode))
+  {
+    Fail("cannot write '" + path +
+      "': it is not a regular file (a device, pipe or socket); refusing to replace it");
+  }
 }
 
 // Whether a spec parses does not depend on the data range, so any range will do.

@@ -9,7 +9,8 @@ namespace mcxapp
 {
 
 /// Fails unless the directory that path would be written in exists and is
-/// writable.
+/// writable, and path, where it exists, is a regular file (a device, pipe
+/// or socket would be replaced by the renamed image).
 void CheckOutputDirectory(const std::string& path);
 
 /// Fails if output names the input or one of its files (a DICOM series'

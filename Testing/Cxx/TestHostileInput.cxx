@@ -145,6 +145,35 @@ TEST(HostileInput, OutputThatNamesTheInputIsRefusedByAnyPath)
   EXPECT_TRUE(SameBytes(Bundled, input));
 }
 
+TEST(HostileInput, AnOutputThatIsNoRegularFileIsNeverReplaced)
+{
+  // The image is renamed over its output: over a FIFO (or, as root, over
+  // /dev/null) that replaced the node itself. Tried on a FIFO and on a link
+  // to one, for the render's output and the viewer's screenshot.
+  const std::string fifo = Temporary("hostile_output_fifo.png");
+  const std::string link = Temporary("hostile_output_link.png");
+  vtksys::SystemTools::RemoveFile(fifo);
+  vtksys::SystemTools::RemoveFile(link);
+  ASSERT_EQ(0, ::mkfifo(fifo.c_str(), 0600));
+  ASSERT_EQ(0, ::symlink(fifo.c_str(), link.c_str()));
+  for (const std::string& command : { "render --output ", "view --screenshot " })
+  {
+    for (const std::string& output : { fifo, link })
+    {
+      Result r = RunCLI(command + output + " --samples 1023");
+      EXPECT_EQ(2, r.Status) << command << output;
+      EXPECT_EQ("mcxray: error: cannot write '" + output +
+          "': it is not a regular file (a device, pipe or socket); refusing to replace it\n",
+        r.Errors);
+      struct stat info;
+      ASSERT_EQ(0, ::stat(output.c_str(), &info));
+      EXPECT_TRUE(S_ISFIFO(info.st_mode)) << output << " was replaced";
+    }
+  }
+  vtksys::SystemTools::RemoveFile(link);
+  vtksys::SystemTools::RemoveFile(fifo);
+}
+
 TEST(HostileInput, LyingAndTruncatedHeadersGiveOneLine)
 {
   const std::string folder = Temporary("hostile_headers");
