@@ -5,6 +5,7 @@
 #include "mcxHeaderCheckPrivate.h"
 
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,14 @@ bool CheckSLCHeader(const std::string& path, Bytes& claimed, std::string& error)
   {
     return false;
   }
-  std::ifstream in(path, std::ios::binary);
+  // The header's numbers lie in its first line: 4 KiB bound what a token
+  // may grow to (a file of one long run of digits would otherwise be read
+  // whole into one number's text).
+  std::ifstream file(path, std::ios::binary);
+  std::string head(4096, '\0');
+  file.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  std::istringstream in(head);
   long long magic = 0, bits = 0;
   std::vector<long long> dims(3, 0);
   in >> magic >> dims[0] >> dims[1] >> dims[2] >> bits;

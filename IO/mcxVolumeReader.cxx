@@ -28,6 +28,8 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <new>
+#include <stdexcept>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -134,7 +136,24 @@ vtkSmartPointer<vtkImageData> ReadWith(
 {
   vtkNew<vtkMCXFirstErrorObserver> capture; // the reader's report, said once below
   capture->ObserveAlgorithm(reader);
-  reader->Update();
+  try
+  {
+    reader->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    // An allocation that grows with the input failed (an address-space
+    // limit, a header that lies past the checks): one line, not the end.
+    capture->StopObserving();
+    error = "cannot read '" + path + "': out of memory (an allocation of the reader failed)";
+    return nullptr;
+  }
+  catch (const std::length_error&)
+  {
+    capture->StopObserving();
+    error = "cannot read '" + path + "': the reader asked for an impossible size";
+    return nullptr;
+  }
   capture->StopObserving();
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   const std::string& message = capture->GetErrorText();
@@ -189,7 +208,8 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   }
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    auto series = ReadDicomSeries(path, options.DicomSeries, options.DicomSeriesName, error);
+    auto series = ReadDicomSeries(path, options.DicomSeries, options.DicomSeriesName, error,
+      memoryBudget, options.MemoryBudgetName);
     const std::string placement =
       series ? vtkMCXPatientSpace::DescribeUnusablePlacement(series) : std::string();
     if (!placement.empty())
