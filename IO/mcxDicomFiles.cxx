@@ -202,8 +202,8 @@ std::string CheckFile(const std::string& path, double& claimed)
   const std::uint64_t fileSize = static_cast<std::uint64_t>(parser->GetFileSize());
   const std::uint64_t held = fileSize > offset ? fileSize - offset : 0;
   const std::string claim = "its header claims " + std::to_string(static_cast<long long>(frames)) +
-    " frames of " + std::to_string(static_cast<long long>(columns)) + "x" +
-    std::to_string(static_cast<long long>(rows)) + " (" + mcx::DescribeBytes(bytes) + ")";
+    (frames == 1 ? " frame of " : " frames of ") + std::to_string(static_cast<long long>(columns)) +
+    "x" + std::to_string(static_cast<long long>(rows)) + " (" + mcx::DescribeBytes(bytes) + ")";
   if (std::find(std::begin(NativeSyntaxes), std::end(NativeSyntaxes), syntax) !=
     std::end(NativeSyntaxes))
   {
@@ -288,8 +288,8 @@ std::string CheckFile(const std::string& path, double& claimed)
   }
   if (static_cast<double>(starts) < frames)
   {
-    return "its compressed pixel data hold " + std::to_string(starts) + " frames of " +
-      std::to_string(static_cast<long long>(frames));
+    return "its compressed pixel data hold " + std::to_string(starts) + " of its " +
+      std::to_string(static_cast<long long>(frames)) + " frames";
   }
   return std::string();
 }

@@ -637,34 +637,37 @@ bool CheckXMLImageHeader(const std::string& path, Bytes& claimed, std::string& e
       }
     }
   }
-  std::ifstream in(path, std::ios::binary);
   const Bytes fileSize = FileSize(path);
-  bool allBinary = true;
-  claimed = 0;
-  double total = 0.0;
+  // First what the reader allocates, against what the file can hold; then
+  // each array's data (the cheap refusal first).
+  std::vector<const Element*> arrays;
   for (const Element& e : header.Elements)
   {
-    if (!IsArray(e.Name) ||
-      (e.Parent != "PointData" && e.Parent != "CellData" && e.Parent != "FieldData"))
-    {
-      continue;
-    }
     const bool field = e.Parent == "FieldData";
-    if (!field && (e.Piece < 0 || e.Piece >= static_cast<int>(pieceDims.size())))
+    if (IsArray(e.Name) && (field || e.Parent == "PointData" || e.Parent == "CellData") &&
+      (field || (e.Piece >= 0 && e.Piece < static_cast<int>(pieceDims.size()))))
     {
-      continue; // outside any piece: the reader reads none of it
+      arrays.push_back(&e); // outside any piece: the reader reads none of it
     }
-    const std::vector<long long>& piece = field ? dims : pieceDims[e.Piece];
+  }
+  claimed = 0;
+  double total = 0.0;
+  bool allBinary = !layout.Compressed;
+  std::vector<Bytes> values, needs;
+  for (const Element* e : arrays)
+  {
+    const bool field = e->Parent == "FieldData";
     Bytes value = 1, needed = 0, allocated = 0;
-    bool binary = false;
-    if (!ArrayBytes(e, piece, dims, value, needed, allocated, error) ||
-      (needed > 0 &&
-        !CheckArrayData(in, header, e, layout, encoding, fileSize, value, needed, binary, error)))
+    if (!ArrayBytes(*e, field ? dims : pieceDims[e->Piece], dims, value, needed, allocated, error))
     {
       return false;
     }
-    allBinary = allBinary && (binary || needed == 0) && !layout.Compressed;
-    if (field || e.Piece == 0)
+    values.push_back(value);
+    needs.push_back(needed);
+    allBinary = allBinary &&
+      (needed == 0 ||
+        (Attribute(e->Tag, "format") == "appended" && header.Appended && encoding != "base64"));
+    if (field || e->Piece == 0)
     {
       claimed += allocated;
       total += static_cast<double>(allocated);
@@ -677,7 +680,22 @@ bool CheckXMLImageHeader(const std::string& path, Bytes& claimed, std::string& e
   }
   // Raw data must all be there; base64, text and compression make the data
   // larger or smaller: bound those by what deflate can hold.
-  return CheckAvailable(claimed, fileSize, !allBinary, dims, error);
+  if (!CheckAvailable(claimed, fileSize, !allBinary, dims, error))
+  {
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  for (std::size_t a = 0; a < arrays.size(); ++a)
+  {
+    bool binary = false;
+    if (needs[a] > 0 &&
+      !CheckArrayData(
+        in, header, *arrays[a], layout, encoding, fileSize, values[a], needs[a], binary, error))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 } // namespace mcxio

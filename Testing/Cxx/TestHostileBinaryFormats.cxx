@@ -251,11 +251,18 @@ TEST(HostileBinaryFormats, VTIDataAreCheckedWhereverTheyLie)
       "'c' end inside their block table" },
     { "field-data.vti",
       Head(false) +
+        "<FieldData>\n<DataArray type=\"Float64\" Name=\"f\" NumberOfTuples=\"1000000\" "
+        "format=\"ascii\">1 2 3</DataArray>\n</FieldData>\n" +
+        Piece + Array("ascii", "", std::string(8191, ' ')) + PieceEnd +
+        "</ImageData>\n</VTKFile>\n",
+      "ascii array 'f' needs 1000000 values" },
+    { "field-data-huge.vti",
+      Head(false) +
         "<FieldData>\n<DataArray type=\"Float64\" Name=\"f\" NumberOfTuples=\"2147483647\" "
         "format=\"ascii\">1 2 3</DataArray>\n</FieldData>\n" +
         Piece + Array("ascii", "", std::string(8191, ' ')) + PieceEnd +
         "</ImageData>\n</VTKFile>\n",
-      "ascii array 'f' needs 2147483647 values" },
+      "(16 GiB) from 8.46 KiB of compressed data, more than deflate can hold" },
     { "components.vti",
       Head(false) + Piece + Array("appended", "NumberOfComponents=\"1000000\" offset=\"0\"", "") +
         PieceEnd + Appended("raw", Words({ 4096 }) + std::string(4096, '\0')),
@@ -524,7 +531,7 @@ TEST(HostileBinaryFormats, DicomPixelDataAreCheckedBeforeVtkDicomTrustsThem)
         { Words({ 2, 64, 66 }) + std::string(52, '\0') + std::string("\x01\x00\x01\x00", 4) }),
       "does not decode to a whole frame" },
     { "jpeg-frames", Dicom("1.2.840.10008.1.2.4.80", 0, 3, "", { "\xff\xd8" + Garbage(300, 5) }),
-      "hold 1 frames of 3" },
+      "hold 1 of its 3 frames" },
     { "mpeg2", Dicom("1.2.840.10008.1.2.4.100", 0, 0, "", { Garbage(300, 6) }),
       "not one this reader decodes" },
   };
