@@ -278,15 +278,12 @@ public:
   }
 
 private:
-  static int Value(char c)
+  static int Value(char c) // a base64 digit's value; -1 for any other character
   {
-    if (c >= 'A' && c <= 'Z')
-      return c - 'A';
-    if (c >= 'a' && c <= 'z')
-      return c - 'a' + 26;
-    if (c >= '0' && c <= '9')
-      return c - '0' + 52;
-    return c == '+' ? 62 : (c == '/' ? 63 : -1);
+    static const std::string digits =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const std::size_t at = c ? digits.find(c) : std::string::npos;
+    return at == std::string::npos ? -1 : static_cast<int>(at);
   }
 
   bool Raw(Bytes at, Bytes count, std::string& out)
