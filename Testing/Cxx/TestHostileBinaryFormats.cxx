@@ -599,5 +599,10 @@ TEST(HostileBinaryFormats, LinksInADicomFolderAddNothing)
   EXPECT_EQ(1, reader->GetNumberOfSeries());
   ASSERT_EQ(16 * 16 * 3, reader->GetOutput()->GetNumberOfPoints());
   EXPECT_EQ(203.0, reader->GetOutput()->GetPointData()->GetScalars()->GetComponent(2 * 256 + 3, 0));
+  // Its 1.5 KiB of voxels against a budget, before vtk-dicom allocates.
+  reader->SetMemoryBudget(1000);
+  reader->Modified();
+  ExpectOneReaderError(
+    reader, "its voxels need 1.5 KiB, more than the memory budget of 1000 bytes");
 }
 #endif
