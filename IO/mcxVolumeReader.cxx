@@ -8,7 +8,9 @@
 #include "mcxHeaderCheck.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataCompressor.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkMCXFirstErrorObserver.h"
@@ -21,7 +23,9 @@
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkStructuredPointsReader.h"
+#include "vtkXMLDataParser.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLReader.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -136,8 +140,22 @@ vtkSmartPointer<vtkImageData> ReadWith(
 {
   vtkNew<vtkMCXFirstErrorObserver> capture; // the reader's report, said once below
   capture->ObserveAlgorithm(reader);
+  // VTK's XML parser reports malformed XML itself, on an object of its own
+  // (a second line in Python and ParaView): folded into the reader's.
+  auto* xml = vtkXMLReader::SafeDownCast(reader);
+  if (xml)
+  {
+    xml->SetParserErrorObserver(capture);
+  }
   try
   {
+    reader->UpdateInformation();
+    // The data's decompressor, made from the header, reports on itself too.
+    vtkXMLDataParser* parser = xml ? xml->GetXMLParser() : nullptr;
+    if (parser && parser->GetCompressor())
+    {
+      parser->GetCompressor()->AddObserver(vtkCommand::ErrorEvent, capture);
+    }
     reader->Update();
   }
   catch (const std::bad_alloc&)
@@ -145,16 +163,22 @@ vtkSmartPointer<vtkImageData> ReadWith(
     // An allocation that grows with the input failed (an address-space
     // limit, a header that lies past the checks): one line, not the end.
     capture->StopObserving();
+    xml ? xml->SetParserErrorObserver(nullptr) : void();
     error = "cannot read '" + path + "': out of memory (an allocation of the reader failed)";
     return nullptr;
   }
   catch (const std::length_error&)
   {
     capture->StopObserving();
+    xml ? xml->SetParserErrorObserver(nullptr) : void();
     error = "cannot read '" + path + "': the reader asked for an impossible size";
     return nullptr;
   }
   capture->StopObserving();
+  if (xml)
+  {
+    xml->SetParserErrorObserver(nullptr);
+  }
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   const std::string& message = capture->GetErrorText();
   if (!message.empty() || !image || image->GetNumberOfPoints() == 0 ||
