@@ -254,7 +254,7 @@ std::string CheckFile(const std::string& path, double& claimed)
     {
       const std::string data = ReadAt(in, fragments[f].Offset, fragments[f].Length);
       const auto* bytesIn = reinterpret_cast<const unsigned char*>(data.data());
-      if (data.size() < 64 || Little32(bytesIn) != segments ||
+      if (data.size() < 64 || segments < 1 || Little32(bytesIn) != segments ||
         frameBytes > 130.0 * static_cast<double>(data.size()))
       {
         return "its RLE fragment " + std::to_string(f + 1) + " is not RLE data of " +

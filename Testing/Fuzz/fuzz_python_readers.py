@@ -23,6 +23,7 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 CORPUS = os.path.join(HERE, "Corpus", "VolumeHeader")
 HOSTILE = os.path.join(HERE, "..", "Data", "Hostile")
+OWN = os.path.join(HERE, "Corpus", "PythonReaders")  # encapsulated DICOM (RLE)
 WORDS = [0, 1, 0x7F, 0xFF, 0x7FFF, 0xFFFF, 0x7FFFFFFF, 0xFFFFFFFF, 0x80000000]
 
 READ = """
@@ -64,6 +65,9 @@ def seeds(dicom):
         if name.endswith(".vti"):
             with open(os.path.join(HOSTILE, name), "rb") as f:
                 found.append(("volume", ".vti", f.read()))
+    for name in sorted(os.listdir(OWN)):
+        with open(os.path.join(OWN, name), "rb") as f:
+            found.append(("dicom", ".dcm", f.read()))
     if dicom and os.path.isdir(dicom):
         slices = sorted(n for n in os.listdir(dicom) if not n.startswith("."))[:3]
         for name in slices:
