@@ -12,18 +12,20 @@ namespace mcxio
 {
 
 #ifndef MCXRAY_IO_DICOM
-vtkSmartPointer<vtkImageData> ReadDicomSeries(
-  const std::string& folder, int, const std::string&, std::string& error)
+vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int, const std::string&,
+  std::string& error, unsigned long long, const std::string&)
 {
   error = "cannot read '" + folder + "': this build reads no DICOM series (it has no vtk-dicom)";
   return nullptr;
 }
 #else
-vtkSmartPointer<vtkImageData> ReadDicomSeries(
-  const std::string& folder, int series, const std::string& seriesName, std::string& error)
+vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int series,
+  const std::string& seriesName, std::string& error, unsigned long long memoryBudget,
+  const std::string& budgetName)
 {
   vtkNew<vtkMCXDICOMSeriesReader> reader;
   reader->SetDirectoryName(folder.c_str());
+  reader->SetMemoryBudget(memoryBudget);
   reader->SetSeriesIndex(series - 1);    // counted from 1; 0 (none) is -1
   vtkNew<vtkMCXFirstErrorObserver> read; // the reader's report, said once below
   read->ObserveAlgorithm(reader);
@@ -45,7 +47,11 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(
   }
   if (!read->GetErrorText().empty())
   {
-    error = read->GetErrorText();
+    // The budget as the caller's user sets it.
+    error = read->GetErrorText() +
+      (!budgetName.empty() && read->GetErrorText().find("memory budget") != std::string::npos
+          ? " (" + budgetName + ")"
+          : std::string());
     return nullptr;
   }
   auto volume = vtkSmartPointer<vtkImageData>::New();

@@ -19,9 +19,11 @@ namespace mcxio
 /// and says to choose one with seriesName, as "--series N"). Slices at
 /// repeated positions and uneven gaps (missing slices) are errors that say
 /// where; so are short pixel data. On failure returns null with error set
-/// to one line.
-vtkSmartPointer<vtkImageData> ReadDicomSeries(
-  const std::string& folder, int series, const std::string& seriesName, std::string& error);
+/// to one line. memoryBudget (0: any) bounds the voxels before they are
+/// read; budgetName is how the caller's user sets it.
+vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int series,
+  const std::string& seriesName, std::string& error, unsigned long long memoryBudget = 0,
+  const std::string& budgetName = std::string());
 
 } // namespace mcxio
 

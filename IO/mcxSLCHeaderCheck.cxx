@@ -9,6 +9,7 @@
 #include "mcxHeaderCheck.h"
 #include "mcxHeaderCheckPrivate.h"
 
+#include <cctype>
 #include <climits>
 #include <cstdio>
 #include <memory>
@@ -33,6 +34,36 @@ bool Skip(std::FILE* in, long long count)
   for (long long i = 0; i < count; ++i)
   {
     if (std::getc(in) == EOF)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// True when the next count tokens from the file's position (whitespace
+// separated) each have at most 64 characters, read from at most 4 KiB, the
+// position kept: scanf would otherwise gather a run of a billion digits
+// into one number's text (its buffer grows with it), as the reader's would.
+bool ShortTokensAhead(std::FILE* in, int count)
+{
+  const long at = std::ftell(in);
+  char text[4096];
+  const std::size_t got = std::fread(text, 1, sizeof(text), in);
+  std::fseek(in, at, SEEK_SET);
+  std::size_t i = 0;
+  for (int token = 0; token < count; ++token)
+  {
+    while (i < got && std::isspace(static_cast<unsigned char>(text[i])))
+    {
+      ++i;
+    }
+    const std::size_t start = i;
+    while (i < got && !std::isspace(static_cast<unsigned char>(text[i])))
+    {
+      ++i;
+    }
+    if (i - start > 64 || (i == got && got == sizeof(text)))
     {
       return false;
     }
@@ -105,7 +136,8 @@ bool CheckSlices(
       continue;
     }
     int compressedSize = 0;
-    if (std::fscanf(in, "%d X", &compressedSize) != 1 || compressedSize < 1)
+    if (!ShortTokensAhead(in, 1) || std::fscanf(in, "%d X", &compressedSize) != 1 ||
+      compressedSize < 1)
     {
       error = "the SLC file's slice " + std::to_string(z) + " of " + std::to_string(slices) +
         " has no positive compressed size";
@@ -131,6 +163,13 @@ bool CheckSLCHeader(const std::string& path, Bytes& claimed, std::string& error)
   int magic = 0, bits = 0, size[3] = { 0, 0, 0 }, unit = 0, origin = 0, modified = 0;
   int compression = -1, iconWidth = 0, iconHeight = 0;
   double spacing[3] = { 0, 0, 0 };
+  // The header's 15 tokens: magic, sizes, bits, spacing, units, origin,
+  // modification, compression, icon size and its "X".
+  if (in && !ShortTokensAhead(in, 15))
+  {
+    error = "the SLC header holds a token longer than 64 characters or exceeds 4 KiB";
+    return false;
+  }
   if (!in || std::fscanf(in, "%d", &magic) != 1 || magic != 11111)
   {
     error = "not an SLC file (no magic number 11111)";

@@ -9,7 +9,9 @@
 #include "mcxPrintableText.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataCompressor.h"
 #include "vtkImageData.h"
 #include "vtkImageReader2.h"
 #include "vtkMCXFirstErrorObserver.h"
@@ -22,13 +24,17 @@
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkStructuredPointsReader.h"
+#include "vtkXMLDataParser.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLReader.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <new>
+#include <stdexcept>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -135,8 +141,45 @@ vtkSmartPointer<vtkImageData> ReadWith(
 {
   vtkNew<vtkMCXFirstErrorObserver> capture; // the reader's report, said once below
   capture->ObserveAlgorithm(reader);
-  reader->Update();
+  // VTK's XML parser reports malformed XML itself, on an object of its own
+  // (a second line in Python and ParaView): folded into the reader's.
+  auto* xml = vtkXMLReader::SafeDownCast(reader);
+  if (xml)
+  {
+    xml->SetParserErrorObserver(capture);
+  }
+  try
+  {
+    reader->UpdateInformation();
+    // The data's decompressor, made from the header, reports on itself too.
+    vtkXMLDataParser* parser = xml ? xml->GetXMLParser() : nullptr;
+    if (parser && parser->GetCompressor())
+    {
+      parser->GetCompressor()->AddObserver(vtkCommand::ErrorEvent, capture);
+    }
+    reader->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    // An allocation that grows with the input failed (an address-space
+    // limit, a header that lies past the checks): one line, not the end.
+    capture->StopObserving();
+    xml ? xml->SetParserErrorObserver(nullptr) : void();
+    error = "cannot read '" + path + "': out of memory (an allocation of the reader failed)";
+    return nullptr;
+  }
+  catch (const std::length_error&)
+  {
+    capture->StopObserving();
+    xml ? xml->SetParserErrorObserver(nullptr) : void();
+    error = "cannot read '" + path + "': the reader asked for an impossible size";
+    return nullptr;
+  }
   capture->StopObserving();
+  if (xml)
+  {
+    xml->SetParserErrorObserver(nullptr);
+  }
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
   const std::string& message = capture->GetErrorText();
   if (!message.empty() || !image || image->GetNumberOfPoints() == 0 ||
@@ -191,7 +234,8 @@ static vtkSmartPointer<vtkImageData> ReadAnyVolume(
   }
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    auto series = ReadDicomSeries(path, options.DicomSeries, options.DicomSeriesName, error);
+    auto series = ReadDicomSeries(path, options.DicomSeries, options.DicomSeriesName, error,
+      memoryBudget, options.MemoryBudgetName);
     const std::string placement =
       series ? vtkMCXPatientSpace::DescribeUnusablePlacement(series) : std::string();
     if (!placement.empty())

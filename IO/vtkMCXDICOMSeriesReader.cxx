@@ -8,7 +8,9 @@
 #include "vtkDICOMMetaData.h"
 #include "vtkDICOMReader.h"
 #include "vtkDICOMValue.h"
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -21,9 +23,15 @@
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtksys/SystemTools.hxx"
+
+#include "mcxByteSize.h"
+#include "mcxDicomFiles.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <exception>
 #include <new>
 #include <sstream>
 #include <vector>
@@ -175,9 +183,32 @@ struct vtkMCXDICOMSeriesReader::Internals
     {
       return "no DirectoryName is set";
     }
-    this->Directory->SetDirectoryName(folder);
-    this->Directory->SetScanDepth(4); // series in subfolders too, as exports nest them
-    this->Directory->Modified();      // rescanned each time: files may have come or gone
+    // Series in subfolders too, as exports nest them; each folder and file
+    // once, by inode (links to '..' or to a folder itself made vtk-dicom see
+    // every image twice). A DICOMDIR lists the files itself.
+    std::vector<std::string> found;
+    std::string walk;
+    if (vtksys::SystemTools::FileExists(std::string(folder) + "/DICOMDIR", true))
+    {
+      this->Directory->SetInputFileNames(nullptr);
+      this->Directory->SetDirectoryName(folder);
+      this->Directory->SetScanDepth(4);
+    }
+    else if (mcxio::DicomFolderFiles(folder, 4, 1000000, found, walk))
+    {
+      vtkNew<vtkStringArray> names;
+      for (const std::string& name : found)
+      {
+        names->InsertNextValue(name);
+      }
+      this->Directory->SetDirectoryName(nullptr);
+      this->Directory->SetInputFileNames(names);
+    }
+    else
+    {
+      return std::string("cannot read the DICOM folder '") + folder + "': " + walk;
+    }
+    this->Directory->Modified(); // rescanned each time: files may have come or gone
     FirstError scan(this->Directory);
     this->Directory->Update();
     const int count = this->Directory->GetNumberOfSeries();
@@ -205,9 +236,55 @@ struct vtkMCXDICOMSeriesReader::Internals
         (index >= count ? "; there is no series index " + std::to_string(index) : std::string()) +
         "; choose one with SetSeriesIndex: " + list;
     }
-    this->Reader->SetFileNames(this->Directory->GetFileNamesForSeries(std::max(index, 0)));
+    vtkStringArray* names = this->Directory->GetFileNamesForSeries(std::max(index, 0));
+    // Each file's pixel data against its header before vtk-dicom allocates
+    // what the header claims (NumberOfFrames 2^31 - 1) or decodes garbage.
+    std::vector<std::string> files;
+    for (vtkIdType f = 0; f < names->GetNumberOfValues(); ++f)
+    {
+      files.push_back(names->GetValue(f));
+    }
+    unsigned long long claimed = 0;
+    std::string problem;
+    if (!mcxio::CheckDicomPixelData(files, claimed, problem))
+    {
+      return std::string("cannot read the DICOM series in '") + folder + "': " + problem;
+    }
+    this->Reader->SetFileNames(names);
     code = vtkErrorCode::NoError;
     return std::string();
+  }
+
+  // "" when the voxels the reader's information claims fit the budget (0:
+  // any) and can be allocated now, else why: vtk-dicom's arrays fail an
+  // allocation without an exception, and it then writes through null.
+  std::string CheckRoom(const char* folder, unsigned long long budget)
+  {
+    vtkInformation* info = this->Reader->GetOutputInformation(0);
+    int extent[6] = { 0, -1, 0, -1, 0, -1 };
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+    vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
+      info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+    double bytes = scalars && scalars->Has(vtkDataObject::FIELD_ARRAY_TYPE())
+      ? vtkDataArray::GetDataTypeSize(scalars->Get(vtkDataObject::FIELD_ARRAY_TYPE()))
+      : 8.0;
+    bytes *= scalars && scalars->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+      ? scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+      : 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      bytes *= std::max(0, extent[2 * a + 1] - extent[2 * a] + 1);
+    }
+    const std::string where = std::string("cannot read the DICOM series in '") + folder + "': ";
+    if (budget > 0 && bytes > static_cast<double>(budget))
+    {
+      return where + "its voxels need " + mcx::DescribeBytes(bytes) +
+        ", more than the memory budget of " + mcx::DescribeBytes(double(budget));
+    }
+    void* room = bytes < 9e18 ? std::malloc(static_cast<std::size_t>(bytes) + 1) : nullptr;
+    std::free(room);
+    return room ? std::string()
+                : where + "out of memory: its voxels need " + mcx::DescribeBytes(bytes);
   }
 
   // The chosen series' geometry in patient space; empty on success.
@@ -301,6 +378,11 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
   {
     problem = this->Internal->ReadInformation(folder, code);
   }
+  if (problem.empty())
+  {
+    problem = this->Internal->CheckRoom(folder, this->MemoryBudget);
+    code = problem.empty() ? code : vtkErrorCode::OutOfDiskSpaceError;
+  }
   this->SetErrorCode(code);
   if (!problem.empty())
   {
@@ -339,7 +421,7 @@ int vtkMCXDICOMSeriesReader::RequestData(
     reader->AbortExecuteOff();
     reader->UpdateWholeExtent();
   }
-  catch (const std::bad_alloc&)
+  catch (const std::exception&) // bad_alloc, length_error: never the end of the process
   {
     this->SetErrorCode(vtkErrorCode::UnknownError);
     this->Internal->Forget();
@@ -352,8 +434,8 @@ int vtkMCXDICOMSeriesReader::RequestData(
     return 1; // stopped by the user: an empty output, no error
   }
   vtkImageData* image = reader->GetOutput();
-  if (!read.Message().empty() || !image || image->GetNumberOfPoints() == 0 ||
-    !image->GetPointData()->GetScalars())
+  if (!read.Message().empty() || reader->GetErrorCode() != vtkErrorCode::NoError || !image ||
+    image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
   {
     this->SetErrorCode(reader->GetErrorCode() ? reader->GetErrorCode() : vtkErrorCode::FileFormatError);
     this->Internal->Forget(); // a partial read must not pass as current next time
@@ -376,5 +458,6 @@ void vtkMCXDICOMSeriesReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DirectoryName: " << (this->DirectoryName ? this->DirectoryName : "(none)")
      << "\n";
   os << indent << "SeriesIndex: " << this->SeriesIndex << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << "\n";
   os << indent << "NumberOfSeries (last scan): " << this->GetNumberOfSeries() << "\n";
 }

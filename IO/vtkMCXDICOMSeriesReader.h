@@ -11,7 +11,13 @@
  *   patient matrix (world = direction x (spacing x index) + origin);
  * - repeated slice positions (duplicated slices, time series), gaps of more
  *   than 1.5 times the median spacing (missing slices), a series whose images
- *   fall into parts, and short pixel data are errors that say where.
+ *   fall into parts, and short pixel data are errors that say where;
+ * - each file's pixel data checked against its header before vtk-dicom
+ *   allocates (frames x rows x columns x samples x bits within the file, or
+ *   encapsulated in fragments of its transfer syntax, RLE decoded whole), an
+ *   unsupported transfer syntax and a decoder's failure are errors, and the
+ *   voxels within MemoryBudget; each folder and file is scanned once (by
+ *   inode: links to '..' or to a folder itself add nothing).
  *
  * Errors are reported with vtkErrorMacro as one line, and leave an empty
  * output; GetErrorCode() tells them apart (vtkErrorCode's codes, and
@@ -61,6 +67,15 @@ public:
   vtkGetMacro(SeriesIndex, int);
   ///@}
 
+  ///@{
+  /**
+   * Bytes the series' voxels may take (0, the default: any); checked with
+   * the files' pixel data against their headers before anything is read.
+   */
+  vtkSetMacro(MemoryBudget, unsigned long long);
+  vtkGetMacro(MemoryBudget, unsigned long long);
+  ///@}
+
   /** The number of series the last scan of DirectoryName found. */
   int GetNumberOfSeries();
 
@@ -79,6 +94,7 @@ protected:
 
   char* DirectoryName = nullptr;
   int SeriesIndex = -1;
+  unsigned long long MemoryBudget = 0;
 
 private:
   vtkMCXDICOMSeriesReader(const vtkMCXDICOMSeriesReader&) = delete;

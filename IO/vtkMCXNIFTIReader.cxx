@@ -3,11 +3,13 @@
 #include "mcxPrintableText.h"
 
 #include "mcxHeaderCheck.h"
+#include "mcxHeaderCheckPrivate.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -24,6 +26,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <new>
 #include <string>
 
@@ -57,6 +60,36 @@ std::string Run(vtkNIFTIImageReader* reader, Stage stage)
   }
   error->StopObserving();
   return error->GetErrorText();
+}
+}
+
+namespace
+{
+// "" when the voxels of the extent the wrapped reader's information gives
+// (and their float64 copy when rescaled) can be allocated now, else why.
+std::string ProbeMemory(vtkInformation* info, bool rescale)
+{
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
+    info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  const int components = scalars && scalars->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+    ? scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+    : 1;
+  double values = components;
+  for (int a = 0; a < 3; ++a)
+  {
+    values *= std::max(0, extent[2 * a + 1] - extent[2 * a] + 1);
+  }
+  const int type = scalars && scalars->Has(vtkDataObject::FIELD_ARRAY_TYPE())
+    ? scalars->Get(vtkDataObject::FIELD_ARRAY_TYPE())
+    : VTK_DOUBLE;
+  const double bytes = values * (vtkDataArray::GetDataTypeSize(type) + (rescale ? 8.0 : 0.0));
+  void* room = bytes < 9e18 ? std::malloc(static_cast<std::size_t>(bytes) + 1) : nullptr;
+  std::free(room);
+  return room
+    ? std::string()
+    : "out of memory: the voxels need " + std::to_string(static_cast<long long>(bytes)) + " bytes";
 }
 }
 
@@ -116,6 +149,13 @@ int vtkMCXNIFTIReader::RequestInformation(
   vtkImageData::GetData(outInfo)->Initialize(); // no stale volume after a failure
   const std::string path = this->FileName ? this->FileName : "";
   std::string problem = path.empty() ? "no FileName is set" : std::string();
+  // Whatever CheckHeader says: a FIFO or a device would block the wrapped
+  // reader or feed it without end.
+  if (problem.empty() && !mcxio::check::RegularFile(path, std::string(), problem))
+  {
+    problem = problem.substr(problem.compare(0, 3, "it ") == 0 ? 3 : 0);
+    problem = problem.compare(0, 3, "is ") == 0 ? "it " + problem : problem;
+  }
   if (problem.empty() && this->CheckHeader)
   {
     problem = mcxio::DescribeHeaderProblem(this->FileName, &mcxio::CheckNiftiHeader);
@@ -170,7 +210,15 @@ int vtkMCXNIFTIReader::RequestData(
     return 1; // reported by RequestInformation
   }
   const std::string path = this->FileName ? this->FileName : "";
-  std::string problem = Run(this->Reader, [this] { this->Reader->UpdateWholeExtent(); });
+  // VTK's data arrays fail an allocation without an exception and its
+  // reader then writes through a null pointer: the voxels' room is tried
+  // first (the rescaled float64 copy's too), so that a limited address
+  // space is one error.
+  std::string problem = ProbeMemory(this->Reader->GetOutputInformation(0), this->Rescale());
+  if (problem.empty())
+  {
+    problem = Run(this->Reader, [this] { this->Reader->UpdateWholeExtent(); });
+  }
   vtkImageData* image = this->Reader->GetOutput();
   if (problem.empty() && (image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars()))
   {
@@ -194,11 +242,24 @@ int vtkMCXNIFTIReader::RequestData(
     const double slope = this->Reader->GetRescaleSlope();
     const double intercept = this->Reader->GetRescaleIntercept();
     vtkDataArray* stored = output->GetPointData()->GetScalars();
-    auto rescaled = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_DOUBLE));
-    rescaled->SetName(stored->GetName());
-    rescaled->SetNumberOfComponents(stored->GetNumberOfComponents()); // vector intents too
-    rescaled->SetNumberOfTuples(stored->GetNumberOfTuples());
     const int components = stored->GetNumberOfComponents();
+    const vtkIdType values = stored->GetNumberOfTuples() * components;
+    // Allocated here, so that a failure is seen (and said once).
+    auto* room = static_cast<double*>(std::malloc(sizeof(double) * std::max<vtkIdType>(values, 1)));
+    if (!room)
+    {
+      output->Initialize();
+      this->Reader->GetOutput()->ReleaseData();
+      this->Reader->Modified();
+      this->SetErrorCode(vtkErrorCode::OutOfDiskSpaceError);
+      vtkErrorMacro(<< "cannot read '" << path << "': out of memory for the rescaled values ("
+                    << values << " float64 values)");
+      return 1;
+    }
+    vtkNew<vtkDoubleArray> rescaled;
+    rescaled->SetName(stored->GetName());
+    rescaled->SetNumberOfComponents(components); // vector intents too
+    rescaled->SetArray(room, values, 0, vtkDoubleArray::VTK_DATA_ARRAY_FREE);
     for (vtkIdType t = 0; t < stored->GetNumberOfTuples(); ++t)
     {
       for (int c = 0; c < components; ++c)

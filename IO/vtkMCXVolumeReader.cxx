@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <exception>
 #include <string>
 
 vtkStandardNewMacro(vtkMCXVolumeReader);
@@ -70,16 +71,26 @@ std::string vtkMCXVolumeReader::Read()
   options.DicomSeries = this->DicomSeries;
   options.MemoryBudget = this->MemoryBudget;
   std::string error;
-  if (this->ReadInChildProcess)
+  try
   {
-    mcxio::ReadLimits limits;
-    limits.Seconds = this->TimeLimit;
-    limits.MemoryBytes = this->MemoryBudget;
-    this->Volume = mcxio::ReadVolumeContained(this->FileName, options, limits, error);
+    if (this->ReadInChildProcess)
+    {
+      mcxio::ReadLimits limits;
+      limits.Seconds = this->TimeLimit;
+      limits.MemoryBytes = this->MemoryBudget;
+      this->Volume = mcxio::ReadVolumeContained(this->FileName, options, limits, error);
+    }
+    else
+    {
+      this->Volume = mcxio::ReadVolume(this->FileName, options, error);
+    }
   }
-  else
+  catch (const std::exception&)
   {
-    this->Volume = mcxio::ReadVolume(this->FileName, options, error);
+    // bad_alloc or length_error past the readers' own catches (a copy of
+    // the volume): one line here, never the end of Python or ParaView.
+    this->Volume = nullptr;
+    error = "cannot read '" + std::string(this->FileName) + "': out of memory";
   }
   return this->Volume
     ? std::string()

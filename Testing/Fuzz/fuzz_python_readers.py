@@ -3,12 +3,14 @@ through every reader class the Python package and the ParaView plugin offer
 (vtkMCXVolumeReader, and the format reader of the file's extension), in a
 worker process under an address-space limit, as a script would call them.
 
-    python3 fuzz_python_readers.py --seed 1 --runs 400 --work DIR CORPUS_DIR...
+    python3 fuzz_python_readers.py --seed 1 --runs 400 --work DIR [--dicom SERIES] CORPUS_DIR...
 
 First every seed is read as it is (the Regressions/PythonReaders folder
 holds what this harness found), then each input is a seed of the libFuzzer corpus (Corpus/VolumeHeader: the first
 byte picks the extension, as FuzzVolumeHeader.cxx reads it) or a whole file
-of another folder (its own extension), mutated 1 to 3 times with a fixed
+of another folder (its own extension; a .dcm file is a DICOM slice, read
+as a folder of its own by vtkMCXDICOMSeriesReader and vtkMCXVolumeReader;
+--dicom adds three slices of a series), mutated 1 to 3 times with a fixed
 random seed: bits flipped, bytes set to boundary values, numbers replaced by
 boundary numbers, the letter case of a key changed, lines repeated or
 dropped, the file cut short or a run of bytes inserted. A reader may read a
@@ -28,6 +30,7 @@ import sys
 import time
 
 EXTENSIONS = [".nii", ".nii.gz", ".mha", ".mhd", ".nrrd", ".nhdr", ".vtk", ".slc", ".vti"]
+OWN_EXTENSIONS = EXTENSIONS + [".dcm"]
 FORMAT_READERS = {".nii": "vtkMCXNIFTIReader", ".nii.gz": "vtkMCXNIFTIReader",
                   ".mha": "vtkMCXMetaImageReader", ".mhd": "vtkMCXMetaImageReader",
                   ".nrrd": "vtkMCXNrrdReader", ".nhdr": "vtkMCXNrrdReader"}
@@ -66,13 +69,18 @@ def read(reader):
 for line in sys.stdin:
     path, extension = line.rstrip("\n").split("\t")
     results = []
+    if extension == ".dcm":  # a slice in a folder of its own: the folder is read
+        path = path.rsplit("/", 1)[0]
     checked = mcxray.vtkMCXVolumeReader()
     checked.SetFileName(path)
     checked.SetMemoryBudget(%d)
     results.append("vtkMCXVolumeReader: " + read(checked))
     if extension in FORMAT_READERS:
         reader = getattr(mcxray, FORMAT_READERS[extension])()
-        reader.SetFileName(path)
+        if extension == ".dcm":
+            reader.SetDirectoryName(path)
+        else:
+            reader.SetFileName(path)
         results.append(FORMAT_READERS[extension] + ": " + read(reader))
     print("; ".join(results), flush=True)
 ''' % (ADDRESS_SPACE, ADDRESS_SPACE, FORMAT_READERS, MEMORY_BUDGET)
@@ -88,7 +96,7 @@ def seeds_of(folders):
             if not os.path.isfile(path) or name.endswith(".md"):
                 continue
             data = open(path, "rb").read()
-            extension = next((e for e in EXTENSIONS if name.lower().endswith(e)), None)
+            extension = next((e for e in OWN_EXTENSIONS if name.lower().endswith(e)), None)
             if extension is None and data:
                 seeds.append((data[1:], EXTENSIONS[data[0] % len(EXTENSIONS)]))
             elif extension is not None:
@@ -167,6 +175,7 @@ class Worker:
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("corpus", nargs="+", help="seed folders")
+    parser.add_argument("--dicom", help="a DICOM series folder: three of its slices are seeds too")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--runs", type=int, default=400)
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per input")
@@ -175,6 +184,10 @@ def main():
     os.makedirs(args.work, exist_ok=True)
     rng = random.Random(args.seed)
     seeds = seeds_of(args.corpus)
+    if args.dicom and os.path.isdir(args.dicom):
+        slices = sorted(n for n in os.listdir(args.dicom) if not n.startswith("."))[:3]
+        seeds += [(open(os.path.join(args.dicom, n), "rb").read(), ".dcm") for n in slices]
+    os.makedirs(os.path.join(args.work, "dicom"), exist_ok=True)
     worker = Worker(os.path.join(args.work, "worker.log"))
     findings = []
     outcomes = {}
@@ -186,7 +199,7 @@ def main():
             data, extension = rng.choice(seeds)
             for _ in range(rng.randrange(1, 4)):
                 data = mutate(data, rng)
-        path = os.path.join(args.work, "input" + extension)
+        path = os.path.join(args.work, "dicom" if extension == ".dcm" else "", "input" + extension)
         with open(path, "wb") as f:
             f.write(data)
         answer = worker.ask(path, extension, args.timeout)

@@ -50,12 +50,12 @@ def write_mha(path, sizes, data):
         f.write(header.encode() + data)
 
 
-def write_nifti(path, dims, data):
-    """A little-endian NIfTI-1 file of int16 voxels with the given dim[1..3]."""
+def write_nifti(path, dims, data, datatype=4, bitpix=16):
+    """A little-endian NIfTI-1 file of int16 (or datatype) voxels with the given dim[1..3]."""
     header = bytearray(352)
     struct.pack_into("<i", header, 0, 348)
     struct.pack_into("<8h", header, 40, 3, dims[0], dims[1], dims[2], 1, 1, 1, 1)
-    struct.pack_into("<2h", header, 70, 4, 16)  # int16
+    struct.pack_into("<2h", header, 70, datatype, bitpix)
     struct.pack_into("<8f", header, 76, 1, 1, 1, 1, 1, 1, 1, 1)
     struct.pack_into("<f", header, 108, 352.0)
     header[344:348] = b"n+1\0"
@@ -218,6 +218,101 @@ class GoodFiles(unittest.TestCase):
         reader, error = read("vtkMCXVolumeReader", path)
         self.assertEqual("", error)
         self.assertSameVolume(volume_of(xml), volume_of(reader))
+
+
+def dicom_element(group, element, vr, value):
+    """One element in explicit VR little endian, its value padded to even."""
+    if len(value) % 2:
+        value += b"\0" if vr == b"UI" else b" "
+    if vr in (b"OB", b"OW", b"SQ", b"UN", b"UT"):
+        return struct.pack("<HH2sHI", group, element, vr, 0, len(value)) + value
+    return struct.pack("<HH2sH", group, element, vr, len(value)) + value
+
+
+def write_dicom_frames(path, frames):
+    """A one-file CT of 16x16 int16 claiming frames frames, 512 bytes of pixels."""
+    meta = (dicom_element(2, 1, b"OB", b"\0\1") + dicom_element(2, 2, b"UI", b"1.2.840.10008.5.1.4.1.1.2")
+            + dicom_element(2, 3, b"UI", b"1.2.3.4.5.1") + dicom_element(2, 0x10, b"UI", b"1.2.840.10008.1.2.1"))
+    us = lambda v: struct.pack("<H", v)
+    data = (b"\0" * 128 + b"DICM" + dicom_element(2, 0, b"UL", struct.pack("<I", len(meta))) + meta
+            + dicom_element(8, 0x16, b"UI", b"1.2.840.10008.5.1.4.1.1.2") + dicom_element(8, 0x18, b"UI", b"1.2.3.4.5.1")
+            + dicom_element(8, 0x60, b"CS", b"CT") + dicom_element(0x20, 0x0D, b"UI", b"1.2.3.4.1")
+            + dicom_element(0x20, 0x0E, b"UI", b"1.2.3.4.2") + dicom_element(0x20, 0x32, b"DS", b"0\\0\\0")
+            + dicom_element(0x20, 0x37, b"DS", b"1\\0\\0\\0\\1\\0") + dicom_element(0x28, 2, b"US", us(1))
+            + dicom_element(0x28, 4, b"CS", b"MONOCHROME2") + dicom_element(0x28, 8, b"IS", str(frames).encode())
+            + dicom_element(0x28, 0x10, b"US", us(16)) + dicom_element(0x28, 0x11, b"US", us(16))
+            + dicom_element(0x28, 0x30, b"DS", b"1\\1") + dicom_element(0x28, 0x100, b"US", us(16))
+            + dicom_element(0x28, 0x101, b"US", us(16)) + dicom_element(0x28, 0x102, b"US", us(15))
+            + dicom_element(0x28, 0x103, b"US", us(1)) + dicom_element(0x7FE0, 0x10, b"OW", bytes(512)))
+    with open(path, "wb") as f:
+        f.write(data)
+
+
+def limited_run(code, room_mib=None):
+    """code in a fresh Python (its address space limited to what it maps after
+    importing mcxray plus room_mib MiB when given): the exit status, stdout and
+    the VTK error lines. A reader that blocks is stopped after 30 s."""
+    prelude = "import resource\nimport mcxray\n"
+    if room_mib:
+        prelude += ("pages = int(open('/proc/self/statm').read().split()[0])\n"
+                    "room = pages * resource.getpagesize() + %d * 2**20\n"
+                    "resource.setrlimit(resource.RLIMIT_AS, (room, room))\n" % room_mib)
+    try:
+        result = subprocess.run([sys.executable, "-c", prelude + code],
+                                capture_output=True, text=True, timeout=30)
+    except subprocess.TimeoutExpired:
+        return None, "", ["the reader blocked for 30 s"]
+    errors = [line for line in result.stderr.splitlines() if "ERR|" in line or "ERROR:" in line]
+    return result.returncode, result.stdout, errors
+
+
+class HostileBinary(unittest.TestCase):
+    """Issue 39: no Python reader blocks on a FIFO or dies of an uncaught
+    bad_alloc under an address-space limit; each is one error, no volume."""
+
+    def setUp(self):
+        self.work = tempfile.mkdtemp(prefix="mcxray-binary-")
+
+    def tearDown(self):
+        shutil.rmtree(self.work)
+
+    def expect_one_error(self, setup, needle, room_mib=None):
+        status, output, errors = limited_run(
+            setup + "reader.Update()\nprint('points', reader.GetOutput().GetNumberOfPoints())\n",
+            room_mib)
+        self.assertEqual(0, status, errors)
+        self.assertEqual(1, len(errors), errors)
+        self.assertIn(needle, errors[0])
+        self.assertEqual("points 0", output.strip())
+
+    def test_the_nifti_reader_refuses_a_fifo_with_its_check_off(self):
+        fifo = os.path.join(self.work, "pipe.nii")
+        os.mkfifo(fifo)
+        self.expect_one_error("reader = mcxray.vtkMCXNIFTIReader()\nreader.SetFileName(%r)\n"
+                              "reader.CheckHeaderOff()\n" % fifo, "is not a regular file")
+
+    def test_a_rescaled_copy_beyond_the_address_space_is_one_error(self):
+        path = os.path.join(self.work, "slope.nii")
+        write_nifti(path, (256, 256, 256), b"\1" * 2**24, datatype=2, bitpix=8)
+        with open(path, "r+b") as f:  # scl_slope 2, scl_inter 1: a float64 copy of 128 MiB
+            f.seek(112)
+            f.write(struct.pack("<ff", 2.0, 1.0))
+        self.expect_one_error("reader = mcxray.vtkMCXNIFTIReader()\nreader.SetFileName(%r)\n" % path,
+                              "out of memory", room_mib=96)
+
+    def test_a_lying_base64_block_table_is_one_error_under_a_limit(self):
+        path = os.path.join(DATA, "Hostile", "base64-block-table.vti")
+        self.expect_one_error("reader = mcxray.vtkMCXVolumeReader()\nreader.SetFileName(%r)\n" % path,
+                              "block table", room_mib=512)
+
+    @unittest.skipUnless(hasattr(mcxray, "vtkMCXDICOMSeriesReader"), "built without vtk-dicom")
+    def test_a_dicom_of_two_billion_frames_is_one_error_under_a_limit(self):
+        folder = os.path.join(self.work, "frames")
+        os.mkdir(folder)
+        write_dicom_frames(os.path.join(folder, "image.dcm"), 2**31 - 1)
+        self.expect_one_error("reader = mcxray.vtkMCXDICOMSeriesReader()\n"
+                              "reader.SetDirectoryName(%r)\n" % folder,
+                              "claims 2147483647 frames of 16x16", room_mib=512)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,32 @@
+// What vtkMCXDICOMSeriesReader checks before vtk-dicom trusts a series:
+// the files of a folder, each folder and file once (by device and inode,
+// so that a link to a parent or to the folder itself adds nothing), and
+// each file's pixel data against what its header claims (frames x rows x
+// columns x samples x bits: uncompressed data all there, encapsulated data
+// in fragments of the transfer syntax's format, RLE decoded to the end).
+// vtk-dicom allocates per frame before it reads, and leaves zeros where a
+// decoder fails. Uses vtk-dicom; stays inside IO/.
+#ifndef mcxDicomFiles_h
+#define mcxDicomFiles_h
+
+#include <string>
+#include <vector>
+
+namespace mcxio
+{
+
+/// The files under folder, subfolders depth levels deep, hidden names
+/// skipped, each file and folder once however many links lead to it; false
+/// (error set) past limit files.
+bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
+  std::vector<std::string>& files, std::string& error);
+
+/// Checks each file's pixel data against its header (see above); claimed is
+/// set to the bytes of the decoded voxels (all files, as stored). False
+/// with error "'file': reason" for the first file that lies.
+bool CheckDicomPixelData(
+  const std::vector<std::string>& files, unsigned long long& claimed, std::string& error);
+
+} // namespace mcxio
+
+#endif
