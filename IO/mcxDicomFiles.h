@@ -9,11 +9,17 @@
 #ifndef mcxDicomFiles_h
 #define mcxDicomFiles_h
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace mcxio
 {
+
+/// How deep and how many: what vtkMCXDICOMSeriesReader walks and what the
+/// files a read of a folder may open (mcxVolumeReader.h's InputFiles) are.
+constexpr int DicomScanDepth = 4; // series in subfolders too, as exports nest them
+constexpr std::size_t DicomFileLimit = 1000000;
 
 /// The files under folder, subfolders depth levels deep, hidden names
 /// skipped, each file and folder once however many links lead to it; false

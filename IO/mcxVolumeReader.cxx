@@ -5,6 +5,9 @@
 
 #include "mcxByteSize.h"
 #include "mcxDicomSeries.h"
+#ifdef MCXRAY_IO_DICOM
+#include "mcxDicomFiles.h"
+#endif
 #include "mcxHeaderCheck.h"
 #include "mcxPrintableText.h"
 
@@ -262,6 +265,25 @@ vtkSmartPointer<vtkImageData> ReadVolume(
   vtkSmartPointer<vtkImageData> volume = ReadAnyVolume(path, options, error);
   error = mcx::PrintableText(error); // a hostile header's bytes, quoted in it
   return volume;
+}
+
+std::vector<std::string> InputFiles(const std::string& path)
+{
+  std::vector<std::string> files = { path };
+  if (!vtksys::SystemTools::FileIsDirectory(path))
+  {
+    const std::vector<std::string> data = DataFiles(path);
+    files.insert(files.end(), data.begin(), data.end());
+    return files;
+  }
+  files.push_back(path + "/DICOMDIR");
+#ifdef MCXRAY_IO_DICOM
+  std::vector<std::string> found;
+  std::string error; // past the limit: the files found so far; the read refuses it
+  DicomFolderFiles(path, DicomScanDepth, DicomFileLimit, found, error);
+  files.insert(files.end(), found.begin(), found.end());
+#endif
+  return files;
 }
 
 } // namespace mcxio

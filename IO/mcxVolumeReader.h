@@ -9,6 +9,7 @@
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <vector>
 
 class vtkImageData;
 
@@ -32,6 +33,13 @@ struct VolumeReadOptions
 /// ..."). (In this process: mcxContainedReader.h reads in a child.)
 vtkSmartPointer<vtkImageData> ReadVolume(
   const std::string& path, const VolumeReadOptions& options, std::string& error);
+
+/// Every file a ReadVolume of path may open, as paths (the output guard of
+/// mcxray compares them by device and inode): path itself, the data files
+/// its header names (mcxHeaderCheck.h's DataFiles: as the readers parse
+/// the header), and for a folder every file the DICOM series reader's walk
+/// finds (each is opened to learn its series) and a DICOMDIR.
+std::vector<std::string> InputFiles(const std::string& path);
 
 /// The same with the default options.
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path, std::string& error);

@@ -192,9 +192,10 @@ struct vtkMCXDICOMSeriesReader::Internals
     {
       this->Directory->SetInputFileNames(nullptr);
       this->Directory->SetDirectoryName(folder);
-      this->Directory->SetScanDepth(4);
+      this->Directory->SetScanDepth(mcxio::DicomScanDepth);
     }
-    else if (mcxio::DicomFolderFiles(folder, 4, 1000000, found, walk))
+    else if (mcxio::DicomFolderFiles(
+               folder, mcxio::DicomScanDepth, mcxio::DicomFileLimit, found, walk))
     {
       vtkNew<vtkStringArray> names;
       for (const std::string& name : found)

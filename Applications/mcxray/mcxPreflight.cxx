@@ -1,14 +1,12 @@
 #include "mcxPreflight.h"
 
 #include "mcxFail.h"
-#include "mcxHeaderCheck.h"
 #include "mcxTransferFunctionSpec.h"
+#include "mcxVolumeReader.h"
 
 #include "vtkPiecewiseFunction.h"
-#include "vtksys/Directory.hxx"
 #include "vtksys/SystemTools.hxx"
 
-#include <fstream>
 #include <vector>
 
 #include <sys/stat.h>
@@ -18,52 +16,6 @@ namespace mcxapp
 
 namespace
 {
-// A DICOM file: "DICM" after the 128-byte preamble, or named .dcm.
-bool IsDicomFile(const std::string& path)
-{
-  if (vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) == ".dcm")
-  {
-    return true;
-  }
-  struct stat info;
-  if (::stat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode))
-  {
-    return false; // a FIFO would block the reading
-  }
-  std::ifstream in(path, std::ios::binary);
-  char magic[132] = { 0 };
-  in.read(magic, sizeof(magic));
-  return in.gcount() == sizeof(magic) && std::string(magic + 128, 4) == "DICM";
-}
-
-// The DICOM files of folder and its subfolders, depth levels down (the
-// series reader's scan depth): what a DICOM input is made of.
-void AddDicomFiles(const std::string& folder, int depth, std::vector<std::string>& files)
-{
-  vtksys::Directory listing;
-  if (depth < 1 || !listing.Load(folder))
-  {
-    return;
-  }
-  for (unsigned long f = 0; f < listing.GetNumberOfFiles(); ++f)
-  {
-    const std::string name = listing.GetFile(f);
-    const std::string path = folder + "/" + name;
-    if (name == "." || name == "..")
-    {
-      continue;
-    }
-    if (vtksys::SystemTools::FileIsDirectory(path))
-    {
-      AddDicomFiles(path, depth - 1, files);
-    }
-    else if (IsDicomFile(path))
-    {
-      files.push_back(path);
-    }
-  }
-}
-
 bool SameFile(const struct stat& a, const std::string& path)
 {
   struct stat b;
@@ -79,15 +31,8 @@ void CheckOutputIsNotInput(
   {
     return; // not there yet: it cannot be the input
   }
-  std::vector<std::string> inputs = { input };
-  if (vtksys::SystemTools::FileIsDirectory(input))
-  {
-    AddDicomFiles(input, 4, inputs);
-  }
-  for (const std::string& data : mcxio::DataFiles(input))
-  {
-    inputs.push_back(data);
-  }
+  // Exactly what the read may open, as the reader decides it.
+  const std::vector<std::string> inputs = mcxio::InputFiles(input);
   for (const std::string& file : inputs)
   {
     if (SameFile(written, file))

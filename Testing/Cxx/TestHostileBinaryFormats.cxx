@@ -400,10 +400,13 @@ TEST(HostileBinaryFormats, NiftiReaderRefusesAFifoAndBudgetsItsRescaledCopy)
 
 TEST(HostileBinaryFormats, SLCOfOneLongTokenIsRefusedQuickly)
 {
-  // 64 MiB of digits: the check reads 4 KiB of them, not a number's text.
+  // 64 MiB of digits: the check reads 4 KiB of them, not a number's text;
+  // so too for a slice's compressed size after a valid header.
   const std::string path = Temporary("binary_digits.slc");
   WriteBytes(path, std::string(64 << 20, '1'));
-  ExpectRefused(path, "no magic number");
+  ExpectRefused(path, "token longer than 64 characters");
+  WriteBytes(path, "11111 2 2 1 8 1 1 1 0 0 0 1\n1 1 X\n\x01\x02\x03" + std::string(64 << 20, '7'));
+  ExpectRefused(path, "slice 0 of 1 has no positive compressed size");
 }
 
 #ifdef MCXRAY_TEST_DICOM
@@ -553,6 +556,49 @@ TEST(HostileBinaryFormats, DicomPixelDataAreCheckedBeforeVtkDicomTrustsThem)
           : 1;
       });
     EXPECT_EQ(0, status) << "not one error naming the reason (negative: a crash)";
+  }
+}
+
+TEST(HostileBinaryFormats, TheOutputGuardKnowsEveryFileTheSeriesReaderReads)
+{
+  // Slices without the 128-byte preamble and "DICM", named as images the
+  // command writes: vtk-dicom still reads them, so they are the input. The
+  // guard walks the folder as the reader does, each folder once (100 links
+  // to itself and one to '..' notwithstanding), quickly.
+  const std::string folder = Temporary("binary_dicom_no_preamble");
+  vtksys::SystemTools::RemoveADirectory(folder);
+  vtksys::SystemTools::MakeDirectory(folder);
+  const std::vector<std::string> names = { "IM0.png", "IM1.pfm", "IM2.vti" };
+  for (int z = 0; z < 3; ++z)
+  {
+    const std::string pixels(512, static_cast<char>(z + 1));
+    WriteBytes(folder + "/" + names[z], Dicom("1.2.840.10008.1.2.1", z, 0, pixels).substr(128 + 4));
+  }
+  ASSERT_EQ(0, ::symlink("..", (folder + "/up").c_str()));
+  for (int l = 0; l < 100; ++l)
+  {
+    ASSERT_EQ(0, ::symlink(".", (folder + "/self" + std::to_string(l)).c_str()));
+  }
+  vtkNew<vtkMCXDICOMSeriesReader> reader;
+  reader->SetDirectoryName(folder.c_str());
+  reader->Update();
+  ASSERT_EQ(16 * 16 * 3, reader->GetOutput()->GetNumberOfPoints()) << "vtk-dicom reads them";
+  for (const std::string& output : { folder + "/IM0.png", folder + "/self7/IM1.pfm",
+         folder + "/up/binary_dicom_no_preamble/IM2.vti" })
+  {
+    const std::string before = mcxtest::Slurp(output);
+    const auto start = std::chrono::steady_clock::now();
+    Result r = RunCLI("render " + folder + " --samples 1023 --size 16x16 --output " + output);
+    EXPECT_EQ(2, r.Status) << r.Errors;
+    EXPECT_EQ(
+      0u, r.Errors.find("mcxray: error: the output '" + output + "' is the input volume's file '"))
+      << r.Errors;
+    EXPECT_NE(
+      std::string::npos, r.Errors.find("'; refusing to overwrite it (choose another --output)\n"))
+      << r.Errors;
+    EXPECT_EQ(before, mcxtest::Slurp(output));
+    EXPECT_LT(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 60.0);
   }
 }
 
