@@ -203,6 +203,12 @@ const Option* Find(const std::string& name, Command command)
 
 void SetInput(Settings& settings, const std::string& input)
 {
+  // An empty argument ("$FILE" unset) is not the absence of one: it would
+  // render the bundled CT instead of the volume meant.
+  if (input.empty())
+  {
+    Fail("the input path is empty");
+  }
   if (!settings.Input.empty())
   {
     Fail("more than one input: '" + settings.Input + "' and '" + input + "'");

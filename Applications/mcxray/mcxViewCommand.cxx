@@ -126,6 +126,11 @@ void CheckScreenshot(const std::string& screenshot)
     Fail("--screenshot writes .png, not '" + screenshot + "'");
   }
   CheckOutputDirectory(screenshot);
+  const std::string nameProblem = OutputNameProblem(screenshot, "--screenshot");
+  if (!nameProblem.empty())
+  {
+    Fail(nameProblem);
+  }
 }
 
 // The window is the detector when a radiograph geometry is given.
