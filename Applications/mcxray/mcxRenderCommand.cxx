@@ -92,24 +92,6 @@ void WarnOfLongRuns(const Settings& settings)
 // useful precision (a relative error of about 1e-6 per pixel).
 const long long MaximumSamples = (1LL << 40) - 1;
 
-// TBB starts no more workers than the cores it may use (it ignores a larger
-// request with a two-line warning of its own): more --threads are refused.
-void CheckThreads(int threads)
-{
-  if (threads <= 0 || vtkSMPTools::GetBackend() == nullptr ||
-    std::string(vtkSMPTools::GetBackend()) != "TBB")
-  {
-    return;
-  }
-  // Before any Initialize: TBB's default, the cores this process may use.
-  const int cores = vtkSMPTools::GetEstimatedNumberOfThreads();
-  if (threads > cores)
-  {
-    Fail("--threads " + std::to_string(threads) + " is more than the " + std::to_string(cores) +
-      " cores TBB can use here (at most " + std::to_string(cores) + ")");
-  }
-}
-
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
 {
@@ -141,7 +123,6 @@ void CheckCombinations(const Settings& settings)
     Fail("--samples is at most 2^40 - 1 (1099511627775: about 3 hours of point deposits on 2 "
          "cores, 12 of footprints)");
   }
-  CheckThreads(settings.Threads);
   if (settings.QuantizationLevels > 65536)
   {
     Fail("--quantization-levels is limited to 65536");
