@@ -48,6 +48,7 @@ struct Conditions
   rlim_t Processes = 0;
   rlim_t Files = 0;
   bool CloseStdin = false;
+  bool CloseStdout = false;
   bool BrokenStdout = false;
   int Signal = 0;
   std::string Folder;
@@ -105,6 +106,10 @@ Outcome RunMcxray(const std::vector<std::string>& arguments, const Conditions& c
     if (conditions.CloseStdin)
     {
       ::close(STDIN_FILENO);
+    }
+    if (conditions.CloseStdout)
+    {
+      ::close(STDOUT_FILENO);
     }
     const auto limit = [](int resource, rlim_t value)
     {
@@ -306,6 +311,24 @@ TEST(HostileProcess, AClosedPipeIsOneLineAndNoOutput)
   pipe.Seconds = 60;
   const Outcome r = RunMcxray({ "render", "--samples", "1023", "--output", output }, pipe);
   ExpectOneLine(r, "cannot write to standard output", folder, output);
+}
+
+TEST(HostileProcess, AClosedStdoutIsNotAFileToWriteInto)
+{
+  // mcxray render >&-: stdout is /dev/null, not the number of the next file
+  // opened (the output's temporary would have received the log).
+  const std::string folder = Folder("process_closed_stdout");
+  const std::string output = folder + "/image.pfm";
+  Conditions closed;
+  closed.CloseStdout = true;
+  closed.Seconds = 60;
+  const Outcome r =
+    RunMcxray({ "render", "--samples", "1023", "--size", "8x4", "--output", output }, closed);
+  EXPECT_TRUE(WIFEXITED(r.Status) && WEXITSTATUS(r.Status) == 0) << r.Status << "\n" << r.Errors;
+  EXPECT_EQ("", r.Errors);
+  // A PFM of 8 x 4 float32 pixels and its 3-line header, nothing else.
+  EXPECT_EQ(0u, Slurp(output).find("Pf\n8 4\n-1.0\n")) << Slurp(output).substr(0, 40);
+  EXPECT_EQ(std::string("Pf\n8 4\n-1.0\n").size() + 4 * 8 * 4, Slurp(output).size());
 }
 
 TEST(HostileProcess, TheCPUTimeLimitIsOneLine)
