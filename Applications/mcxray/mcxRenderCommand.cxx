@@ -88,8 +88,8 @@ void WarnOfLongRuns(const Settings& settings)
 }
 
 // The most samples a render takes: 2^40 - 1 (the long-run warning's
-// estimate: about 3 hours of point deposits on 2 cores), far beyond any
-// useful precision (a relative error of about 1e-6 per pixel).
+// estimate: about 3 hours of point deposits on 2 cores), 4 million a pixel
+// of a 512^2 image, far beyond any useful precision.
 const long long MaximumSamples = (1LL << 40) - 1;
 
 // What one option allows depends on another: checked once all are read.
