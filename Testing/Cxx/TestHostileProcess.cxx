@@ -340,7 +340,7 @@ TEST(HostileProcess, TheCPUTimeLimitIsOneLine)
   const std::string output = folder + "/never.png";
   Conditions cpu;
   cpu.CPUSeconds = 2;
-  cpu.Seconds = 30;
+  cpu.Seconds = 60;
   const Outcome r =
     RunMcxray({ "render", "--samples", "68719476735", "--quiet", "--output", output }, cpu);
   ExpectOneLine(r, "CPU time limit", folder, output);
