@@ -31,6 +31,10 @@ struct DepositSettings
   /// edge k): the identity when samples come in voxel coordinates, the
   /// voxel's world edges for a stored cloud of world points.
   double VoxelMatrix[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  /// The bytes the footprint tables may take (FootprintLadder::Build throws
+  /// std::runtime_error beyond them, before allocating); 0: no limit but
+  /// the reach's (FootprintLadder::MaximumBytes). Not part of a view's key.
+  double TableMemory = 0.0;
   /// Whether the voxel choice is stratified (Hybrid, QuasiMonteCarlo): only
   /// then does the footprint's error fall as about M^-1.
   bool Stratified = true;

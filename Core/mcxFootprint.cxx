@@ -137,13 +137,28 @@ FootprintPlan FootprintPlan::For(Kernel kernel, const double axes[3][2], double 
       continue;
     }
     int halvings = 0;
-    while (length * std::ldexp(1.0, -halvings) > reach && halvings < 20)
+    while (length * std::ldexp(1.0, -halvings) > reach && halvings < MaximumHalvings)
     {
       ++halvings;
     }
     plan.Halvings[k] = halvings;
   }
   return plan;
+}
+
+bool FootprintPlan::Within(const double axes[3][2], double reach) const
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const double length = LongestComponent(axes[k]);
+    const double deposited =
+      this->Halvings[k] < 0 ? 2.0 * length : length * std::ldexp(1.0, -this->Halvings[k]);
+    if (!(deposited <= reach))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 void FootprintPlan::RandomOffset(const double uniform[3][2], double offset[3]) const
@@ -165,19 +180,12 @@ void FootprintPlan::RandomOffset(const double uniform[3][2], double offset[3]) c
   }
 }
 
-void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions)
+namespace
 {
-  if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double v) { return std::isfinite(v); }))
-  {
-    // No density (0 everywhere) rather than casts of infinities; the ladder
-    // keeps no table for such axes and deposits points instead.
-    this->N[0] = this->N[1] = 0;
-    this->Half[0] = this->Half[1] = 0.5;
-    this->Values.assign(1, 0.0);
-    return;
-  }
-  // The deposited part: the tent is two uniform segments along its axis, a
-  // box (or sub-box) one.
+// The deposited part of plan: the tent is two uniform segments along its
+// axis, a box (or sub-box) one.
+std::vector<std::array<double, 2>> SegmentsOf(const double axes[3][2], const FootprintPlan& plan)
+{
   std::vector<std::array<double, 2>> segments;
   for (int k = 0; k < 3; ++k)
   {
@@ -193,23 +201,59 @@ void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan,
       segments.push_back(segment);
     }
   }
-  this->Half[0] = this->Half[1] = 0.5;
+  return segments;
+}
+
+// The density grid of segments: half its support (pixels), its nodes per
+// pixel q and its nodes -n..n per axis.
+void GridOf(const std::vector<std::array<double, 2>>& segments, int subdivisions, double half[2],
+  int& q, int n[2])
+{
+  half[0] = half[1] = 0.5;
   for (const auto& s : segments)
   {
-    this->Half[0] += 0.5 * std::fabs(s[0]);
-    this->Half[1] += 0.5 * std::fabs(s[1]);
+    half[0] += 0.5 * std::fabs(s[0]);
+    half[1] += 0.5 * std::fabs(s[1]);
   }
   // About `subdivisions` steps across the footprint's longer side, 4 to 128
   // per pixel: the grid's blur (a fraction of a step from the interpolation
   // that reads it, and from the two of each oblique segment's shears) stays
   // a small fraction of the footprint however small the voxel.
-  const double longer = 2.0 * std::max(this->Half[0], this->Half[1]);
-  this->Q = static_cast<int>(std::min(128.0, std::max(4.0, std::ceil(subdivisions / longer))));
-  const double h = 1.0 / this->Q;
+  const double longer = 2.0 * std::max(half[0], half[1]);
+  q = static_cast<int>(std::min(128.0, std::max(4.0, std::ceil(subdivisions / longer))));
   for (int a = 0; a < 2; ++a)
   {
-    this->N[a] = static_cast<int>(std::ceil(this->Half[a] * this->Q)) + 1;
+    n[a] = static_cast<int>(std::ceil(half[a] * q)) + 1;
   }
+}
+
+// Phases per pixel (log2) of a table of `size` pixels a phase: the most of
+// 64, 32, 16 or 8 within budget values.
+int PhaseBitsFor(std::size_t size, std::size_t budget)
+{
+  int bits = 6;
+  while (bits > 3 && size * (std::size_t(1) << (2 * bits)) > budget)
+  {
+    --bits;
+  }
+  return bits;
+}
+}
+
+void FootprintDensity::Build(const double axes[3][2], const FootprintPlan& plan, int subdivisions)
+{
+  if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double v) { return std::isfinite(v); }))
+  {
+    // No density (0 everywhere) rather than casts of infinities; the ladder
+    // keeps no table for such axes and deposits points instead.
+    this->N[0] = this->N[1] = 0;
+    this->Half[0] = this->Half[1] = 0.5;
+    this->Values.assign(1, 0.0);
+    return;
+  }
+  const std::vector<std::array<double, 2>> segments = SegmentsOf(axes, plan);
+  GridOf(segments, subdivisions, this->Half, this->Q, this->N);
+  const double h = 1.0 / this->Q;
   const int width = 2 * this->N[0] + 1, height = 2 * this->N[1] + 1;
   std::vector<double> f(static_cast<std::size_t>(width) * height);
   for (int j = 0; j < height; ++j)
@@ -276,6 +320,29 @@ void FootprintDensity::Convolve(
   ShearLines(sheared.data(), copy, this->Values.data(), grid, -r, r * this->N[a] + margin);
 }
 
+double FootprintTable::PlannedBytes(
+  const double axes[3][2], const FootprintPlan& plan, std::size_t budget, int subdivisions)
+{
+  if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double v) { return std::isfinite(v); }))
+  {
+    return 0.0;
+  }
+  double half[2];
+  int q = 0, n[2];
+  GridOf(SegmentsOf(axes, plan), subdivisions, half, q, n);
+  // The density grid, its first copy and the sheared copy (at most three
+  // times as tall, with its margins), each of doubles.
+  const double grid = (2.0 * n[0] + 1) * (2.0 * n[1] + 1);
+  const double density = 8.0 * grid * 5.0;
+  // The table's frame: every phase's shares and increments (16 bytes a
+  // value, at most the whole frame each), its blocks, and two frames of
+  // work space.
+  const double size = (2.0 * std::ceil(half[0] + 0.5) + 1) * (2.0 * std::ceil(half[1] + 0.5) + 1);
+  const double phases =
+    std::ldexp(1.0, 2 * PhaseBitsFor(static_cast<std::size_t>(std::min(size, 1e15)), budget));
+  return density + 16.0 * size * phases + sizeof(Block) * phases + 32.0 * size;
+}
+
 void FootprintTable::Build(
   const double axes[3][2], const FootprintPlan& plan, std::size_t budget, int subdivisions)
 {
@@ -289,12 +356,7 @@ void FootprintTable::Build(
   }
   const int columns = this->Columns(), rows = this->Rows();
   const std::size_t size = static_cast<std::size_t>(columns) * rows;
-  this->PhaseShiftBits = 6; // 64 phases, down to 8
-  while (this->PhaseShiftBits > 3 &&
-    size * static_cast<std::size_t>(this->Phases() * this->Phases()) > budget)
-  {
-    --this->PhaseShiftBits;
-  }
+  this->PhaseShiftBits = PhaseBitsFor(size, budget); // 64 phases, down to 8
   const int Phases = this->Phases();
   this->ShareValues.clear();
   this->IncrementValues.clear();

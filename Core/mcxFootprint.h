@@ -54,9 +54,19 @@ struct FootprintPlan
   Kernel Reconstruction = Kernel::Tent;
   int Halvings[3] = { -1, -1, -1 };
 
+  /// The most halvings of an axis: a voxel up to 2^40 times the reach (in
+  /// pixels) is split; the random sub-box choice, from a uniform number of
+  /// 53 bits, stays exact.
+  static constexpr int MaximumHalvings = 40;
+
   /// The split whose deposited part reaches at most about `reach` pixels
-  /// along each projected axis (axes in pixels).
+  /// along each projected axis (axes in pixels), within MaximumHalvings.
   static FootprintPlan For(Kernel kernel, const double axes[3][2], double reach);
+
+  /// True when the deposited part reaches at most `reach` pixels along each
+  /// axis (false for voxels too large to split that far, or non-finite
+  /// axes): only then is the table's size bounded by the reach.
+  bool Within(const double axes[3][2], double reach) const;
 
   /// The random part's offset in voxels along each axis, from two uniform
   /// numbers per axis in [0, 1).
@@ -89,6 +99,11 @@ public:
   /// grid's steps across the footprint (FootprintDensity::Build).
   void Build(const double axes[3][2], const FootprintPlan& plan, std::size_t budget = 1 << 17,
     int subdivisions = 200);
+
+  /// The most bytes Build(axes, plan, budget, subdivisions) takes at once
+  /// (the table and its work space), found before anything is allocated.
+  static double PlannedBytes(const double axes[3][2], const FootprintPlan& plan,
+    std::size_t budget = 1 << 17, int subdivisions = 200);
 
   /// Pixels reached beyond the centre's pixel along image axis a.
   int Reach(int a) const { return this->PixelReach[a]; }

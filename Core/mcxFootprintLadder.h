@@ -5,6 +5,7 @@
 #ifndef mcxFootprintLadder_h
 #define mcxFootprintLadder_h
 
+#include "mcxByteSize.h"
 #include "mcxDepositSettings.h"
 #include "mcxFootprint.h"
 #include "mcxPixelBinner.h"
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mcx
@@ -36,7 +39,14 @@ public:
   /// Builds the tables on `executor`, unless they are those of the same axes
   /// and settings (a TF edit or a refinement changes neither: tables are
   /// built once per view). The seed does not enter the tables. Non-finite
-  /// axes or depths leave no table: every sample is then a point deposit.
+  /// axes or depths leave no table: every sample is then a point deposit;
+  /// so do voxels too large for the plan's halvings to bring within the
+  /// reach (more than 2^40 times it, FootprintPlan::MaximumHalvings), and in
+  /// perspective the scales nearer than the first such one. So each table
+  /// spans at most 2 ceil(1.5 reach + 1) + 1 pixels a side (99 at the
+  /// largest reach, 32): the tables' bytes are bounded by the reach
+  /// (MaximumBytes), and are checked against settings.TableMemory before
+  /// any is allocated (std::runtime_error "the footprint tables ... need").
   template <typename Executor>
   void Build(const Executor& executor, const PixelBinner& binner, const DepositSettings& settings)
   {
@@ -62,8 +72,14 @@ public:
     const double reach = std::min(32.0, std::max(0.5, settings.Reach));
     if (!this->Perspective)
     {
+      const FootprintPlan plan = FootprintPlan::For(settings.Reconstruction, axes, reach);
+      if (!plan.Within(axes, reach))
+      {
+        return;
+      }
+      CheckTableMemory(FootprintTable::PlannedBytes(axes, plan), settings);
       this->Tables.emplace_back();
-      this->Tables.back().Build(axes, FootprintPlan::For(settings.Reconstruction, axes, reach));
+      this->Tables.back().Build(axes, plan);
       return;
     }
     const double nearest = settings.Depths[0];
@@ -75,8 +91,29 @@ public:
     // From the farthest depth towards the eye.
     const double first = 1.0 / farthest;
     // Clamped before the cast: a tiny nearest depth makes the ratio infinite.
-    const int count = static_cast<int>(std::min<double>(
+    int count = static_cast<int>(std::min<double>(
       MaximumTables, 2 + std::ceil(std::log(farthest / nearest) / std::log(Ratio))));
+    // The scales grow with j: the first too large to split ends the ladder.
+    std::vector<FootprintPlan> plans;
+    double bytes = 0.0;
+    for (int j = 0; j < count; ++j)
+    {
+      double scaled[3][2];
+      ScaleAxes(axes, first * std::pow(Ratio, static_cast<double>(j)), scaled);
+      plans.push_back(FootprintPlan::For(settings.Reconstruction, scaled, reach));
+      if (!plans.back().Within(scaled, reach))
+      {
+        plans.pop_back();
+        break;
+      }
+      bytes += FootprintTable::PlannedBytes(scaled, plans.back(), TableBudget, TableSubdivisions);
+    }
+    count = static_cast<int>(plans.size());
+    if (count < 2)
+    {
+      return; // a ladder needs two scales: every sample is a point deposit
+    }
+    CheckTableMemory(bytes, settings);
     this->Tables.resize(static_cast<std::size_t>(count));
     this->InverseDepths.resize(static_cast<std::size_t>(count));
     for (int j = 0; j < count; ++j)
@@ -90,16 +127,10 @@ public:
       {
         for (std::int64_t j = begin; j < end; ++j)
         {
-          const double w = this->InverseDepths[static_cast<std::size_t>(j)];
           double scaled[3][2];
-          for (int k = 0; k < 3; ++k)
-          {
-            scaled[k][0] = axes[k][0] * w;
-            scaled[k][1] = axes[k][1] * w;
-          }
-          this->Tables[static_cast<std::size_t>(j)].Build(scaled,
-            FootprintPlan::For(settings.Reconstruction, scaled, reach), TableBudget,
-            TableSubdivisions);
+          ScaleAxes(axes, this->InverseDepths[static_cast<std::size_t>(j)], scaled);
+          this->Tables[static_cast<std::size_t>(j)].Build(
+            scaled, plans[static_cast<std::size_t>(j)], TableBudget, TableSubdivisions);
         }
       });
   }
@@ -154,7 +185,41 @@ public:
 
   bool IsEmpty() const { return this->Tables.empty(); }
 
+  /// The most bytes the tables of one view take at the given reach (0.5 to
+  /// 32 pixels), work space included: MaximumTables tables of the largest
+  /// frame (FootprintTable::PlannedBytes of a footprint of half-width
+  /// 0.5 + 1.5 reach).
+  static double MaximumBytes(double reach)
+  {
+    reach = std::min(32.0, std::max(0.5, reach));
+    const double half = 0.5 + 1.5 * reach;
+    const double side = 2.0 * std::ceil(half + 0.5) + 1.0;
+    const double values = std::max(double(1 << 17), 64.0 * side * side);
+    const double nodes = 2.0 * (std::max(4.0 * half, 100.0 + half) + 2.0) + 1.0;
+    return MaximumTables *
+      (16.0 * values + 40.0 * 4096 + 32.0 * side * side + 40.0 * nodes * nodes);
+  }
+
 private:
+  static void ScaleAxes(const double axes[3][2], double w, double scaled[3][2])
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      scaled[k][0] = axes[k][0] * w;
+      scaled[k][1] = axes[k][1] * w;
+    }
+  }
+
+  // The tables' bytes against the memory they may take (0: no limit).
+  static void CheckTableMemory(double bytes, const DepositSettings& settings)
+  {
+    if (settings.TableMemory > 0 && bytes > settings.TableMemory)
+    {
+      throw std::runtime_error("the footprint tables of this view need " + DescribeBytes(bytes) +
+        ", more than the memory budget of " + DescribeBytes(settings.TableMemory));
+    }
+  }
+
   // Guide[b]: the last j below the last scale with InverseDepths[j] at or
   // below bucket b's lower end; the buckets are narrower than the smallest
   // step between scales, so that each holds at most one scale.

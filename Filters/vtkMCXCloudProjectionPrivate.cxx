@@ -100,8 +100,9 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
 
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  const mcx::DepositSettings settings =
+  mcx::DepositSettings settings =
     mcx::CloudDepositSettings(cloud, geometry, origin, identity, footprintReach);
+  settings.TableMemory = mcx::MemoryBudget(); // beyond: the projector's "Cannot project" error
   Accumulator accumulator;
   accumulator.Reset(geometry, origin, identity, std::vector<double>(), settings);
   projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();

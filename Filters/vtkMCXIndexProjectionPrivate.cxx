@@ -4,6 +4,7 @@
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXDistributed.h"
 #include "vtkMCXIndexView.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXProjectionPrivate.h"
 #include "vtkMCXProjector.h"
 
@@ -225,6 +226,7 @@ private:
     settings.Seed = this->Seed;
     settings.Reach = this->FootprintReach;
     settings.Stratified = this->Method != mcx::Strategy::MonteCarlo;
+    settings.TableMemory = mcx::MemoryBudget(); // beyond: the projector's "Cannot project" error
     double corners[24];
     mcx::ComputeSupportCorners(this->View.Extent, this->View.Origin, this->View.Spacing,
       this->View.Direction, mcx::KernelRadius(this->Reconstruction), corners);

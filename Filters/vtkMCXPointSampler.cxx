@@ -28,6 +28,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <new>
+#include <stdexcept>
 #include <string>
 
 vtkStandardNewMacro(vtkMCXPointSampler);
@@ -103,9 +105,19 @@ void vtkMCXPointSampler::SetReusePoints(bool reuse)
 
 void vtkMCXPointSampler::SetOrderingView(vtkCamera* camera, int width, int height)
 {
-  if (this->ViewOrdered->SetView(this, camera, width, height))
+  // Called from Python and ParaView: no exception may leave it (it would end
+  // the interpreter).
+  try
   {
-    this->Modified();
+    if (this->ViewOrdered->SetView(this, camera, width, height))
+    {
+      this->Modified();
+    }
+  }
+  catch (const std::exception& error)
+  {
+    vtkErrorMacro("Cannot order by a view of " << width << " x " << height
+                                               << " pixels: " << error.what() << ".");
   }
 }
 
@@ -166,6 +178,30 @@ int vtkMCXPointSampler::RequestData(
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  // An allocation the budget allowed can still fail (an address-space limit,
+  // ulimit -v): an error and an empty cloud, never an exception through the
+  // executive into Python or ParaView.
+  try
+  {
+    return this->RequestCloud(input, output);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro("Out of memory sampling " << this->GetNumberOfSamples() << " points.");
+  }
+  catch (const std::length_error& error)
+  {
+    vtkErrorMacro(
+      "Cannot sample " << this->GetNumberOfSamples() << " points: " << error.what() << ".");
+  }
+  this->KeptPoints = nullptr;
+  this->ViewOrdered->ForgetOrder();
+  output->Initialize();
+  return 0;
+}
+
+int vtkMCXPointSampler::RequestCloud(vtkImageData* input, vtkPolyData* output)
+{
   if (this->Strategy == vtkMCXTypes::EVERY_VOXEL)
   {
     this->KeptPoints = nullptr;

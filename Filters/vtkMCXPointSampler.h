@@ -246,6 +246,8 @@ protected:
   std::unique_ptr<vtkMCXViewOrderedSampling> ViewOrdered;
 
 private:
+  /// RequestData's work, which may throw std::bad_alloc (caught there).
+  int RequestCloud(vtkImageData* input, vtkPolyData* output);
   /// RequestData of HYBRID, MONTE_CARLO and QUASI_MONTE_CARLO.
   int RequestSampled(vtkImageData* input, vtkPolyData* output);
   /// RequestData of VIEW_ORDERED.

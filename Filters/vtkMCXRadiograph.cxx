@@ -58,7 +58,13 @@ int vtkMCXRadiograph::RequestData(
   vtkNew<vtkDoubleArray> values;
   values->SetName(this->NegativeLog ? vtkMCXTypes::AttenuationName() : vtkMCXTypes::IntensityName());
   const vtkIdType pixels = lineIntegral->GetNumberOfTuples();
-  values->SetNumberOfValues(pixels);
+  if (!values->SetNumberOfValues(pixels))
+  {
+    // Under an address-space limit: an error, never a write through null.
+    vtkErrorMacro("Cannot allocate the radiograph of " << pixels << " pixels.");
+    output->Initialize();
+    return 0;
+  }
   EffectsOf(this).ApplyToImage(
     mcx::SMPExecutor(), pixels,
     [&](std::int64_t p) { return lineIntegral->GetComponent(static_cast<vtkIdType>(p), 0); },

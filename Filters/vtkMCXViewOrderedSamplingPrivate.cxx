@@ -169,6 +169,9 @@ std::vector<double> ControlImage(const std::vector<double>& binImages,
 }
 }
 
+// The largest view to order by: the projector's largest image.
+const double MaximumOrderingPixels = 4294967296.0;
+
 // SetOrderingView's copy of the camera's geometry.
 struct vtkMCXViewOrderedSampling::OrderingView
 {
@@ -221,6 +224,14 @@ vtkMCXViewOrderedSampling::~vtkMCXViewOrderedSampling() = default;
 bool vtkMCXViewOrderedSampling::SetView(vtkObject* self, vtkCamera* camera, int width, int height)
 {
   std::unique_ptr<OrderingView> ordering;
+  // The sort keys of a larger view (bins x pixels) would pass 64 bits.
+  if (static_cast<double>(width) * static_cast<double>(height) > MaximumOrderingPixels)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Cannot order by a view of " << width << " x " << height
+                                   << " pixels: at most 2^32 pixels (65536 x 65536).");
+    return false;
+  }
   if (camera && width > 0 && height > 0)
   {
     ordering.reset(new OrderingView);
@@ -402,6 +413,14 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   const std::int64_t cells = pixels + 1; // the last: voxels off the image
   std::vector<std::int64_t> binFirstLevel = mcx::GroupLevelsIntoBins(
     view.LevelValues, view.NumberOfLevels, sampler->GetNumberOfOrderingBins());
+  // The counters alone, in floating point first: their count in 64 bits
+  // could wrap.
+  if (!mcx::CheckMemory(sampler,
+        8.0 * static_cast<double>(binFirstLevel.size() - 1) * static_cast<double>(cells),
+        "The view order of " + std::to_string(voxels) + " voxels"))
+  {
+    return nullptr;
+  }
   const std::int64_t keys = (static_cast<std::int64_t>(binFirstLevel.size()) - 1) * cells;
   const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
   if (!mcx::CheckMemory(sampler,

@@ -184,6 +184,14 @@ bool HandOverVolume(int fd, vtkImageData* volume)
   ::_exit(0);
 }
 
+// The read refused when its child cannot be started (a process limit, no
+// file descriptor left): one line with errno's words.
+std::string NotStarted(const std::string& path, const std::string& what, int cause)
+{
+  return "cannot read '" + path + "': the reader's child process could not be started (" + what +
+    ": " + std::strerror(cause) + ")";
+}
+
 std::string SignalName(int signal)
 {
   switch (signal)
@@ -347,7 +355,10 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   }
   if (fd < 0)
   {
-    return ReadVolume(path, options, error); // no shared memory: read in this process
+    // No fallback in this process: a reader that containment exists for
+    // would run unguarded (a known-bad file would end mcxray).
+    error = NotStarted(path, "no shared memory for the volume", errno);
+    return nullptr;
   }
   // The child's status is needed: a launcher that ignores SIGCHLD would
   // make the system reap it unseen.
@@ -360,9 +371,11 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   const pid_t child = ::fork();
   if (child < 0)
   {
+    const int cause = errno;
     ::sigaction(SIGCHLD, &previousChild, nullptr);
     ::close(fd);
-    return ReadVolume(path, options, error);
+    error = NotStarted(path, "cannot start a process", cause);
+    return nullptr;
   }
   if (child == 0)
   {

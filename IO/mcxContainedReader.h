@@ -30,7 +30,9 @@ struct ReadLimits
 /// only: fork, memfd_create, setrlimit): the
 /// scalars with their geometry (spacing, origin, direction), or null with
 /// error set to one line that says what went wrong (the reader's own
-/// message, its signal, or the time limit).
+/// message, its signal, or the time limit). A child that cannot be started
+/// (a process limit, no file descriptor or shared memory left) is an error
+/// too: the reader never runs unguarded in this process.
 vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   const VolumeReadOptions& options, const ReadLimits& limits, std::string& error);
 

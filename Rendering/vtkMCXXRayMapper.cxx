@@ -32,6 +32,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <new>
+#include <stdexcept>
 #include <vector>
 
 vtkStandardNewMacro(vtkMCXXRayMapper);
@@ -168,6 +170,26 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
+{
+  // An allocation can fail under an address-space limit however the budget
+  // was checked: an error, and the next render starts over.
+  try
+  {
+    this->RenderImage(renderer, volume);
+  }
+  catch (const std::bad_alloc&)
+  {
+    this->Internals->HasImage = false;
+    vtkErrorMacro("Out of memory rendering the X-ray image.");
+  }
+  catch (const std::length_error& error)
+  {
+    this->Internals->HasImage = false;
+    vtkErrorMacro("Cannot render the X-ray image: " << error.what() << ".");
+  }
+}
+
+void vtkMCXXRayMapper::RenderImage(vtkRenderer* renderer, vtkVolume* volume)
 {
   const auto start = std::chrono::steady_clock::now();
   vtkInternals& in = *this->Internals;

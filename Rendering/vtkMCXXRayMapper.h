@@ -378,6 +378,10 @@ protected:
 private:
   vtkMCXXRayMapper(const vtkMCXXRayMapper&) = delete;
 
+  // Render's work, which may throw std::bad_alloc (caught by Render: no
+  // exception may reach ParaView or Python).
+  void RenderImage(vtkRenderer* renderer, vtkVolume* volume);
+
   // In a renderer's information: whether an X-ray has laid its film in the
   // render in progress (reset by the renderer's StartEvent), and whether
   // that reset is installed.

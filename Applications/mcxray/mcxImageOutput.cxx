@@ -119,18 +119,32 @@ bool IsSupportedOutput(const std::string& path)
 
 namespace
 {
+// The name a file is written under before it is renamed to path: the
+// process id keeps concurrent runs writing the same path apart.
+std::string TemporaryName(const std::string& path)
+{
+  return path + ".part-" + std::to_string(vtksys::SystemInformation().GetProcessId()) +
+    Extension(path);
+}
+
 // Runs write(temporary) and renames the result to path only if it succeeded.
-// The process id keeps concurrent runs writing the same path apart.
 // (std::rename: VTK 9.1's kwsys has no RenameFile.)
 template <typename Write>
-bool WriteAtomically(const std::string& path, const Write& write, std::string& error)
+bool WriteAtomically(const std::string& path, const Write& write, std::string& error,
+  const BeforeRename& beforeRename = BeforeRename())
 {
-  const std::string ext = Extension(path);
-  const std::string temporary =
-    path + ".part-" + std::to_string(vtksys::SystemInformation().GetProcessId()) + ext;
+  const std::string temporary = TemporaryName(path);
   const PartialFileGuard guard(temporary);
   errno = 0;
-  if (!write(temporary) || std::rename(temporary.c_str(), path.c_str()) != 0)
+  const bool written = write(temporary);
+  const std::string refused = written && beforeRename ? beforeRename() : std::string();
+  if (!refused.empty())
+  {
+    std::remove(temporary.c_str());
+    error = refused;
+    return false;
+  }
+  if (!written || std::rename(temporary.c_str(), path.c_str()) != 0)
   {
     // Only the causes a write itself has (a stale errno of some other call
     // would mislead).
@@ -145,8 +159,26 @@ bool WriteAtomically(const std::string& path, const Write& write, std::string& e
 }
 }
 
-bool WriteImage(
-  vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error)
+std::string OutputNameProblem(const std::string& path, const std::string& option)
+{
+  const std::string full = vtksys::SystemTools::CollapseFullPath(path);
+  const std::string directory = vtksys::SystemTools::GetFilenamePath(full);
+  errno = 0;
+  const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  const std::size_t longest = limit > 0 ? static_cast<std::size_t>(limit) : 255;
+  const std::size_t name = vtksys::SystemTools::GetFilenameName(full).size();
+  const std::size_t temporary = vtksys::SystemTools::GetFilenameName(TemporaryName(full)).size();
+  if (temporary <= longest)
+  {
+    return std::string();
+  }
+  return "the file name of " + option + " is too long: " + std::to_string(name) + " bytes, " +
+    std::to_string(temporary) + " with the suffix of its temporary (.part-PID" + Extension(path) +
+    "), more than the " + std::to_string(longest) + " bytes a name may have here";
+}
+
+bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window,
+  std::string& error, const BeforeRename& beforeRename)
 {
   const std::string ext = Extension(path);
   if (!IsSupportedOutput(path))
@@ -169,7 +201,7 @@ bool WriteImage(
       }
       return ext == ".png" ? WritePNG(image, temporary, window) : WritePFM(image, temporary);
     },
-    error);
+    error, beforeRename);
 }
 
 bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error)

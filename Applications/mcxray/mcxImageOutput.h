@@ -4,6 +4,7 @@
 #ifndef mcxImageOutput_h
 #define mcxImageOutput_h
 
+#include <functional>
 #include <string>
 
 class vtkImageData;
@@ -22,8 +23,17 @@ struct PngWindow
 /// True when the extension is one the writer knows.
 bool IsSupportedOutput(const std::string& path);
 
-bool WriteImage(
-  vtkImageData* image, const std::string& path, const PngWindow& window, std::string& error);
+/// "" when the file name of path, and of the temporary it is written under
+/// (NAME.part-PID.EXT), fit the file system's limit on a name (255 bytes on
+/// most); else one line that says so, naming `option`. Checked before any
+/// work, so that a long name does not fail after the render.
+std::string OutputNameProblem(const std::string& path, const std::string& option);
+
+/// beforeRename, if given, runs once the temporary is complete: a message
+/// it returns fails the write (the temporary removed, path untouched).
+using BeforeRename = std::function<std::string()>;
+bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window,
+  std::string& error, const BeforeRename& beforeRename = BeforeRename());
 
 /// Writes an 8-bit RGB(A) image, a screenshot, as .png, all or nothing.
 bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error);

@@ -5,6 +5,7 @@
 #include "mcxSettings.h"
 
 #include "vtkMCXPatientSpace.h"
+#include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cctype>
@@ -40,6 +41,27 @@ struct Option
 // More threads than any machine has cores is a typing error (TBB would try
 // to start them all).
 const long long MaximumThreads = 4096;
+
+// TBB starts no more workers than the cores it may use (it ignores a larger
+// request with a two-line warning of its own): more threads are refused.
+int ThreadsOf(const Argument& argument)
+{
+  const int threads =
+    static_cast<int>(ParseInteger(argument.Value, argument.Name, 1, MaximumThreads));
+  const char* backend = vtkSMPTools::GetBackend();
+  if (!backend || std::string(backend) != "TBB")
+  {
+    return threads;
+  }
+  // Before any Initialize: TBB's default, the cores this process may use.
+  const int cores = vtkSMPTools::GetEstimatedNumberOfThreads();
+  if (threads > cores)
+  {
+    Fail(argument.Name + " " + std::to_string(threads) + " is more than the " +
+      std::to_string(cores) + " cores TBB can use here (at most " + std::to_string(cores) + ")");
+  }
+  return threads;
+}
 
 // A distance of the radiograph geometry: giving one selects the geometry.
 void SetGeometryDistance(Settings& settings, double& distance, const Argument& argument)
@@ -82,9 +104,7 @@ const Option Options[] = {
   { "--seed", Both, true,
     [](Settings& s, const Argument& a)
     { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },
-  { "--threads", Both, true,
-    [](Settings& s, const Argument& a)
-    { s.Threads = static_cast<int>(ParseInteger(a.Value, a.Name, 1, MaximumThreads)); } },
+  { "--threads", Both, true, [](Settings& s, const Argument& a) { s.Threads = ThreadsOf(a); } },
   { "--memory-limit", Both, true,
     [](Settings& s, const Argument& a) { s.MemoryLimit = ParseByteSize(a.Value, a.Name); } },
   { "--series", Both, true,
@@ -203,6 +223,12 @@ const Option* Find(const std::string& name, Command command)
 
 void SetInput(Settings& settings, const std::string& input)
 {
+  // An empty argument ("$FILE" unset) is not the absence of one: it would
+  // render the bundled CT instead of the volume meant.
+  if (input.empty())
+  {
+    Fail("the input path is empty");
+  }
   if (!settings.Input.empty())
   {
     Fail("more than one input: '" + settings.Input + "' and '" + input + "'");

@@ -11,7 +11,7 @@ namespace mcxapp
 
 namespace
 {
-// Only async-signal-safe work in the handler: a fixed buffer and unlink().
+// Only async-signal-safe work in the handlers: a fixed buffer and unlink().
 char PartialPath[4096];
 volatile std::sig_atomic_t HasPartial = 0;
 bool TerminalStderr = false; // set before the handlers, read only by them
@@ -22,16 +22,49 @@ void Say(const char* text)
   (void)ignored;
 }
 
-extern "C" void OnInterrupt(int signal)
+// Every signal that ends the process by default and can be caught, with its
+// name (SIGPIPE is ignored instead: a closed pipe is a failed write).
+struct Terminating
 {
-  if (HasPartial)
+  int Signal;
+  const char* Name;
+};
+const Terminating Signals[] = { { SIGINT, "SIGINT" }, { SIGTERM, "SIGTERM" }, { SIGHUP, "SIGHUP" },
+  { SIGQUIT, "SIGQUIT" }, { SIGUSR1, "SIGUSR1" }, { SIGUSR2, "SIGUSR2" }, { SIGALRM, "SIGALRM" },
+  { SIGVTALRM, "SIGVTALRM" }, { SIGPROF, "SIGPROF" }, { SIGXCPU, "SIGXCPU" } };
+
+const char* NameOf(int signal)
+{
+  for (const Terminating& t : Signals)
+  {
+    if (t.Signal == signal)
+    {
+      return t.Name;
+    }
+  }
+  return "a signal";
+}
+
+extern "C" void OnTerminatingSignal(int signal)
+{
+  const bool removed = HasPartial != 0;
+  if (removed)
   {
     ::unlink(PartialPath);
   }
   // On a terminal the progress bar's line may be open: start a new one.
-  Say(TerminalStderr ? "\nmcxray: error: interrupted by " : "mcxray: error: interrupted by ");
-  Say(signal == SIGINT ? "SIGINT" : (signal == SIGTERM ? "SIGTERM" : "SIGHUP"));
-  Say(HasPartial ? "; the unfinished output was removed\n" : "\n");
+  Say(TerminalStderr ? "\nmcxray: error: " : "mcxray: error: ");
+  if (signal == SIGXCPU)
+  {
+    // The CPU time limit (ulimit -t): exit 2 at once, before the hard
+    // limit's SIGKILL, which could not be caught.
+    Say("the CPU time limit was reached (SIGXCPU)");
+    Say(removed ? "; the unfinished output was removed\n" : "\n");
+    ::_exit(2);
+  }
+  Say("interrupted by ");
+  Say(NameOf(signal));
+  Say(removed ? "; the unfinished output was removed\n" : "\n");
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
@@ -40,15 +73,21 @@ extern "C" void OnInterrupt(int signal)
 void InstallInterruptHandlers()
 {
   TerminalStderr = ::isatty(STDERR_FILENO) == 1;
-  for (int signal : { SIGINT, SIGTERM, SIGHUP })
+  for (const Terminating& t : Signals)
   {
     struct sigaction action;
     std::memset(&action, 0, sizeof(action));
-    action.sa_handler = &OnInterrupt;
+    action.sa_handler = &OnTerminatingSignal;
+    // The other terminating signals wait while one is handled: one line.
     sigemptyset(&action.sa_mask);
-    sigaction(signal, &action, nullptr);
+    for (const Terminating& other : Signals)
+    {
+      sigaddset(&action.sa_mask, other.Signal);
+    }
+    sigaction(t.Signal, &action, nullptr);
   }
   std::signal(SIGXFSZ, SIG_IGN); // the write fails with EFBIG and is reported
+  std::signal(SIGPIPE, SIG_IGN); // the write fails with EPIPE and is reported
 }
 
 PartialFileGuard::PartialFileGuard(const std::string& path)

@@ -1,7 +1,9 @@
 // Nothing half-written: while a file is being written under a temporary
-// name, SIGINT, SIGTERM and SIGHUP remove it before the process ends, and a
-// file-size limit (SIGXFSZ) makes the write fail instead of killing the
-// process, so the failed write is reported and its file removed.
+// name, every catchable signal that would end the process (SIGINT, SIGTERM,
+// SIGHUP, SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF, SIGXCPU)
+// removes it before the process ends, and a file-size limit (SIGXFSZ) or a
+// closed pipe (SIGPIPE) makes the write fail instead of killing the process,
+// so the failed write is reported and its file removed.
 #ifndef mcxPartialFileGuard_h
 #define mcxPartialFileGuard_h
 
@@ -13,7 +15,8 @@ namespace mcxapp
 /// Installs the signal handlers (once per process): an interrupted run
 /// prints one line, "mcxray: error: interrupted by SIGINT", removes the
 /// file being written, if any (and says so), and ends as the signal would
-/// have ended it.
+/// have ended it; the CPU time limit (SIGXCPU) ends it with exit status 2
+/// ("the CPU time limit was reached").
 void InstallInterruptHandlers();
 
 /// Registers path as the file being written for the guard's lifetime.

@@ -37,110 +37,22 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace mcxapp
 {
 
 namespace
 {
-const char* const Usage = R"(usage: mcxray render [INPUT] [options]
-       mcxray view [INPUT] [options]     (interactive; see mcxray view --help)
-
-Renders a simulated X-ray image (a DRR): per pixel, the mean over the pixel's
-area of the line integral of g = TF(density), reconstructed with the chosen
-kernel, in TF units times world length (mm for medical data).
-
-The world is DICOM patient space (LPS: x to the patient's left, y posterior,
-z to the head) for every format: NIfTI (RAS), NRRD and MetaImage headers are
-converted, so the same patient gives the same image from any file.
-
-INPUT   a volume: .vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a
-        DICOM series directory (read with vtk-dicom: sorted by position, in
-        patient space, rescaled to HU). Default: the bundled CT head (VTK's
-        headsq).
-
-options:
-  --tf SPEC             transfer function: value:weight,value:weight,... in data
-                        units (held constant beyond its end points), or a preset:
-                        %s. Default: raw
-  --samples N           number of samples, rounded up to 2^m - 1 (default 4194303)
-  --target-error E      choose the sample count for a relative RMS error E (a
-                        pilot run of 65535 samples measures the image; up to
-                        2^30 - 1 samples); replaces --samples
-  --quantization-levels L
-                        choose the sample count by the paper's criterion: the
-                        mean pixel deviation below one of L grey levels
-  --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
-                        non-zero weight once, weighted by the TF: no sampling
-                        noise while each voxel's footprint reaches at most 16
-                        pixels, else a warning; replaces --samples; with
-                        --stored-points, a cloud as large as those voxels), or
-                        reference (exact, slow)
-  --kernel K            tent (trilinear, default) or box (nearest neighbour)
-  --deposit D           footprint (default: each sample adds its voxel's kernel
-                        integrated over every pixel it reaches; about 4 to 50
-                        times less error per sample) or point (the paper's: one
-                        count where a random offset lands)
-  --seed N              seed of the pseudo-random parts (default 0)
-  --threads N           worker threads (default: all cores); results do not depend on it
-  --memory-limit SIZE   memory budget (e.g. 8G; default: the machine's memory):
-                        volumes, indices, images and clouds that need more are
-                        refused before the stage that makes them, naming the size
-  --series N            the N-th series of a DICOM folder that holds several (an
-                        error lists them when N is missing)
-  --read-timeout S      stop a reader that takes longer than S seconds (default
-                        300; the volume is read in a child process, so a corrupt
-                        file cannot crash or hang mcxray)
-  --view AXIS           parallel view along +x, -x, +y, -y, +z or -z (default +z).
-                        Image axis 0 runs along the first remaining world axis in
-                        x, y, z order, axis 1 along the second; never mirrored.
-  --camera P:F:U:KIND   any view: position P, focal point F and view-up U as
-                        x,y,z triples, and KIND parallel=SCALE (half the image
-                        height in world units) or angle=DEGREES (perspective,
-                        vertical view angle), optionally followed by :near=D
-                        (perspective: depth where integration starts; default
-                        0.001 times the camera distance)
-  --sad MM, --sid MM, --detector WxH, --pitch MM, --gantry DEG, --isocenter X,Y,Z
-                        a cone-beam radiograph as radiographers give it (any one of
-                        these selects it): source-to-axis distance (default 1000),
-                        source-to-image distance (1500), detector pixels (512x512)
-                        and pitch (0.8), gantry angle (0: source on +x, the
-                        patient's left, turning about z towards +y, so 90
-                        puts it posterior: plastimatch's angle a is -a
-                        here), isocentre (default: the volume's centre).
-                        Image columns run along +y at angle 0, rows along +z,
-                        as in plastimatch drr; replaces --view, --camera,
-                        --size and --pixel-spacing
-  --coordinates C       lps (default) or ras (any case): the points of --camera
-                        and --isocenter are in RAS (x to the patient's right, y
-                        anterior) and are taken to LPS by negating x and y;
-                        --view and --gantry name patient directions either way
-  --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)
-  --i0 I                unattenuated intensity I0 (default 1)
-  --photons N           quantum noise: N photons reach an unattenuated pixel,
-                        counts are Poisson (implies --beer-lambert; default off)
-  --noise-seed N        seed of the noise (default 0)
-  --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
-  --size WxH            image size in pixels (default: 512 along the longer side)
-  --pixel-spacing S     pixel size in world units on the detector plane
-  --output FILE         .vti (float64 LineIntegral with geometry), .png or .pfm
-                        (default: mcxray.png)
-  --window LO:HI        PNG grey window in image units (default 0:maximum)
-  --bits 8|16           PNG bit depth (default 8)
-  --tolerance T         reference method: relative RMS tolerance (default 1e-3)
-  --stored-points       store the point cloud (as an interactive view would),
-                        then project it, and time the two stages apart; by
-                        default samples are projected as they are generated
-  --quiet               print nothing but errors
-  --help                this text
-)";
 
 const long long DefaultSamples = (1LL << vtkMCXTypes::DefaultSampleExponent) - 1;
 
@@ -175,6 +87,11 @@ void WarnOfLongRuns(const Settings& settings)
   }
 }
 
+// The most samples a render takes: 2^40 - 1 (the long-run warning's
+// estimate: about 3 hours of point deposits on 2 cores), 4 million a pixel
+// of a 512^2 image, far beyond any useful precision.
+const long long MaximumSamples = (1LL << 40) - 1;
+
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
 {
@@ -200,6 +117,11 @@ void CheckCombinations(const Settings& settings)
     (settings.StoredPoints || settings.Method == "reference"))
   {
     Fail("--target-error and --quantization-levels apply to off-line Monte Carlo rendering only");
+  }
+  if (settings.Samples > MaximumSamples)
+  {
+    Fail("--samples is at most 2^40 - 1 (1099511627775: about 3 hours of point deposits on 2 "
+         "cores, 12 of footprints)");
   }
   if (settings.QuantizationLevels > 65536)
   {
@@ -274,11 +196,33 @@ ViewChoice ChooseView(const Settings& settings)
   return view;
 }
 
+// "" when line was written to stdout (or --quiet); else why not.
+std::string TryLog(const Settings& settings, const std::string& line)
+{
+  if (settings.Quiet)
+  {
+    return std::string();
+  }
+  errno = 0;
+  std::cout << line << std::endl;
+  if (std::cout)
+  {
+    return std::string();
+  }
+  // A closed pipe (mcxray render ... | true): SIGPIPE is ignored
+  // (mcxPartialFileGuard), so the write fails and the run stops.
+  const int cause = errno;
+  std::cout.clear();
+  return "cannot write to standard output" +
+    (cause != 0 ? ": " + std::string(std::strerror(cause)) : std::string());
+}
+
 void Log(const Settings& settings, const std::string& line)
 {
-  if (!settings.Quiet)
+  const std::string problem = TryLog(settings, line);
+  if (!problem.empty())
   {
-    std::cout << line << std::endl;
+    Fail(problem);
   }
 }
 
@@ -344,6 +288,11 @@ public:
       return 0; // the image is the first process's: it logs, applies the physics and writes
     }
     this->Write(this->ApplyRadiograph(projected));
+    // Warnings only once the run has succeeded: a failing run says one line.
+    for (const std::string& warning : this->Warnings)
+    {
+      std::cerr << "mcxray: warning: " << warning << std::endl;
+    }
     return 0;
   }
 
@@ -499,21 +448,18 @@ private:
     const auto start = std::chrono::steady_clock::now();
     projector->Update();
     this->Progress.End();
+    this->Capture.FailOnAnyError();
     bool noisy = false; // an every-voxel image with random parts (the projector's warning)
     for (const std::string& warning : this->Capture.Warnings())
     {
       noisy = noisy || warning.find("not without noise") != std::string::npos;
-      if (IsFirstProcess())
-      {
-        std::cerr << "mcxray: warning: " << warning << std::endl;
-      }
+      this->Warnings.push_back(warning);
     }
-    this->Capture.FailOnAnyError();
     const double seconds = Seconds(start);
     vtkImageData* image = projector->GetOutput();
     if (IsFirstProcess())
     {
-      WarnWhenTheViewMissesTheVolume(image);
+      this->WarnWhenTheViewMissesTheVolume(image);
       this->LogProjection(image, seconds, noisy);
     }
     return image;
@@ -521,15 +467,14 @@ private:
 
   // An empty image of a volume that holds something: most often a point
   // given in the wrong world (RAS for LPS), said before the image is written.
-  static void WarnWhenTheViewMissesTheVolume(vtkImageData* image)
+  void WarnWhenTheViewMissesTheVolume(vtkImageData* image)
   {
     vtkDataArray* values = image->GetPointData()->GetScalars();
     vtkDataArray* integral = image->GetFieldData()->GetArray(vtkMCXTypes::IntegralName());
     if (values && integral && integral->GetTuple1(0) > 0 && values->GetRange()[1] == 0)
     {
-      std::cerr << "mcxray: warning: the image holds none of the volume: the view misses it "
-                   "(check --camera, --isocenter and --coordinates)"
-                << std::endl;
+      this->Warnings.emplace_back("the image holds none of the volume: the view misses it "
+                                  "(check --camera, --isocenter and --coordinates)");
     }
   }
 
@@ -605,12 +550,17 @@ private:
   {
     const auto start = std::chrono::steady_clock::now();
     std::string error;
-    if (!WriteImage(image, this->Options.Output, this->Options.Window, error))
+    // The last line before the rename: a closed stdout leaves no image.
+    const auto logLine = [&]
+    {
+      return TryLog(this->Options,
+        "output:      " + this->Options.Output + "  written " + std::to_string(Seconds(start)) +
+          " s");
+    };
+    if (!WriteImage(image, this->Options.Output, this->Options.Window, error, logLine))
     {
       Fail(error);
     }
-    this->Log("output:      " + this->Options.Output + "  written " +
-      std::to_string(Seconds(start)) + " s");
   }
 
   Settings Options; // a copy: the radiograph geometry sets the size and spacing
@@ -618,16 +568,12 @@ private:
   ViewChoice View;
   ProgressBar Progress;
   double Range[2] = { 0, 0 };
+  std::vector<std::string> Warnings; // said after the image is written
   vtkNew<vtkMCXDensityIndex> Index;
   vtkSmartPointer<vtkMCXPointSampler> Sampler;
   vtkSmartPointer<vtkMCXProjectorBase> Projector;
   vtkSmartPointer<vtkMCXRadiograph> Radiograph;
 };
-}
-
-void PrintRenderUsage()
-{
-  std::printf(Usage, TransferFunctionPresetHelp());
 }
 
 int RunRender(int argc, char* argv[])
@@ -652,6 +598,11 @@ int RunRender(int argc, char* argv[])
   }
   mcx::SetMemoryBudget(settings.MemoryLimit);
   CheckOutputDirectory(settings.Output);
+  const std::string nameProblem = OutputNameProblem(settings.Output, "--output");
+  if (!nameProblem.empty())
+  {
+    Fail(nameProblem);
+  }
   CheckOutputIsNotInput(
     settings.Output, settings.Input.empty() ? BundledVolumePath() : settings.Input, "--output");
   CheckTransferFunction(settings.TF);

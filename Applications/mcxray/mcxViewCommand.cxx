@@ -57,7 +57,7 @@ options:
   --kernel K         tent (default) or box
   --deposit D        footprint (default) or point (see mcxray render --help)
   --seed N           seed of the pseudo-random parts (default 0)
-  --threads N        worker threads (default: all cores)
+  --threads N        worker threads, at most the cores TBB may use (default: all)
   --memory-limit S   memory budget (e.g. 8G; default: the machine's memory)
   --series N         the N-th series of a DICOM folder that holds several
   --read-timeout S   stop a reader that takes longer than S seconds (default 300)
@@ -126,6 +126,11 @@ void CheckScreenshot(const std::string& screenshot)
     Fail("--screenshot writes .png, not '" + screenshot + "'");
   }
   CheckOutputDirectory(screenshot);
+  const std::string nameProblem = OutputNameProblem(screenshot, "--screenshot");
+  if (!nameProblem.empty())
+  {
+    Fail(nameProblem);
+  }
 }
 
 // The window is the detector when a radiograph geometry is given.

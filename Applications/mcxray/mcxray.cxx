@@ -9,8 +9,31 @@
 
 #include <string>
 
+#include <cerrno>
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace
+{
+// A standard stream closed by the caller (mcxray render >&-) is /dev/null:
+// else the next file opened takes its number and the log, or an error line,
+// would be written into it (an output's temporary, the reader's memory).
+void OpenClosedStandardStreams()
+{
+  // In order: the lowest free number is the one being filled.
+  for (int fd = STDIN_FILENO; fd <= STDERR_FILENO; ++fd)
+  {
+    if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF)
+    {
+      ::open("/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY);
+    }
+  }
+}
+}
+
 int main(int argc, char* argv[])
 {
+  OpenClosedStandardStreams();
   mcxapp::InstallInterruptHandlers();
   mcxapp::StartProcesses(&argc, &argv);
   const std::string command = argc >= 2 ? argv[1] : "";

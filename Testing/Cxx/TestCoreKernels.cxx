@@ -30,6 +30,7 @@
 #include <new>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -1116,6 +1117,77 @@ TEST(FootprintLadder, ScalesAreChosenWithTheMeanInverseDepth)
   EXPECT_EQ(near, shortest.Select(1.0 / 50 * (1 + 0.25 * (r - 1)), 0.5)); // fraction 1/4
   EXPECT_EQ(near + 1, shortest.Select(1.0 / 50 * (1 + 0.25 * (r - 1)), 0.2));
   EXPECT_EQ(nullptr, shortest.Select(1.0 / 50 * r * 1.001, 0.5));
+}
+
+TEST(FootprintLadder, TablesAreBoundedByTheReachAndCheckedBeforeTheyAreBuilt)
+{
+  // Voxels of a million pixels (a pixel spacing of 1e-6 voxel, as
+  // --pixel-spacing 1e-9 makes of a CT) grew the tables without end; now
+  // each is split until its deposited part is within the reach, and the
+  // tables' bytes are known before any is built.
+  const mcx::ProjectionGeometry g = SmallPerspectiveView();
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  const mcx::PixelBinner binner(g, origin, identity);
+  mcx::DepositSettings settings;
+  settings.Mode = mcx::Deposit::Footprint;
+  settings.Depths[0] = 1;
+  settings.Depths[1] = 100; // the ladder's most tables
+  for (double scale : { 1.0, 1e6 })
+  {
+    for (int k = 0; k < 9; k += 4)
+    {
+      settings.VoxelMatrix[k] = scale;
+    }
+    for (double reach : { 0.5, 16.0, 32.0 })
+    {
+      settings.Reach = reach;
+      settings.TableMemory = mcx::FootprintLadder::MaximumBytes(reach);
+      mcx::FootprintLadder ladder;
+      EXPECT_NO_THROW(ladder.Build(mcx::SerialExecutor(), binner, settings)) << scale;
+      EXPECT_FALSE(ladder.IsEmpty()) << scale << " " << reach;
+      settings.TableMemory = 1024.0;
+      mcx::FootprintLadder refused;
+      try
+      {
+        refused.Build(mcx::SerialExecutor(), binner, settings);
+        ADD_FAILURE() << "no error for tables beyond 1 KiB";
+      }
+      catch (const std::runtime_error& error)
+      {
+        EXPECT_EQ(0u, std::string(error.what()).find("the footprint tables of this view need"));
+      }
+      EXPECT_TRUE(refused.IsEmpty());
+    }
+  }
+  // The bound itself: 251 MiB at the default reach, 764 MiB at the largest.
+  EXPECT_NEAR(251.4, mcx::FootprintLadder::MaximumBytes(16) / 1048576.0, 0.1);
+  EXPECT_NEAR(764.1, mcx::FootprintLadder::MaximumBytes(32) / 1048576.0, 0.1);
+  // Every table of a plan within the reach is within the bound's share.
+  for (double length : { 0.01, 1.0, 40.0, 1e3, 1e9, 1e11 })
+  {
+    const double axes[3][2] = { { length, 0.3 * length }, { -0.2 * length, length },
+      { 0.5 * length, 0.5 * length } };
+    for (double reach : { 0.5, 16.0, 32.0 })
+    {
+      const mcx::FootprintPlan plan = mcx::FootprintPlan::For(mcx::Kernel::Tent, axes, reach);
+      ASSERT_TRUE(plan.Within(axes, reach)) << length;
+      EXPECT_LE(mcx::FootprintTable::PlannedBytes(axes, plan),
+        mcx::FootprintLadder::MaximumBytes(reach) / mcx::FootprintLadder::MaximumTables)
+        << length << " " << reach;
+    }
+  }
+  // Voxels beyond 2^40 times the reach are not split that far: no table
+  // (point deposits), nothing to allocate.
+  const double huge[3][2] = { { 1e20, 0 }, { 0, 1e20 }, { 0, 0 } };
+  EXPECT_FALSE(mcx::FootprintPlan::For(mcx::Kernel::Tent, huge, 16).Within(huge, 16));
+  for (int k = 0; k < 9; k += 4)
+  {
+    settings.VoxelMatrix[k] = 1e20;
+  }
+  mcx::FootprintLadder points;
+  EXPECT_NO_THROW(points.Build(mcx::SerialExecutor(), binner, settings));
+  EXPECT_TRUE(points.IsEmpty());
 }
 
 namespace

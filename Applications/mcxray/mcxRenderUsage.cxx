@@ -1,0 +1,114 @@
+// The text of mcxray render --help (also the tool's main help), apart from
+// the command that runs the render.
+#include "mcxRenderCommand.h"
+
+#include "mcxTransferFunctionSpec.h"
+
+#include <cstdio>
+
+namespace mcxapp
+{
+
+namespace
+{
+const char* const Usage = R"(usage: mcxray render [INPUT] [options]
+       mcxray view [INPUT] [options]     (interactive; see mcxray view --help)
+
+Renders a simulated X-ray image (a DRR): per pixel, the mean over the pixel's
+area of the line integral of g = TF(density), reconstructed with the chosen
+kernel, in TF units times world length (mm for medical data).
+
+The world is DICOM patient space (LPS: x to the patient's left, y posterior,
+z to the head) for every format: NIfTI (RAS), NRRD and MetaImage headers are
+converted, so the same patient gives the same image from any file.
+
+INPUT   a volume: .vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a
+        DICOM series directory (read with vtk-dicom: sorted by position, in
+        patient space, rescaled to HU). Default: the bundled CT head (VTK's
+        headsq).
+
+options:
+  --tf SPEC             transfer function: value:weight,value:weight,... in data
+                        units (held constant beyond its end points), or a preset:
+                        %s. Default: raw
+  --samples N           number of samples, rounded up to 2^m - 1 (default 4194303;
+                        at most 2^40 - 1, about 3 to 12 hours on 2 cores)
+  --target-error E      choose the sample count for a relative RMS error E (a
+                        pilot run of 65535 samples measures the image; up to
+                        2^30 - 1 samples); replaces --samples
+  --quantization-levels L
+                        choose the sample count by the paper's criterion: the
+                        mean pixel deviation below one of L grey levels
+  --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
+                        non-zero weight once, weighted by the TF: no sampling
+                        noise while each voxel's footprint reaches at most 16
+                        pixels, else a warning; replaces --samples; with
+                        --stored-points, a cloud as large as those voxels), or
+                        reference (exact, slow)
+  --kernel K            tent (trilinear, default) or box (nearest neighbour)
+  --deposit D           footprint (default: each sample adds its voxel's kernel
+                        integrated over every pixel it reaches; about 4 to 50
+                        times less error per sample) or point (the paper's: one
+                        count where a random offset lands)
+  --seed N              seed of the pseudo-random parts (default 0)
+  --threads N           worker threads, at most the cores TBB may use (default: all
+                        of them); results do not depend on it
+  --memory-limit SIZE   memory budget (e.g. 8G; default: the machine's memory):
+                        volumes, indices, images and clouds that need more are
+                        refused before the stage that makes them, naming the size
+  --series N            the N-th series of a DICOM folder that holds several (an
+                        error lists them when N is missing)
+  --read-timeout S      stop a reader that takes longer than S seconds (default
+                        300; the volume is read in a child process, so a corrupt
+                        file cannot crash or hang mcxray)
+  --view AXIS           parallel view along +x, -x, +y, -y, +z or -z (default +z).
+                        Image axis 0 runs along the first remaining world axis in
+                        x, y, z order, axis 1 along the second; never mirrored.
+  --camera P:F:U:KIND   any view: position P, focal point F and view-up U as
+                        x,y,z triples, and KIND parallel=SCALE (half the image
+                        height in world units) or angle=DEGREES (perspective,
+                        vertical view angle), optionally followed by :near=D
+                        (perspective: depth where integration starts; default
+                        0.001 times the camera distance)
+  --sad MM, --sid MM, --detector WxH, --pitch MM, --gantry DEG, --isocenter X,Y,Z
+                        a cone-beam radiograph as radiographers give it (any one of
+                        these selects it): source-to-axis distance (default 1000),
+                        source-to-image distance (1500), detector pixels (512x512)
+                        and pitch (0.8), gantry angle (0: source on +x, the
+                        patient's left, turning about z towards +y, so 90
+                        puts it posterior: plastimatch's angle a is -a
+                        here), isocentre (default: the volume's centre).
+                        Image columns run along +y at angle 0, rows along +z,
+                        as in plastimatch drr; replaces --view, --camera,
+                        --size and --pixel-spacing
+  --coordinates C       lps (default) or ras (any case): the points of --camera
+                        and --isocenter are in RAS (x to the patient's right, y
+                        anterior) and are taken to LPS by negating x and y;
+                        --view and --gantry name patient directions either way
+  --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)
+  --i0 I                unattenuated intensity I0 (default 1)
+  --photons N           quantum noise: N photons reach an unattenuated pixel,
+                        counts are Poisson (implies --beer-lambert; default off)
+  --noise-seed N        seed of the noise (default 0)
+  --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
+  --size WxH            image size in pixels (default: 512 along the longer side)
+  --pixel-spacing S     pixel size in world units on the detector plane
+  --output FILE         .vti (float64 LineIntegral with geometry), .png or .pfm
+                        (default: mcxray.png)
+  --window LO:HI        PNG grey window in image units (default 0:maximum)
+  --bits 8|16           PNG bit depth (default 8)
+  --tolerance T         reference method: relative RMS tolerance (default 1e-3)
+  --stored-points       store the point cloud (as an interactive view would),
+                        then project it, and time the two stages apart; by
+                        default samples are projected as they are generated
+  --quiet               print nothing but errors
+  --help                this text
+)";
+}
+
+void PrintRenderUsage()
+{
+  std::printf(Usage, TransferFunctionPresetHelp());
+}
+
+} // namespace mcxapp
