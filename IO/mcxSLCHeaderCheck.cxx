@@ -41,8 +41,8 @@ bool Skip(std::FILE* in, long long count)
   return true;
 }
 
-// True when the next count tokens from the file's position (whitespace
-// separated) each have at most 64 characters, read from at most 4 KiB, the
+// True when the next count numbers from the file's position (separated by
+// whitespace or the format's "X") each have at most 64 characters, read from at most 4 KiB, the
 // position kept: scanf would otherwise gather a run of a billion digits
 // into one number's text (its buffer grows with it), as the reader's would.
 bool ShortTokensAhead(std::FILE* in, int count)
@@ -59,7 +59,7 @@ bool ShortTokensAhead(std::FILE* in, int count)
       ++i;
     }
     const std::size_t start = i;
-    while (i < got && !std::isspace(static_cast<unsigned char>(text[i])))
+    while (i < got && !std::isspace(static_cast<unsigned char>(text[i])) && text[i] != 'X')
     {
       ++i;
     }
@@ -163,9 +163,9 @@ bool CheckSLCHeader(const std::string& path, Bytes& claimed, std::string& error)
   int magic = 0, bits = 0, size[3] = { 0, 0, 0 }, unit = 0, origin = 0, modified = 0;
   int compression = -1, iconWidth = 0, iconHeight = 0;
   double spacing[3] = { 0, 0, 0 };
-  // The header's 15 tokens: magic, sizes, bits, spacing, units, origin,
-  // modification, compression, icon size and its "X".
-  if (in && !ShortTokensAhead(in, 15))
+  // The header's 14 numbers: magic, sizes, bits, spacing, units, origin,
+  // modification, compression and icon size (its "X" and bytes follow).
+  if (in && !ShortTokensAhead(in, 14))
   {
     error = "the SLC header holds a token longer than 64 characters or exceeds 4 KiB";
     return false;

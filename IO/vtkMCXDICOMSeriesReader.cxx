@@ -27,6 +27,7 @@
 
 #include "mcxByteSize.h"
 #include "mcxDicomFiles.h"
+#include "mcxPrintableText.h"
 
 #include <algorithm>
 #include <cmath>
@@ -389,7 +390,7 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
   {
     // One line: reported here, then an empty extent (not a failed request,
     // which the executive would report again).
-    vtkErrorMacro(<< problem);
+    vtkErrorMacro(<< mcx::PrintableText(problem));
     const int empty[6] = { 0, -1, 0, -1, 0, -1 };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
     this->Internal->Failed = true;
@@ -440,9 +441,9 @@ int vtkMCXDICOMSeriesReader::RequestData(
   {
     this->SetErrorCode(reader->GetErrorCode() ? reader->GetErrorCode() : vtkErrorCode::FileFormatError);
     this->Internal->Forget(); // a partial read must not pass as current next time
-    vtkErrorMacro(<< "cannot read the DICOM series in '" << folder << "'"
-                  << (read.Message().empty() ? std::string(": no image data")
-                                           : ": " + read.Message()));
+    vtkErrorMacro(<< mcx::PrintableText("cannot read the DICOM series in '" + folder + "'" +
+                    (read.Message().empty() ? std::string(": no image data")
+                                            : ": " + read.Message())));
     return 1;
   }
   output->ShallowCopy(image);

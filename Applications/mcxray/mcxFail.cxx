@@ -1,5 +1,7 @@
 #include "mcxFail.h"
 
+#include "mcxPrintableText.h"
+
 #include <cstdlib>
 #include <iostream>
 
@@ -10,29 +12,6 @@ namespace
 {
 FailHandler Handler = nullptr;
 bool Silent = false;
-
-// One line whatever a message quotes (a file name, an option's value):
-// control characters are written as \xNN.
-std::string OneLine(const std::string& message)
-{
-  std::string line;
-  for (const char c : message)
-  {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f)
-    {
-      const char* digits = "0123456789abcdef";
-      line += "\\x";
-      line += digits[byte >> 4];
-      line += digits[byte & 15];
-    }
-    else
-    {
-      line += c;
-    }
-  }
-  return line;
-}
 }
 
 void SetFailHandler(FailHandler handler)
@@ -47,7 +26,9 @@ void SilenceFailures(bool silent)
 
 void Fail(const std::string& message)
 {
-  const std::string line = OneLine(message);
+  // One line whatever a message quotes (a file name, a header's bytes, an
+  // option's value): controls and what is no UTF-8 as \xNN.
+  const std::string line = mcx::PrintableText(message);
   if (Handler)
   {
     Handler(line);
