@@ -363,6 +363,11 @@ bool CheckDataRun(const DataRun& run, std::string& error)
     return false;
   }
   const Bytes size = FileSize(run.File);
+  if (run.Encoding == DataRun::Raw && !run.Dims.empty())
+  {
+    return CheckAvailable(
+      run.Needed, size > run.Offset ? size - run.Offset : 0, false, run.Dims, error);
+  }
   if (run.Encoding == DataRun::Raw)
   {
     if (size < run.Offset || size - run.Offset < run.Needed)

@@ -78,6 +78,7 @@ struct DataRun
   Bytes Offset = 0;
   Bytes Source = 0;
   Bytes Needed = 0;
+  std::vector<long long> Dims; // the volume's, when one run holds it all (for the message)
 };
 
 /// False (error set) unless run's file holds what the reader will consume:

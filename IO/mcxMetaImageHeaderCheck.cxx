@@ -474,6 +474,7 @@ bool MetaImageRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& c
       run.Offset = FileSize(file) - bytes;
     }
     run.Needed = bytes;
+    run.Dims = files.size() == 1 ? dims : std::vector<long long>();
     if (binary && compressed)
     {
       run.Encoding = DataRun::Zlib;

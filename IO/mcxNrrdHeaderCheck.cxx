@@ -72,20 +72,23 @@ bool ParseHeader(const std::string& text, NrrdHeader& header, std::string& error
   const std::size_t nul = text.find('\0');
   const std::size_t limit = nul == std::string::npos ? text.size() : nul;
   header.Size = limit;
+  bool ended = false;
   for (std::size_t at = text.find('\n', 1); at < limit; at = text.find('\n', at + 1))
   {
     if (at + 1 < limit && text[at + 1] == '\n')
     {
       header.Size = at + 2;
+      ended = true;
       break;
     }
     if (at + 2 < limit && text[at + 1] == '\r' && text[at + 2] == '\n')
     {
       header.Size = at + 3;
+      ended = true;
       break;
     }
   }
-  if (header.Size == nul)
+  if (!ended && nul != std::string::npos)
   {
     // VTK's reader loops forever on one (what fuzzing found).
     error = "the header holds a NUL byte";
@@ -269,6 +272,7 @@ bool NrrdRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& claime
     run.File = file;
     run.Offset = file == path && header.DataFiles.empty() ? header.Size : 0;
     run.Needed = claimed / files.size();
+    run.Dims = files.size() == 1 ? dims : std::vector<long long>();
     run.Encoding = gzip ? DataRun::Gzip : text ? DataRun::Ascii : DataRun::Raw;
     if (text)
     {
