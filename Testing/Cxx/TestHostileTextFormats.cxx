@@ -1,0 +1,367 @@
+// The text formats (MetaImage, NRRD, legacy VTK) against hostile input
+// (issue 39): keys in another letter case, patterns without a range,
+// literal names with '%', corrupt or short compressed data, text data with
+// too few values, attributes that would make VTK's reader allocate before
+// the scalars, a sparse file of one endless token. The command line refuses
+// each with one line and exit status 2, writes nothing, and never
+// overwrites a data file a header names; the format readers refuse the same
+// files with one error and print nothing themselves.
+#include "mcxCommandLineRunner.h"
+#include "mcxHeaderCheck.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMCXMetaImageReader.h"
+#include "vtkMCXNrrdReader.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtk_zlib.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+using mcxtest::Result;
+using mcxtest::RunCLI;
+using mcxtest::Slurp;
+using mcxtest::Temporary;
+
+namespace
+{
+std::string Folder()
+{
+  const std::string folder = Temporary("hostile_text");
+  vtksys::SystemTools::MakeDirectory(folder);
+  return folder;
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes)
+{
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// bytes deflated: gzip (windowBits 31) or zlib (15).
+std::string Deflated(const std::string& bytes, int windowBits)
+{
+  z_stream stream{};
+  deflateInit2(&stream, Z_DEFAULT_COMPRESSION, Z_DEFLATED, windowBits, 8, Z_DEFAULT_STRATEGY);
+  std::string out(deflateBound(&stream, bytes.size()) + 32, '\0');
+  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  stream.avail_in = static_cast<uInt>(bytes.size());
+  stream.next_out = reinterpret_cast<Bytef*>(&out[0]);
+  stream.avail_out = static_cast<uInt>(out.size());
+  deflate(&stream, Z_FINISH);
+  out.resize(stream.total_out);
+  deflateEnd(&stream);
+  return out;
+}
+
+std::string Random(std::size_t size)
+{
+  std::mt19937 random(39);
+  std::string bytes(size, '\0');
+  for (char& c : bytes)
+  {
+    c = static_cast<char>(random());
+  }
+  return bytes;
+}
+
+// 4 x 4 x 4 voxels of one byte: a little volume with structure.
+std::string Voxels()
+{
+  std::string bytes(64, '\0');
+  for (int i = 0; i < 64; ++i)
+  {
+    bytes[i] = static_cast<char>(i * 3);
+  }
+  return bytes;
+}
+
+const std::string Mha = "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\n";
+// 16 along the first axis: more than 9, which vtkNrrdReader would take for components.
+const std::string Nrrd = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 1 4\n";
+const std::string Vtk = "# vtk DataFile Version 3.0\nhostile\nBINARY\nDATASET STRUCTURED_POINTS\n";
+
+struct Hostile
+{
+  std::string Name;  // the file, in the test's folder
+  std::string Bytes; // its content
+  std::string Why;   // what the one line says
+};
+
+// The hostile shapes, each with what refuses it.
+std::vector<Hostile> Shapes(const std::string& folder)
+{
+  const std::string z = Deflated(Voxels(), 15), gz = Deflated(Voxels(), 31);
+  WriteBytes(folder + "/voxels.raw", Voxels());
+  WriteBytes(folder + "/garbage.raw.gz", Random(200));
+  WriteBytes(folder + "/few.txt", "1 2 3 4 5 6 7\n");
+  return {
+    // A lower-case data-file line that MetaIO skips, hiding a LIST.
+    { "hidden-list.mhd", Mha + "elementdatafile = voxels.raw\nElementDataFile = LIST\nvoxels.raw\n",
+      "'elementdatafile' is 'ElementDataFile' in another letter case" },
+    // Two ElementTypes by case (MetaIO's warning and an error before).
+    { "type-case.mha",
+      "NDims = 3\nDimSize = 4 4 4\nelementtype = MET_DOUBLE\nElementType = MET_UCHAR\n"
+      "ElementDataFile = LOCAL\n" +
+        Voxels(),
+      "'elementtype' is 'ElementType' in another letter case" },
+    { "z-random.mha",
+      Mha + "CompressedData = True\nCompressedDataSize = 200\nElementDataFile = LOCAL\n" +
+        Random(200),
+      "do not inflate" },
+    { "z-short.mha",
+      Mha + "CompressedData = True\nCompressedDataSize = " + std::to_string(z.size() / 2) +
+        "\nElementDataFile = LOCAL\n" + z.substr(0, z.size() / 2),
+      "inflate to" },
+    { "z-devzero.mhd", Mha + "CompressedData = True\nElementDataFile = /dev/zero\n",
+      "is not a regular file" },
+    { "ascii-few.mha", Mha + "BinaryData = False\nElementDataFile = LOCAL\n1 2 3\n",
+      "hold 3 values as text, the header claims 64" },
+    { "step-zero.mhd", Mha + "ElementDataFile = s%d.raw 0 3 0\n", "steps by 0" },
+    { "data-file-case.nhdr", Nrrd + "encoding: raw\nData File: voxels.raw\n",
+      "'Data File' is 'data file' in another letter case" },
+    { "gz-garbage.nhdr", Nrrd + "encoding: gzip\ndata file: garbage.raw.gz\n", "do not inflate" },
+    { "gz-short.nrrd", Nrrd + "encoding: gzip\n\n" + gz.substr(0, gz.size() / 2), "inflate to" },
+    { "gz-devzero.nhdr", Nrrd + "encoding: gzip\ndata file: /dev/zero\n", "is not a regular file" },
+    { "ascii-few.nhdr",
+      "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\nencoding: ascii\ndata file: few.txt\n",
+      "hold 7 values as text, the header claims 8" },
+    { "ascii-attached.nrrd",
+      "NRRD0004\ntype: short\ndimension: 3\nsizes: 2 2 2\nencoding: ascii\n\n1 2 3 4 5 6 7 8\n",
+      "ASCII NRRD data attached" },
+    { "two-data-files.nhdr", Nrrd + "encoding: raw\ndata file: voxels.raw\ndatafile: voxels.raw\n",
+      "names its data file 2 times" },
+    // Attributes VTK's reader allocates for before the scalars.
+    { "color-first.vtk",
+      Vtk + "DIMENSIONS 1000 1000 1000\nPOINT_DATA 1000000000\nCOLOR_SCALARS c 4\n" +
+        std::string(100, '\0'),
+      "COLOR_SCALARS of 1000000000 x 4 values need 4000000000 bytes" },
+    { "lut-first.vtk",
+      Vtk + "DIMENSIONS 2 2 2\nPOINT_DATA 8\nLOOKUP_TABLE t 1000000000\n" + std::string(10, '\0'),
+      "LOOKUP_TABLE of 1000000000 x 4 values" },
+    { "field-first.vtk",
+      Vtk + "DIMENSIONS 2 2 2\nPOINT_DATA 8\nFIELD f 1\nbig 4 1000000000 double\n" +
+        std::string(10, '\0'),
+      "FIELD array of 1000000000 x 4 values" },
+    { "ascii-few.vtk",
+      "# vtk DataFile Version 3.0\nhostile\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
+      "POINT_DATA 8\nSCALARS s short\nLOOKUP_TABLE default\n1 2 3 4 5 6 7\n",
+      "SCALARS of 8 x 1 values as text hold 7 numbers" },
+  };
+}
+
+// Exit status 2, one line naming why, no output written.
+void ExpectRefused(const std::string& input, const std::string& why)
+{
+  const std::string output = Temporary("hostile_text_never.pfm");
+  const Result r = RunCLI("render " + input + " --samples 1023 --output " + output);
+  EXPECT_EQ(2, r.Status) << input << "\n" << r.Errors;
+  EXPECT_EQ(0u, r.Errors.find("mcxray: error: cannot read '")) << input << "\n" << r.Errors;
+  EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << input << "\n" << r.Errors;
+  EXPECT_NE(std::string::npos, r.Errors.find(why)) << input << "\n" << r.Errors;
+  EXPECT_FALSE(vtksys::SystemTools::FileExists(output)) << input;
+}
+
+// What a reader class says on Update: its error events, and what anything
+// (MetaIO) wrote to std::cerr meanwhile.
+struct Said
+{
+  std::vector<std::string> Errors;
+  std::string Cerr;
+  long long Points = 0;
+  std::string Bytes; // the scalars' bytes
+};
+
+template <class Reader>
+Said UpdateReader(const std::string& path)
+{
+  vtkNew<Reader> reader;
+  reader->SetFileName(path.c_str());
+  Said said;
+  vtkNew<vtkCallbackCommand> errors;
+  errors->SetClientData(&said.Errors);
+  errors->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      static_cast<std::vector<std::string>*>(clientData)
+        ->push_back(callData ? static_cast<const char*>(callData) : "");
+    });
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  std::stringstream cerr;
+  std::streambuf* saved = std::cerr.rdbuf(cerr.rdbuf());
+  reader->Update();
+  std::cerr.rdbuf(saved);
+  said.Cerr = cerr.str();
+  said.Points = reader->GetOutput()->GetNumberOfPoints();
+  if (vtkDataArray* scalars = reader->GetOutput()->GetPointData()->GetScalars())
+  {
+    said.Bytes.assign(static_cast<const char*>(scalars->GetVoidPointer(0)),
+      static_cast<std::size_t>(scalars->GetNumberOfValues() * scalars->GetDataTypeSize()));
+  }
+  return said;
+}
+}
+
+TEST(HostileTextFormats, EachShapeIsOneLineAndExitStatusTwo)
+{
+  const std::string folder = Folder();
+  for (const Hostile& shape : Shapes(folder))
+  {
+    const std::string path = folder + "/" + shape.Name;
+    WriteBytes(path, shape.Bytes);
+    ExpectRefused(path, shape.Why);
+  }
+}
+
+TEST(HostileTextFormats, TheFormatReadersRefuseTheSameFilesWithOneError)
+{
+  const std::string folder = Folder();
+  for (const Hostile& shape : Shapes(folder))
+  {
+    const std::string path = folder + "/" + shape.Name;
+    WriteBytes(path, shape.Bytes);
+    const bool meta = vtksys::SystemTools::GetFilenameLastExtension(path).compare(0, 3, ".mh") == 0;
+    const bool nrrd = !meta && path.find(".n") != std::string::npos;
+    if (!meta && !nrrd)
+    {
+      continue; // legacy VTK: mcxray's reader, checked by the command line above
+    }
+    const Said said =
+      meta ? UpdateReader<vtkMCXMetaImageReader>(path) : UpdateReader<vtkMCXNrrdReader>(path);
+    ASSERT_EQ(1u, said.Errors.size()) << path;
+    EXPECT_EQ(0, said.Points) << path;
+    EXPECT_NE(std::string::npos, said.Errors[0].find("cannot read '" + path + "': "))
+      << said.Errors[0];
+    EXPECT_NE(std::string::npos, said.Errors[0].find(shape.Why)) << said.Errors[0];
+    EXPECT_EQ("", said.Cerr) << path;
+  }
+}
+
+TEST(HostileTextFormats, ADataFileGivenAsOutputIsRefusedAndLeftIntact)
+{
+  // Each way a header names its data: the guard must protect what the
+  // reader opens, by the reader's own rules.
+  const std::string folder = Folder();
+  struct Form
+  {
+    std::string Header, Text;
+    std::vector<std::string> Files; // what the reader reads (one slice each if several)
+    std::string Target;
+  };
+  const std::vector<Form> forms = {
+    { "colon.mhd", Mha + "ElementDataFile: colon.pfm\n", { "colon.pfm" }, "colon.pfm" },
+    { "indented.mhd", Mha + "   ElementDataFile   =   indented.pfm\n", { "indented.pfm" },
+      "indented.pfm" },
+    // No range: MetaIO reads 1 to 4 (the last axis' size), not 0.
+    { "norange.mhd", Mha + "ElementDataFile = norange%d.pfm\n",
+      { "norange1.pfm", "norange2.pfm", "norange3.pfm", "norange4.pfm" }, "norange4.pfm" },
+    // A first number alone: four from it.
+    { "first.mhd", Mha + "ElementDataFile = first%02d.pfm 7\n",
+      { "first07.pfm", "first08.pfm", "first09.pfm", "first10.pfm" }, "first10.pfm" },
+    { "range.mhd", Mha + "ElementDataFile = range%d.pfm 2 8 2\n",
+      { "range2.pfm", "range4.pfm", "range6.pfm", "range8.pfm" }, "range8.pfm" },
+    { "datafile.nhdr", Nrrd + "encoding: raw\ndatafile: datafile.pfm\n", { "datafile.pfm" },
+      "datafile.pfm" },
+    // Fewer than four words: vtkNrrdReader opens the name as it is.
+    { "percent.nhdr", Nrrd + "encoding: raw\ndata file: percent%d.pfm\n", { "percent%d.pfm" },
+      "percent%d.pfm" },
+    { "pattern.nhdr", Nrrd + "encoding: raw\ndata file: pattern%03d.pfm 1 4 1 2\n",
+      { "pattern001.pfm", "pattern002.pfm", "pattern003.pfm", "pattern004.pfm" },
+      "pattern004.pfm" },
+  };
+  for (const Form& form : forms)
+  {
+    const std::string header = folder + "/" + form.Header;
+    WriteBytes(header, form.Text);
+    for (const std::string& file : form.Files)
+    {
+      WriteBytes(folder + "/" + file, Voxels().substr(0, 64 / form.Files.size()));
+    }
+    const std::string target = folder + "/" + form.Target;
+    const std::vector<std::string> named = mcxio::DataFiles(header);
+    ASSERT_EQ(form.Files.size(), named.size()) << form.Header;
+    EXPECT_EQ(target, named.back()) << form.Header;
+    unsigned long long claimed = 0;
+    std::string error;
+    EXPECT_TRUE(mcxio::CheckVolumeHeader(header, claimed, error)) << form.Header << ": " << error;
+    const std::string before = Slurp(target);
+    const Result r = RunCLI("render '" + header + "' --samples 1023 --output '" + target + "'");
+    EXPECT_EQ(2, r.Status) << form.Header << "\n" << r.Errors;
+    EXPECT_NE(std::string::npos, r.Errors.find("refusing to overwrite")) << r.Errors;
+    EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << r.Errors;
+    EXPECT_EQ(before, Slurp(target)) << form.Header << " let the output overwrite " << target;
+  }
+}
+
+TEST(HostileTextFormats, ASparseFileOfOneEndlessTokenIsRefusedQuickly)
+{
+  // 2 GiB of holes (NUL bytes, no whitespace) after a legacy header: one
+  // token that the check must not gather.
+  const std::string folder = Folder();
+  const std::string path = folder + "/sparse.vtk";
+  WriteBytes(path,
+    "# vtk DataFile Version 3.0\nsparse\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
+    "POINT_DATA 8\nSCALARS s short\nLOOKUP_TABLE default\n");
+  ASSERT_EQ(0, ::truncate(path.c_str(), 2LL << 30));
+  const auto start = std::chrono::steady_clock::now();
+  ExpectRefused(path, "a token longer than 255 characters");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  vtksys::SystemTools::RemoveFile(path);
+}
+
+TEST(HostileTextFormats, ValidTextFormatsStillRead)
+{
+  // The checks' stricter parse accepts what the readers read well.
+  const std::string folder = Folder();
+  WriteBytes(folder + "/ok.raw", Voxels());
+  const std::string z = Deflated(Voxels(), 15), gz = Deflated(Voxels(), 31);
+  const std::vector<std::pair<std::string, std::string>> files = {
+    { "ok.mhd", Mha + "ElementDataFile = ok.raw\n" },
+    { "ok-z.mha",
+      Mha + "CompressedData = True\nCompressedDataSize = " + std::to_string(z.size()) +
+        "\nElementDataFile = LOCAL\n" + z },
+    { "ok-gz.nrrd", Nrrd + "encoding: gzip\n\n" + gz },
+    { "ok-ascii.nhdr",
+      "NRRD0004\ntype: short\ndimension: 3\nsizes: 10 1 1\nencoding: ascii\ndata file: ok.txt\n" },
+    { "ok-ascii.mha",
+      "NDims = 3\nDimSize = 10 1 1\nElementType = MET_SHORT\nBinaryData = False\n"
+      "ElementDataFile = LOCAL\n1 2 3 4 5 6 7 8 9 10\n" },
+  };
+  WriteBytes(folder + "/ok.txt", "1 2 3 4 5\n6 7 8 9 10\n");
+  std::string ten;
+  for (std::int16_t v = 1; v <= 10; ++v)
+  {
+    ten.append(reinterpret_cast<const char*>(&v), 2);
+  }
+  for (const auto& file : files)
+  {
+    const std::string path = folder + "/" + file.first;
+    WriteBytes(path, file.second);
+    unsigned long long claimed = 0;
+    std::string error;
+    EXPECT_TRUE(mcxio::CheckVolumeHeader(path, claimed, error)) << file.first << ": " << error;
+    const bool meta = file.first.find(".mh") != std::string::npos;
+    const Said said =
+      meta ? UpdateReader<vtkMCXMetaImageReader>(path) : UpdateReader<vtkMCXNrrdReader>(path);
+    EXPECT_TRUE(said.Errors.empty()) << file.first << ": " << said.Errors.front();
+    const bool text = file.first.find("ascii") != std::string::npos;
+    EXPECT_EQ(text ? 10 : 64, said.Points) << file.first;
+    EXPECT_EQ(text ? ten : Voxels(), said.Bytes) << file.first;
+    EXPECT_EQ("", said.Cerr) << file.first;
+  }
+}
