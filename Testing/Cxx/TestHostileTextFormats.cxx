@@ -365,3 +365,22 @@ TEST(HostileTextFormats, ValidTextFormatsStillRead)
     EXPECT_EQ("", said.Cerr) << file.first;
   }
 }
+
+TEST(HostileTextFormats, RegressionFilesGiveOneLine)
+{
+  // Testing/Data/Hostile/README.md: issue 39's text-format files.
+  const std::string folder = MCXRAY_TEST_DATA_DIR "/Hostile/";
+  const std::pair<const char*, const char*> cases[] = {
+    { "hidden-list.mhd", "'elementdatafile' is 'ElementDataFile' in another letter case" },
+    { "compressed-random.mha", "do not inflate" },
+    { "gzip-garbage.nrrd", "do not inflate" },
+    { "color-scalars-first.vtk", "COLOR_SCALARS of 1000000000 x 4 values need 4000000000 bytes" },
+  };
+  for (const auto& c : cases)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    ExpectRefused(folder + c.first, c.second);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0)
+      << c.first;
+  }
+}
