@@ -413,7 +413,9 @@ bool ReadPreamble(Scanner& scan, bool& binary, std::string& error)
 }
 }
 
-bool CheckLegacyVTKHeader(const std::string& path, Bytes& claimed, std::string& error)
+namespace
+{
+bool CheckLegacy(const std::string& path, Bytes& claimed, std::string& error)
 {
   if (!RegularFile(path, std::string(), error))
   {
@@ -520,6 +522,21 @@ bool CheckLegacyVTKHeader(const std::string& path, Bytes& claimed, std::string& 
     return false;
   }
   return Product(dims, walk.Element * static_cast<Bytes>(walk.Components), claimed, error);
+}
+}
+
+bool CheckLegacyVTKHeader(const std::string& path, Bytes& claimed, std::string& error)
+{
+  error.clear();
+  if (CheckLegacy(path, claimed, error))
+  {
+    return true;
+  }
+  if (error.empty())
+  {
+    error = "the legacy VTK file ends inside its header or data"; // a token missing
+  }
+  return false;
 }
 
 } // namespace mcxio
