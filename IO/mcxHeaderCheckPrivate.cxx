@@ -12,13 +12,16 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <climits>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace mcxio
 {
@@ -195,12 +198,25 @@ bool ExistingDataFile(
   const std::string& header, const std::string& name, std::string& file, std::string& error)
 {
   file = Beside(header, name);
-  if (!vtksys::SystemTools::FileExists(file, true))
+  struct stat info;
+  if (::stat(file.c_str(), &info) != 0)
   {
-    error = "the data file '" + file + "' is missing";
+    const int reason = errno;
+    error = "the data file '" + file + "' " +
+      (reason == ENOENT ? std::string("is missing")
+                        : "cannot be opened (" + std::string(std::strerror(reason)) + ")");
     return false;
   }
-  return RegularFile(file, "the data file '" + file + "'", error);
+  if (!RegularFile(file, "the data file '" + file + "'", error))
+  {
+    return false;
+  }
+  if (::access(file.c_str(), R_OK) != 0)
+  {
+    error = "the data file '" + file + "' cannot be read (" + std::strerror(errno) + ")";
+    return false;
+  }
+  return true;
 }
 
 bool NumberedFiles(const std::string& header, const std::string& pattern, long long first,

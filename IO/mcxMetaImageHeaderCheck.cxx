@@ -427,7 +427,7 @@ bool MetaImageRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& c
   {
     // MetaIO opens the name, else the name with ".gz", else with ".Z"
     // (then compressed binary data).
-    std::string file;
+    std::string file, first;
     for (const char* suffix : { "", ".gz", ".Z" })
     {
       if (ExistingDataFile(path, data + suffix, file, error))
@@ -437,15 +437,17 @@ bool MetaImageRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& c
         error.clear();
         break;
       }
-      if (error.find("is missing") == std::string::npos)
+      if (error.find("is missing") == std::string::npos &&
+        error.find("cannot be read") == std::string::npos)
       {
-        return false; // there but not a regular file
+        return false; // there but not a regular file: MetaIO would open it
       }
+      first = first.empty() ? error : first;
       file.clear();
     }
     if (file.empty())
     {
-      error = "the data file '" + Beside(path, data) + "' is missing";
+      error = first; // the name's own reason
       return false;
     }
     files.push_back(file);
