@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 vtkStandardNewMacro(vtkMCXMetaImageReader);
@@ -183,8 +184,7 @@ int vtkMCXMetaImageReader::RequestInformation(
         const int result = this->Superclass::RequestInformation(request, inputVector, outputVector);
         if (metaio.Said())
         {
-          vtkErrorMacro(<< "MetaIO: " << said);
-          return 0;
+          throw std::runtime_error("MetaIO: " + said); // said once, by RunReaderStage
         }
         return result;
       },
@@ -222,8 +222,7 @@ int vtkMCXMetaImageReader::RequestData(
           const int result = this->Superclass::RequestData(request, inputVector, outputVector);
           if (metaio.Said())
           {
-            vtkErrorMacro(<< "MetaIO: " << said);
-            return 0;
+            throw std::runtime_error("MetaIO: " + said); // said once, by RunReaderStage
           }
           return result;
         },

@@ -384,3 +384,36 @@ TEST(HostileTextFormats, RegressionFilesGiveOneLine)
       << c.first;
   }
 }
+
+TEST(HostileTextFormats, MetaIOsOwnMessagesBecomeTheReadersOneError)
+{
+  // With the check off, MetaIO itself meets the random bytes: its
+  // "Uncompress failed" on std::cerr becomes the reader's one error.
+  const std::string folder = Folder();
+  const std::string path = folder + "/unchecked-random.mha";
+  WriteBytes(path,
+    Mha + "CompressedData = True\nCompressedDataSize = 200\nElementDataFile = LOCAL\n" +
+      Random(200));
+  vtkNew<vtkMCXMetaImageReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->CheckHeaderOff();
+  std::vector<std::string> errors;
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&errors);
+  observer->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      static_cast<std::vector<std::string>*>(clientData)
+        ->push_back(callData ? static_cast<const char*>(callData) : "");
+    });
+  reader->AddObserver(vtkCommand::ErrorEvent, observer);
+  std::stringstream cerr;
+  std::streambuf* saved = std::cerr.rdbuf(cerr.rdbuf());
+  reader->Update();
+  std::cerr.rdbuf(saved);
+  EXPECT_EQ("", cerr.str());
+  ASSERT_EQ(1u, errors.size());
+  EXPECT_NE(std::string::npos, errors[0].find("cannot read '" + path + "': ")) << errors[0];
+  EXPECT_NE(std::string::npos, errors[0].find("MetaIO: Uncompress failed")) << errors[0];
+  EXPECT_EQ(0, reader->GetOutput()->GetNumberOfPoints());
+}
