@@ -266,8 +266,9 @@ bool CheckInflated(const DataRun& run, std::ifstream& in, std::string& error)
     return false;
   }
   std::vector<unsigned char> input(1 << 16), output(1 << 16);
-  Bytes left = run.Source ? run.Source : ~0ULL, produced = 0;
+  Bytes left = run.Source ? run.Source : ~0ULL, produced = 0, members = 0;
   int status = Z_OK;
+  bool nextMember = false; // after a gzip member: what follows may be none
   while (produced < run.Needed && status == Z_OK)
   {
     if (stream.avail_in == 0)
@@ -285,10 +286,21 @@ bool CheckInflated(const DataRun& run, std::ifstream& in, std::string& error)
     stream.next_out = output.data();
     stream.avail_out = static_cast<uInt>(std::min<Bytes>(output.size(), run.Needed - produced));
     status = inflate(&stream, Z_NO_FLUSH);
-    produced = stream.total_out;
+    produced = members + stream.total_out;
     if (status == Z_BUF_ERROR)
     {
       status = Z_OK; // no progress possible until more input comes
+    }
+    if (status == Z_DATA_ERROR && nextMember && stream.total_out == 0)
+    {
+      status = Z_STREAM_END; // no next member: the data end (gzread's reading)
+    }
+    else if (status == Z_STREAM_END && run.Encoding == DataRun::Gzip && produced < run.Needed)
+    {
+      // gzread goes on to a next gzip member.
+      members = produced;
+      nextMember = true;
+      status = inflateReset(&stream);
     }
   }
   const std::string message = stream.msg ? stream.msg : "";

@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -88,8 +89,9 @@ public:
   }
 
   // A line of at most 255 characters (without its '\n'); false at the end
-  // or for a longer one (error set).
-  bool Line(std::string& line, std::string& error)
+  // or for a longer one (error set), unless cut: then its first 255
+  // characters, the rest skipped unread (vtkDataReader::ReadLine).
+  bool Line(std::string& line, std::string& error, bool cut = false)
   {
     line.clear();
     int c = this->In.get();
@@ -99,6 +101,11 @@ public:
     }
     while (c != EOF && c != '\n')
     {
+      if (line.size() == LongestToken && cut)
+      {
+        this->In.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+        return true;
+      }
       if (line.size() == LongestToken)
       {
         error = "the legacy VTK file holds a line longer than " + std::to_string(LongestToken) +
@@ -390,7 +397,7 @@ bool ReadPreamble(Scanner& scan, bool& binary, std::string& error)
 {
   std::string version, title, format;
   if (!scan.Line(version, error) || version.find("vtk DataFile") == std::string::npos ||
-    !scan.Line(title, error))
+    !scan.Line(title, error, true))
   {
     if (error.empty())
     {

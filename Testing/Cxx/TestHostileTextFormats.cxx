@@ -336,6 +336,10 @@ TEST(HostileTextFormats, ValidTextFormatsStillRead)
       Mha + "CompressedData = True\nCompressedDataSize = " + std::to_string(z.size()) +
         "\nElementDataFile = LOCAL\n" + z },
     { "ok-gz.nrrd", Nrrd + "encoding: gzip\n\n" + gz },
+    // Two gzip members, as zlib's gzread reads them on.
+    { "ok-gz-members.nrrd",
+      Nrrd + "encoding: gzip\n\n" + Deflated(Voxels().substr(0, 20), 31) +
+        Deflated(Voxels().substr(20), 31) },
     { "ok-ascii.nhdr",
       "NRRD0004\ntype: short\ndimension: 3\nsizes: 10 1 1\nencoding: ascii\ndata file: ok.txt\n" },
     { "ok-ascii.mha",
