@@ -86,7 +86,8 @@ unsigned long long LocalDataOffset(const std::string& path)
   while (offset < (1ULL << 20) && std::getline(in, line))
   {
     offset += line.size() + 1;
-    if (line.compare(0, 15, "ElementDataFile") == 0)
+    const std::size_t key = line.find_first_not_of(" \t\r\v\f"); // MetaIO skips them
+    if (key != std::string::npos && line.compare(key, 15, "ElementDataFile") == 0)
     {
       return offset;
     }

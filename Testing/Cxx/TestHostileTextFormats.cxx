@@ -332,6 +332,7 @@ TEST(HostileTextFormats, ValidTextFormatsStillRead)
   const std::string z = Deflated(Voxels(), 15), gz = Deflated(Voxels(), 31);
   const std::vector<std::pair<std::string, std::string>> files = {
     { "ok.mhd", Mha + "ElementDataFile = ok.raw\n" },
+    { "ok-indented.mha", Mha + "   ElementDataFile : LOCAL\n" + Voxels() },
     { "ok-z.mha",
       Mha + "CompressedData = True\nCompressedDataSize = " + std::to_string(z.size()) +
         "\nElementDataFile = LOCAL\n" + z },
