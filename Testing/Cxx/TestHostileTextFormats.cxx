@@ -16,8 +16,12 @@
 #include "vtkMCXMetaImageReader.h"
 #include "vtkMCXNrrdReader.h"
 #include "vtkNew.h"
+#include "vtkNrrdReader.h"
+#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkStringArray.h"
 #include "vtk_zlib.h"
+#include "vtkmetaio/metaImage.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
@@ -421,4 +425,117 @@ TEST(HostileTextFormats, MetaIOsOwnMessagesBecomeTheReadersOneError)
   EXPECT_NE(std::string::npos, errors[0].find("cannot read '" + path + "': ")) << errors[0];
   EXPECT_NE(std::string::npos, errors[0].find("MetaIO: Uncompress failed")) << errors[0];
   EXPECT_EQ(0, reader->GetOutput()->GetNumberOfPoints());
+}
+
+namespace
+{
+// vtkNrrdReader's data files, as it lists them after its header parse.
+class NrrdProbe : public vtkNrrdReader
+{
+public:
+  static NrrdProbe* New();
+  vtkTypeMacro(NrrdProbe, vtkNrrdReader);
+  std::vector<std::string> Files()
+  {
+    std::vector<std::string> files;
+    for (vtkIdType i = 0; this->ReadHeader() && i < this->DataFiles->GetNumberOfValues(); ++i)
+    {
+      files.emplace_back(this->DataFiles->GetValue(i));
+    }
+    return files;
+  }
+};
+vtkStandardNewMacro(NrrdProbe);
+}
+
+TEST(HostileTextFormats, TheChecksParseAsTheReadersDo)
+{
+  // Random headers of key spellings, separators, indentation, repeats and
+  // noise: wherever a check passes, VTK's own parser (MetaIO, vtkNrrdReader)
+  // reads the same volume from exactly the files DataFiles names.
+  const std::string folder = Folder();
+  for (const char* file : { "a.raw", "b.raw", "p1.raw", "p2.raw", "p3.raw", "p4.raw", "p%d.raw" })
+  {
+    WriteBytes(folder + "/" + file, std::string(64, 'x'));
+  }
+  std::mt19937 random(39);
+  auto pick = [&random](const std::vector<std::string>& from)
+  { return from[random() % from.size()]; };
+  const std::vector<std::string> noise = { "", "", "Foo = bar\n", "garbage line\n", "\n",
+    "Comment = x = y\n", ": odd\n", "ndims = 2\n", "elementdatafile = b.raw\n",
+    "Offset = 0 0 0\n" };
+  const bool warnings = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff(); // vtkNrrdReader's "Unknown field" warnings
+  int passed = 0;
+  for (int t = 0; t < 1500; ++t)
+  {
+    const std::string path = folder + "/random.mha";
+    WriteBytes(path,
+      pick(noise) + pick({ "NDims = 3\n", "NDims: 3\n", "  NDims = 3\n", "NDims = 2\n" }) +
+        pick(noise) + pick({ "DimSize = 4 4 4\n", "DimSize: 4 4 4\n", "DimSize = 4\n4 4\n" }) +
+        pick(noise) +
+        pick({ "ElementType = MET_UCHAR\n", "ElementType : MET_UCHAR\n",
+          "ElementType = met_uchar\n" }) +
+        pick(noise) +
+        pick({ "ElementDataFile = a.raw\n", "ElementDataFile: b.raw\n",
+          "  ElementDataFile = a.raw  \n", "ElementDataFile = p%d.raw\n",
+          "ElementDataFile = p%d.raw 1\n", "ElementDataFile = LOCAL\n" }) +
+        std::string(64, 'y'));
+    unsigned long long claimed = 0;
+    std::string error;
+    if (!mcxio::CheckVolumeHeader(path, claimed, error))
+    {
+      continue;
+    }
+    ++passed;
+    vtkmetaio::MetaImage meta;
+    std::stringstream said;
+    std::streambuf* saved = std::cerr.rdbuf(said.rdbuf());
+    const bool read = meta.Read(path.c_str(), false);
+    std::cerr.rdbuf(saved);
+    ASSERT_TRUE(read) << Slurp(path);
+    unsigned long long bytes = meta.ElementType() == vtkmetaio::MET_UCHAR ? 1 : 0;
+    for (int a = 0; a < meta.NDims(); ++a)
+    {
+      bytes *= static_cast<unsigned long long>(meta.DimSize(a));
+    }
+    EXPECT_EQ(bytes, claimed) << Slurp(path);
+    const std::string name = meta.ElementDataFileName();
+    std::vector<std::string> expected;
+    for (int i = 1; name.find('%') != std::string::npos && i <= meta.DimSize(meta.NDims() - 1); ++i)
+    {
+      expected.push_back(folder + "/p" + std::to_string(i) + ".raw");
+    }
+    if (expected.empty() && name != "LOCAL")
+    {
+      expected.push_back(folder + "/" + name);
+    }
+    EXPECT_EQ(expected, mcxio::DataFiles(path)) << Slurp(path);
+  }
+  EXPECT_GT(passed, 100) << "too few headers passed to compare";
+  passed = 0;
+  for (int t = 0; t < 1000; ++t)
+  {
+    const std::string path = folder + "/random.nhdr";
+    WriteBytes(path,
+      "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 1 4\nencoding: raw\n" +
+        pick({ "", "content: x\n", "Type: short\n", "foo: bar\n", "# data file: b.raw\n" }) +
+        pick(
+          { "data file: a.raw\n", "datafile: b.raw\n", "Data File: a.raw\n", "data file: p%d.raw\n",
+            "data file: p%d.raw 1 4 1\n", "data file: p%d.raw 1 4 1 3\n", "data file:a.raw\n",
+            "data file:  a.raw  \n", "DATAFILE: b.raw\n", "data file := b.raw\n" }) +
+        pick({ "", "datafile: a.raw\n", "space: left-posterior-superior\n" }));
+    unsigned long long claimed = 0;
+    std::string error;
+    if (!mcxio::CheckVolumeHeader(path, claimed, error))
+    {
+      continue;
+    }
+    ++passed;
+    vtkNew<NrrdProbe> probe;
+    probe->SetFileName(path.c_str());
+    EXPECT_EQ(probe->Files(), mcxio::DataFiles(path)) << Slurp(path);
+  }
+  EXPECT_GT(passed, 100) << "too few headers passed to compare";
+  vtkObject::SetGlobalWarningDisplay(warnings);
 }
