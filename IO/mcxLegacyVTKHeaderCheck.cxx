@@ -16,7 +16,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -103,7 +102,13 @@ public:
     {
       if (line.size() == LongestToken && cut)
       {
-        this->In.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+        // The rest skipped, up to a bound: a title of a megabyte is no title.
+        this->In.ignore(static_cast<std::streamsize>(LargestHeader), '\n');
+        if (this->In.gcount() == static_cast<std::streamsize>(LargestHeader))
+        {
+          error = "the legacy VTK file's title line is longer than 1 MiB";
+          return false;
+        }
         return true;
       }
       if (line.size() == LongestToken)
