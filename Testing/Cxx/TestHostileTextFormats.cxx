@@ -10,8 +10,12 @@
 #include "mcxHeaderCheck.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMCXMetaImageReader.h"
 #include "vtkMCXNrrdReader.h"
@@ -20,6 +24,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStringArray.h"
+#include "vtkStructuredPointsWriter.h"
 #include "vtk_zlib.h"
 #include "vtkmetaio/metaImage.h"
 #include "vtksys/SystemTools.hxx"
@@ -538,4 +543,56 @@ TEST(HostileTextFormats, TheChecksParseAsTheReadersDo)
   }
   EXPECT_GT(passed, 100) << "too few headers passed to compare";
   vtkObject::SetGlobalWarningDisplay(warnings);
+}
+
+TEST(HostileTextFormats, VTKsOwnLegacyFilesPassTheWholeFileWalk)
+{
+  // What vtkStructuredPointsWriter writes around the scalars (field data
+  // first, component names as METADATA, vectors, cell data) passes, ASCII
+  // and binary.
+  const std::string folder = Folder();
+  for (int type : { VTK_ASCII, VTK_BINARY })
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(3, 4, 5);
+    vtkNew<vtkFloatArray> scalars;
+    scalars->SetName("density");
+    scalars->SetNumberOfTuples(60);
+    scalars->SetComponentName(0, "HU");
+    for (vtkIdType i = 0; i < 60; ++i)
+    {
+      scalars->SetValue(i, 0.5f * static_cast<float>(i));
+    }
+    image->GetPointData()->SetScalars(scalars);
+    vtkNew<vtkFloatArray> vectors;
+    vectors->SetName("flow");
+    vectors->SetNumberOfComponents(3);
+    vectors->SetNumberOfTuples(60);
+    vectors->Fill(1.0);
+    image->GetPointData()->SetVectors(vectors);
+    vtkNew<vtkDoubleArray> cells, time;
+    cells->SetName("cells");
+    cells->SetNumberOfTuples(24);
+    cells->Fill(2.0);
+    image->GetCellData()->AddArray(cells);
+    time->SetName("TimeValue");
+    time->SetNumberOfTuples(1);
+    time->SetValue(0, 3.0);
+    image->GetFieldData()->AddArray(time);
+    const std::string path = folder + "/written" + std::to_string(type) + ".vtk";
+    vtkNew<vtkStructuredPointsWriter> writer;
+    writer->SetInputData(image);
+    writer->SetFileName(path.c_str());
+    writer->SetFileType(type);
+    ASSERT_EQ(1, writer->Write());
+    unsigned long long claimed = 0;
+    std::string error;
+    EXPECT_TRUE(mcxio::CheckVolumeHeader(path, claimed, error)) << path << ": " << error;
+    EXPECT_EQ(60u * 4u, claimed) << path;
+    // Cut inside the vectors: the walk finds them short.
+    const std::string whole = Slurp(path);
+    WriteBytes(path, whole.substr(0, whole.find("VECTORS") + 40));
+    EXPECT_FALSE(mcxio::CheckVolumeHeader(path, claimed, error)) << path;
+    EXPECT_NE(std::string::npos, error.find("VECTORS")) << error;
+  }
 }
