@@ -11,6 +11,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <string>
@@ -380,6 +381,15 @@ bool MetaImageRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& c
   {
     error = "the MetaImage header's DimSize does not give NDims sizes";
     return false;
+  }
+  for (long long side : dims)
+  {
+    if (side > INT32_MAX)
+    {
+      error = "the MetaImage header's DimSize " + Dimensions(dims) +
+        " has a size beyond 2^31 - 1 (MetaIO keeps sizes in an int)";
+      return false;
+    }
   }
   const std::string type = header.Strings["ElementType"];
   const Bytes element = ElementBytes(type) * static_cast<Bytes>(channels);
