@@ -330,7 +330,7 @@ struct Walk
           return false;
         }
         type = this->Binary ? "unsigned_char" : "float";
-        this->Volume(points, LegacyElementBytes(type), components);
+        this->Volume(points, 1, components); // text floats become unsigned chars
         if (!this->Array(type, count, components, "COLOR_SCALARS"))
         {
           return false;
@@ -371,6 +371,13 @@ struct Walk
       }
       else if (is("point_data") || is("cell_data"))
       {
+        if (is("point_data") == points)
+        {
+          // ReadPointData takes CELL_DATA, ReadCellData POINT_DATA; not their own.
+          return this->Fail("the legacy VTK file gives " + keyword +
+            " twice in a row, which VTK's "
+            "reader refuses");
+        }
         points = is("point_data");
         if (!this->Integer(count, 0, 1LL << 40, "POINT_DATA or CELL_DATA count"))
         {

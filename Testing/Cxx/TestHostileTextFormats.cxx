@@ -24,6 +24,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkStringArray.h"
+#include "vtkStructuredPoints.h"
+#include "vtkStructuredPointsReader.h"
 #include "vtkStructuredPointsWriter.h"
 #include "vtk_zlib.h"
 #include "vtkmetaio/metaImage.h"
@@ -595,4 +597,75 @@ TEST(HostileTextFormats, VTKsOwnLegacyFilesPassTheWholeFileWalk)
     EXPECT_FALSE(mcxio::CheckVolumeHeader(path, claimed, error)) << path;
     EXPECT_NE(std::string::npos, error.find("VECTORS")) << error;
   }
+}
+
+TEST(HostileTextFormats, WhereTheLegacyCheckPassesVTKsReaderReadsTheClaim)
+{
+  // Random legacy files (keyword case, FIELD first, EXTENT, CELL_DATA,
+  // attributes in any order, arrays one value short): wherever the check
+  // passes, vtkStructuredPointsReader reads without error the scalars'
+  // bytes the check claims.
+  const std::string path = Folder() + "/random.vtk";
+  std::mt19937 random(39);
+  auto pick = [&random](const std::vector<std::string>& from)
+  { return from[random() % from.size()]; };
+  int passed = 0;
+  for (int t = 0; t < 1000; ++t)
+  {
+    const bool binary = random() % 2;
+    std::string text = "# vtk DataFile Version 3.0\nt\n" +
+      std::string(binary ? "BINARY" : "ASCII") + "\nDATASET STRUCTURED_POINTS\n" +
+      pick({ "",
+        "FIELD FieldData 1\nTimeValue 1 1 double\n" +
+          std::string(binary ? std::string(8, '\0') : "3.0") + "\n" }) +
+      pick({ "DIMENSIONS 2 2 2\n", "dimensions 2 2 2\n", "EXTENT 0 1 0 1 0 1\n" }) +
+      pick({ "", "SPACING 1 1 1\n" }) +
+      pick({ "POINT_DATA 8\n", "point_data 8\n", "CELL_DATA 1\n" });
+    for (int part = 1 + random() % 3; part > 0; --part)
+    {
+      const std::string kind = pick({ "SCALARS s short\nLOOKUP_TABLE default\n",
+        "SCALARS s float 1\nLOOKUP_TABLE default\n", "COLOR_SCALARS c 1\n", "VECTORS v float\n",
+        "scalars s short\nlookup_table default\n", "LOOKUP_TABLE t 2\n", "POINT_DATA 8\n" });
+      const bool tuples = kind.find("DATA") == std::string::npos;
+      int values = kind[0] == 'V'                    ? 24
+        : kind.find("_TABLE t") != std::string::npos ? 8
+        : tuples                                     ? 8
+                                                     : 0;
+      values -= values > 0 && random() % 4 == 0 ? 1 : 0;
+      const int size = kind.find("float") != std::string::npos ? 4
+        : kind.find("short") != std::string::npos              ? 2
+                                                               : 1;
+      text += kind;
+      for (int v = 0; v < values && !binary; ++v)
+      {
+        text += "1 ";
+      }
+      text += binary ? std::string(static_cast<std::size_t>(values * size), '\1') : "";
+      text += values ? "\n" : "";
+    }
+    WriteBytes(path, text);
+    unsigned long long claimed = 0;
+    std::string error;
+    if (!mcxio::CheckVolumeHeader(path, claimed, error))
+    {
+      continue;
+    }
+    ++passed;
+    vtkNew<vtkStructuredPointsReader> reader;
+    reader->SetFileName(path.c_str());
+    int errors = 0;
+    vtkNew<vtkCallbackCommand> counter;
+    counter->SetClientData(&errors);
+    counter->SetCallback(
+      [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+    reader->AddObserver(vtkCommand::ErrorEvent, counter);
+    reader->Update();
+    vtkDataArray* scalars = reader->GetOutput()->GetPointData()->GetScalars();
+    EXPECT_EQ(0, errors) << text;
+    ASSERT_NE(nullptr, scalars) << text;
+    EXPECT_EQ(claimed,
+      static_cast<unsigned long long>(scalars->GetNumberOfValues() * scalars->GetDataTypeSize()))
+      << text;
+  }
+  EXPECT_GT(passed, 50) << "too few files passed to compare";
 }
