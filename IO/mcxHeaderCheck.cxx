@@ -16,31 +16,34 @@ using namespace check;
 
 std::vector<std::string> DataFiles(const std::string& header)
 {
+  // The files the reader opens, from the same parse as the check (a header
+  // the check refuses is never read: what it names so far is returned).
   const bool nrrd = EndsWith(header, ".nhdr") || EndsWith(header, ".nrrd");
   if (!nrrd && !EndsWith(header, ".mhd") && !EndsWith(header, ".mha"))
   {
     return {};
   }
-  TextHeader fields;
-  std::string ignored;
-  if (!ReadTextHeader(header, nrrd, fields, ignored))
-  {
-    return {};
-  }
-  std::map<std::string, std::string>& f = fields.Fields;
-  const std::string name = DataFileField(f, nrrd);
-  if (name.empty() || Lower(name) == "local" || Lower(name).compare(0, 4, "list") == 0)
-  {
-    return {}; // in the header itself, or a list (refused by the checks)
-  }
-  if (name.find('%') == std::string::npos)
-  {
-    return { Beside(header, name) };
-  }
-  // A numbered pattern: its files, when it is a bounded one.
-  std::vector<std::string> files;
+  std::vector<DataRun> runs;
+  std::vector<long long> dims;
+  Bytes claimed = 0;
   std::string error;
-  return PatternFiles(header, name, files, error) ? files : std::vector<std::string>();
+  if (nrrd)
+  {
+    NrrdRuns(header, runs, claimed, dims, error);
+  }
+  else
+  {
+    MetaImageRuns(header, runs, claimed, dims, error);
+  }
+  std::vector<std::string> files;
+  for (const DataRun& run : runs)
+  {
+    if (run.File != header)
+    {
+      files.push_back(run.File);
+    }
+  }
+  return files;
 }
 
 bool CheckVolumeHeader(

@@ -3,13 +3,14 @@
 // compiles them as they are. A volume file's header is checked against the
 // file before a VTK reader trusts it: dimensions positive and their product
 // without overflow, a known data type, raw data no shorter than the header
-// claims (for compressed data a claim within deflate's largest ratio,
-// 1032:1, of what the file holds), sane extents and bounded file-name
-// patterns. VTK's readers allocate and read whatever a header says; these
-// checks turn a lying or truncated file into one line of error instead.
-// The dispatch and the data-file lookup live in mcxHeaderCheck.cxx, one
-// format per file beside it (mcx*HeaderCheck.cxx), their shared helpers in
-// mcxHeaderCheckPrivate.
+// claims (compressed MetaImage and NRRD data inflated to the claimed size,
+// as a stream; other compressed data within deflate's largest ratio,
+// 1032:1, of what the file holds; text data counted value by value), data
+// files regular files, sane extents and bounded file-name patterns. The
+// text formats' headers are parsed the way VTK's readers parse them. VTK's readers allocate and
+// read whatever a header says; these checks turn a lying or truncated file into one line of error
+// instead. The dispatch and the data-file lookup live in mcxHeaderCheck.cxx, one format per file
+// beside it (mcx*HeaderCheck.cxx), their shared helpers in mcxHeaderCheckPrivate.
 #ifndef mcxHeaderCheck_h
 #define mcxHeaderCheck_h
 
@@ -19,9 +20,13 @@
 namespace mcxio
 {
 
-/// The data files a header names (.mha/.mhd: ElementDataFile, .nrrd/.nhdr:
-/// data file; each file of a bounded numbered pattern), as full paths;
-/// none for other formats and for data in the header itself.
+/// The data files VTK's reader opens for a header (.mha/.mhd, .nrrd/.nhdr),
+/// as full paths: decided by the same parse as the format's check, which
+/// parses as the reader does (key case, separators, a pattern's numbering,
+/// a MetaImage data file's .gz/.Z twin), so that an output compared against
+/// them by device and inode is never a file the read opens. None for other
+/// formats and for data in the header itself; for a header its check
+/// refuses (never read), possibly none.
 std::vector<std::string> DataFiles(const std::string& header);
 
 /// Deflate never compresses by more than this (zlib's technical note).

@@ -1,22 +1,27 @@
 // The helpers the per-format header checks share (mcxHeaderCheckPrivate.h):
-// sizes and their messages, and the text headers of MetaImage and NRRD with
-// the data files they name.
+// sizes and their messages, numbered data files, and the data runs a reader
+// consumes, checked against their files.
 #include "mcxHeaderCheckPrivate.h"
 
 #include "mcxHeaderCheck.h"
 
 #include "mcxByteSize.h"
 
+#include "vtk_zlib.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <climits>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace mcxio
 {
@@ -140,82 +145,23 @@ bool ParseIntegers(const std::string& text, std::vector<long long>& values)
   return in.eof() && !values.empty();
 }
 
-// MetaImage: lines up to and including ElementDataFile; NRRD: lines up to
-// the first blank line (comments '#' skipped, the magic line first).
-bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std::string& error)
+bool ReadHead(const std::string& path, std::string& text, std::string& error)
 {
   if (!RegularFile(path, std::string(), error))
   {
     return false;
   }
-  // At most LargestHeader bytes, whatever the lines (one huge line included).
+  // At most LargestHeader + 1 bytes, whatever the lines (one huge line included).
   std::ifstream file(path, std::ios::binary);
-  std::string text(
-    static_cast<std::size_t>(std::min<Bytes>(FileSize(path), LargestHeader + 1)), '\0');
+  text.assign(static_cast<std::size_t>(std::min<Bytes>(FileSize(path), LargestHeader + 1)), '\0');
   file.read(&text[0], static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(file.gcount()));
-  std::istringstream in(text);
-  std::string line;
-  bool first = true;
-  while (std::getline(in, line))
+  text.resize(static_cast<std::size_t>(std::max<std::streamsize>(file.gcount(), 0)));
+  if (!file && !file.eof())
   {
-    header.End += line.size() + 1;
-    if (header.End > LargestHeader)
-    {
-      error = "the header is longer than 1 MiB";
-      return false;
-    }
-    if (!line.empty() && line.back() == '\r')
-    {
-      line.pop_back();
-    }
-    if (line.find('\0') != std::string::npos)
-    {
-      // VTK's NRRD reader loops forever on one (what fuzzing found).
-      error = "the header holds a NUL byte";
-      return false;
-    }
-    if (nrrd && first)
-    {
-      first = false;
-      if (line.compare(0, 4, "NRRD") != 0)
-      {
-        error = "not a NRRD file (no NRRD magic)";
-        return false;
-      }
-      continue;
-    }
-    if (nrrd && line.empty())
-    {
-      return true;
-    }
-    if (nrrd && line[0] == '#')
-    {
-      continue;
-    }
-    const std::size_t separator = line.find(nrrd ? ":" : "=");
-    if (separator == std::string::npos)
-    {
-      continue;
-    }
-    std::string key = Lower(Trim(line.substr(0, separator)));
-    std::string value = line.substr(separator + 1);
-    if (nrrd && !value.empty() && value[0] == '=')
-    {
-      continue; // a key/value pair ("key:=value"), not a field
-    }
-    header.Fields[key] = Trim(value);
-    if (!nrrd && key == "elementdatafile")
-    {
-      return true;
-    }
+    error = "it cannot be read";
+    return false;
   }
-  if (nrrd)
-  {
-    return true; // a detached header may end without a blank line
-  }
-  error = "the MetaImage header has no ElementDataFile";
-  return false;
+  return true;
 }
 
 // A data file named relative to its header's folder.
@@ -227,7 +173,7 @@ std::string Beside(const std::string& header, const std::string& name)
 
 // A printf pattern with exactly one integer conversion: %d, %Nd or %0Nd
 // (N at most two digits) and no other '%'.
-static bool IsNumberPattern(const std::string& pattern)
+bool IsNumberPattern(const std::string& pattern)
 {
   const std::size_t at = pattern.find('%');
   if (at == std::string::npos || pattern.find('%', at + 1) != std::string::npos)
@@ -248,104 +194,239 @@ static bool IsNumberPattern(const std::string& pattern)
   return i < pattern.size() && pattern[i] == 'd';
 }
 
-// The files of a printf pattern ("name%03d.raw first last step"), at most
-// LargestPatternFiles of them, each of which must exist.
-bool PatternFiles(const std::string& header, const std::string& spec,
-  std::vector<std::string>& files, std::string& error)
+bool ExistingDataFile(
+  const std::string& header, const std::string& name, std::string& file, std::string& error)
 {
-  std::istringstream in(spec);
-  std::string pattern;
-  long long first = 0, last = 0, step = 1;
-  in >> pattern >> first >> last;
-  if (!(in >> step))
+  file = Beside(header, name);
+  struct stat info;
+  if (::stat(file.c_str(), &info) != 0)
   {
-    step = 1;
-  }
-  // Numbers within int (what %d prints), so that the count cannot overflow.
-  const bool small = first >= INT_MIN && first <= INT_MAX && last >= INT_MIN && last <= INT_MAX &&
-    step >= INT_MIN && step <= INT_MAX;
-  const long long count = small && step != 0 ? (last - first) / step + 1 : 0;
-  if (count < 1 || count > LargestPatternFiles || !IsNumberPattern(pattern))
-  {
-    error = "the file-name pattern '" + spec + "' is not a bounded list of numbered files";
-    return false;
-  }
-  files.clear();
-  for (long long i = 0; i < count; ++i)
-  {
-    char name[4096];
-    std::snprintf(name, sizeof(name), pattern.c_str(), static_cast<int>(first + i * step));
-    files.push_back(Beside(header, name));
-    if (!vtksys::SystemTools::FileExists(files.back(), true))
-    {
-      error = "the data file '" + files.back() + "' is missing";
-      return false;
-    }
-    if (!RegularFile(files.back(), "the data file '" + files.back() + "'", error))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-// The sizes of a pattern's files added up (PatternFiles), or false.
-static bool PatternSize(
-  const std::string& header, const std::string& spec, Bytes& total, std::string& error)
-{
-  std::vector<std::string> files;
-  if (!PatternFiles(header, spec, files, error))
-  {
-    return false;
-  }
-  total = 0;
-  for (const std::string& file : files)
-  {
-    total += FileSize(file);
-  }
-  return true;
-}
-
-// The data file field of a header's fields: NRRD spells it two ways.
-std::string DataFileField(std::map<std::string, std::string>& fields, bool nrrd)
-{
-  return nrrd ? (fields.count("data file") ? fields["data file"] : fields["datafile"])
-              : fields["elementdatafile"];
-}
-
-// The bytes of voxel data a text header's data field gives: after the
-// header itself (data empty), in the files of a pattern, or in one data
-// file beside the header; a list is refused with listRefusal.
-bool AvailableData(const std::string& path, const TextHeader& header, const std::string& data,
-  const char* listRefusal, Bytes& available, std::string& error)
-{
-  if (data.empty())
-  {
-    const Bytes file = FileSize(path);
-    available = file > header.End ? file - header.End : 0;
-    return true;
-  }
-  if (Lower(data).compare(0, 4, "list") == 0)
-  {
-    error = listRefusal;
-    return false;
-  }
-  if (data.find('%') != std::string::npos)
-  {
-    return PatternSize(path, data, available, error);
-  }
-  const std::string file = Beside(path, data);
-  if (!vtksys::SystemTools::FileExists(file, true))
-  {
-    error = "the data file '" + file + "' is missing";
+    const int reason = errno;
+    error = "the data file '" + file + "' " +
+      (reason == ENOENT ? std::string("is missing")
+                        : "cannot be opened (" + std::string(std::strerror(reason)) + ")");
     return false;
   }
   if (!RegularFile(file, "the data file '" + file + "'", error))
   {
     return false;
   }
-  available = FileSize(file);
+  if (::access(file.c_str(), R_OK) != 0)
+  {
+    error = "the data file '" + file + "' cannot be read (" + std::strerror(errno) + ")";
+    return false;
+  }
   return true;
+}
+
+bool NumberedFiles(const std::string& header, const std::string& pattern, long long first,
+  long long last, long long step, std::vector<std::string>& files, std::string& error)
+{
+  // Numbers within int (what %d prints), so that the count cannot overflow.
+  const bool small = first >= INT_MIN && first <= INT_MAX && last >= INT_MIN && last <= INT_MAX &&
+    step >= 1 && step <= INT_MAX;
+  const long long count = small && last >= first ? (last - first) / step + 1 : 0;
+  if (count < 1 || count > LargestPatternFiles || !IsNumberPattern(pattern))
+  {
+    error = "the file-name pattern '" + pattern + "' from " + std::to_string(first) + " to " +
+      std::to_string(last) + " by " + std::to_string(step) +
+      " is not a bounded list of numbered files";
+    return false;
+  }
+  for (long long i = 0; i < count; ++i)
+  {
+    char name[4096];
+    std::snprintf(name, sizeof(name), pattern.c_str(), static_cast<int>(first + i * step));
+    std::string file;
+    if (!ExistingDataFile(header, name, file, error))
+    {
+      return false;
+    }
+    files.push_back(file);
+  }
+  return true;
+}
+
+namespace
+{
+std::string Quoted(const std::string& file)
+{
+  return "the data in '" + file + "'";
+}
+
+// Inflates run's source as a stream and counts what comes out, stopping at
+// run.Needed: zlib's own buffers (about 44 KiB) and two of 64 KiB, whatever
+// the volume.
+bool CheckInflated(const DataRun& run, std::ifstream& in, std::string& error)
+{
+  z_stream stream{};
+  if (inflateInit2(&stream, run.Encoding == DataRun::Gzip ? 15 + 16 : 15 + 32) != Z_OK)
+  {
+    error = "zlib cannot start inflating";
+    return false;
+  }
+  std::vector<unsigned char> input(1 << 16), output(1 << 16);
+  Bytes left = run.Source ? run.Source : ~0ULL, produced = 0, members = 0;
+  int status = Z_OK;
+  bool nextMember = false; // after a gzip member: what follows may be none
+  while (produced < run.Needed && status == Z_OK)
+  {
+    if (stream.avail_in == 0)
+    {
+      in.read(reinterpret_cast<char*>(input.data()),
+        static_cast<std::streamsize>(std::min<Bytes>(left, input.size())));
+      stream.avail_in = static_cast<uInt>(in.gcount());
+      stream.next_in = input.data();
+      left -= stream.avail_in;
+      if (stream.avail_in == 0)
+      {
+        break; // the source ends
+      }
+    }
+    stream.next_out = output.data();
+    stream.avail_out = static_cast<uInt>(std::min<Bytes>(output.size(), run.Needed - produced));
+    status = inflate(&stream, Z_NO_FLUSH);
+    produced = members + stream.total_out;
+    if (status == Z_BUF_ERROR)
+    {
+      status = Z_OK; // no progress possible until more input comes
+    }
+    if (status == Z_DATA_ERROR && nextMember && stream.total_out == 0)
+    {
+      status = Z_STREAM_END; // no next member: the data end (gzread's reading)
+    }
+    else if (status == Z_STREAM_END && run.Encoding == DataRun::Gzip && produced < run.Needed)
+    {
+      // gzread goes on to a next gzip member.
+      members = produced;
+      nextMember = true;
+      status = inflateReset(&stream);
+    }
+  }
+  const std::string message = stream.msg ? stream.msg : "";
+  inflateEnd(&stream);
+  if (status != Z_OK && status != Z_STREAM_END)
+  {
+    error = Quoted(run.File) + " do not inflate (" +
+      (message.empty() ? std::string("zlib error ") + std::to_string(status) : message) + ")";
+    return false;
+  }
+  if (produced < run.Needed)
+  {
+    error = "truncated: " + Quoted(run.File) + " inflate to " +
+      mcx::DescribeBytes(static_cast<double>(produced)) + ", the header claims " +
+      mcx::DescribeBytes(static_cast<double>(run.Needed));
+    return false;
+  }
+  return true;
+}
+
+// A number as a text reader (operator>> into a number) takes it whole: signs,
+// digits, a point and an exponent; no "nan" or "inf", which it refuses.
+bool IsNumber(const std::string& token)
+{
+  if (token.find_first_not_of("0123456789+-.eE") != std::string::npos)
+  {
+    return false;
+  }
+  char* end = nullptr;
+  std::strtod(token.c_str(), &end);
+  return end == token.c_str() + token.size();
+}
+
+// Counts the whitespace-separated numbers from in's position, up to
+// run.Needed; a token longer than any number (64 characters) or not a
+// number is an error.
+bool CheckText(const DataRun& run, std::ifstream& in, std::string& error)
+{
+  const std::size_t longest = 64;
+  Bytes values = 0;
+  std::string token;
+  std::streambuf* buffer = in.rdbuf();
+  while (values < run.Needed)
+  {
+    const int c = buffer->sbumpc();
+    const bool end = c == std::char_traits<char>::eof();
+    if (end || std::isspace(c))
+    {
+      if (!token.empty())
+      {
+        if (!IsNumber(token))
+        {
+          error = Quoted(run.File) + " hold '" + token + "' after " + std::to_string(values) +
+            " values, not a number";
+          return false;
+        }
+        ++values;
+        token.clear();
+      }
+      if (end)
+      {
+        break;
+      }
+      continue;
+    }
+    if (token.size() == longest)
+    {
+      error = Quoted(run.File) + " hold a token of more than " + std::to_string(longest) +
+        " characters after " + std::to_string(values) + " values, not a number";
+      return false;
+    }
+    token += static_cast<char>(c);
+  }
+  if (values < run.Needed)
+  {
+    error = "truncated: " + Quoted(run.File) + " hold " + std::to_string(values) +
+      " values as text, the header claims " + std::to_string(run.Needed);
+    return false;
+  }
+  return true;
+}
+}
+
+bool CheckDataRun(const DataRun& run, std::string& error)
+{
+  if (!RegularFile(run.File, "the data file '" + run.File + "'", error))
+  {
+    return false;
+  }
+  const Bytes size = FileSize(run.File);
+  if (run.Encoding == DataRun::Raw && !run.Dims.empty())
+  {
+    return CheckAvailable(
+      run.Needed, size > run.Offset ? size - run.Offset : 0, false, run.Dims, error);
+  }
+  if (run.Encoding == DataRun::Raw)
+  {
+    if (size < run.Offset || size - run.Offset < run.Needed)
+    {
+      error = "truncated: the header claims " +
+        mcx::DescribeBytes(static_cast<double>(run.Needed)) + " of voxels in '" + run.File +
+        "', which holds " +
+        mcx::DescribeBytes(static_cast<double>(size > run.Offset ? size - run.Offset : 0)) +
+        " of data";
+      return false;
+    }
+    return true;
+  }
+  if (run.Encoding != DataRun::Ascii &&
+    static_cast<double>(run.Needed) > LargestCompressionRatio *
+        (static_cast<double>(size > run.Offset ? size - run.Offset : 0) + 64.0))
+  {
+    error = "the header claims " + mcx::DescribeBytes(static_cast<double>(run.Needed)) +
+      " of voxels from the " +
+      mcx::DescribeBytes(static_cast<double>(size > run.Offset ? size - run.Offset : 0)) +
+      " of compressed data in '" + run.File + "', more than deflate can hold";
+    return false;
+  }
+  std::ifstream in(run.File, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(run.Offset));
+  if (!in || run.Offset > size)
+  {
+    error = Quoted(run.File) + " cannot be read from byte " + std::to_string(run.Offset);
+    return false;
+  }
+  return run.Encoding == DataRun::Ascii ? CheckText(run, in, error) : CheckInflated(run, in, error);
 }
 
 } // namespace check

@@ -1,7 +1,8 @@
 // What the per-format header checks (mcx*HeaderCheck.cxx) share: bounds,
 // sizes without overflow, the "truncated" and "more than deflate can hold"
-// messages, and the text headers of MetaImage ("key = value") and NRRD
-// ("key: value") with the data files they name. Plain C++; stays inside IO/.
+// messages, numbered data files, and the data runs a reader will consume,
+// each checked against its file (raw, compressed or text). Plain C++; stays
+// inside IO/.
 #ifndef mcxHeaderCheckPrivate_h
 #define mcxHeaderCheckPrivate_h
 
@@ -46,32 +47,66 @@ bool CheckAvailable(Bytes claimed, Bytes available, bool compressed,
 /// Whitespace-separated integers, all of text; false for none.
 bool ParseIntegers(const std::string& text, std::vector<long long>& values);
 
-struct TextHeader
-{
-  std::map<std::string, std::string> Fields; // keys in lower case
-  Bytes End = 0;                             // where the data of an attached header begin
-};
-
-/// MetaImage: lines up to and including ElementDataFile; NRRD: lines up to
-/// the first blank line (comments '#' skipped, the magic line first).
-bool ReadTextHeader(const std::string& path, bool nrrd, TextHeader& header, std::string& error);
-
 /// A data file named relative to its header's folder.
 std::string Beside(const std::string& header, const std::string& name);
 
-/// The files of a printf pattern ("name%03d.raw first last step"), at most
-/// LargestPatternFiles of them, each of which must exist.
-bool PatternFiles(const std::string& header, const std::string& spec,
-  std::vector<std::string>& files, std::string& error);
+/// A printf pattern with exactly one integer conversion (%d, %Nd, %0Nd).
+bool IsNumberPattern(const std::string& pattern);
 
-/// The data file field of a header's fields: NRRD spells it two ways.
-std::string DataFileField(std::map<std::string, std::string>& fields, bool nrrd);
+/// The files pattern names for first, first + step, ... up to last (step
+/// at least 1, at most LargestPatternFiles of them), beside header; each
+/// must exist and be a regular file (error set otherwise).
+bool NumberedFiles(const std::string& header, const std::string& pattern, long long first,
+  long long last, long long step, std::vector<std::string>& files, std::string& error);
 
-/// The bytes of voxel data a text header's data field gives: after the
-/// header itself (data empty), in the files of a pattern, or in one data
-/// file beside the header; a list is refused with listRefusal.
-bool AvailableData(const std::string& path, const TextHeader& header, const std::string& data,
-  const char* listRefusal, Bytes& available, std::string& error);
+/// One run of voxel data as a reader consumes it: from Offset in File,
+/// Needed bytes (Raw), Needed bytes once inflated from at most Source bytes
+/// (0: to the end; Zlib takes zlib or gzip, as MetaIO's inflateInit2(47);
+/// Gzip gzip alone, as zlib's gzread), or Needed whitespace-separated numbers
+/// (Ascii).
+struct DataRun
+{
+  enum Kind
+  {
+    Raw,
+    Zlib,
+    Gzip,
+    Ascii
+  };
+  std::string File;
+  Kind Encoding = Raw;
+  Bytes Offset = 0;
+  Bytes Source = 0;
+  Bytes Needed = 0;
+  std::vector<long long> Dims; // the volume's, when one run holds it all (for the message)
+};
+
+/// False (error set) unless run's file holds what the reader will consume:
+/// raw bytes by size; compressed data inflated as a stream (64 KiB buffers,
+/// stopped once Needed bytes came out, so that time, not memory, grows with
+/// the volume: the reader inflates them again, the check costs about as
+/// much); text counted token by token, each a number of at most 64
+/// characters, stopped at Needed.
+bool CheckDataRun(const DataRun& run, std::string& error);
+
+/// The data file named name beside header, which must exist and be a
+/// regular file (error set otherwise).
+bool ExistingDataFile(
+  const std::string& header, const std::string& name, std::string& file, std::string& error);
+
+/// The voxel data of a MetaImage (mcxMetaImageHeaderCheck.cxx) or NRRD
+/// (mcxNrrdHeaderCheck.cxx) header as VTK's reader consumes them, parsed
+/// the way that reader parses the header: runs in the order read, the
+/// voxels' bytes claimed (claimed) and their dimensions. False (error set)
+/// for a header the reader would misread or that the checks refuse.
+bool MetaImageRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& claimed,
+  std::vector<long long>& dims, std::string& error);
+bool NrrdRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& claimed,
+  std::vector<long long>& dims, std::string& error);
+
+/// Reads at most LargestHeader + 1 bytes of path (a regular file); error
+/// set and false when it is none or cannot be read.
+bool ReadHead(const std::string& path, std::string& text, std::string& error);
 
 } // namespace check
 } // namespace mcxio

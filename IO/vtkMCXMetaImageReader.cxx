@@ -17,6 +17,9 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 vtkStandardNewMacro(vtkMCXMetaImageReader);
@@ -40,6 +43,39 @@ void AxisDirections(const vtkmetaio::MetaImage& meta, double axes[3][3])
 
 namespace
 {
+// MetaIO writes its warnings and errors to std::cerr itself ("Uncompress
+// failed", "data not read completely"): kept while a stage runs, so that a
+// failure is said once, in one line, by the reader.
+class MetaIOMessages
+{
+public:
+  explicit MetaIOMessages(std::string& first)
+    : First(first)
+    , Saved(std::cerr.rdbuf(this->Text.rdbuf()))
+  {
+  }
+  ~MetaIOMessages() { std::cerr.rdbuf(this->Saved); }
+  MetaIOMessages(const MetaIOMessages&) = delete;
+  MetaIOMessages& operator=(const MetaIOMessages&) = delete;
+
+  // The first line MetaIO wrote, if any (then kept in First).
+  bool Said()
+  {
+    std::string line;
+    while (this->First.empty() && std::getline(this->Text, line))
+    {
+      const std::size_t start = line.find_first_not_of(" \t\r");
+      this->First = start == std::string::npos ? std::string() : line.substr(start);
+    }
+    return !this->First.empty();
+  }
+
+private:
+  std::string& First;
+  std::stringstream Text;
+  std::streambuf* Saved;
+};
+
 // Where the voxels of a header with ElementDataFile = LOCAL begin: after
 // the line of that field (MetaIO ends the header there).
 unsigned long long LocalDataOffset(const std::string& path)
@@ -50,7 +86,8 @@ unsigned long long LocalDataOffset(const std::string& path)
   while (offset < (1ULL << 20) && std::getline(in, line))
   {
     offset += line.size() + 1;
-    if (line.compare(0, 15, "ElementDataFile") == 0)
+    const std::size_t key = line.find_first_not_of(" \t\r\v\f"); // MetaIO skips them
+    if (key != std::string::npos && line.compare(key, 15, "ElementDataFile") == 0)
     {
       return offset;
     }
@@ -141,12 +178,28 @@ int vtkMCXMetaImageReader::RequestInformation(
   {
     problem = mcxio::RunReaderStage(
       this,
-      [&] { return this->Superclass::RequestInformation(request, inputVector, outputVector); },
+      [&]
+      {
+        std::string said;
+        MetaIOMessages metaio(said);
+        const int result = this->Superclass::RequestInformation(request, inputVector, outputVector);
+        if (metaio.Said())
+        {
+          throw std::runtime_error("MetaIO: " + said); // said once, by RunReaderStage
+        }
+        return result;
+      },
       [] { return std::string(); });
   }
   if (problem.empty())
   {
+    std::string said;
+    MetaIOMessages metaio(said);
     problem = this->Place();
+    if (metaio.Said() && problem.empty())
+    {
+      problem = "MetaIO: " + said;
+    }
   }
   const mcxio::Placement placement{ this->DataOrigin, this->DataSpacing, this->DataDirection };
   this->Failed = !mcxio::FinishInformation(this, outputVector, this->FileName, problem, placement);
@@ -161,8 +214,20 @@ int vtkMCXMetaImageReader::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const mcxio::Placement placement{ this->DataOrigin, this->DataSpacing, this->DataDirection };
-  if (!mcxio::ReadPlaced(this, outputVector, this->FileName, this->Failed,
-        [&] { return this->Superclass::RequestData(request, inputVector, outputVector); }, placement))
+  if (!mcxio::ReadPlaced(
+        this, outputVector, this->FileName, this->Failed,
+        [&]
+        {
+          std::string said;
+          MetaIOMessages metaio(said);
+          const int result = this->Superclass::RequestData(request, inputVector, outputVector);
+          if (metaio.Said())
+          {
+            throw std::runtime_error("MetaIO: " + said); // said once, by RunReaderStage
+          }
+          return result;
+        },
+        placement))
   {
     this->SetErrorCode(vtkErrorCode::FileFormatError);
   }
