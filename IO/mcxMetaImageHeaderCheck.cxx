@@ -139,6 +139,14 @@ bool ParseHeader(const std::string& text, MetaHeader& header, std::string& error
     {
       key.pop_back();
     }
+    if (key.size() > 254)
+    {
+      // MetaIO copies a key it does not know into a field's 255-byte name
+      // (MET_InitReadField's strcpy): a longer one overruns it.
+      error = "the MetaImage header's key of " + std::to_string(key.size()) +
+        " characters is longer than MetaIO holds (254)";
+      return false;
+    }
     const auto known = Keys().find(key);
     if (known == Keys().end())
     {
