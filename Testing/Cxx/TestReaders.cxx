@@ -694,3 +694,49 @@ TEST(Readers, DicomCompressedTransferSyntaxesGiveTheSameVolume)
     }
   }
 }
+
+TEST(Readers, DicomDecoderFailuresAreErrorsNotZeros)
+{
+  // Five slices converted to lossless JPEG and JPEG-LS, the middle one's
+  // second half overwritten with random bytes after its valid markers:
+  // GDCM fails to decode it, which vtk-dicom ignores (a slice of zeros);
+  // the check decodes each such file itself and says which one. (JPEG 2000
+  // is not tried: openjpeg decodes such a stream into wrong values without
+  // a report, which no check can tell from an image.)
+  const std::string directory = mcxtest::SharedDataPath("ct_head_headsq_dicom");
+  MCXTEST_NEED(vtksys::SystemTools::FileExists(directory + "/CTHead5.dcm"), directory);
+  const bool haveConverter = std::system("gdcmconv --version > /dev/null 2>&1") == 0;
+  MCXTEST_NEED(haveConverter, std::string("gdcmconv (Debian's libgdcm-tools)"));
+  const std::string work = vtksys::SystemTools::GetCurrentWorkingDirectory();
+  for (const char* syntax : { "jpeg", "jpegls" })
+  {
+    const std::string converted = work + "/series-garbage-" + syntax;
+    vtksys::SystemTools::RemoveADirectory(converted);
+    vtksys::SystemTools::MakeDirectory(converted);
+    for (int z = 1; z <= 5; ++z)
+    {
+      const std::string file = "/CTHead" + std::to_string(z) + ".dcm";
+      const std::string command = std::string("gdcmconv --") + syntax + " '" + directory + file +
+        "' '" + converted + file + "'";
+      ASSERT_EQ(0, std::system(command.c_str())) << command;
+    }
+    std::string error;
+    ASSERT_TRUE(mcxio::ReadVolume(converted, error)) << syntax << ": " << error;
+    const std::string broken = converted + "/CTHead3.dcm";
+    std::string bytes;
+    {
+      std::ifstream in(broken, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    std::uint32_t state = 12345;
+    for (std::size_t i = bytes.size() / 2; i + 20 < bytes.size(); ++i)
+    {
+      state = state * 1664525u + 1013904223u;
+      bytes[i] = static_cast<char>(state >> 24);
+    }
+    std::ofstream(broken, std::ios::binary).write(bytes.data(), bytes.size());
+    EXPECT_FALSE(mcxio::ReadVolume(converted, error)) << syntax;
+    EXPECT_NE(std::string::npos, error.find("CTHead3.dcm': its compressed pixel data")) << error;
+    EXPECT_NE(std::string::npos, error.find(") do not decode")) << error;
+  }
+}
