@@ -22,8 +22,11 @@
 #endif
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <new>
@@ -32,6 +35,8 @@
 #include <utility>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace mcxio
 {
@@ -39,6 +44,26 @@ namespace mcxio
 namespace
 {
 using Inode = std::pair<unsigned long long, unsigned long long>; // device, inode
+
+// "SIGSEGV" for SIGSEGV; the number for a signal without a name here.
+std::string SignalName(int signal)
+{
+  switch (signal)
+  {
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGABRT:
+      return "SIGABRT";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGILL:
+      return "SIGILL";
+    default:
+      return "signal " + std::to_string(signal);
+  }
+}
 
 bool Identity(const std::string& path, struct stat& info, Inode& id)
 {
@@ -383,6 +408,69 @@ bool CheckDicomPixelData(
   }
   claimed = total < 1.8e19 ? static_cast<unsigned long long>(total) : ~0ULL;
   return true;
+}
+
+bool ProbeDicomFiles(const std::vector<std::string>& files, std::string& error)
+{
+  int channel[2];
+  if (::pipe(channel) != 0)
+  {
+    error =
+      std::string("cannot check its files in a child process (pipe: ") + std::strerror(errno) + ")";
+    return false;
+  }
+  const pid_t child = ::fork();
+  if (child < 0)
+  {
+    ::close(channel[0]);
+    ::close(channel[1]);
+    error =
+      std::string("cannot check its files in a child process (fork: ") + std::strerror(errno) + ")";
+    return false;
+  }
+  if (child == 0)
+  {
+    ::close(channel[0]);
+    unsigned long long claimed = 0;
+    std::string verdict;
+    CheckDicomPixelData(files, claimed, verdict);
+    const char* at = verdict.data();
+    for (std::size_t left = verdict.size(); left > 0;)
+    {
+      const ssize_t wrote = ::write(channel[1], at, left);
+      if (wrote <= 0)
+      {
+        break;
+      }
+      at += wrote;
+      left -= static_cast<std::size_t>(wrote);
+    }
+    ::_exit(0); // no destructors, no atexit handlers of the parent's
+  }
+  ::close(channel[1]);
+  std::string verdict;
+  char buffer[4096];
+  for (ssize_t got; (got = ::read(channel[0], buffer, sizeof(buffer))) != 0;)
+  {
+    if (got < 0 && errno != EINTR)
+    {
+      break;
+    }
+    verdict.append(buffer, got > 0 ? static_cast<std::size_t>(got) : 0);
+  }
+  ::close(channel[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
+  {
+  }
+  if (WIFSIGNALED(status))
+  {
+    error = std::string("vtk-dicom's parser crashed (") + SignalName(WTERMSIG(status)) +
+      ") on one of its files";
+    return false;
+  }
+  error = verdict;
+  return verdict.empty();
 }
 
 } // namespace mcxio

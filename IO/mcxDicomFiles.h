@@ -27,6 +27,14 @@ constexpr std::size_t DicomFileLimit = 1000000;
 bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
   std::vector<std::string>& files, std::string& error);
 
+/// CheckDicomPixelData over files in a forked child first, so that a file
+/// that crashes vtk-dicom's parser (which the series reader and its folder
+/// scan run in this process, a Python interpreter's or ParaView's) ends the
+/// child, not the caller: false with error set to the child's verdict, to
+/// "vtk-dicom's parser crashed (SIGSEGV) on one of its files", or to why no
+/// child could be started. POSIX: fork and a pipe.
+bool ProbeDicomFiles(const std::vector<std::string>& files, std::string& error);
+
 /// Checks each file's pixel data against its header (see above); claimed is
 /// set to the bytes of the decoded voxels (all files, as stored). False
 /// with error "'file': reason" for the first file that lies.

@@ -133,6 +133,40 @@ bool CheckAvailable(Bytes claimed, Bytes available, bool compressed,
   return true;
 }
 
+// A base64 digit's value; -1 for any other character.
+static int Base64Value(char c)
+{
+  static const std::string digits =
+    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::size_t at = c ? digits.find(c) : std::string::npos;
+  return at == std::string::npos ? -1 : static_cast<int>(at);
+}
+
+bool DecodeBase64(const std::string& text, std::string& decoded)
+{
+  decoded.clear();
+  for (std::size_t g = 0; g + 4 <= text.size(); g += 4)
+  {
+    unsigned int bits = 0;
+    int valid = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      const int v = Base64Value(text[g + k]);
+      if (v < 0 && text[g + k] != '=')
+      {
+        return false;
+      }
+      valid += v >= 0 && valid == k ? 1 : 0;
+      bits = (bits << 6) | static_cast<unsigned int>(v < 0 ? 0 : v);
+    }
+    for (int b = 0; b < valid - 1; ++b)
+    {
+      decoded += static_cast<char>((bits >> (16 - 8 * b)) & 0xff);
+    }
+  }
+  return true;
+}
+
 bool ParseIntegers(const std::string& text, std::vector<long long>& values)
 {
   std::istringstream in(text);

@@ -44,6 +44,10 @@ bool Product(
 bool CheckAvailable(Bytes claimed, Bytes available, bool compressed,
   const std::vector<long long>& dims, std::string& error);
 
+/// The bytes of text's complete groups of 4 base64 digits ('=' pads a
+/// group's end); false for any other character.
+bool DecodeBase64(const std::string& text, std::string& decoded);
+
 /// Whitespace-separated integers, all of text; false for none.
 bool ParseIntegers(const std::string& text, std::vector<long long>& values);
 

@@ -186,6 +186,15 @@ bool ParseHeader(const std::string& text, MetaHeader& header, std::string& error
       if (known != Keys().end())
       {
         header.Strings[key] = Trim(text.substr(at, end - at));
+        if (header.Strings[key].size() > 254)
+        {
+          // MetaObject copies a string field (ObjectType, Name, Comment,
+          // ...) into a 255-byte member: a longer value overruns it.
+          error = "the MetaImage header's " + key + " of " +
+            std::to_string(header.Strings[key].size()) +
+            " characters is longer than MetaIO holds (254)";
+          return false;
+        }
       }
     }
     else

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -249,24 +250,9 @@ public:
       return false;
     }
     std::string decoded;
-    for (std::size_t g = 0; g + 4 <= text.size(); g += 4)
+    if (!DecodeBase64(text, decoded))
     {
-      unsigned int bits = 0;
-      int valid = 0;
-      for (int k = 0; k < 4; ++k)
-      {
-        const int v = Value(text[g + k]);
-        if (v < 0 && text[g + k] != '=')
-        {
-          return false;
-        }
-        valid += v >= 0 && valid == k ? 1 : 0;
-        bits = (bits << 6) | static_cast<unsigned int>(v < 0 ? 0 : v);
-      }
-      for (int b = 0; b < valid - 1; ++b)
-      {
-        decoded += static_cast<char>((bits >> (16 - 8 * b)) & 0xff);
-      }
+      return false;
     }
     const std::size_t skip = static_cast<std::size_t>(at - first * 3);
     if (decoded.size() < skip + count)
@@ -278,14 +264,6 @@ public:
   }
 
 private:
-  static int Value(char c) // a base64 digit's value; -1 for any other character
-  {
-    static const std::string digits =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    const std::size_t at = c ? digits.find(c) : std::string::npos;
-    return at == std::string::npos ? -1 : static_cast<int>(at);
-  }
-
   bool Raw(Bytes at, Bytes count, std::string& out)
   {
     if (at + count > this->End)
@@ -638,12 +616,19 @@ bool CheckXMLImageHeader(const std::string& path, Bytes& claimed, std::string& e
   // First what the reader allocates, against what the file can hold; then
   // each array's data (the cheap refusal first).
   std::vector<const Element*> arrays;
+  std::set<std::string> names; // two of one name: the reader frees one while it reads it
   for (const Element& e : header.Elements)
   {
     const bool field = e.Parent == "FieldData";
+    const std::string name = Attribute(e.Tag, "Name");
     if (IsArray(e.Name) && (field || e.Parent == "PointData" || e.Parent == "CellData") &&
       (field || (e.Piece >= 0 && e.Piece < static_cast<int>(pieceDims.size()))))
     {
+      if (!name.empty() && !names.insert(std::to_string(e.Piece) + e.Parent + "/" + name).second)
+      {
+        error = "the image's " + e.Parent + " holds two arrays named '" + name + "'";
+        return false;
+      }
       arrays.push_back(&e); // outside any piece: the reader reads none of it
     }
   }

@@ -210,6 +210,19 @@ struct vtkMCXDICOMSeriesReader::Internals
     {
       return std::string("cannot read the DICOM folder '") + folder + "': " + walk;
     }
+    // Every file vtk-dicom will parse, parsed first in a child: a file that
+    // crashes its parser must not end this process (Python, ParaView).
+    std::vector<std::string> probed = found;
+    if (probed.empty())
+    {
+      mcxio::DicomFolderFiles(folder, mcxio::DicomScanDepth, mcxio::DicomFileLimit, probed, walk);
+      probed.push_back(std::string(folder) + "/DICOMDIR");
+    }
+    std::string probe;
+    if (!mcxio::ProbeDicomFiles(probed, probe))
+    {
+      return std::string("cannot read the DICOM series in '") + folder + "': " + probe;
+    }
     this->Directory->Modified(); // rescanned each time: files may have come or gone
     FirstError scan(this->Directory);
     this->Directory->Update();
