@@ -410,7 +410,8 @@ bool CheckDicomPixelData(
   return true;
 }
 
-bool ProbeDicomFiles(const std::vector<std::string>& files, std::string& error)
+bool ProbeDicomFiles(
+  const std::vector<std::string>& files, const std::function<void()>& scan, std::string& error)
 {
   int channel[2];
   if (::pipe(channel) != 0)
@@ -431,6 +432,10 @@ bool ProbeDicomFiles(const std::vector<std::string>& files, std::string& error)
   if (child == 0)
   {
     ::close(channel[0]);
+    if (scan)
+    {
+      scan();
+    }
     unsigned long long claimed = 0;
     std::string verdict;
     CheckDicomPixelData(files, claimed, verdict);

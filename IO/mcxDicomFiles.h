@@ -10,6 +10,7 @@
 #define mcxDicomFiles_h
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,11 @@ bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
 /// child, not the caller: false with error set to the child's verdict, to
 /// "vtk-dicom's parser crashed (SIGSEGV) on one of its files", or to why no
 /// child could be started. POSIX: fork and a pipe.
-bool ProbeDicomFiles(const std::vector<std::string>& files, std::string& error);
+/// The child first runs scan (the caller's own next step, the series
+/// reader's vtkDICOMDirectory update: the same code on the same memory as
+/// the parent's, which a parser's out-of-bounds read depends on).
+bool ProbeDicomFiles(
+  const std::vector<std::string>& files, const std::function<void()>& scan, std::string& error);
 
 /// Checks each file's pixel data against its header (see above); claimed is
 /// set to the bytes of the decoded voxels (all files, as stored). False

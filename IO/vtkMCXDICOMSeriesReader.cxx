@@ -210,8 +210,10 @@ struct vtkMCXDICOMSeriesReader::Internals
     {
       return std::string("cannot read the DICOM folder '") + folder + "': " + walk;
     }
-    // Every file vtk-dicom will parse, parsed first in a child: a file that
-    // crashes its parser must not end this process (Python, ParaView).
+    this->Directory->Modified(); // rescanned each time: files may have come or gone
+    // Every file vtk-dicom will parse, parsed first in a child (the scan
+    // below, then each file's pixel data): a file that crashes its parser
+    // must not end this process (Python, ParaView).
     std::vector<std::string> probed = found;
     if (probed.empty())
     {
@@ -219,11 +221,12 @@ struct vtkMCXDICOMSeriesReader::Internals
       probed.push_back(std::string(folder) + "/DICOMDIR");
     }
     std::string probe;
-    if (!mcxio::ProbeDicomFiles(probed, probe))
+    vtkDICOMDirectory* directory = this->Directory;
+    if (!mcxio::ProbeDicomFiles(
+          probed, [directory]() { directory->Update(); }, probe))
     {
       return std::string("cannot read the DICOM series in '") + folder + "': " + probe;
     }
-    this->Directory->Modified(); // rescanned each time: files may have come or gone
     FirstError scan(this->Directory);
     this->Directory->Update();
     const int count = this->Directory->GetNumberOfSeries();

@@ -33,7 +33,8 @@ EXTENSIONS = [".nii", ".nii.gz", ".mha", ".mhd", ".nrrd", ".nhdr", ".vtk", ".slc
 OWN_EXTENSIONS = EXTENSIONS + [".dcm"]
 FORMAT_READERS = {".nii": "vtkMCXNIFTIReader", ".nii.gz": "vtkMCXNIFTIReader",
                   ".mha": "vtkMCXMetaImageReader", ".mhd": "vtkMCXMetaImageReader",
-                  ".nrrd": "vtkMCXNrrdReader", ".nhdr": "vtkMCXNrrdReader"}
+                  ".nrrd": "vtkMCXNrrdReader", ".nhdr": "vtkMCXNrrdReader",
+                  ".dcm": "vtkMCXDICOMSeriesReader"}
 BOUNDARY_BYTES = [0x00, 0xFF, 0x7F, 0x80, 0x0A, 0x25, 0x3D, 0x3A, 0x3C]
 BOUNDARY_NUMBERS = [b"0", b"-1", b"1", b"2147483647", b"2147483648", b"4294967296",
                     b"9223372036854775807", b"-2147483648", b"1e308", b"nan"]
@@ -147,8 +148,8 @@ class Worker:
     def ask(self, path, extension, timeout):
         """The worker's answer for path, or what ended it."""
         if self.process is None or self.process.poll() is not None:
-            with open(self.log, "wb") as log:
-                self.process = subprocess.Popen([sys.executable, "-c", WORKER], stdin=subprocess.PIPE,
+            with open(self.log, "ab") as log:  # kept whole: a crash's traceback stays there
+                self.process = subprocess.Popen([sys.executable, "-X", "faulthandler", "-c", WORKER], stdin=subprocess.PIPE,
                                                 stdout=subprocess.PIPE, stderr=log, text=True,
                                                 errors="backslashreplace")
         self.process.stdin.write(path + "\t" + extension + "\n")
@@ -162,6 +163,7 @@ class Worker:
         if not answer:
             code = self.process.wait()
             with open(self.log, "rb") as log:
+                log.seek(max(0, os.path.getsize(self.log) - 4096))
                 tail = log.read().decode(errors="backslashreplace").strip().splitlines()[-1:]
             return "INTERPRETER ENDED (status %d%s)" % (code, ": " + tail[0] if tail else "")
         return answer.strip()
