@@ -36,6 +36,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+using mcxtest::CountFiles;
 using mcxtest::ExpectOneLineError;
 using mcxtest::Result;
 using mcxtest::RunCLI;
@@ -93,19 +94,6 @@ void ExpectRefused(const std::string& arguments, const std::string& needle)
 bool SameBytes(const std::string& a, const std::string& b)
 {
   return Slurp(a) == Slurp(b) && !Slurp(a).empty();
-}
-
-// Files of a folder whose names contain part (leftover temporaries).
-int CountFiles(const std::string& folder, const std::string& part)
-{
-  vtksys::Directory directory;
-  directory.Load(folder);
-  int count = 0;
-  for (unsigned long f = 0; f < directory.GetNumberOfFiles(); ++f)
-  {
-    count += std::string(directory.GetFile(f)).find(part) != std::string::npos ? 1 : 0;
-  }
-  return count;
 }
 }
 

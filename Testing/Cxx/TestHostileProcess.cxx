@@ -31,6 +31,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+using mcxtest::CountFiles;
 using mcxtest::Slurp;
 using mcxtest::Temporary;
 
@@ -64,19 +65,6 @@ struct Outcome
   double Seconds = 0;
   bool Signalled = false; // Conditions::Signal was sent
 };
-
-// Names of Folder's files that contain part.
-int CountFiles(const std::string& folder, const std::string& part)
-{
-  vtksys::Directory directory;
-  directory.Load(folder);
-  int count = 0;
-  for (unsigned long f = 0; f < directory.GetNumberOfFiles(); ++f)
-  {
-    count += std::string(directory.GetFile(f)).find(part) != std::string::npos ? 1 : 0;
-  }
-  return count;
-}
 
 // mcxray with arguments, forked and limited as conditions say (setrlimit in
 // the child before exec), its stdout and stderr kept in files of log.

@@ -7,6 +7,7 @@
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtksys/Directory.hxx"
 #include "vtksys/SystemTools.hxx"
 
 #include <gtest/gtest.h>
@@ -34,6 +35,19 @@ inline std::string Slurp(const std::string& path)
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+/// Files of folder whose names contain part (leftover temporaries).
+inline int CountFiles(const std::string& folder, const std::string& part)
+{
+  vtksys::Directory directory;
+  directory.Load(folder);
+  int count = 0;
+  for (unsigned long f = 0; f < directory.GetNumberOfFiles(); ++f)
+  {
+    count += std::string(directory.GetFile(f)).find(part) != std::string::npos ? 1 : 0;
+  }
+  return count;
 }
 
 inline Result RunCLI(const std::string& arguments, const std::string& environment = "")
