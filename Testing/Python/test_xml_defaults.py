@@ -24,6 +24,10 @@ CONSTANTS = {
     "Footprint": mcxray.vtkMCXTypes.FOOTPRINT,
     "Film": mcxray.vtkMCXXRayMapper.FILM,
     "Additive": mcxray.vtkMCXXRayMapper.ADDITIVE,
+    # X-Ray Attenuation of the ParaView-only classes (vtkMCXXRayRepresentation's
+    # and vtkMCXViewProjector's WEIGHT_ONLY and HU_TO_MU).
+    "Off (TF is the weight)": 0,
+    "HU to mu": 1,
 }
 VECTOR_PROPERTIES = ("IntVectorProperty", "DoubleVectorProperty", "IdTypeVectorProperty")
 
@@ -44,7 +48,8 @@ class XMLDefaults(unittest.TestCase):
     # proxy copies) are not the base class's.
     PARAVIEW_CLASSES = {"vtkMCXViewProjector": "vtkMCXProjector"}
     PARAVIEW_ONLY = {"ViewCameraInUse", "ViewCameraPosition", "ViewCameraFocalPoint", "ViewCameraViewUp",
-                     "ViewCameraViewAngle", "ViewCameraParallelScale", "ViewCameraParallelProjection"}
+                     "ViewCameraViewAngle", "ViewCameraParallelScale", "ViewCameraParallelProjection",
+                     "Attenuation", "WaterAttenuation"}
 
     def properties(self):
         for proxy in self.filters:
@@ -120,7 +125,9 @@ class XMLDefaults(unittest.TestCase):
                    "SetInvertDisplay": mapper.GetInvertDisplay, "SetCompositing": mapper.GetCompositing,
                    "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
                    "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,
-                   "SetProgressiveRefinement": mapper.GetProgressiveRefinement}
+                   "SetProgressiveRefinement": mapper.GetProgressiveRefinement,
+                   "SetBeerLambert": mapper.GetBeerLambert, "SetPhotonsPerPixel": mapper.GetPhotonsPerPixel,
+                   "SetNegativeLog": mapper.GetNegativeLog}
         representation = next(self.root.iter("MCXXRayRepresentationProxy"))
         checked = 0
         for kind in VECTOR_PROPERTIES:

@@ -1,6 +1,7 @@
 #include "vtkMCXViewProjector.h"
 
 #include "mcxAutomaticWindow.h"
+#include "mcxTransferFunctionSpec.h" // mcxray's mu(HU) x weight
 #include "vtkMCXCostPrivate.h"
 
 #include "vtkCamera.h"
@@ -10,6 +11,7 @@
 #include "vtkImageData.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 
 #include <algorithm>
@@ -98,7 +100,30 @@ int vtkMCXViewProjector::RequestData(
                                           << " before the image is shown.");
     }
   }
-  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  // HU to mu: the index is projected under mu(HU) x the TF for this run
+  // only (the member is swapped back, not set: the TF and this filter stay
+  // unmodified).
+  vtkImageData* index = vtkImageData::GetData(inputVector[0], 0);
+  vtkDataArray* levels =
+    index ? index->GetFieldData()->GetArray(vtkMCXTypes::LevelValuesName()) : nullptr;
+  vtkSmartPointer<vtkPiecewiseFunction> attenuation;
+  if (this->Attenuation == HU_TO_MU && levels && levels->GetNumberOfTuples() > 0)
+  {
+    const double low = levels->GetTuple1(0);
+    const double dataRange[2] = { low,
+      std::max(levels->GetTuple1(levels->GetNumberOfTuples() - 1), low + 1.0) };
+    const double air = low <= -500.0 ? -1000.0 : low; // mcxray view's rule
+    attenuation = mcxapp::MakeWeightedAttenuation(
+      this->TransferFunction, this->WaterAttenuation, air, dataRange);
+  }
+  vtkPiecewiseFunction* weight = this->TransferFunction;
+  if (attenuation)
+  {
+    this->TransferFunction = attenuation;
+  }
+  const int projected = this->Superclass::RequestData(request, inputVector, outputVector);
+  this->TransferFunction = weight;
+  if (!projected)
   {
     return 0;
   }
@@ -120,6 +145,8 @@ void vtkMCXViewProjector::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ViewCameraInUse: " << this->ViewCameraInUse << "\n";
+  os << indent << "Attenuation: " << this->Attenuation << "\n";
+  os << indent << "WaterAttenuation: " << this->WaterAttenuation << "\n";
   os << indent << "ViewCamera:\n";
   this->ViewCamera->PrintSelf(os, indent.GetNextIndent());
 }

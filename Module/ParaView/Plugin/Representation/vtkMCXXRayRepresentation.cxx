@@ -8,6 +8,8 @@
 #include "vtkMCXXRayMapper.h"
 #include "vtkMCXXRayRepresentationExecutive.h"
 
+#include "mcxTransferFunctionSpec.h" // mcxray's mu(HU) x weight
+
 #include "vtkAlgorithmOutput.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -354,6 +356,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
         this->Mapper->SetInputConnection(producer);
       }
       this->UseDefaultRampUnlessColoured(index);
+      this->UseSampledFunction(index);
     }
     else
     {
@@ -441,6 +444,10 @@ void vtkMCXXRayRepresentation::SetVisibility(bool visible)
 
 void vtkMCXXRayRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* function)
 {
+  if (function != this->OpacityFunction)
+  {
+    this->ToldNotAttenuation = false; // a new TF is told again
+  }
   this->OpacityFunction = function;
   this->Volume->GetProperty()->SetScalarOpacity(
     function ? function : this->DefaultRamp.GetPointer());
@@ -472,6 +479,95 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
     this->DefaultRamp->AddPoint(high, 1.0);
   }
   this->Volume->GetProperty()->SetScalarOpacity(this->DefaultRamp);
+}
+
+void vtkMCXXRayRepresentation::UseSampledFunction(vtkImageData* index)
+{
+  vtkPiecewiseFunction* weight =
+    this->OpacityFunction ? this->OpacityFunction.GetPointer() : this->DefaultRamp.GetPointer();
+  vtkDataArray* levels = index->GetFieldData()->GetArray(vtkMCXTypes::LevelValuesName());
+  if (this->Attenuation != HU_TO_MU || !levels || levels->GetNumberOfTuples() < 1)
+  {
+    this->Volume->GetProperty()->SetScalarOpacity(weight);
+    // Radiograph physics of a TF that is not an attenuation per world unit:
+    // line integrals of a 0-1 weight over a body are about 100, exp(-100)
+    // a black image.
+    const bool physics = this->Mapper->GetBeerLambert() || this->Mapper->GetPhotonsPerPixel() > 0;
+    double largest = 0.0;
+    for (int i = 0; i < weight->GetSize(); ++i)
+    {
+      double node[4];
+      weight->GetNodeValue(i, node);
+      largest = std::max(largest, node[1]);
+    }
+    if (physics && largest > 0.1 && !this->ToldNotAttenuation)
+    {
+      vtkWarningMacro("Monte Carlo X-Ray: Beer-Lambert needs a TF in attenuation per mm (water "
+                      "0.02), not a 0-1 weight (up to "
+        << largest
+        << ", line integrals of about 100: a black image); set X-Ray Attenuation "
+           "to 'HU to mu' to keep the TF a 0-1 weight on mu(HU).");
+      this->ToldNotAttenuation = true;
+    }
+    return;
+  }
+  // mu(HU) x the weight, made again when the weight, the settings or the
+  // densities change (the editor's TF is never modified).
+  const double range[2] = { levels->GetTuple1(0),
+    levels->GetTuple1(levels->GetNumberOfTuples() - 1) };
+  const vtkMTimeType time = weight->GetMTime();
+  if (weight != this->WeightedAttenuationOf || time != this->WeightedAttenuationTime ||
+    this->WaterAttenuation != this->WeightedAttenuationWater ||
+    range[0] != this->WeightedAttenuationRange[0] ||
+    range[1] != this->WeightedAttenuationRange[1] || this->WeightedAttenuation->GetSize() == 0)
+  {
+    // HU = value - air - 1000: CT in HU, else the lowest density is air
+    // (mcxray view's rule).
+    const double air = range[0] <= -500.0 ? -1000.0 : range[0];
+    const double dataRange[2] = { range[0], std::max(range[1], range[0] + 1.0) };
+    this->WeightedAttenuation->DeepCopy(
+      mcxapp::MakeWeightedAttenuation(weight, this->WaterAttenuation, air, dataRange));
+    this->WeightedAttenuationOf = weight;
+    this->WeightedAttenuationTime = time;
+    this->WeightedAttenuationWater = this->WaterAttenuation;
+    this->WeightedAttenuationRange[0] = range[0];
+    this->WeightedAttenuationRange[1] = range[1];
+  }
+  this->Volume->GetProperty()->SetScalarOpacity(this->WeightedAttenuation);
+}
+
+void vtkMCXXRayRepresentation::SetAttenuation(int mode)
+{
+  mode = std::min(std::max(mode, static_cast<int>(WEIGHT_ONLY)), static_cast<int>(HU_TO_MU));
+  if (mode != this->Attenuation)
+  {
+    this->Attenuation = mode;
+    this->ToldNotAttenuation = false;
+    this->Modified();
+  }
+}
+
+void vtkMCXXRayRepresentation::SetBeerLambert(bool on)
+{
+  if (on && !this->Mapper->GetBeerLambert())
+  {
+    this->ToldNotAttenuation = false;
+  }
+  this->Mapper->SetBeerLambert(on);
+}
+
+void vtkMCXXRayRepresentation::SetPhotonsPerPixel(double photons)
+{
+  if (photons > 0 && !(this->Mapper->GetPhotonsPerPixel() > 0))
+  {
+    this->ToldNotAttenuation = false;
+  }
+  this->Mapper->SetPhotonsPerPixel(photons);
+}
+
+void vtkMCXXRayRepresentation::SetNegativeLog(bool on)
+{
+  this->Mapper->SetNegativeLog(on);
 }
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)
@@ -610,6 +706,15 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
   os << indent << "StreamedProgress: " << this->StreamedProgress << "\n";
   os << indent << "ToldServerCannotRender: " << this->ToldServerCannotRender << "\n";
+  os << indent << "Attenuation: " << this->Attenuation << "\n";
+  os << indent << "WaterAttenuation: " << this->WaterAttenuation << "\n";
+  os << indent << "WeightedAttenuation: " << this->WeightedAttenuation.GetPointer() << "\n";
+  os << indent << "WeightedAttenuationOf: " << this->WeightedAttenuationOf << "\n";
+  os << indent << "WeightedAttenuationTime: " << this->WeightedAttenuationTime << "\n";
+  os << indent << "WeightedAttenuationWater: " << this->WeightedAttenuationWater << "\n";
+  os << indent << "WeightedAttenuationRange: " << this->WeightedAttenuationRange[0] << " "
+     << this->WeightedAttenuationRange[1] << "\n";
+  os << indent << "ToldNotAttenuation: " << this->ToldNotAttenuation << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";
