@@ -12,7 +12,9 @@ with X-Ray Beer-Lambert on:
   picture is neither black nor flat and nothing more is said; the editor's
   TF is left as it was;
 - X-Ray Water Attenuation scales the line integrals (twice mu, twice the
-  integrals), and noise and the negative log apply on top.
+  integrals), and noise and the negative log apply on top;
+- X-Ray Projector's Attenuation and Water Attenuation do the same to its
+  LineIntegral image.
 
     pvbatch pvbatch_attenuation.py PLUGIN BODY.nii.gz OUTPUT_DIR
 """
@@ -139,6 +141,30 @@ Render(view)
 display.XRayBeerLambert = 1
 Render(view)
 check(len(said.texts) == 3, "Beer-Lambert ticked again without attenuation: %d warnings, not 3" % len(said.texts))
+
+# X-Ray Projector: the same mode makes LineIntegral an attenuation's line
+# integrals (its TF, a 0-1 ramp over the densities, left as it is).
+index = XRayDensityIndex(Input=body)
+projector = XRayProjector(Input=index, UseActiveViewCamera=0, SampleExponent=18, DetectorAxisV=[0, 0, 1])
+projector_tf = list(projector.TransferFunction.Points)
+
+
+def projected_largest():
+    projector.UpdatePipeline()
+    return projector.GetDataInformation().DataInformation.GetPointDataInformation().GetArrayInformation(
+        "LineIntegral").GetComponentRange(0)[1]
+
+
+weighted = projected_largest()
+projector.Attenuation = 1
+attenuated = projected_largest()
+projector.WaterAttenuation = 0.04
+doubled = projected_largest()
+print("projector line integrals: TF %.3g, HU to mu %.3g, twice mu %.3g" % (weighted, attenuated, doubled))
+check(weighted > 30, "the projector's 0-1 TF gave line integrals up to %g only" % weighted)
+check(0.5 < attenuated < 20, "the projector's HU-to-mu line integrals reach %g" % attenuated)
+check(abs(doubled / attenuated - 2.0) < 0.05, "twice mu of water gave the projector %g times" % (doubled / attenuated))
+check(list(projector.TransferFunction.Points) == projector_tf, "the projector's TF was changed")
 
 if failures:
     print("%d failures" % len(failures))

@@ -1,7 +1,7 @@
 #include "vtkMCXViewProjector.h"
 
 #include "mcxAutomaticWindow.h"
-#include "mcxTransferFunctionSpec.h" // mcxray's mu(HU) x weight
+#include "vtkMCXAttenuationModePrivate.h"
 #include "vtkMCXCostPrivate.h"
 
 #include "vtkCamera.h"
@@ -103,18 +103,12 @@ int vtkMCXViewProjector::RequestData(
   // HU to mu: the index is projected under mu(HU) x the TF for this run
   // only (the member is swapped back, not set: the TF and this filter stay
   // unmodified).
-  vtkImageData* index = vtkImageData::GetData(inputVector[0], 0);
-  vtkDataArray* levels =
-    index ? index->GetFieldData()->GetArray(vtkMCXTypes::LevelValuesName()) : nullptr;
+  double range[2];
   vtkSmartPointer<vtkPiecewiseFunction> attenuation;
-  if (this->Attenuation == HU_TO_MU && levels && levels->GetNumberOfTuples() > 0)
+  if (this->Attenuation == HU_TO_MU &&
+    mcx::IndexDensityRange(vtkImageData::GetData(inputVector[0], 0), range))
   {
-    const double low = levels->GetTuple1(0);
-    const double dataRange[2] = { low,
-      std::max(levels->GetTuple1(levels->GetNumberOfTuples() - 1), low + 1.0) };
-    const double air = low <= -500.0 ? -1000.0 : low; // mcxray view's rule
-    attenuation = mcxapp::MakeWeightedAttenuation(
-      this->TransferFunction, this->WaterAttenuation, air, dataRange);
+    attenuation = mcx::WeightedAttenuation(this->TransferFunction, this->WaterAttenuation, range);
   }
   vtkPiecewiseFunction* weight = this->TransferFunction;
   if (attenuation)

@@ -2,13 +2,12 @@
 
 #include "vtkMCXAggregateIndex.h"
 #include "vtkMCXAgreeingExecutive.h"
+#include "vtkMCXAttenuationModePrivate.h"
 #include "vtkMCXCostPrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributed.h"
 #include "vtkMCXXRayMapper.h"
 #include "vtkMCXXRayRepresentationExecutive.h"
-
-#include "mcxTransferFunctionSpec.h" // mcxray's mu(HU) x weight
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkDataArray.h"
@@ -485,48 +484,31 @@ void vtkMCXXRayRepresentation::UseSampledFunction(vtkImageData* index)
 {
   vtkPiecewiseFunction* weight =
     this->OpacityFunction ? this->OpacityFunction.GetPointer() : this->DefaultRamp.GetPointer();
-  vtkDataArray* levels = index->GetFieldData()->GetArray(vtkMCXTypes::LevelValuesName());
-  if (this->Attenuation != HU_TO_MU || !levels || levels->GetNumberOfTuples() < 1)
+  double range[2];
+  if (this->Attenuation != HU_TO_MU || !mcx::IndexDensityRange(index, range))
   {
     this->Volume->GetProperty()->SetScalarOpacity(weight);
     // Radiograph physics of a TF that is not an attenuation per world unit:
-    // line integrals of a 0-1 weight over a body are about 100, exp(-100)
-    // a black image.
-    const bool physics = this->Mapper->GetBeerLambert() || this->Mapper->GetPhotonsPerPixel() > 0;
-    double largest = 0.0;
-    for (int i = 0; i < weight->GetSize(); ++i)
+    // line integrals of a 0-1 weight through a body are about 100.
+    const double largest = mcx::LargestValue(weight);
+    if ((this->Mapper->GetBeerLambert() || this->Mapper->GetPhotonsPerPixel() > 0) &&
+      largest > mcx::LargestAttenuation && !this->ToldNotAttenuation)
     {
-      double node[4];
-      weight->GetNodeValue(i, node);
-      largest = std::max(largest, node[1]);
-    }
-    if (physics && largest > 0.1 && !this->ToldNotAttenuation)
-    {
-      vtkWarningMacro("Monte Carlo X-Ray: Beer-Lambert needs a TF in attenuation per mm (water "
-                      "0.02), not a 0-1 weight (up to "
-        << largest
-        << ", line integrals of about 100: a black image); set X-Ray Attenuation "
-           "to 'HU to mu' to keep the TF a 0-1 weight on mu(HU).");
+      vtkWarningMacro(<< mcx::NotAttenuationWarning(largest));
       this->ToldNotAttenuation = true;
     }
     return;
   }
-  // mu(HU) x the weight, made again when the weight, the settings or the
+  // mu(HU) x the weight, made again when the weight, mu of water or the
   // densities change (the editor's TF is never modified).
-  const double range[2] = { levels->GetTuple1(0),
-    levels->GetTuple1(levels->GetNumberOfTuples() - 1) };
   const vtkMTimeType time = weight->GetMTime();
   if (weight != this->WeightedAttenuationOf || time != this->WeightedAttenuationTime ||
     this->WaterAttenuation != this->WeightedAttenuationWater ||
     range[0] != this->WeightedAttenuationRange[0] ||
     range[1] != this->WeightedAttenuationRange[1] || this->WeightedAttenuation->GetSize() == 0)
   {
-    // HU = value - air - 1000: CT in HU, else the lowest density is air
-    // (mcxray view's rule).
-    const double air = range[0] <= -500.0 ? -1000.0 : range[0];
-    const double dataRange[2] = { range[0], std::max(range[1], range[0] + 1.0) };
     this->WeightedAttenuation->DeepCopy(
-      mcxapp::MakeWeightedAttenuation(weight, this->WaterAttenuation, air, dataRange));
+      mcx::WeightedAttenuation(weight, this->WaterAttenuation, range));
     this->WeightedAttenuationOf = weight;
     this->WeightedAttenuationTime = time;
     this->WeightedAttenuationWater = this->WaterAttenuation;
@@ -547,21 +529,16 @@ void vtkMCXXRayRepresentation::SetAttenuation(int mode)
   }
 }
 
+// Turning Beer-Lambert or noise on enters the combination the warning is about.
 void vtkMCXXRayRepresentation::SetBeerLambert(bool on)
 {
-  if (on && !this->Mapper->GetBeerLambert())
-  {
-    this->ToldNotAttenuation = false;
-  }
+  this->ToldNotAttenuation &= !(on && !this->Mapper->GetBeerLambert());
   this->Mapper->SetBeerLambert(on);
 }
 
 void vtkMCXXRayRepresentation::SetPhotonsPerPixel(double photons)
 {
-  if (photons > 0 && !(this->Mapper->GetPhotonsPerPixel() > 0))
-  {
-    this->ToldNotAttenuation = false;
-  }
+  this->ToldNotAttenuation &= !(photons > 0 && !(this->Mapper->GetPhotonsPerPixel() > 0));
   this->Mapper->SetPhotonsPerPixel(photons);
 }
 
