@@ -166,6 +166,25 @@ check(0.5 < attenuated < 20, "the projector's HU-to-mu line integrals reach %g" 
 check(abs(doubled / attenuated - 2.0) < 0.05, "twice mu of water gave the projector %g times" % (doubled / attenuated))
 check(list(projector.TransferFunction.Points) == projector_tf, "the projector's TF was changed")
 
+# X-Ray Radiograph after it: Beer-Lambert of the TF's line integrals warns
+# once in one line; of HU to mu's, not.
+projector.WaterAttenuation = 0.02
+projector.Attenuation = 0
+radiograph = XRayRadiograph(Input=projector, BeerLambert=1)
+told = Warnings(radiograph.GetClientSideObject())
+radiograph.UpdatePipeline()
+radiograph.BeerLambert = 0
+radiograph.BeerLambert = 1
+radiograph.UpdatePipeline()
+check(len(told.texts) == 1 and "\n" not in told.texts[0] and "not an attenuation" in told.texts[0],
+      "X-Ray Radiograph of a 0-1 TF's line integrals said %s" % told.texts)
+projector.Attenuation = 1
+radiograph.UpdatePipeline()
+intensity = radiograph.GetDataInformation().DataInformation.GetPointDataInformation().GetArrayInformation(
+    "Intensity").GetComponentRange(0)
+check(len(told.texts) == 1, "X-Ray Radiograph of HU to mu warned: %s" % told.texts[1:])
+check(intensity[0] > 1e-4 and intensity[1] > 0.99, "the HU-to-mu radiograph's intensities are %s" % (intensity,))
+
 if failures:
     print("%d failures" % len(failures))
     sys.exit(1)
