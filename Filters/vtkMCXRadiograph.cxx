@@ -55,6 +55,27 @@ int vtkMCXRadiograph::RequestData(
     output->Initialize();
     return 0;
   }
+  // Intensities of line integrals that are not an attenuation's are black.
+  if ((this->BeerLambert && !this->NegativeLog) || this->PhotonsPerPixel > 0)
+  {
+    double sum = 0.0;
+    vtkIdType positive = 0;
+    for (vtkIdType p = 0; p < lineIntegral->GetNumberOfTuples(); ++p)
+    {
+      const double value = lineIntegral->GetComponent(p, 0);
+      sum += value > 0 ? value : 0.0;
+      positive += value > 0 ? 1 : 0;
+    }
+    const double mean = positive > 0 ? sum / positive : 0.0;
+    if (mean > NotAttenuationMean && !this->ToldNotAttenuation)
+    {
+      vtkWarningMacro("Beer-Lambert of line integrals averaging "
+        << mean
+        << ": not an attenuation's (per mm, a few through a body), so the image is black; "
+           "project mu (vtkMCXAttenuationFunction, X-Ray Projector's Attenuation 'HU to mu').");
+    }
+    this->ToldNotAttenuation = mean > NotAttenuationMean;
+  }
   vtkNew<vtkDoubleArray> values;
   values->SetName(this->NegativeLog ? vtkMCXTypes::AttenuationName() : vtkMCXTypes::IntensityName());
   const vtkIdType pixels = lineIntegral->GetNumberOfTuples();
@@ -82,4 +103,5 @@ void vtkMCXRadiograph::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";
   os << indent << "NoiseSeed: " << this->NoiseSeed << "\n";
   os << indent << "NegativeLog: " << this->NegativeLog << "\n";
+  os << indent << "ToldNotAttenuation: " << this->ToldNotAttenuation << "\n";
 }

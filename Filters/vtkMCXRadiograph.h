@@ -15,6 +15,11 @@
  * - NegativeLog: point data "Attenuation" = -ln(Intensity / I0), the display
  *   radiologists read (dense is bright); without noise it equals the line
  *   integral. A pixel that counted no photons is given half a photon.
+ * The line integrals must be of an attenuation per world unit (a few
+ * through a body): Beer-Lambert or noise of an image whose positive line
+ * integrals average above NotAttenuationMean (a 0-1 TF, not mu: a black
+ * image) warns once, in one line; again only after an image that is an
+ * attenuation's.
  * The input's arrays and field data are kept; the new array is the active
  * scalars. vtkMCXXRayMapper has the same five properties, with the same
  * names, defaults and ranges, for the image on screen.
@@ -68,6 +73,9 @@ public:
   vtkBooleanMacro(NegativeLog, bool);
   ///@}
 
+  /** Above this mean positive line integral an image is not an attenuation's (exp(-20) ~ 2e-9). */
+  static constexpr double NotAttenuationMean = 20.0;
+
   /** True when some effect is on (else the filter passes its input through). */
   bool HasEffects();
 
@@ -82,6 +90,7 @@ protected:
   double PhotonsPerPixel = 0.0;
   vtkTypeInt64 NoiseSeed = 0;
   bool NegativeLog = false;
+  bool ToldNotAttenuation = false; // the warning is given once
 
 private:
   vtkMCXRadiograph(const vtkMCXRadiograph&) = delete;

@@ -10,6 +10,9 @@
    unticking X-Ray Automatic Window starts the manual window there, and the
    automatic window is kept through camera motion and re-colouring by the
    array already shown (recomputed on a new array or a TF edit);
+9. the orientation axes' labels read on the film: black on a light film
+   (X-Ray Invert, Beer-Lambert's intensity), white again on a dark one, a
+   colour the user chose left alone;
 7. pvpython: XRayDensityIndex(Input=reader) on a reader not yet updated
    indexes the active scalars (Density left empty), without an error.
 
@@ -283,6 +286,42 @@ check(not same(detector, along_x), "UseActiveViewCamera=0 still follows the view
 check(same(detector, projected(XRayProjector(Input=index, ImageSize=[64, 48], SampleExponent=18,
                                              UseActiveViewCamera=0, DetectorAxisU=[1, 0, 0]))),
       "UseActiveViewCamera=0 is not the explicit detector")
+
+# 9. Orientation axes on the inverted (light) film: their labels are drawn
+# black, so that X, Y and Z read; white again on the dark film.
+axes_view = CreateView("RenderView")
+axes_view.ViewSize = [400, 400]
+axes_view.OrientationAxesVisibility = 1
+film = Show(reader, axes_view, "UniformGridRepresentation")
+film.SetRepresentationType("Monte Carlo X-Ray")
+film.XRaySampleExponent = 16
+axes_view.ResetCamera(False)
+
+
+def axes_corner(file_name):
+    """The orientation axes' corner of a screenshot: its dark (label) pixels, and the film's grey."""
+    path = os.path.join(output_dir, file_name)
+    SaveScreenshot(path, axes_view, ImageResolution=[400, 400])
+    corner = read_png(path)[:80, :80, :3].astype(float)  # row 0 at the bottom
+    return int((corner.max(axis=2) < 90).sum()), float(numpy.median(corner))
+
+
+Render(axes_view)
+check(list(axes_view.OrientationAxesLabelColor) == [1.0, 1.0, 1.0], "the dark film changed the axes' labels")
+film.XRayInvert = 1
+Render(axes_view)
+dark_pixels, film_grey = axes_corner("axes-inverted-film.png")
+check(list(axes_view.OrientationAxesLabelColor) == [0.0, 0.0, 0.0],
+      "on the inverted film the axes' labels are %s, not black" % list(axes_view.OrientationAxesLabelColor))
+check(film_grey > 200 and dark_pixels >= 10,
+      "the axes' labels do not read on the inverted film (%d dark pixels on grey %g)" % (dark_pixels, film_grey))
+film.XRayBeerLambert = 1  # inverted intensity: a dark film again
+Render(axes_view)
+check(list(axes_view.OrientationAxesLabelColor) == [1.0, 1.0, 1.0], "on the dark film the labels stayed black")
+film.XRayBeerLambert = 0
+axes_view.OrientationAxesLabelColor = [1.0, 0.0, 0.0]  # the user's choice
+Render(axes_view)
+check(list(axes_view.OrientationAxesLabelColor) == [1.0, 0.0, 0.0], "the user's label colour was replaced")
 
 if failures:
     print("%d failures" % len(failures))

@@ -2,7 +2,9 @@
 property's default equals the default of the wrapped class (so pvpython and
 `import mcxray` make the same image from the same class), each range lies
 within the setter's clamp, and each enumeration's values are the class's
-constants. Run with the XML's path as the argument."""
+constants. Run with the XML's path as the argument (the other .xml files of
+its folder, the readers', are read with it)."""
+import os
 import sys
 import unittest
 import xml.etree.ElementTree as ET
@@ -10,6 +12,15 @@ import xml.etree.ElementTree as ET
 import mcxray
 
 XML = sys.argv.pop(1) if len(sys.argv) > 1 else None
+
+
+def plugin_xml(path):
+    """The plugin's server-manager XML: `path` and the other .xml files of its folder, as one tree."""
+    root = ET.Element("ServerManagerConfiguration")
+    folder = os.path.dirname(os.path.abspath(path))
+    for name in sorted(n for n in os.listdir(folder) if n.endswith(".xml")):
+        root.extend(list(ET.parse(os.path.join(folder, name)).getroot()))
+    return root
 
 # Enumeration entries (by text) and the C++ constants they stand for.
 CONSTANTS = {
@@ -24,6 +35,10 @@ CONSTANTS = {
     "Footprint": mcxray.vtkMCXTypes.FOOTPRINT,
     "Film": mcxray.vtkMCXXRayMapper.FILM,
     "Additive": mcxray.vtkMCXXRayMapper.ADDITIVE,
+    # X-Ray Attenuation of the ParaView-only classes (vtkMCXXRayRepresentation's
+    # and vtkMCXViewProjector's WEIGHT_ONLY and HU_TO_MU).
+    "Off (TF is the weight)": 0,
+    "HU to mu": 1,
 }
 VECTOR_PROPERTIES = ("IntVectorProperty", "DoubleVectorProperty", "IdTypeVectorProperty")
 
@@ -34,7 +49,7 @@ def as_list(value):
 
 class XMLDefaults(unittest.TestCase):
     def setUp(self):
-        self.root = ET.parse(XML).getroot()
+        self.root = plugin_xml(XML)
         # X-Ray Projector's proxy is the plugin's own (vtkSMMCXViewProjectorProxy).
         self.filters = [p for p in self.root.iter() if p.tag in ("SourceProxy", "MCXViewProjectorProxy")]
         self.assertGreaterEqual(len(self.filters), 4)
@@ -44,7 +59,8 @@ class XMLDefaults(unittest.TestCase):
     # proxy copies) are not the base class's.
     PARAVIEW_CLASSES = {"vtkMCXViewProjector": "vtkMCXProjector"}
     PARAVIEW_ONLY = {"ViewCameraInUse", "ViewCameraPosition", "ViewCameraFocalPoint", "ViewCameraViewUp",
-                     "ViewCameraViewAngle", "ViewCameraParallelScale", "ViewCameraParallelProjection"}
+                     "ViewCameraViewAngle", "ViewCameraParallelScale", "ViewCameraParallelProjection",
+                     "Attenuation", "WaterAttenuation"}
 
     def properties(self):
         for proxy in self.filters:
@@ -120,7 +136,9 @@ class XMLDefaults(unittest.TestCase):
                    "SetInvertDisplay": mapper.GetInvertDisplay, "SetCompositing": mapper.GetCompositing,
                    "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
                    "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,
-                   "SetProgressiveRefinement": mapper.GetProgressiveRefinement}
+                   "SetProgressiveRefinement": mapper.GetProgressiveRefinement,
+                   "SetBeerLambert": mapper.GetBeerLambert, "SetPhotonsPerPixel": mapper.GetPhotonsPerPixel,
+                   "SetNegativeLog": mapper.GetNegativeLog}
         representation = next(self.root.iter("MCXXRayRepresentationProxy"))
         checked = 0
         for kind in VECTOR_PROPERTIES:

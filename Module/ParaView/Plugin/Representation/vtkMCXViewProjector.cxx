@@ -1,15 +1,20 @@
 #include "vtkMCXViewProjector.h"
 
 #include "mcxAutomaticWindow.h"
+#include "vtkMCXAttenuationModePrivate.h"
 #include "vtkMCXCostPrivate.h"
+#include "vtkMCXDistributed.h"
 
 #include "vtkCamera.h"
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 
 #include <algorithm>
@@ -98,7 +103,38 @@ int vtkMCXViewProjector::RequestData(
                                           << " before the image is shown.");
     }
   }
-  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  // HU to mu: the index is projected under mu(HU) x the TF for this run
+  // only (the member is swapped back, not set: the TF and this filter stay
+  // unmodified).
+  double range[2];
+  bool known = this->Attenuation == HU_TO_MU &&
+    mcx::IndexDensityRange(vtkImageData::GetData(inputVector[0], 0), range);
+  vtkMultiProcessController* controller = this->GetController();
+  if (this->Attenuation == HU_TO_MU && mcx::IsDistributed(controller))
+  {
+    // Each process holds its slab's index: the whole volume's densities
+    // decide where air is, the same on every process.
+    const double local[2] = { known ? range[0] : VTK_DOUBLE_MAX,
+      known ? -range[1] : VTK_DOUBLE_MAX };
+    double whole[2];
+    controller->AllReduce(local, whole, 2, vtkCommunicator::MIN_OP);
+    known = whole[0] <= -whole[1];
+    range[0] = whole[0];
+    range[1] = -whole[1];
+  }
+  vtkSmartPointer<vtkPiecewiseFunction> attenuation;
+  if (known)
+  {
+    attenuation = mcx::WeightedAttenuation(this->TransferFunction, this->WaterAttenuation, range);
+  }
+  vtkPiecewiseFunction* weight = this->TransferFunction;
+  if (attenuation)
+  {
+    this->TransferFunction = attenuation;
+  }
+  const int projected = this->Superclass::RequestData(request, inputVector, outputVector);
+  this->TransferFunction = weight;
+  if (!projected)
   {
     return 0;
   }
@@ -120,6 +156,8 @@ void vtkMCXViewProjector::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ViewCameraInUse: " << this->ViewCameraInUse << "\n";
+  os << indent << "Attenuation: " << this->Attenuation << "\n";
+  os << indent << "WaterAttenuation: " << this->WaterAttenuation << "\n";
   os << indent << "ViewCamera:\n";
   this->ViewCamera->PrintSelf(os, indent.GetNextIndent());
 }

@@ -14,6 +14,13 @@
  * LineIntegral), which vtkSMMCXViewProjectorProxy gives the image's colour
  * map when it is first shown.
  *
+ * Attenuation HU_TO_MU (default WEIGHT_ONLY) projects an index input under
+ * mu(HU) x TF instead of the TF, as vtkMCXXRayRepresentation's X-Ray
+ * Attenuation does (mcxray's `--tf mu` map at WaterAttenuation per world
+ * unit times the TF clamped to [0, 1], mcxapp::MakeWeightedAttenuation; no
+ * TF: mu alone): LineIntegral then holds line integrals of mu, which X-Ray
+ * Radiograph turns into a radiograph. The TF itself is left as it is.
+ *
  * A projection from a density index whose sample count will take more than
  * about 10 s (2^SampleExponent - 1 samples at about 15 M a second) warns in
  * one line with the count and the time before it starts, so that a GUI that
@@ -52,6 +59,25 @@ public:
   vtkCamera* GetViewCamera() { return this->ViewCamera; }
   ///@}
 
+  /** What an index input is projected under: the TF, or mu(HU) x the TF. */
+  enum AttenuationModes
+  {
+    WEIGHT_ONLY = 0,
+    HU_TO_MU = 1
+  };
+
+  ///@{
+  /** The attenuation mode (default WEIGHT_ONLY, see the class comment). */
+  vtkSetClampMacro(Attenuation, int, WEIGHT_ONLY, HU_TO_MU);
+  vtkGetMacro(Attenuation, int);
+  ///@}
+
+  ///@{
+  /** mu of water per world unit for HU_TO_MU (default 0.02 per mm, about 70 keV; 0.001-1). */
+  vtkSetClampMacro(WaterAttenuation, double, 0.001, 1.0);
+  vtkGetMacro(WaterAttenuation, double);
+  ///@}
+
   /** The name of the output's field data with the automatic window. */
   static const char* AutomaticWindowName() { return "AutomaticWindow"; }
 
@@ -63,6 +89,8 @@ protected:
 
   vtkNew<vtkCamera> ViewCamera;
   bool ViewCameraInUse = false;
+  int Attenuation = WEIGHT_ONLY;
+  double WaterAttenuation = 0.02;
 
 private:
   vtkMCXViewProjector(const vtkMCXViewProjector&) = delete;

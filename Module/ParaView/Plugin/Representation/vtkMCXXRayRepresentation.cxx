@@ -2,6 +2,7 @@
 
 #include "vtkMCXAggregateIndex.h"
 #include "vtkMCXAgreeingExecutive.h"
+#include "vtkMCXAttenuationModePrivate.h"
 #include "vtkMCXCostPrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributed.h"
@@ -354,6 +355,7 @@ int vtkMCXXRayRepresentation::ProcessViewRequest(
         this->Mapper->SetInputConnection(producer);
       }
       this->UseDefaultRampUnlessColoured(index);
+      this->UseSampledFunction(index);
     }
     else
     {
@@ -441,6 +443,10 @@ void vtkMCXXRayRepresentation::SetVisibility(bool visible)
 
 void vtkMCXXRayRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* function)
 {
+  if (function != this->OpacityFunction)
+  {
+    this->ToldNotAttenuation = false; // a new TF is told again
+  }
   this->OpacityFunction = function;
   this->Volume->GetProperty()->SetScalarOpacity(
     function ? function : this->DefaultRamp.GetPointer());
@@ -472,6 +478,73 @@ void vtkMCXXRayRepresentation::UseDefaultRampUnlessColoured(vtkImageData* index)
     this->DefaultRamp->AddPoint(high, 1.0);
   }
   this->Volume->GetProperty()->SetScalarOpacity(this->DefaultRamp);
+}
+
+void vtkMCXXRayRepresentation::UseSampledFunction(vtkImageData* index)
+{
+  vtkPiecewiseFunction* weight =
+    this->OpacityFunction ? this->OpacityFunction.GetPointer() : this->DefaultRamp.GetPointer();
+  double range[2];
+  if (this->Attenuation != HU_TO_MU || !mcx::IndexDensityRange(index, range))
+  {
+    this->Volume->GetProperty()->SetScalarOpacity(weight);
+    // Radiograph physics of a TF that is not an attenuation per world unit:
+    // line integrals of a 0-1 weight through a body are about 100.
+    const double largest = mcx::LargestValue(weight);
+    if ((this->Mapper->GetBeerLambert() || this->Mapper->GetPhotonsPerPixel() > 0) &&
+      largest > mcx::LargestAttenuation && !this->ToldNotAttenuation)
+    {
+      vtkWarningMacro(<< mcx::NotAttenuationWarning(largest));
+      this->ToldNotAttenuation = true;
+    }
+    return;
+  }
+  // mu(HU) x the weight, made again when the weight, mu of water or the
+  // densities change (the editor's TF is never modified).
+  const vtkMTimeType time = weight->GetMTime();
+  if (weight != this->WeightedAttenuationOf || time != this->WeightedAttenuationTime ||
+    this->WaterAttenuation != this->WeightedAttenuationWater ||
+    range[0] != this->WeightedAttenuationRange[0] ||
+    range[1] != this->WeightedAttenuationRange[1] || this->WeightedAttenuation->GetSize() == 0)
+  {
+    this->WeightedAttenuation->DeepCopy(
+      mcx::WeightedAttenuation(weight, this->WaterAttenuation, range));
+    this->WeightedAttenuationOf = weight;
+    this->WeightedAttenuationTime = time;
+    this->WeightedAttenuationWater = this->WaterAttenuation;
+    this->WeightedAttenuationRange[0] = range[0];
+    this->WeightedAttenuationRange[1] = range[1];
+  }
+  this->Volume->GetProperty()->SetScalarOpacity(this->WeightedAttenuation);
+}
+
+void vtkMCXXRayRepresentation::SetAttenuation(int mode)
+{
+  mode = std::min(std::max(mode, static_cast<int>(WEIGHT_ONLY)), static_cast<int>(HU_TO_MU));
+  if (mode != this->Attenuation)
+  {
+    this->Attenuation = mode;
+    this->ToldNotAttenuation = false;
+    this->Modified();
+  }
+}
+
+// Turning Beer-Lambert or noise on enters the combination the warning is about.
+void vtkMCXXRayRepresentation::SetBeerLambert(bool on)
+{
+  this->ToldNotAttenuation &= !(on && !this->Mapper->GetBeerLambert());
+  this->Mapper->SetBeerLambert(on);
+}
+
+void vtkMCXXRayRepresentation::SetPhotonsPerPixel(double photons)
+{
+  this->ToldNotAttenuation &= !(photons > 0 && !(this->Mapper->GetPhotonsPerPixel() > 0));
+  this->Mapper->SetPhotonsPerPixel(photons);
+}
+
+void vtkMCXXRayRepresentation::SetNegativeLog(bool on)
+{
+  this->Mapper->SetNegativeLog(on);
 }
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)
@@ -610,6 +683,15 @@ void vtkMCXXRayRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MorePointsToken: " << this->MorePointsToken.GetPointer() << "\n";
   os << indent << "StreamedProgress: " << this->StreamedProgress << "\n";
   os << indent << "ToldServerCannotRender: " << this->ToldServerCannotRender << "\n";
+  os << indent << "Attenuation: " << this->Attenuation << "\n";
+  os << indent << "WaterAttenuation: " << this->WaterAttenuation << "\n";
+  os << indent << "WeightedAttenuation: " << this->WeightedAttenuation.GetPointer() << "\n";
+  os << indent << "WeightedAttenuationOf: " << this->WeightedAttenuationOf << "\n";
+  os << indent << "WeightedAttenuationTime: " << this->WeightedAttenuationTime << "\n";
+  os << indent << "WeightedAttenuationWater: " << this->WeightedAttenuationWater << "\n";
+  os << indent << "WeightedAttenuationRange: " << this->WeightedAttenuationRange[0] << " "
+     << this->WeightedAttenuationRange[1] << "\n";
+  os << indent << "ToldNotAttenuation: " << this->ToldNotAttenuation << "\n";
   os << indent << "DataBounds: " << this->DataBounds[0] << " " << this->DataBounds[1] << " "
      << this->DataBounds[2] << " " << this->DataBounds[3] << " " << this->DataBounds[4] << " "
      << this->DataBounds[5] << "\n";

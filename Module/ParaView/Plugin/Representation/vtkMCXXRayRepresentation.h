@@ -92,6 +92,54 @@ public:
   double GetDisplayedLevel();
   ///@}
 
+  /** What the mapper samples: the TF itself, or the attenuation of the tissue it weighs. */
+  enum AttenuationModes
+  {
+    WEIGHT_ONLY = 0, ///< g = TF(value): the TF is the sampled quantity (any units)
+    HU_TO_MU = 1     ///< g = mu(HU) x TF(value), the TF a 0-1 weight
+  };
+
+  ///@{
+  /**
+   * The attenuation mode (default WEIGHT_ONLY). With HU_TO_MU the mapper
+   * samples mu(HU) x TF, mcxray's `--tf mu` map (vtkMCXAttenuationFunction:
+   * mu = WaterAttenuation (1 + HU / 1000) per world unit, 0 at and below
+   * air) times the opacity editor's TF clamped to [0, 1]; the same
+   * composition as `mcxray view`'s key `b` (mcxapp::MakeWeightedAttenuation).
+   * Pixels then hold line integrals of mu (per mm x mm: dimensionless), so
+   * Beer-Lambert, noise and the negative log read in physical units. Values
+   * are taken as HU when the lowest density is at or below -500, else the
+   * lowest density is air (-1000 HU).
+   */
+  void SetAttenuation(int mode); // clamped to WEIGHT_ONLY-HU_TO_MU
+  vtkGetMacro(Attenuation, int);
+  ///@}
+
+  ///@{
+  /**
+   * mu of water per world unit in the HU_TO_MU mode (default 0.02 per mm,
+   * about 70 keV; 0.0227 at 50 keV, 0.0184 at 80 keV, 0.0171 at 100 keV;
+   * clamped to 0.001-1).
+   */
+  vtkSetClampMacro(WaterAttenuation, double, 0.001, 1.0);
+  vtkGetMacro(WaterAttenuation, double);
+  ///@}
+
+  ///@{
+  /**
+   * Radiograph physics, forwarded to the mapper (vtkMCXXRayMapper's
+   * BeerLambert, PhotonsPerPixel, NegativeLog). They need pixels in line
+   * integrals of an attenuation coefficient: Beer-Lambert or noise with
+   * Attenuation WEIGHT_ONLY and a TF above 0.1 (not an attenuation per mm)
+   * warns once, in one line, at the first render; again only after the
+   * combination is entered anew (Beer-Lambert or noise turned on,
+   * Attenuation turned off, another TF object), not at TF edits.
+   */
+  void SetBeerLambert(bool on);
+  void SetPhotonsPerPixel(double photons);
+  void SetNegativeLog(bool on);
+  ///@}
+
   ///@{
   /**
    * Seconds a frame may spend projecting points while the camera moves
@@ -165,10 +213,20 @@ protected:
   vtkNew<vtkPolyData> MorePointsToken; // the streamed "piece": more points to show
   vtkTypeInt64 StreamedProgress = -1;  // the mapper's projecting renders at the last streaming pass
   bool ToldServerCannotRender = false; // the warning is given once
+  int Attenuation = WEIGHT_ONLY;
+  double WaterAttenuation = 0.02;
+  vtkNew<vtkPiecewiseFunction> WeightedAttenuation; // mu(HU) x TF, in the HU_TO_MU mode
+  // What it was made of: the weight (compared, not held), its time, mu of water, the densities.
+  vtkPiecewiseFunction* WeightedAttenuationOf = nullptr;
+  vtkMTimeType WeightedAttenuationTime = 0;
+  double WeightedAttenuationWater = 0.0;
+  double WeightedAttenuationRange[2] = { 0.0, 0.0 }; // the densities it was made for
+  bool ToldNotAttenuation = false;                   // the warning is given once
 
 private:
   vtkMCXXRayRepresentation(const vtkMCXXRayRepresentation&) = delete;
   void UseDefaultRampUnlessColoured(vtkImageData* index);
+  void UseSampledFunction(vtkImageData* index); // the TF, or mu(HU) x the TF
   bool ServerRenders(); // the view's server processes can render
   void operator=(const vtkMCXXRayRepresentation&) = delete;
 };

@@ -2,6 +2,7 @@
 
 #include "vtkCommand.h"
 #include "vtkMCXCostPrivate.h"
+#include "vtkMCXXRayMapper.h"
 #include "vtkMCXXRayRepresentation.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPVRepresentationProxy.h"
@@ -30,6 +31,7 @@ void vtkSMMCXXRayRepresentationProxy::ViewUpdated(vtkSMProxy* view)
 {
   this->Superclass::ViewUpdated(view);
   this->PrepareFirstPicture(view);
+  this->InkOrientationAxes(view);
   if (view && view != this->ObservedView)
   {
     if (this->ObservedView && this->RenderObserver)
@@ -89,6 +91,45 @@ void vtkSMMCXXRayRepresentationProxy::PrepareFirstPicture(vtkSMProxy* view)
   }
 }
 
+bool vtkSMMCXXRayRepresentationProxy::InkOrientationAxes(vtkSMProxy* view)
+{
+  vtkSMProxy* parent = this->GetParentProxy();
+  if (!view || !view->GetProperty("OrientationAxesLabelColor") || !parent ||
+    !parent->GetProperty("Representation"))
+  {
+    return false;
+  }
+  // The empty film's grey: 0 for line integrals and their negative log, 1
+  // for Beer-Lambert's intensity (also with noise), inverted by X-Ray Invert.
+  const bool shown = std::string(vtkSMPropertyHelper(parent, "Representation").GetAsString()) ==
+      "Monte Carlo X-Ray" &&
+    vtkSMPropertyHelper(parent, "Visibility").GetAsInt() != 0 &&
+    vtkSMPropertyHelper(this, "XRayCompositing").GetAsInt() == vtkMCXXRayMapper::FILM;
+  const bool intensity = (vtkSMPropertyHelper(this, "XRayBeerLambert").GetAsInt() != 0 ||
+                           vtkSMPropertyHelper(this, "XRayPhotonsPerPixel").GetAsDouble() > 0) &&
+    vtkSMPropertyHelper(this, "XRayNegativeLog").GetAsInt() == 0;
+  const bool light =
+    shown && (intensity != (vtkSMPropertyHelper(this, "XRayInvert").GetAsInt() != 0));
+  vtkSMPropertyHelper labels(view, "OrientationAxesLabelColor");
+  double ink[3];
+  labels.Get(ink, 3);
+  const bool white = ink[0] == 1.0 && ink[1] == 1.0 && ink[2] == 1.0;
+  const bool black = ink[0] == 0.0 && ink[1] == 0.0 && ink[2] == 0.0;
+  double wanted[3] = { 1.0, 1.0, 1.0 };
+  if (light && white)
+  {
+    wanted[0] = wanted[1] = wanted[2] = 0.0;
+  }
+  else if (light || !(this->InkedAxesLabels && black))
+  {
+    return false; // already black, or not ours to change
+  }
+  labels.Set(wanted, 3);
+  view->UpdateVTKObjects();
+  this->InkedAxesLabels = light;
+  return true;
+}
+
 bool vtkSMMCXXRayRepresentationProxy::ShowDisplayedWindow()
 {
   vtkSMProperty* windowInfo = this->GetProperty("XRayWindowInfo");
@@ -122,6 +163,7 @@ void vtkSMMCXXRayRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ObservedView: " << this->ObservedView.GetPointer() << "\n";
   os << indent << "RenderObserver: " << this->RenderObserver << "\n";
+  os << indent << "InkedAxesLabels: " << this->InkedAxesLabels << "\n";
   os << indent << "PreparedOpacity: " << this->PreparedOpacity.GetPointer() << "\n";
   os << indent << "HiddenBarColorMap: " << this->HiddenBarColorMap.GetPointer() << "\n";
 }

@@ -18,6 +18,13 @@
  * (vtkMCXXRayRepresentation::DefaultRampStart), once per opacity function;
  * and the colour map's scalar bar, which means nothing for a grey X-ray, is
  * hidden once per colour map (the legend button shows it again).
+ *
+ * Orientation axes that read on the film: ParaView draws the axes' labels
+ * white, which vanish on a light film (X-Ray Invert, or Beer-Lambert's
+ * intensity). While the X-ray is shown on a light film (Film compositing),
+ * the view's OrientationAxesLabelColor is black, and white again on a dark
+ * one; a colour the user chose (neither white nor the black set here) is
+ * left alone.
  */
 #ifndef vtkSMMCXXRayRepresentationProxy_h
 #define vtkSMMCXXRayRepresentationProxy_h
@@ -56,6 +63,12 @@ public:
    */
   void PrepareFirstPicture(vtkSMProxy* view);
 
+  /**
+   * Black orientation-axes labels on a light film, white on a dark one
+   * (see the class comment); true when it changed them.
+   */
+  bool InkOrientationAxes(vtkSMProxy* view);
+
 protected:
   vtkSMMCXXRayRepresentationProxy() = default;
   ~vtkSMMCXXRayRepresentationProxy() override;
@@ -67,6 +80,7 @@ private:
   void OnRendered(vtkObject*, unsigned long, void* callData);
 
   vtkWeakPointer<vtkSMProxy> ObservedView;
+  bool InkedAxesLabels = false;                 // the labels are black because of the film
   vtkWeakPointer<vtkSMProxy> PreparedOpacity;   // the opacity function last looked at
   vtkWeakPointer<vtkSMProxy> HiddenBarColorMap; // the colour map whose bar was hidden
   unsigned long RenderObserver = 0;
