@@ -1,6 +1,7 @@
 #include "vtkMCXProjectorBase.h"
 
 #include "mcxProjectionGeometry.h"
+#include "mcxProjectionMatrix.h"
 #include "mcxSampleGenerator.h"
 #include "vtkMCXCameraGeometry.h"
 #include "vtkMCXCloudDeposit.h"
@@ -18,6 +19,7 @@
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -96,6 +98,64 @@ bool DataCorners(
 }
 }
 
+namespace
+{
+// The view of the projection matrix, its pixels measured on the plane at
+// FocalPlaneDistance, else through the support's centre, else where pixels
+// are one world unit wide.
+std::string GeometryFromMatrix(
+  const vtkMCXProjectorBase& self, const double* corners, mcx::ProjectionGeometry& g)
+{
+  const int* size = const_cast<vtkMCXProjectorBase&>(self).GetImageSize();
+  if (size[0] < 1 || size[1] < 1)
+  {
+    return "a projection matrix needs ImageSize (columns and rows of its detector)";
+  }
+  double P[12];
+  self.GetProjectionMatrix(P);
+  mcx::PinholeCamera camera;
+  std::string problem = mcx::PinholeFromMatrix(P, camera);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  double distance = const_cast<vtkMCXProjectorBase&>(self).GetFocalPlaneDistance();
+  if (!(distance > 0) && corners)
+  {
+    double source[3], centre[3] = { 0, 0, 0 };
+    camera.Source(source);
+    for (int c = 0; c < 8; ++c)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centre[a] += corners[3 * c + a] / 8.0;
+      }
+    }
+    distance = camera.R[6] * (centre[0] - source[0]) + camera.R[7] * (centre[1] - source[1]) +
+      camera.R[8] * (centre[2] - source[2]);
+  }
+  if (!(distance > 0))
+  {
+    distance = camera.Fx;
+  }
+  return mcx::GeometryFromPinhole(camera, size, distance, g);
+}
+}
+
+void vtkMCXProjectorBase::SetProjectionMatrix(const double matrix[12])
+{
+  if (!std::equal(matrix, matrix + 12, this->ProjectionMatrix))
+  {
+    std::copy(matrix, matrix + 12, this->ProjectionMatrix);
+    this->Modified();
+  }
+}
+
+void vtkMCXProjectorBase::GetProjectionMatrix(double matrix[12]) const
+{
+  std::copy(this->ProjectionMatrix, this->ProjectionMatrix + 12, matrix);
+}
+
 std::string vtkMCXProjectorBase::vtkInternals::ComputeGeometry(
   const vtkMCXProjectorBase& self, const double* corners, mcx::ProjectionGeometry& g, double& depth)
 {
@@ -111,7 +171,11 @@ std::string vtkMCXProjectorBase::vtkInternals::ComputeGeometry(
     return "ImageSize must be 0 (automatic) or positive, not " +
       std::to_string(self.ImageSize[0]) + " x " + std::to_string(self.ImageSize[1]);
   }
-  if (self.Camera)
+  if (self.UseProjectionMatrix)
+  {
+    problem = GeometryFromMatrix(self, corners, g);
+  }
+  else if (self.Camera)
   {
     problem = mcx::GeometryFromCamera(self.Camera, self.ImageSize, self.PixelSpacing, 0.0, g);
   }
@@ -160,8 +224,9 @@ std::string vtkMCXProjectorBase::vtkInternals::ComputeGeometry(
     return "Invalid projection: " + problem;
   }
   // The detector plane's depth: the camera's focal plane, else the support's centre.
-  depth = self.Camera ? vtkMath::Dot(self.Camera->GetFocalPoint(), g.W) : 0.0;
-  if (!self.Camera && framed)
+  depth = self.Camera && !self.UseProjectionMatrix ? vtkMath::Dot(self.Camera->GetFocalPoint(), g.W)
+                                                   : 0.0;
+  if ((!self.Camera || self.UseProjectionMatrix) && framed)
   {
     for (int c = 0; c < 8; ++c)
     {
@@ -215,7 +280,7 @@ int vtkMCXProjectorBase::RequestInformation(
 
 bool vtkMCXProjectorBase::FrameOnInputData(vtkDataObject* input, vtkInformation* inInfo)
 {
-  // A camera frames the image itself. Without one the volume frames it, and
+  // A camera or a matrix frames the image itself. Without one the volume frames it, and
   // the information may not have told where the volume lies: ParaView's
   // input post filter and VTK 9.1's pass-through filters drop the
   // DIRECTION key (a NIfTI volume in LPS came out mostly off the image).
@@ -225,7 +290,7 @@ bool vtkMCXProjectorBase::FrameOnInputData(vtkDataObject* input, vtkInformation*
     return false; // RequestInformation said why; its geometry is not this request's
   }
   double corners[24];
-  if (this->Camera ||
+  if (this->Camera || this->UseProjectionMatrix ||
     !DataCorners(
       input, inInfo, mcx::KernelRadius(static_cast<mcx::Kernel>(this->Kernel)), corners) ||
     (in.Framed && std::equal(corners, corners + 24, in.Corners)))
@@ -279,6 +344,12 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
   values->FillValue(0.0);
   output->GetPointData()->Initialize();
   output->GetPointData()->SetScalars(values);
+  vtkNew<vtkDoubleArray> matrix;
+  matrix->SetName(vtkMCXTypes::ProjectionMatrixName());
+  matrix->SetNumberOfValues(12);
+  mcx::MatrixFromGeometry(g, matrix->GetPointer(0));
+  output->GetFieldData()->RemoveArray(vtkMCXTypes::ProjectionMatrixName());
+  output->GetFieldData()->AddArray(matrix);
   return values;
 }
 
@@ -318,6 +389,14 @@ void vtkMCXProjectorBase::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Camera: " << this->Camera << "\n";
+  os << indent << "ProjectionMatrix:";
+  for (double value : this->ProjectionMatrix)
+  {
+    os << " " << value;
+  }
+  os << "\n";
+  os << indent << "UseProjectionMatrix: " << this->UseProjectionMatrix << "\n";
+  os << indent << "FocalPlaneDistance: " << this->FocalPlaneDistance << "\n";
   os << indent << "PlaceOnDetectorPlane: " << this->PlaceOnDetectorPlane << "\n";
   os << indent << "DetectorAxisU: " << this->DetectorAxisU[0] << " " << this->DetectorAxisU[1]
      << " " << this->DetectorAxisU[2] << "\n";

@@ -3,8 +3,9 @@
  * @brief   Detector geometry, transfer function and kernel shared by the
  *          Monte Carlo and the exact X-ray projectors.
  *
- * The view is either a vtkCamera (parallel or perspective) or, without a
- * camera, an explicit parallel detector with axes DetectorAxisU and
+ * The view is a 3x4 projection matrix with ImageSize (UseProjectionMatrix),
+ * or a vtkCamera (parallel or perspective), or, without either, an explicit
+ * parallel detector with axes DetectorAxisU and
  * DetectorAxisV (rays run along their cross product). ImageSize and
  * PixelSpacing set the image; what is left at 0 is chosen so that the image
  * covers the projected support of g (the volume grown by the kernel) -- with a
@@ -18,7 +19,11 @@
  * centres: (x . U, x . V) in a parallel view; for a perspective camera,
  * coordinates on the focal plane measured from the principal point. For a
  * perspective camera only depths beyond the camera's near clipping distance
- * count.
+ * count. Its field data "ProjectionMatrix" holds the image's 3x4 matrix
+ * (12 values, row-major): world to (u w, v w, w), u the column, v the row
+ * counted from the top row (j = H - 1), w > 0 in front of the source -- the
+ * layout of OpenCV's K [R | t] and of plastimatch's matrices; affine (last
+ * row 0 0 0 1) for a parallel view.
  */
 #ifndef vtkMCXProjectorBase_h
 #define vtkMCXProjectorBase_h
@@ -43,6 +48,33 @@ public:
   /** Camera of the view; without one, the explicit parallel detector is used. */
   virtual void SetCamera(vtkCamera*);
   vtkGetObjectMacro(Camera, vtkCamera);
+  ///@}
+
+  ///@{
+  /**
+   * A perspective view given as a 3x4 projection matrix (row-major, the
+   * layout of the output's ProjectionMatrix field, any nonzero scale): used
+   * instead of the camera and the explicit detector when
+   * UseProjectionMatrix is on (default off), with ImageSize, which must
+   * then be set. A matrix that is no camera (not finite, rank below 3,
+   * skewed pixels) fails the request with the reason.
+   */
+  virtual void SetProjectionMatrix(const double matrix[12]);
+  void GetProjectionMatrix(double matrix[12]) const;
+  vtkSetMacro(UseProjectionMatrix, bool);
+  vtkGetMacro(UseProjectionMatrix, bool);
+  vtkBooleanMacro(UseProjectionMatrix, bool);
+  ///@}
+
+  ///@{
+  /**
+   * With a projection matrix: the distance from the source of the plane on
+   * which the output's pixels are measured (its spacing and, with
+   * PlaceOnDetectorPlane, where it lies); 0 (default) puts it through the
+   * centre of the volume's support. The values do not depend on it.
+   */
+  vtkSetClampMacro(FocalPlaneDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(FocalPlaneDistance, double);
   ///@}
 
   ///@{
@@ -158,6 +190,9 @@ protected:
   void OutputPlacement(double origin[3], double direction[9]) const;
 
   vtkCamera* Camera = nullptr;
+  double ProjectionMatrix[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1 };
+  bool UseProjectionMatrix = false;
+  double FocalPlaneDistance = 0.0;
   double DetectorAxisU[3] = { 1, 0, 0 };
   double DetectorAxisV[3] = { 0, 1, 0 };
   double DetectorCenter[2] = { 0, 0 };

@@ -1,13 +1,41 @@
 #include "vtkMCXRadiographGeometry.h"
 
+#include "mcxPlastimatchView.h"
+#include "mcxProjectionMatrix.h"
+
 #include "vtkCamera.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 vtkStandardNewMacro(vtkMCXRadiographGeometry);
+
+namespace
+{
+// The core's view of the properties.
+mcx::PlastimatchView ViewOf(vtkMCXRadiographGeometry* self)
+{
+  mcx::PlastimatchView view;
+  view.SourceToAxis = self->GetSourceToAxisDistance();
+  view.SourceToImage = self->GetSourceToImageDistance();
+  self->GetIsocenter(view.Isocenter);
+  view.GantryDegrees = self->GetGantryAngle();
+  view.HasNormal = self->GetUseDetectorNormal();
+  self->GetDetectorNormal(view.Normal);
+  self->GetViewUp(view.Up);
+  self->GetDetectorPixels(view.Pixels);
+  for (int k = 0; k < 2; ++k)
+  {
+    view.DetectorSize[k] = view.Pixels[k] * self->GetPixelPitch()[k];
+  }
+  view.HasImageCenter = self->GetUseImageCenter();
+  self->GetImageCenter(view.ImageCenter);
+  return view;
+}
+}
 
 void vtkMCXRadiographGeometry::SetDetectorPixels(int columns, int rows)
 {
@@ -23,30 +51,26 @@ void vtkMCXRadiographGeometry::SetDetectorPixels(int columns, int rows)
 
 bool vtkMCXRadiographGeometry::IsValid()
 {
-  const double sad = this->SourceToAxisDistance, sid = this->SourceToImageDistance;
-  const char* problem = nullptr;
-  if (!(sad > 0) || !std::isfinite(sad))
-  {
-    problem = "the source-to-axis distance must be positive and finite";
-  }
-  else if (!(sid > 0) || !std::isfinite(sid))
-  {
-    problem = "the source-to-image distance must be positive and finite";
-  }
-  else if (!(this->PixelPitch > 0) || !std::isfinite(this->PixelPitch))
-  {
-    problem = "the pixel pitch must be positive and finite";
-  }
-  else if (!std::isfinite(this->GantryAngle) || !std::isfinite(this->Isocenter[0]) ||
-    !std::isfinite(this->Isocenter[1]) || !std::isfinite(this->Isocenter[2]))
-  {
-    problem = "the gantry angle and the isocentre must be finite";
-  }
-  if (problem)
+  mcx::PinholeCamera camera;
+  const std::string problem = ViewOf(this).Camera(camera);
+  if (!problem.empty())
   {
     vtkErrorMacro("Invalid radiograph geometry: " << problem << ".");
     return false;
   }
+  return true;
+}
+
+bool vtkMCXRadiographGeometry::GetProjectionMatrix(double matrix[12])
+{
+  mcx::PinholeCamera camera;
+  const std::string problem = ViewOf(this).Camera(camera);
+  if (!problem.empty())
+  {
+    vtkErrorMacro("Invalid radiograph geometry: " << problem << ".");
+    return false;
+  }
+  mcx::MatrixFromPinhole(camera, matrix);
   return true;
 }
 
@@ -57,19 +81,29 @@ bool vtkMCXRadiographGeometry::ConfigureCamera(vtkCamera* camera)
     vtkErrorMacro("ConfigureCamera needs a vtkCamera, not null.");
     return false;
   }
-  if (!this->IsValid())
+  mcx::PinholeCamera view;
+  const std::string problem = ViewOf(this).Camera(view);
+  if (!problem.empty())
   {
+    vtkErrorMacro("Invalid radiograph geometry: " << problem << ".");
     return false;
   }
-  const double angle = vtkMath::RadiansFromDegrees(this->GantryAngle);
+  if (this->PixelPitch[0] != this->PixelPitch[1] || this->UseImageCenter)
+  {
+    vtkErrorMacro("A vtkCamera holds square pixels centred on the isocentre's ray only; use "
+                  "GetProjectionMatrix with a projector for this geometry.");
+    return false;
+  }
+  double source[3];
+  view.Source(source);
   const double sad = this->SourceToAxisDistance;
-  const double* iso = this->Isocenter;
   camera->SetParallelProjection(false);
   camera->SetUseHorizontalViewAngle(false);
-  camera->SetFocalPoint(iso[0], iso[1], iso[2]);
-  camera->SetPosition(iso[0] + sad * std::cos(angle), iso[1] + sad * std::sin(angle), iso[2]);
-  camera->SetViewUp(0, 0, 1);
-  const double height = this->DetectorPixels[1] * this->PixelPitch;
+  camera->SetPosition(source);
+  camera->SetFocalPoint(this->Isocenter);
+  // The camera's y axis points down the detector: view-up is its opposite.
+  camera->SetViewUp(-view.R[3], -view.R[4], -view.R[5]);
+  const double height = this->DetectorPixels[1] * this->PixelPitch[1];
   camera->SetViewAngle(
     2.0 * vtkMath::DegreesFromRadians(std::atan(0.5 * height / this->SourceToImageDistance)));
   // Integrate from just in front of the source: nothing a radiograph sees is nearer.
@@ -79,7 +113,7 @@ bool vtkMCXRadiographGeometry::ConfigureCamera(vtkCamera* camera)
 
 double vtkMCXRadiographGeometry::GetPixelSpacingAtIsocenter() const
 {
-  return this->PixelPitch * this->SourceToAxisDistance / this->SourceToImageDistance;
+  return this->PixelPitch[0] * this->SourceToAxisDistance / this->SourceToImageDistance;
 }
 
 void vtkMCXRadiographGeometry::PrintSelf(ostream& os, vtkIndent indent)
@@ -89,8 +123,15 @@ void vtkMCXRadiographGeometry::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SourceToImageDistance: " << this->SourceToImageDistance << "\n";
   os << indent << "DetectorPixels: " << this->DetectorPixels[0] << " " << this->DetectorPixels[1]
      << "\n";
-  os << indent << "PixelPitch: " << this->PixelPitch << "\n";
+  os << indent << "PixelPitch: " << this->PixelPitch[0] << " " << this->PixelPitch[1] << "\n";
   os << indent << "GantryAngle: " << this->GantryAngle << "\n";
+  os << indent << "DetectorNormal: " << this->DetectorNormal[0] << " " << this->DetectorNormal[1]
+     << " " << this->DetectorNormal[2] << "\n";
+  os << indent << "UseDetectorNormal: " << this->UseDetectorNormal << "\n";
+  os << indent << "ViewUp: " << this->ViewUp[0] << " " << this->ViewUp[1] << " " << this->ViewUp[2]
+     << "\n";
+  os << indent << "ImageCenter: " << this->ImageCenter[0] << " " << this->ImageCenter[1] << "\n";
+  os << indent << "UseImageCenter: " << this->UseImageCenter << "\n";
   os << indent << "Isocenter: " << this->Isocenter[0] << " " << this->Isocenter[1] << " "
      << this->Isocenter[2] << "\n";
 }

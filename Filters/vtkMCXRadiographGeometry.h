@@ -1,19 +1,23 @@
 /**
  * @class   vtkMCXRadiographGeometry
- * @brief   A cone-beam view as radiographers give it: source-to-axis and
- *          source-to-image distances, detector pixels and pitch, gantry
- *          angle and isocentre (the parameters of plastimatch drr).
+ * @brief   A cone-beam view as radiographers give it, in plastimatch drr's
+ *          terms: source-to-axis and source-to-image distances, detector
+ *          pixels and pitch, gantry angle (or detector normal), view-up,
+ *          image centre and isocentre.
  *
- * The source turns about the z axis through the isocentre: at gantry angle
- * a (degrees) it sits at isocentre + SAD (cos a, sin a, 0) and looks at the
- * isocentre; the flat detector lies SID from the source, beyond it, with
- * rows along +z (image row 0 at the bottom) and columns along
- * direction-of-projection x z (+y at angle 0), as plastimatch lays out its
- * images. ConfigureCamera() gives the vtkCamera of that view (for
- * vtkMCXProjector, vtkMCXReferenceProjector, or a renderer with the mapper);
- * the projectors then take GetDetectorPixels() as ImageSize and
- * GetPixelSpacingAtIsocenter() as PixelSpacing, so that their pixels are the
- * detector's. Pixel values stay line integrals along the rays.
+ * The same angle gives the same view as `plastimatch drr` (1.9.4, checked
+ * against the matrices it writes): at gantry angle a (degrees) the source
+ * sits at isocentre + SAD (cos a, -sin a, 0) -- on +x at 0, on -y
+ * (anterior, in LPS) at 90 -- and looks at the isocentre; with
+ * UseDetectorNormal, at isocentre + SAD DetectorNormal instead. The flat
+ * detector lies SID from the source, beyond the isocentre; its top row
+ * towards ViewUp (default +z), its columns along ViewUp x normal (+y at
+ * angle 0). GetProjectionMatrix() gives the view as a 3x4 matrix for the
+ * projectors (vtkMCXProjectorBase::SetProjectionMatrix, with
+ * GetDetectorPixels() as ImageSize); ConfigureCamera() gives the vtkCamera
+ * of the view where a camera can hold it (square pixels, the image centre
+ * at the detector's centre), for a renderer with the mapper. Pixel values
+ * stay line integrals along the rays.
  */
 #ifndef vtkMCXRadiographGeometry_h
 #define vtkMCXRadiographGeometry_h
@@ -50,15 +54,51 @@ public:
   ///@}
 
   ///@{
-  /** Detector pixel pitch, world units (default 0.8). */
-  vtkSetClampMacro(PixelPitch, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(PixelPitch, double);
+  /**
+   * Detector pixel pitch along the columns and the rows, world units
+   * (default 0.8, 0.8); one value sets both.
+   */
+  vtkSetVector2Macro(PixelPitch, double);
+  void SetPixelPitch(double pitch) { this->SetPixelPitch(pitch, pitch); }
+  vtkGetVector2Macro(PixelPitch, double);
   ///@}
 
   ///@{
-  /** Gantry angle in degrees (default 0: source on +x). */
+  /** Gantry angle in degrees (default 0: source on +x; 90: on -y). */
   vtkSetMacro(GantryAngle, double);
   vtkGetMacro(GantryAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * The direction from the isocentre to the source, used instead of the
+   * gantry angle when UseDetectorNormal is on (default off; plastimatch's
+   * --nrm).
+   */
+  vtkSetVector3Macro(DetectorNormal, double);
+  vtkGetVector3Macro(DetectorNormal, double);
+  vtkSetMacro(UseDetectorNormal, bool);
+  vtkGetMacro(UseDetectorNormal, bool);
+  vtkBooleanMacro(UseDetectorNormal, bool);
+  ///@}
+
+  ///@{
+  /** Towards the detector's top row (default 0, 0, 1; plastimatch's --vup). */
+  vtkSetVector3Macro(ViewUp, double);
+  vtkGetVector3Macro(ViewUp, double);
+  ///@}
+
+  ///@{
+  /**
+   * The pixel (column, row from the top, 0 at the first pixel's centre)
+   * where the ray through the isocentre lands, used when UseImageCenter is
+   * on (default off: the detector's centre; plastimatch's -c).
+   */
+  vtkSetVector2Macro(ImageCenter, double);
+  vtkGetVector2Macro(ImageCenter, double);
+  vtkSetMacro(UseImageCenter, bool);
+  vtkGetMacro(UseImageCenter, bool);
+  vtkBooleanMacro(UseImageCenter, bool);
   ///@}
 
   ///@{
@@ -72,18 +112,27 @@ public:
 
   /**
    * True when the geometry is usable: positive, finite distances and pitch,
-   * a finite gantry angle and isocentre; otherwise an error says why.
+   * a finite gantry angle, isocentre and image centre, a view-up that is
+   * not along the normal; otherwise an error says why.
    */
   bool IsValid();
 
   /**
+   * The view's 3x4 projection matrix (world to the column and the row
+   * counted from the top, the layout of vtkMCXProjectorBase's
+   * ProjectionMatrix); false, with an error, when the geometry is not valid.
+   */
+  bool GetProjectionMatrix(double matrix[12]);
+
+  /**
    * Sets position, focal point, view-up, view angle and clipping range of
-   * `camera`; false, with an error, when the geometry is not valid or there
-   * is no camera.
+   * `camera`; false, with an error, when there is no camera, the geometry is
+   * not valid, or a camera cannot hold it (pixels that are not square, an
+   * image centre elsewhere than the detector's centre).
    */
   bool ConfigureCamera(vtkCamera* camera);
 
-  /** Pixel pitch scaled to the isocentre plane: PixelPitch SAD / SID. */
+  /** Pixel pitch along the columns scaled to the isocentre plane: PixelPitch[0] SAD / SID. */
   double GetPixelSpacingAtIsocenter() const;
 
 protected:
@@ -93,8 +142,13 @@ protected:
   double SourceToAxisDistance = 1000.0;
   double SourceToImageDistance = 1500.0;
   int DetectorPixels[2] = { 512, 512 };
-  double PixelPitch = 0.8;
+  double PixelPitch[2] = { 0.8, 0.8 };
   double GantryAngle = 0.0;
+  double DetectorNormal[3] = { 1, 0, 0 };
+  bool UseDetectorNormal = false;
+  double ViewUp[3] = { 0, 0, 1 };
+  double ImageCenter[2] = { 0, 0 };
+  bool UseImageCenter = false;
   double Isocenter[3] = { 0.0, 0.0, 0.0 };
 
 private:

@@ -132,6 +132,10 @@ public:
   ///@{
   /** Arrays of a projector's image (vtkMCXProjectorBase) and of a radiograph (vtkMCXRadiograph). */
   static const char* LineIntegralName() { return "LineIntegral"; }
+  /// A projector's output: field data of the image's 3x4 projection matrix
+  /// (12 values, row-major; mcxProjectionMatrix.h's layout: world to the
+  /// column and the row counted from the top).
+  static const char* ProjectionMatrixName() { return "ProjectionMatrix"; }
   static const char* SampleCountName() { return "SampleCount"; }
   static const char* EstimatedRelativeErrorName() { return "EstimatedRelativeError"; }
   static const char* IntensityName() { return "Intensity"; }

@@ -551,10 +551,11 @@ TEST(CommandLine, GantryTurnsTheSourceAboutZ)
 {
   // A volume without symmetry about z, on a grid that a quarter turn about
   // the z axis through its centre maps onto itself (9 x 9 voxels of 2 mm
-  // centred on x = y = 0). Gantry +90 degrees puts the source on +y (turned
-  // counterclockwise about +z from +x): the image of V then equals the
-  // gantry-0 image of V turned by -90 degrees, R(V)(x, y) = V(-y, x), i.e.
-  // voxel (i, j) of R(V) is voxel (8 - j, i) of V. Exact reference method.
+  // centred on x = y = 0). Gantry +90 degrees puts the source on -y (turned
+  // clockwise about +z from +x, as plastimatch turns it): the image of V
+  // then equals the gantry-0 image of V turned by +90 degrees, R(V)(x, y) =
+  // V(y, -x), i.e. voxel (i, j) of R(V) is voxel (j, 8 - i) of V. Exact
+  // reference method.
   const int dims[3] = { 9, 9, 5 };
   const double spacing[3] = { 2, 2, 2 };
   const double origin[3] = { -8, -8, -4 };
@@ -565,12 +566,12 @@ TEST(CommandLine, GantryTurnsTheSourceAboutZ)
   WriteVolume(mcxtest::MakeVolume(VTK_SHORT, dims, value, spacing, origin), inputs[0]);
   WriteVolume(
     mcxtest::MakeVolume(
-      VTK_SHORT, dims, [&](int i, int j, int k) { return value(8 - j, i, k); }, spacing, origin),
+      VTK_SHORT, dims, [&](int i, int j, int k) { return value(j, 8 - i, k); }, spacing, origin),
     inputs[1]);
-  // Turned the wrong way (what a gantry turning clockwise would show).
+  // Turned the wrong way (what a gantry turning counterclockwise would show).
   WriteVolume(
     mcxtest::MakeVolume(
-      VTK_SHORT, dims, [&](int i, int j, int k) { return value(j, 8 - i, k); }, spacing, origin),
+      VTK_SHORT, dims, [&](int i, int j, int k) { return value(8 - j, i, k); }, spacing, origin),
     inputs[2]);
   auto render = [&](const std::string& input, int gantry, const std::string& name)
   {
