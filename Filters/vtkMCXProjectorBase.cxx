@@ -346,9 +346,10 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
   output->GetPointData()->SetScalars(values);
   vtkNew<vtkDoubleArray> matrix;
   matrix->SetName(vtkMCXTypes::ProjectionMatrixName());
-  matrix->SetNumberOfValues(12);
+  matrix->SetNumberOfComponents(12); // one tuple: the matrix, row-major
+  matrix->SetNumberOfTuples(1);
   mcx::MatrixFromGeometry(g, matrix->GetPointer(0));
-  output->GetFieldData()->RemoveArray(vtkMCXTypes::ProjectionMatrixName());
+  output->GetFieldData()->Initialize(); // nothing of an earlier request
   output->GetFieldData()->AddArray(matrix);
   return values;
 }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,101 @@ void SetSize(Settings& settings, const Argument& argument, int smallest, int lar
   settings.SizeGiven = true;
 }
 
+// The geometry's numbers, plastimatch's way ("x y z") or ours ("x,y,z").
+void SetNumbers(Settings& settings, const Argument& argument, std::size_t count, double* out)
+{
+  const std::vector<double> numbers = ParseNumberList(argument.Value, count, argument.Name);
+  std::copy(numbers.begin(), numbers.end(), out);
+  settings.Radiograph.Geometry = true;
+}
+
+// Columns and rows: 512x512 (ours), "512 512" (plastimatch's -r).
+void SetDetectorPixels(Settings& settings, const Argument& argument)
+{
+  std::string value = argument.Value;
+  std::replace(value.begin(), value.end(), 'x', ' ');
+  double pixels[2];
+  SetNumbers(settings, { argument.Name, value }, 2, pixels);
+  for (int k = 0; k < 2; ++k)
+  {
+    if (!(pixels[k] >= 1 && pixels[k] <= 65536) || pixels[k] != std::floor(pixels[k]))
+    {
+      Fail(argument.Name + " takes whole numbers of pixels from 1 to 65536, not '" +
+        argument.Value + "'");
+    }
+    settings.Radiograph.Detector[k] = static_cast<int>(pixels[k]);
+  }
+}
+
+void SetDetectorSize(Settings& settings, const Argument& argument)
+{
+  SetNumbers(settings, argument, 2, settings.Radiograph.DetectorSize);
+  for (double side : settings.Radiograph.DetectorSize)
+  {
+    if (!(side > 0) || !std::isfinite(side))
+    {
+      Fail(argument.Name + " must be two positive sizes in mm, not '" + argument.Value + "'");
+    }
+  }
+  settings.Radiograph.DetectorSizeGiven = true;
+}
+
+// DEG, or START:STOP:COUNT: COUNT angles from START, STOP excluded (a full
+// turn 0:360:N repeats no angle), as plastimatch's -a COUNT -N STEP.
+void SetGantry(Settings& settings, const Argument& argument)
+{
+  settings.Radiograph.Geometry = true;
+  const std::vector<std::string> parts = Split(argument.Value, ':');
+  if (parts.size() == 1)
+  {
+    settings.Radiograph.Gantry = ParseNumber(argument.Value, argument.Name);
+    return;
+  }
+  if (parts.size() != 3)
+  {
+    Fail("bad " + argument.Name + " '" + argument.Value + "' (expected DEG or START:STOP:COUNT)");
+  }
+  const double start = ParseNumber(parts[0], argument.Name);
+  const double stop = ParseNumber(parts[1], argument.Name);
+  const long long count = ParseInteger(parts[2], argument.Name, 1, 100000);
+  settings.Radiograph.GantryList.clear();
+  for (long long k = 0; k < count; ++k)
+  {
+    settings.Radiograph.GantryList.push_back(start + (stop - start) * k / count);
+  }
+}
+
+void SetAngleCount(Settings& settings, const Argument& argument)
+{
+  settings.Radiograph.AngleCount =
+    static_cast<int>(ParseInteger(argument.Value, argument.Name, 1, 100000));
+  settings.Radiograph.Geometry = true;
+}
+
+void SetAngleStep(Settings& settings, const Argument& argument)
+{
+  settings.Radiograph.AngleStep = ParseNumber(argument.Value, argument.Name);
+  settings.Radiograph.Geometry = true;
+}
+
+void SetNormal(Settings& settings, const Argument& argument)
+{
+  SetNumbers(settings, argument, 3, settings.Radiograph.Normal);
+  settings.Radiograph.HasNormal = true;
+}
+
+void SetImageCenter(Settings& settings, const Argument& argument)
+{
+  SetNumbers(settings, argument, 2, settings.Radiograph.ImageCenter);
+  settings.Radiograph.HasImageCenter = true;
+}
+
+void SetIsocenter(Settings& settings, const Argument& argument)
+{
+  SetNumbers(settings, argument, 3, settings.Radiograph.Isocenter);
+  settings.Radiograph.HasIsocenter = true;
+}
+
 // Values are checked as they are read; what depends on other options is
 // checked by the command once all are read.
 const Option Options[] = {
@@ -123,26 +219,52 @@ const Option Options[] = {
   { "--sid", Both, true,
     [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToImage, a); } },
   { "--pitch", Both, true,
-    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.Pitch, a); } },
-  { "--detector", Both, true,
     [](Settings& s, const Argument& a)
     {
-      ParseSize(a.Value, "--detector", 1, 65536, s.Radiograph.Detector);
-      s.Radiograph.Geometry = true;
+      SetGeometryDistance(s, s.Radiograph.Pitch, a);
+      s.Radiograph.PitchGiven = true;
     } },
-  { "--gantry", Both, true,
+  { "--detector", Both, true, [](Settings& s, const Argument& a) { SetDetectorPixels(s, a); } },
+  { "-r", Both, true, [](Settings& s, const Argument& a) { SetDetectorPixels(s, a); } },
+  { "--dim", Both, true, [](Settings& s, const Argument& a) { SetDetectorPixels(s, a); } },
+  { "-z", Both, true, [](Settings& s, const Argument& a) { SetDetectorSize(s, a); } },
+  { "--detector-size", Both, true, [](Settings& s, const Argument& a) { SetDetectorSize(s, a); } },
+  { "--gantry", Both, true, [](Settings& s, const Argument& a) { SetGantry(s, a); } },
+  { "-y", Both, true, [](Settings& s, const Argument& a) { SetGantry(s, a); } },
+  { "--gantry-angle", Both, true, [](Settings& s, const Argument& a) { SetGantry(s, a); } },
+  { "-a", Render, true, [](Settings& s, const Argument& a) { SetAngleCount(s, a); } },
+  { "--num-angles", Render, true, [](Settings& s, const Argument& a) { SetAngleCount(s, a); } },
+  { "-N", Render, true, [](Settings& s, const Argument& a) { SetAngleStep(s, a); } },
+  { "--gantry-angle-spacing", Render, true,
+    [](Settings& s, const Argument& a) { SetAngleStep(s, a); } },
+  { "-n", Both, true, [](Settings& s, const Argument& a) { SetNormal(s, a); } },
+  { "--nrm", Both, true, [](Settings& s, const Argument& a) { SetNormal(s, a); } },
+  { "--vup", Both, true,
+    [](Settings& s, const Argument& a) { SetNumbers(s, a, 3, s.Radiograph.Up); } },
+  { "-c", Render, true, [](Settings& s, const Argument& a) { SetImageCenter(s, a); } },
+  { "--image-center", Render, true, [](Settings& s, const Argument& a) { SetImageCenter(s, a); } },
+  { "--isocenter", Both, true, [](Settings& s, const Argument& a) { SetIsocenter(s, a); } },
+  { "-o", Both, true, [](Settings& s, const Argument& a) { SetIsocenter(s, a); } },
+  { "--projection-matrix", Render, true,
     [](Settings& s, const Argument& a)
     {
-      s.Radiograph.Gantry = ParseNumber(a.Value, a.Name);
-      s.Radiograph.Geometry = true;
+      SetNumbers(s, a, 12, s.Radiograph.Matrix);
+      s.Radiograph.HasMatrix = true;
     } },
-  { "--isocenter", Both, true,
+  { "--intrinsics", Render, true,
     [](Settings& s, const Argument& a)
     {
-      ParseTriple(a.Value, s.Radiograph.Isocenter, "--isocenter");
-      s.Radiograph.HasIsocenter = true;
-      s.Radiograph.Geometry = true;
+      SetNumbers(s, a, 4, s.Radiograph.Intrinsics);
+      s.Radiograph.HasIntrinsics = true;
     } },
+  { "--extrinsics", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      SetNumbers(s, a, 12, s.Radiograph.Extrinsics);
+      s.Radiograph.HasExtrinsics = true;
+    } },
+  { "--output-geometry", Render, true,
+    [](Settings& s, const Argument& a) { s.OutputGeometry = a.Value; } },
   { "--i0", Both, true,
     [](Settings& s, const Argument& a)
     { s.Radiograph.IncidentIntensity = ParsePositive(a.Value, a.Name); } },
@@ -257,7 +379,7 @@ bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
       option->Apply(settings, { name, std::string() });
       continue;
     }
-    if (name.rfind("--", 0) != 0)
+    if (!option && name.rfind("--", 0) != 0)
     {
       SetInput(settings, name);
       continue;
@@ -277,9 +399,21 @@ bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
   }
   if (settings.RASCoordinates)
   {
-    // Points given in RAS, taken to patient space (LPS) once; the camera
-    // when it is parsed (ChooseView).
-    vtkMCXPatientSpace::FlipRightAnterior(settings.Radiograph.Isocenter);
+    // Points and directions given in RAS, taken to patient space (LPS)
+    // once; the camera when it is parsed (ChooseView). A matrix of RAS
+    // points takes LPS points once its first two columns are negated.
+    RadiographSettings& r = settings.Radiograph;
+    vtkMCXPatientSpace::FlipRightAnterior(r.Isocenter);
+    vtkMCXPatientSpace::FlipRightAnterior(r.Normal);
+    vtkMCXPatientSpace::FlipRightAnterior(r.Up);
+    for (int row = 0; row < 3; ++row)
+    {
+      for (int column = 0; column < 2; ++column)
+      {
+        r.Matrix[4 * row + column] = -r.Matrix[4 * row + column];
+        r.Extrinsics[3 * row + column] = -r.Extrinsics[3 * row + column];
+      }
+    }
   }
   return true;
 }

@@ -116,6 +116,39 @@ void ParseSize(
   }
 }
 
+std::vector<double> ParseNumberList(
+  const std::string& text, std::size_t count, const std::string& what)
+{
+  std::vector<std::string> parts;
+  std::string part;
+  for (char c : text + " ")
+  {
+    if (c == ',' || std::isspace(static_cast<unsigned char>(c)))
+    {
+      if (!part.empty())
+      {
+        parts.push_back(part);
+      }
+      part.clear();
+    }
+    else
+    {
+      part += c;
+    }
+  }
+  if (parts.size() != count)
+  {
+    Fail("bad " + what + " '" + text + "' (expected " + std::to_string(count) +
+      " numbers separated by commas or spaces)");
+  }
+  std::vector<double> numbers;
+  for (const std::string& number : parts)
+  {
+    numbers.push_back(ParseNumber(number, what));
+  }
+  return numbers;
+}
+
 void ParseTriple(const std::string& text, double out[3], const std::string& what)
 {
   const std::vector<std::string> parts = Split(text, ',');

@@ -36,6 +36,11 @@ void ParseSize(
 /// "x,y,z"; `what` names the triple in errors (e.g. "--camera position").
 void ParseTriple(const std::string& text, double out[3], const std::string& what);
 
+/// Exactly `count` numbers separated by commas or white space (plastimatch
+/// writes "x y z"); `what` names them in errors.
+std::vector<double> ParseNumberList(
+  const std::string& text, std::size_t count, const std::string& what);
+
 /// The parts of text between separators.
 std::vector<std::string> Split(const std::string& text, char separator);
 

@@ -75,8 +75,9 @@ void ProgressBar::Update(double fraction)
   }
   const int width = 40;
   const int filled = static_cast<int>(fraction * width);
-  std::fprintf(stderr, "\r%-12s [%s%s] %3d%%", this->Stage, std::string(filled, '#').c_str(),
-    std::string(width - filled, ' ').c_str(), static_cast<int>(fraction * 100));
+  std::fprintf(stderr, "\r%-12s [%s%s] %3d%%", this->Stage.c_str(),
+    std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(),
+    static_cast<int>(fraction * 100));
   std::fflush(stderr);
   this->Shown = true;
 }

@@ -4,6 +4,7 @@
 #define mcxProgressBar_h
 
 #include "vtkNew.h"
+#include <string>
 
 #include <chrono>
 
@@ -36,7 +37,7 @@ private:
   void Update(double fraction);
 
   bool Enabled = false;
-  const char* Stage = "";
+  std::string Stage;
   std::chrono::steady_clock::time_point Start;
   bool Shown = false;
   vtkNew<vtkCallbackCommand> Command;

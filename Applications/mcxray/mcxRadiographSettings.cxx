@@ -1,37 +1,221 @@
 #include "mcxRadiographSettings.h"
 
+#include "mcxErrorCapture.h"
 #include "mcxFail.h"
+#include "mcxProjectionMatrix.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkMCXRadiograph.h"
 #include "vtkMCXRadiographGeometry.h"
 #include "vtkMCXXRayMapper.h"
 #include "vtkNew.h"
 
+#include <algorithm>
 #include <string>
 
 namespace mcxapp
 {
 
+namespace
+{
+// The most poses one run renders (a file each, or a slice of one stack).
+const int MaximumPoses = 100000;
+
+// The geometry's error, said as one line of mcxray's.
+class GeometryErrors
+{
+public:
+  explicit GeometryErrors(vtkObject* geometry)
+  {
+    this->Command->SetClientData(&this->Text);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* text, void* message)
+      {
+        std::string& kept = *static_cast<std::string*>(text);
+        if (kept.empty() && message)
+        {
+          kept = ErrorCapture::Clean(static_cast<const char*>(message));
+        }
+      });
+    geometry->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+  [[noreturn]] void Fail() const
+  {
+    mcxapp::Fail(this->Text.empty() ? std::string("bad radiograph geometry") : this->Text);
+  }
+
+private:
+  std::string Text;
+  vtkNew<vtkCallbackCommand> Command;
+};
+
+void Centre(vtkImageData* volume, double centre[3])
+{
+  double bounds[6];
+  volume->GetBounds(bounds);
+  for (int a = 0; a < 3; ++a)
+  {
+    centre[a] = (bounds[2 * a] + bounds[2 * a + 1]) / 2;
+  }
+}
+}
+
+void RadiographSettings::CheckCombinations() const
+{
+  const bool sweep = !this->GantryList.empty() || this->AngleCount > 1;
+  if ((this->HasMatrix || this->HasIntrinsics) &&
+    (sweep || this->HasNormal || this->HasImageCenter))
+  {
+    Fail("--projection-matrix and --intrinsics give the whole view: they replace --gantry, -a, "
+         "--nrm and --image-center");
+  }
+  if (this->HasMatrix && (this->HasIntrinsics || this->HasExtrinsics))
+  {
+    Fail("give either --projection-matrix or --intrinsics with --extrinsics, not both");
+  }
+  if (this->HasIntrinsics != this->HasExtrinsics)
+  {
+    Fail("--intrinsics and --extrinsics go together");
+  }
+  if (this->PitchGiven && this->DetectorSizeGiven)
+  {
+    Fail("give either --pitch or --detector-size (-z), not both");
+  }
+  if (!this->GantryList.empty() && (this->AngleCount > 1 || this->AngleStep != 0))
+  {
+    Fail("give either --gantry START:STOP:COUNT or -a/-N, not both");
+  }
+  if (this->HasNormal && sweep)
+  {
+    Fail("--nrm fixes the direction of the source: it cannot be swept (-a, --gantry "
+         "START:STOP:COUNT)");
+  }
+  if (static_cast<long long>(this->AngleCount) * std::max<std::size_t>(1, this->GantryList.size()) >
+    MaximumPoses)
+  {
+    Fail("at most " + std::to_string(MaximumPoses) + " poses per run");
+  }
+}
+
+std::vector<Pose> RadiographSettings::Poses(vtkImageData* volume) const
+{
+  std::vector<Pose> poses;
+  Pose pose;
+  pose.Size[0] = this->Detector[0];
+  pose.Size[1] = this->Detector[1];
+  if (this->HasMatrix || this->HasIntrinsics)
+  {
+    mcx::PinholeCamera camera;
+    if (this->HasMatrix)
+    {
+      const std::string problem = mcx::PinholeFromMatrix(this->Matrix, camera);
+      if (!problem.empty())
+      {
+        Fail("bad --projection-matrix: " + problem);
+      }
+      std::copy(this->Matrix, this->Matrix + 12, pose.Matrix);
+    }
+    else
+    {
+      camera.Fx = this->Intrinsics[0];
+      camera.Fy = this->Intrinsics[1];
+      camera.Cx = this->Intrinsics[2];
+      camera.Cy = this->Intrinsics[3];
+      std::copy(this->Extrinsics, this->Extrinsics + 9, camera.R);
+      std::copy(this->Extrinsics + 9, this->Extrinsics + 12, camera.T);
+      mcx::MatrixFromPinhole(camera, pose.Matrix);
+      mcx::PinholeCamera back;
+      const std::string problem = mcx::PinholeFromMatrix(pose.Matrix, back);
+      if (!problem.empty() || !(camera.Fx > 0 && camera.Fy > 0))
+      {
+        Fail("bad --intrinsics/--extrinsics: " +
+          (problem.empty() ? std::string("fx and fy must be positive") : problem));
+      }
+      // R must be a rotation: K [R | t] decomposes back to the same R.
+      for (int k = 0; k < 9; ++k)
+      {
+        if (!(std::abs(back.R[k] - camera.R[k]) <= 1e-6))
+        {
+          Fail("bad --extrinsics: R is not a rotation (orthonormal rows, determinant +1)");
+        }
+      }
+    }
+    pose.FocalDistance = 0.0;
+    poses.push_back(pose);
+    return poses;
+  }
+  vtkNew<vtkMCXRadiographGeometry> radiograph;
+  radiograph->SetSourceToAxisDistance(this->SourceToAxis);
+  radiograph->SetSourceToImageDistance(this->SourceToImage);
+  radiograph->SetDetectorPixels(this->Detector[0], this->Detector[1]);
+  if (this->DetectorSizeGiven)
+  {
+    radiograph->SetPixelPitch(
+      this->DetectorSize[0] / this->Detector[0], this->DetectorSize[1] / this->Detector[1]);
+  }
+  else
+  {
+    radiograph->SetPixelPitch(this->Pitch);
+  }
+  radiograph->SetUseDetectorNormal(this->HasNormal);
+  radiograph->SetDetectorNormal(const_cast<double*>(this->Normal));
+  radiograph->SetViewUp(const_cast<double*>(this->Up));
+  radiograph->SetUseImageCenter(this->HasImageCenter);
+  radiograph->SetImageCenter(const_cast<double*>(this->ImageCenter));
+  double centre[3];
+  Centre(volume, centre);
+  radiograph->SetIsocenter(this->HasIsocenter ? this->Isocenter : centre);
+  std::vector<double> angles = this->GantryList;
+  if (angles.empty())
+  {
+    for (int k = 0; k < this->AngleCount; ++k)
+    {
+      angles.push_back(this->Gantry + k * this->AngleStep);
+    }
+  }
+  pose.FocalDistance = this->SourceToAxis;
+  const GeometryErrors errors(radiograph);
+  for (double angle : angles)
+  {
+    radiograph->SetGantryAngle(angle);
+    if (!radiograph->GetProjectionMatrix(pose.Matrix))
+    {
+      errors.Fail();
+    }
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
 vtkSmartPointer<vtkCamera> RadiographSettings::MakeCamera(
   vtkImageData* volume, int size[2], double& spacing) const
 {
+  if (this->HasMatrix || this->HasIntrinsics || this->DetectorSizeGiven || this->HasImageCenter ||
+    this->AngleCount > 1 || !this->GantryList.empty())
+  {
+    Fail("the viewer shows one cone-beam view of square pixels: --projection-matrix, "
+         "--intrinsics, -z, --image-center and sweeps are for mcxray render");
+  }
   vtkNew<vtkMCXRadiographGeometry> radiograph;
   radiograph->SetSourceToAxisDistance(this->SourceToAxis);
   radiograph->SetSourceToImageDistance(this->SourceToImage);
   radiograph->SetDetectorPixels(this->Detector[0], this->Detector[1]);
   radiograph->SetPixelPitch(this->Pitch);
   radiograph->SetGantryAngle(this->Gantry);
-  double bounds[6];
-  volume->GetBounds(bounds);
-  const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
-    (bounds[4] + bounds[5]) / 2 };
+  radiograph->SetUseDetectorNormal(this->HasNormal);
+  radiograph->SetDetectorNormal(const_cast<double*>(this->Normal));
+  radiograph->SetViewUp(const_cast<double*>(this->Up));
+  double centre[3];
+  Centre(volume, centre);
   radiograph->SetIsocenter(this->HasIsocenter ? this->Isocenter : centre);
   auto camera = vtkSmartPointer<vtkCamera>::New();
-  if (!radiograph->ConfigureCamera(camera)) // the geometry's error says why
+  const GeometryErrors errors(radiograph);
+  if (!radiograph->ConfigureCamera(camera))
   {
-    Fail("bad radiograph geometry");
+    errors.Fail();
   }
   size[0] = this->Detector[0];
   size[1] = this->Detector[1];

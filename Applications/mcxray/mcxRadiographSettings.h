@@ -1,10 +1,14 @@
-// The radiograph options that render and view share: a cone-beam geometry
-// as radiographers give it, and the physics applied after accumulation.
-// Each is off unless asked for.
+// The radiograph options that render and view share: the view as
+// radiographers and registration tools give it (plastimatch drr's options,
+// a projection matrix, pinhole intrinsics and extrinsics, one pose or a
+// gantry sweep), and the physics applied after accumulation. Each is off
+// unless asked for.
 #ifndef mcxRadiographSettings_h
 #define mcxRadiographSettings_h
 
 #include "vtkSmartPointer.h"
+
+#include <vector>
 
 class vtkCamera;
 class vtkImageData;
@@ -14,25 +18,61 @@ class vtkMCXXRayMapper;
 namespace mcxapp
 {
 
+/// One view of a run: its 3x4 projection matrix (mcxProjectionMatrix.h's
+/// layout), detector pixels, and the distance from the source of the plane
+/// the output's pixels are measured on (0: through the volume's centre).
+struct Pose
+{
+  double Matrix[12];
+  int Size[2];
+  double FocalDistance;
+};
+
 struct RadiographSettings
 {
-  bool Geometry = false; // any of --sad, --sid, --detector, --pitch, --gantry, --isocenter
+  bool Geometry = false; // any option of the cone-beam geometry, a matrix or K, R, t
   double SourceToAxis = 1000.0;
   double SourceToImage = 1500.0;
   int Detector[2] = { 512, 512 };
+  bool PitchGiven = false;
   double Pitch = 0.8;
+  bool DetectorSizeGiven = false; // -z: the pitch is size / pixels
+  double DetectorSize[2] = { 0, 0 };
   double Gantry = 0.0;
+  std::vector<double> GantryList; // --gantry START:STOP:COUNT or -a/-N: several poses
+  int AngleCount = 1;             // -a
+  double AngleStep = 0.0;         // -N
+  bool HasNormal = false;
+  double Normal[3] = { 1, 0, 0 };
+  double Up[3] = { 0, 0, 1 };
+  bool HasImageCenter = false;
+  double ImageCenter[2] = { 0, 0 };
   bool HasIsocenter = false;
   double Isocenter[3] = { 0, 0, 0 };
+  bool HasMatrix = false; // --projection-matrix
+  double Matrix[12] = { 0 };
+  bool HasIntrinsics = false; // --intrinsics with --extrinsics
+  double Intrinsics[4] = { 0 };
+  bool HasExtrinsics = false;
+  double Extrinsics[12] = { 0 };
   bool BeerLambert = false;
   double IncidentIntensity = 1.0;
   double Photons = 0.0;
   long long NoiseSeed = 0;
   bool NegativeLog = false;
 
-  /// The camera of the radiograph geometry (isocentre: the volume's centre
-  /// unless given); sets the image size and the pixel spacing to the
-  /// detector's. Fails on an impossible geometry.
+  /// Fails on options that contradict each other (a matrix and a gantry
+  /// angle, --pitch and -z, ...).
+  void CheckCombinations() const;
+
+  /// Every pose of the run, in order (isocentre: the volume's centre unless
+  /// given). Fails on an impossible geometry.
+  std::vector<Pose> Poses(vtkImageData* volume) const;
+
+  /// The camera of the cone-beam geometry (one pose, square pixels centred
+  /// on the isocentre's ray: what a renderer can show); sets the image size
+  /// and the pixel spacing to the detector's. Fails on an impossible
+  /// geometry.
   vtkSmartPointer<vtkCamera> MakeCamera(vtkImageData* volume, int size[2], double& spacing) const;
 
   /// Gives the physics to the off-line filter (vtkMCXRadiograph), or to the

@@ -7,6 +7,7 @@
 #include "mcxFail.h"
 #include "mcxImageOutput.h"
 #include "mcxOptionTable.h"
+#include "mcxPoseOutput.h"
 #include "mcxPreflight.h"
 #include "mcxProcesses.h"
 #include "mcxProgressBar.h"
@@ -141,13 +142,14 @@ void CheckCombinations(const Settings& settings)
   {
     Fail("unknown output format of '" + settings.Output + "' (expected .vti, .png or .pfm)");
   }
+  settings.Radiograph.CheckCombinations();
   if (settings.Radiograph.Geometry &&
     (!settings.Camera.empty() || settings.ViewGiven || settings.SizeGiven ||
       settings.PixelSpacing > 0))
   {
-    Fail(
-      "the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter) replaces "
-      "--view, --camera, --size and --pixel-spacing");
+    Fail("the radiograph geometry (--sad, --sid, --detector, --pitch, --gantry, --isocenter, "
+         "--projection-matrix, --intrinsics, ...) replaces --view, --camera, --size and "
+         "--pixel-spacing");
   }
 }
 
@@ -269,10 +271,10 @@ public:
 
   int Run(vtkImageData* volume)
   {
+    std::vector<Pose> poses;
     if (this->Options.Radiograph.Geometry)
     {
-      this->View.Camera =
-        this->Options.Radiograph.MakeCamera(volume, this->Options.Size, this->Options.PixelSpacing);
+      poses = this->Options.Radiograph.Poses(volume);
     }
     this->BuildIndex(volume);
     std::string error;
@@ -282,12 +284,26 @@ public:
     {
       Fail(error);
     }
-    vtkImageData* projected = this->Project(tf);
+    this->SetUpProjector(tf);
+    // One read, one index (and one stored cloud): every pose from them.
+    std::vector<vtkSmartPointer<vtkImageData>> images;
+    const std::size_t count = std::max<std::size_t>(1, poses.size());
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      vtkImageData* projected = this->Project(poses.empty() ? nullptr : &poses[k], k, count);
+      if (!IsFirstProcess())
+      {
+        continue; // the image is the first process's: it logs, applies the physics and writes
+      }
+      auto image = vtkSmartPointer<vtkImageData>::New();
+      image->DeepCopy(this->ApplyRadiograph(projected));
+      images.push_back(image);
+    }
     if (!IsFirstProcess())
     {
-      return 0; // the image is the first process's: it logs, applies the physics and writes
+      return 0;
     }
-    this->Write(this->ApplyRadiograph(projected));
+    this->WriteAll(images);
     // Warnings only once the run has succeeded: a failing run says one line.
     for (const std::string& warning : this->Warnings)
     {
@@ -426,7 +442,7 @@ private:
     return sampler->GetOutputPort();
   }
 
-  vtkImageData* Project(vtkPiecewiseFunction* tf)
+  void SetUpProjector(vtkPiecewiseFunction* tf)
   {
     this->Projector = this->MakeProjector();
     vtkMCXProjectorBase* projector = this->Projector;
@@ -444,7 +460,25 @@ private:
     projector->SetDetectorAxisV(this->View.DetectorV);
     this->Capture.Watch(projector);
     this->Watch(projector);
-    this->Progress.Begin(this->Options.Method == "reference" ? "reference" : "projection");
+  }
+
+  // The image of pose k of count (null: the view of --view or --camera).
+  vtkImageData* Project(const Pose* pose, std::size_t k, std::size_t count)
+  {
+    vtkMCXProjectorBase* projector = this->Projector;
+    if (pose)
+    {
+      projector->SetUseProjectionMatrix(true);
+      projector->SetProjectionMatrix(pose->Matrix);
+      projector->SetImageSize(pose->Size[0], pose->Size[1]);
+      projector->SetFocalPlaneDistance(pose->FocalDistance);
+    }
+    std::string stage = this->Options.Method == "reference" ? "reference" : "projection";
+    if (count > 1)
+    {
+      stage += " " + std::to_string(k + 1) + "/" + std::to_string(count);
+    }
+    this->Progress.Begin(stage.c_str());
     const auto start = std::chrono::steady_clock::now();
     projector->Update();
     this->Progress.End();
@@ -546,7 +580,40 @@ private:
     return result;
   }
 
-  void Write(vtkImageData* image) const
+  // One pose: its image. Several: a stack (.vti) or a file each. Then the
+  // poses' geometry, if asked for.
+  void WriteAll(const std::vector<vtkSmartPointer<vtkImageData>>& images) const
+  {
+    const std::string& output = this->Options.Output;
+    if (images.size() == 1)
+    {
+      this->Write(images[0], output);
+    }
+    else if (WritesStack(output))
+    {
+      this->Write(StackImages(images), output);
+    }
+    else
+    {
+      for (std::size_t k = 0; k < images.size(); ++k)
+      {
+        this->Write(images[k], NumberedOutput(output, static_cast<int>(k)));
+      }
+    }
+    const std::string& geometry = this->Options.OutputGeometry;
+    std::string error;
+    if (!geometry.empty())
+    {
+      if (!WritePoseGeometry(images, geometry, error))
+      {
+        Fail(error);
+      }
+      this->Log("geometry:    " + geometry + " (" + std::to_string(images.size()) +
+        (images.size() == 1 ? " pose)" : " poses)"));
+    }
+  }
+
+  void Write(vtkImageData* image, const std::string& path) const
   {
     const auto start = std::chrono::steady_clock::now();
     std::string error;
@@ -554,10 +621,9 @@ private:
     const auto logLine = [&]
     {
       return TryLog(this->Options,
-        "output:      " + this->Options.Output + "  written " + std::to_string(Seconds(start)) +
-          " s");
+        "output:      " + path + "  written " + std::to_string(Seconds(start)) + " s");
     };
-    if (!WriteImage(image, this->Options.Output, this->Options.Window, error, logLine))
+    if (!WriteImage(image, path, this->Options.Window, error, logLine))
     {
       Fail(error);
     }

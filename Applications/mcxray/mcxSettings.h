@@ -30,12 +30,14 @@ struct Settings
   bool SizeGiven = false;
   int Size[2] = { 0, 0 };
   RadiographSettings Radiograph;
-  bool RASCoordinates = false; // --coordinates ras: camera and isocentre points in RAS (else LPS)
+  bool RASCoordinates =
+    false; // --coordinates ras: the view's points, directions and matrices in RAS (else LPS)
 
   // render only
   std::string View = "+z";
   bool ViewGiven = false;
   std::string Camera;
+  std::string OutputGeometry; // --output-geometry: the poses' matrices as JSON
   double PixelSpacing = 0.0;
   std::string Output = "mcxray.png";
   PngWindow Window;

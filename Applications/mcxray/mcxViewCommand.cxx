@@ -90,6 +90,7 @@ const long long DefaultSamples = (1LL << vtkMCXTypes::DefaultSampleExponent) - 1
 // What one option allows depends on another: checked once all are read.
 void CheckCombinations(const Settings& settings)
 {
+  settings.Radiograph.CheckCombinations();
   if (!IsCloudMethod(settings.Method))
   {
     Fail("unknown --method '" + settings.Method +
