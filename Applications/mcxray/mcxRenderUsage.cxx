@@ -74,17 +74,44 @@ options:
                         a cone-beam radiograph as radiographers give it (any one of
                         these selects it): source-to-axis distance (default 1000),
                         source-to-image distance (1500), detector pixels (512x512)
-                        and pitch (0.8), gantry angle (0: source on +x, the
-                        patient's left, turning about z towards +y, so 90
-                        puts it posterior: plastimatch's angle a is -a
-                        here), isocentre (default: the volume's centre).
-                        Image columns run along +y at angle 0, rows along +z,
-                        as in plastimatch drr; replaces --view, --camera,
-                        --size and --pixel-spacing
-  --coordinates C       lps (default) or ras (any case): the points of --camera
-                        and --isocenter are in RAS (x to the patient's right, y
-                        anterior) and are taken to LPS by negating x and y;
-                        --view and --gantry name patient directions either way
+                        and pitch (0.8), gantry angle, isocentre (default: the
+                        volume's centre). As in plastimatch drr: at angle a
+                        the source is at isocentre + SAD (cos a, -sin a, 0),
+                        on +x (the patient's left) at 0, anterior (-y) at 90;
+                        image columns run along +y at angle 0, rows down -z.
+                        Replaces --view, --camera, --size and --pixel-spacing
+  --gantry START:STOP:COUNT
+                        COUNT poses from START, STOP excluded (0:360:100 is
+                        plastimatch's -a 100 -N 3.6), from one read and index:
+                        a .vti output is one stack (slice k: pose k), a .png or
+                        .pfm output NAME.EXT is NAME_0000.EXT, NAME_0001.EXT ...
+  plastimatch's own options, the same meaning: -r/--dim "C R" (pixels,
+                        columns first, as its images are), -z/--detector-size
+                        "W H" (mm), -c/--image-center "C R" (pixel of the
+                        isocentre's ray, from the top-left pixel), -o X Y Z,
+                        -n/--nrm X Y Z (isocentre to source, instead of the
+                        angle), --vup X Y Z (towards the top row; default 0 0 1),
+                        -y/--gantry-angle DEG (degrees; plastimatch 1.9.4 reads
+                        radians there), -a/--num-angles N and
+                        -N/--gantry-angle-spacing DEG (a sweep from -y)
+  --projection-matrix "P11 ... P34"
+                        the view as a 3x4 matrix, row by row, with --detector:
+                        world (LPS mm) to (u w, v w, w), u the column, v the row
+                        from the top, 0 at the first pixel's centre (OpenCV's and
+                        plastimatch's layout; any scale)
+  --intrinsics FX,FY,CX,CY --extrinsics R11,...,R33,T1,T2,T3
+                        the same as OpenCV's K and [R | t] (world to camera: x
+                        right, y down, z forward), with --detector
+  --output-geometry FILE
+                        write each pose's P, K, R, t, source, size and spacing
+                        as JSON (the .vti output holds P as field data
+                        ProjectionMatrix, a tuple of 12 per pose)
+  --coordinates C       lps (default) or ras (any case): the points, directions
+                        and matrices of --camera, --isocenter, --nrm, --vup,
+                        --projection-matrix and --extrinsics are in RAS (x to
+                        the patient's right, y anterior) and are taken to LPS
+                        by negating x and y; --view and --gantry name patient
+                        directions either way
   --beer-lambert        output the intensity I0 exp(-line integral) (with --tf mu)
   --i0 I                unattenuated intensity I0 (default 1)
   --photons N           quantum noise: N photons reach an unattenuated pixel,
