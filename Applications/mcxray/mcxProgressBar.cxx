@@ -43,10 +43,15 @@ void ProgressBar::Watch(vtkAlgorithm* algorithm)
   algorithm->AddObserver(vtkCommand::ProgressEvent, this->Command);
 }
 
-void ProgressBar::Begin(const char* stage)
+void ProgressBar::Begin(const std::string& stage, std::size_t part, std::size_t parts)
 {
   this->Stage = stage;
-  this->Start = std::chrono::steady_clock::now();
+  this->Part = part;
+  this->Parts = parts > 0 ? parts : 1;
+  if (part == 0)
+  {
+    this->Start = std::chrono::steady_clock::now();
+  }
   this->Shown = false;
 }
 
@@ -73,6 +78,7 @@ void ProgressBar::Update(double fraction)
   {
     return;
   }
+  fraction = (this->Part + fraction) / this->Parts;
   const int width = 40;
   const int filled = static_cast<int>(fraction * width);
   std::fprintf(stderr, "\r%-12s [%s%s] %3d%%", this->Stage.c_str(),

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <chrono>
+#include <cstddef>
 
 class vtkAlgorithm;
 class vtkCallbackCommand;
@@ -26,8 +27,11 @@ public:
   /// Shows the progress events of algorithm.
   void Watch(vtkAlgorithm* algorithm);
 
-  /// A stage starts: the bar is labelled stage until End().
-  void Begin(const char* stage);
+  /// A stage starts: the bar is labelled stage until End(). A stage in
+  /// parts (the poses of a sweep) is begun once per part: the bar shows the
+  /// whole stage, part of parts, and its half-second of silence counts
+  /// from part 0.
+  void Begin(const std::string& stage, std::size_t part = 0, std::size_t parts = 1);
 
   /// The stage is over: clears the bar if it was shown.
   void End();
@@ -38,6 +42,8 @@ private:
 
   bool Enabled = false;
   std::string Stage;
+  std::size_t Part = 0;
+  std::size_t Parts = 1;
   std::chrono::steady_clock::time_point Start;
   bool Shown = false;
   vtkNew<vtkCallbackCommand> Command;

@@ -478,7 +478,7 @@ private:
     {
       stage += " " + std::to_string(k + 1) + "/" + std::to_string(count);
     }
-    this->Progress.Begin(stage.c_str());
+    this->Progress.Begin(stage, k, count);
     const auto start = std::chrono::steady_clock::now();
     projector->Update();
     this->Progress.End();
