@@ -13,6 +13,7 @@
 
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMetaImageWriter.h"
 #include "vtkNew.h"
@@ -491,4 +492,74 @@ TEST(Radiograph, RealCTAgreesWithPlastimatch)
   RecordProperty("RelativeRMSFromPlastimatch", std::to_string(relativeRMS));
   std::cout << "relative RMS difference from plastimatch: " << relativeRMS << std::endl;
   EXPECT_LT(relativeRMS, 0.03);
+}
+
+TEST(Radiograph, AProjectionMatrixIsTheViewItDescribes)
+{
+  // The same cone-beam view as a camera and as the geometry's matrix: the
+  // same image, and the output's ProjectionMatrix field is that matrix (up to
+  // scale) whichever way the view was given.
+  vtkNew<vtkMCXRadiographGeometry> geometry;
+  geometry->SetDetectorPixels(48, 40);
+  geometry->SetPixelPitch(2.0);
+  geometry->SetGantryAngle(35);
+  const double isocenter[3] = { 3, -2, 1 };
+  geometry->SetIsocenter(isocenter);
+  double P[12];
+  ASSERT_TRUE(geometry->GetProjectionMatrix(P));
+  vtkNew<vtkCamera> camera;
+  ASSERT_TRUE(geometry->ConfigureCamera(camera));
+  auto cube = WaterCube(30);
+  ExactAttenuation scene(cube);
+  vtkMCXReferenceProjector* exact = scene.Projector;
+  exact->SetImageSize(48, 40);
+  exact->SetCamera(camera);
+  exact->SetPixelSpacing(geometry->GetPixelSpacingAtIsocenter());
+  exact->Update();
+  vtkNew<vtkImageData> byCamera;
+  byCamera->DeepCopy(exact->GetOutput());
+  exact->SetProjectionMatrix(P);
+  exact->UseProjectionMatrixOn();
+  exact->SetFocalPlaneDistance(geometry->GetSourceToAxisDistance());
+  exact->Update();
+  vtkImageData* byMatrix = exact->GetOutput();
+  vtkDataArray* a = mcxtest::LineIntegral(byCamera);
+  vtkDataArray* b = mcxtest::LineIntegral(byMatrix);
+  ASSERT_EQ(48 * 40, b->GetNumberOfTuples());
+  const double peak = a->GetRange()[1];
+  ASSERT_GT(peak, 0.5 * MuWater * 30);
+  for (vtkIdType p = 0; p < a->GetNumberOfTuples(); ++p)
+  {
+    ASSERT_NEAR(a->GetTuple1(p), b->GetTuple1(p), 1e-9 * peak) << "pixel " << p;
+  }
+  EXPECT_DOUBLE_EQ(byCamera->GetSpacing()[0], byMatrix->GetSpacing()[0]);
+  for (vtkImageData* image : { static_cast<vtkImageData*>(byCamera), byMatrix })
+  {
+    vtkDataArray* field = image->GetFieldData()->GetArray(vtkMCXTypes::ProjectionMatrixName());
+    ASSERT_NE(nullptr, field);
+    ASSERT_EQ(12, field->GetNumberOfComponents());
+    double written[12], norms[2] = { 0, 0 };
+    field->GetTuple(0, written);
+    for (int k = 0; k < 12; ++k)
+    {
+      norms[0] += P[k] * P[k];
+      norms[1] += written[k] * written[k];
+    }
+    for (int k = 0; k < 12; ++k)
+    {
+      EXPECT_NEAR(P[k] / std::sqrt(norms[0]), written[k] / std::sqrt(norms[1]), 1e-12) << k;
+    }
+  }
+  // A matrix that is no camera fails the request with the reason.
+  const double affine[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1 };
+  exact->SetProjectionMatrix(affine);
+  mcxtest::FirstError errors(exact);
+  exact->Update();
+  EXPECT_NE(std::string::npos, errors.Text.find("rank below 3")) << errors.Text;
+  // A camera cannot hold an off-centre image centre.
+  geometry->UseImageCenterOn();
+  vtkNew<vtkCamera> other;
+  mcxtest::FirstError geometryErrors(geometry);
+  EXPECT_FALSE(geometry->ConfigureCamera(other));
+  EXPECT_NE(std::string::npos, geometryErrors.Text.find("GetProjectionMatrix"));
 }

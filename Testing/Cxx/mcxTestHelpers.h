@@ -329,6 +329,28 @@ struct ExecutionCounter
   }
 };
 
+/// Keeps the first error event of an object (and stops VTK printing it).
+struct FirstError
+{
+  std::string Text;
+  vtkNew<vtkCallbackCommand> Command;
+
+  explicit FirstError(vtkObject* object)
+  {
+    this->Command->SetClientData(&this->Text);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* data, void* message)
+      {
+        std::string& text = *static_cast<std::string*>(data);
+        if (text.empty() && message)
+        {
+          text = static_cast<const char*>(message);
+        }
+      });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+};
+
 inline double FieldValue(vtkDataObject* data, const char* name)
 {
   return data->GetFieldData()->GetArray(name)->GetTuple1(0);
