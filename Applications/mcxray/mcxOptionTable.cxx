@@ -85,22 +85,28 @@ void SetNumbers(Settings& settings, const Argument& argument, std::size_t count,
   settings.Radiograph.Geometry = true;
 }
 
-// Columns and rows: 512x512 (ours), "512 512" (plastimatch's -r).
+// Columns and rows: 512x512 (ours), "512 512" or 512,512 (plastimatch's -r).
 void SetDetectorPixels(Settings& settings, const Argument& argument)
 {
   std::string value = argument.Value;
-  std::replace(value.begin(), value.end(), 'x', ' ');
-  double pixels[2];
-  SetNumbers(settings, { argument.Name, value }, 2, pixels);
-  for (int k = 0; k < 2; ++k)
+  const std::size_t first = value.find_first_not_of(" \t");
+  const std::size_t last = value.find_last_not_of(" \t");
+  value = first == std::string::npos ? std::string() : value.substr(first, last - first + 1);
+  std::string size;
+  for (char c : value)
   {
-    if (!(pixels[k] >= 1 && pixels[k] <= 65536) || pixels[k] != std::floor(pixels[k]))
+    const bool separator = c == ' ' || c == '\t' || c == ',';
+    if (!separator)
     {
-      Fail(argument.Name + " takes whole numbers of pixels from 1 to 65536, not '" +
-        argument.Value + "'");
+      size += c;
     }
-    settings.Radiograph.Detector[k] = static_cast<int>(pixels[k]);
+    else if (!size.empty() && size.back() != 'x')
+    {
+      size += 'x';
+    }
   }
+  ParseSize(size, argument.Name, 1, 65536, settings.Radiograph.Detector);
+  settings.Radiograph.Geometry = true;
 }
 
 void SetDetectorSize(Settings& settings, const Argument& argument)
