@@ -1,5 +1,6 @@
 #include "mcxPoseOutput.h"
 
+#include "mcxFail.h"
 #include "mcxPartialFileGuard.h"
 #include "mcxProjectionMatrix.h"
 
@@ -7,7 +8,9 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkMCXMemoryCheck.h"
 #include "vtkMCXTypes.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 
 #include <cerrno>
@@ -55,17 +58,11 @@ void WriteMatrix(std::ostream& out, const double* values, int rows, int columns)
   out << "]";
 }
 
-void WritePose(std::ostream& out, vtkImageData* image)
+void WritePose(std::ostream& out, const PoseRecord& pose)
 {
-  int dims[3];
-  image->GetDimensions(dims);
-  double P[12];
-  image->GetFieldData()->GetArray(vtkMCXTypes::ProjectionMatrixName())->GetTuple(0, P);
-  const int size[2] = { dims[0], dims[1] };
-  out << "    {\"size\": ";
-  WriteRow(out, std::vector<double>{ double(size[0]), double(size[1]) }.data(), 2);
-  out << ", \"pixel_spacing\": ";
-  WriteRow(out, image->GetSpacing(), 2);
+  const double* P = pose.Matrix;
+  out << "    {\"size\": [" << pose.Size[0] << ", " << pose.Size[1] << "], \"pixel_spacing\": ";
+  WriteRow(out, pose.Spacing, 2);
   out << ",\n     \"P\": ";
   WriteMatrix(out, P, 3, 4);
   mcx::PinholeCamera camera;
@@ -105,43 +102,64 @@ std::string NumberedOutput(const std::string& path, int index)
   return path.substr(0, path.size() - extension.size()) + number + extension;
 }
 
-vtkSmartPointer<vtkImageData> StackImages(const std::vector<vtkSmartPointer<vtkImageData>>& images)
+PoseRecord RecordOf(vtkImageData* image)
 {
-  auto stack = vtkSmartPointer<vtkImageData>::New();
-  vtkImageData* first = images.front();
+  PoseRecord pose;
   int dims[3];
-  first->GetDimensions(dims);
-  const int count = static_cast<int>(images.size());
-  stack->SetExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, count - 1);
-  stack->SetOrigin(first->GetOrigin());
-  stack->SetSpacing(first->GetSpacing()[0], first->GetSpacing()[1], 1.0);
-  vtkDataArray* firstValues = first->GetPointData()->GetScalars();
-  vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(firstValues->NewInstance());
-  values->SetName(firstValues->GetName());
-  const vtkIdType perSlice = static_cast<vtkIdType>(dims[0]) * dims[1];
-  values->SetNumberOfTuples(perSlice * count);
-  vtkNew<vtkDoubleArray> matrices;
-  matrices->SetName(vtkMCXTypes::ProjectionMatrixName());
-  matrices->SetNumberOfComponents(12);
-  matrices->SetNumberOfTuples(count);
-  for (int k = 0; k < count; ++k)
-  {
-    vtkDataArray* slice = images[k]->GetPointData()->GetScalars();
-    for (vtkIdType p = 0; p < perSlice; ++p)
-    {
-      values->SetTuple1(k * perSlice + p, slice->GetTuple1(p));
-    }
-    double P[12];
-    images[k]->GetFieldData()->GetArray(vtkMCXTypes::ProjectionMatrixName())->GetTuple(0, P);
-    matrices->SetTypedTuple(k, P);
-  }
-  stack->GetPointData()->SetScalars(values);
-  stack->GetFieldData()->AddArray(matrices);
-  return stack;
+  image->GetDimensions(dims);
+  pose.Size[0] = dims[0];
+  pose.Size[1] = dims[1];
+  pose.Spacing[0] = image->GetSpacing()[0];
+  pose.Spacing[1] = image->GetSpacing()[1];
+  image->GetFieldData()->GetArray(vtkMCXTypes::ProjectionMatrixName())->GetTuple(0, pose.Matrix);
+  return pose;
 }
 
-bool WritePoseGeometry(const std::vector<vtkSmartPointer<vtkImageData>>& images,
-  const std::string& path, std::string& error)
+PoseStack::PoseStack(int count, const int size[2])
+  : Count(count)
+{
+  const double bytes = static_cast<double>(size[0]) * size[1] * count * sizeof(double);
+  const std::string problem = mcx::MemoryProblem(bytes,
+    "A stack of " + std::to_string(count) + " images of " + std::to_string(size[0]) + " x " +
+      std::to_string(size[1]) + " pixels");
+  if (!problem.empty())
+  {
+    Fail(problem + " (write numbered .png or .pfm files instead)");
+  }
+  this->Image = vtkSmartPointer<vtkImageData>::New();
+  this->Image->SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, count - 1);
+}
+
+void PoseStack::Add(int k, vtkImageData* image)
+{
+  vtkImageData* stack = this->Image;
+  vtkDataArray* slice = image->GetPointData()->GetScalars();
+  const vtkIdType perSlice = slice->GetNumberOfTuples();
+  if (k == 0)
+  {
+    stack->SetOrigin(image->GetOrigin());
+    stack->SetSpacing(image->GetSpacing()[0], image->GetSpacing()[1], 1.0);
+    vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(slice->NewInstance());
+    values->SetName(slice->GetName());
+    values->SetNumberOfTuples(perSlice * this->Count);
+    stack->GetPointData()->SetScalars(values);
+    vtkNew<vtkDoubleArray> matrices;
+    matrices->SetName(vtkMCXTypes::ProjectionMatrixName());
+    matrices->SetNumberOfComponents(12);
+    matrices->SetNumberOfTuples(this->Count);
+    stack->GetFieldData()->AddArray(matrices);
+  }
+  vtkDataArray* values = stack->GetPointData()->GetScalars();
+  for (vtkIdType p = 0; p < perSlice; ++p)
+  {
+    values->SetTuple1(k * perSlice + p, slice->GetTuple1(p));
+  }
+  const PoseRecord pose = RecordOf(image);
+  stack->GetFieldData()->GetArray(vtkMCXTypes::ProjectionMatrixName())->SetTuple(k, pose.Matrix);
+}
+
+bool WritePoseGeometry(
+  const std::vector<PoseRecord>& poses, const std::string& path, std::string& error)
 {
   std::ostringstream out;
   out << std::setprecision(17);
@@ -149,10 +167,10 @@ bool WritePoseGeometry(const std::vector<vtkSmartPointer<vtkImageData>>& images,
          "the column from the left, v the row from the top, 0 at the first pixel's centre, w > 0 "
          "in front of the source; P = K [R | t] (OpenCV: camera x right, y down, z forward)\",\n"
       << "  \"poses\": [\n";
-  for (std::size_t k = 0; k < images.size(); ++k)
+  for (std::size_t k = 0; k < poses.size(); ++k)
   {
-    WritePose(out, images[k]);
-    out << (k + 1 < images.size() ? ",\n" : "\n");
+    WritePose(out, poses[k]);
+    out << (k + 1 < poses.size() ? ",\n" : "\n");
   }
   out << "  ]\n}\n";
   // All or nothing: a temporary beside the file, renamed when complete.

@@ -21,17 +21,38 @@ bool WritesStack(const std::string& path);
 /// The file of pose `index` (from 0): NAME_0000.EXT for NAME.EXT.
 std::string NumberedOutput(const std::string& path, int index);
 
-/// The 2D images of the poses (the same size and spacing) as one 3D image,
-/// slice k the image of pose k; its ProjectionMatrix field holds a tuple of
-/// 12 per pose.
-vtkSmartPointer<vtkImageData> StackImages(const std::vector<vtkSmartPointer<vtkImageData>>& images);
+/// What --output-geometry writes of a pose: its image's ProjectionMatrix
+/// field, size and spacing.
+struct PoseRecord
+{
+  double Matrix[12];
+  int Size[2];
+  double Spacing[2];
+};
+PoseRecord RecordOf(vtkImageData* image);
 
-/// Writes the poses' geometry, read from each image's ProjectionMatrix
-/// field, as JSON to path, all or nothing: per pose the detector size in
-/// pixels, the 3x4 matrix P and, for a perspective view, K, R, t and the
-/// source. False with the reason on failure.
-bool WritePoseGeometry(const std::vector<vtkSmartPointer<vtkImageData>>& images,
-  const std::string& path, std::string& error);
+/// A stack of `count` poses' 2D images (the same size and spacing), filled
+/// slice by slice: slice k is pose k's image; its ProjectionMatrix field
+/// holds a tuple of 12 per pose. Fails, before any slice is kept, when the
+/// stack does not fit the memory budget.
+class PoseStack
+{
+public:
+  PoseStack(int count, const int size[2]);
+  void Add(int k, vtkImageData* image);
+  vtkImageData* GetImage() const { return this->Image; }
+
+private:
+  vtkSmartPointer<vtkImageData> Image;
+  int Count;
+};
+
+/// Writes the poses' geometry as JSON to path, all or nothing: per pose the
+/// detector size in pixels, the spacing, the 3x4 matrix P and, for a
+/// perspective view, K, R, t and the source. False with the reason on
+/// failure.
+bool WritePoseGeometry(
+  const std::vector<PoseRecord>& poses, const std::string& path, std::string& error);
 
 } // namespace mcxapp
 

@@ -100,6 +100,15 @@ void RadiographSettings::CheckCombinations() const
   }
 }
 
+int RadiographSettings::PoseCount() const
+{
+  if (this->HasMatrix || this->HasIntrinsics)
+  {
+    return 1;
+  }
+  return this->GantryList.empty() ? this->AngleCount : static_cast<int>(this->GantryList.size());
+}
+
 std::vector<Pose> RadiographSettings::Poses(vtkImageData* volume) const
 {
   std::vector<Pose> poses;

@@ -65,6 +65,9 @@ struct RadiographSettings
   /// angle, --pitch and -z, ...).
   void CheckCombinations() const;
 
+  /// How many poses the run renders (known before the volume is read).
+  int PoseCount() const;
+
   /// Every pose of the run, in order (isocentre: the volume's centre unless
   /// given). Fails on an impossible geometry.
   std::vector<Pose> Poses(vtkImageData* volume) const;

@@ -36,6 +36,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <cerrno>
@@ -45,6 +46,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -285,25 +287,43 @@ public:
       Fail(error);
     }
     this->SetUpProjector(tf);
-    // One read, one index (and one stored cloud): every pose from them.
-    std::vector<vtkSmartPointer<vtkImageData>> images;
-    const std::size_t count = std::max<std::size_t>(1, poses.size());
-    for (std::size_t k = 0; k < count; ++k)
+    // One read, one index (and one stored cloud): every pose from them,
+    // each image written (or kept in the stack) as it is made.
+    const int count = static_cast<int>(std::max<std::size_t>(1, poses.size()));
+    std::unique_ptr<PoseStack> stack;
+    if (count > 1 && WritesStack(this->Options.Output) && IsFirstProcess())
+    {
+      stack.reset(new PoseStack(count, poses[0].Size));
+    }
+    std::vector<PoseRecord> records;
+    for (int k = 0; k < count; ++k)
     {
       vtkImageData* projected = this->Project(poses.empty() ? nullptr : &poses[k], k, count);
       if (!IsFirstProcess())
       {
         continue; // the image is the first process's: it logs, applies the physics and writes
       }
-      auto image = vtkSmartPointer<vtkImageData>::New();
-      image->DeepCopy(this->ApplyRadiograph(projected));
-      images.push_back(image);
+      vtkImageData* image = this->ApplyRadiograph(projected);
+      records.push_back(RecordOf(image));
+      if (stack)
+      {
+        stack->Add(k, image);
+      }
+      else
+      {
+        this->Write(
+          image, count > 1 ? NumberedOutput(this->Options.Output, k) : this->Options.Output);
+      }
     }
     if (!IsFirstProcess())
     {
       return 0;
     }
-    this->WriteAll(images);
+    if (stack)
+    {
+      this->Write(stack->GetImage(), this->Options.Output);
+    }
+    this->WriteGeometry(records);
     // Warnings only once the run has succeeded: a failing run says one line.
     for (const std::string& warning : this->Warnings)
     {
@@ -463,7 +483,7 @@ private:
   }
 
   // The image of pose k of count (null: the view of --view or --camera).
-  vtkImageData* Project(const Pose* pose, std::size_t k, std::size_t count)
+  vtkImageData* Project(const Pose* pose, int k, int count)
   {
     vtkMCXProjectorBase* projector = this->Projector;
     if (pose)
@@ -580,37 +600,20 @@ private:
     return result;
   }
 
-  // One pose: its image. Several: a stack (.vti) or a file each. Then the
-  // poses' geometry, if asked for.
-  void WriteAll(const std::vector<vtkSmartPointer<vtkImageData>>& images) const
+  void WriteGeometry(const std::vector<PoseRecord>& poses) const
   {
-    const std::string& output = this->Options.Output;
-    if (images.size() == 1)
-    {
-      this->Write(images[0], output);
-    }
-    else if (WritesStack(output))
-    {
-      this->Write(StackImages(images), output);
-    }
-    else
-    {
-      for (std::size_t k = 0; k < images.size(); ++k)
-      {
-        this->Write(images[k], NumberedOutput(output, static_cast<int>(k)));
-      }
-    }
     const std::string& geometry = this->Options.OutputGeometry;
     std::string error;
-    if (!geometry.empty())
+    if (geometry.empty())
     {
-      if (!WritePoseGeometry(images, geometry, error))
-      {
-        Fail(error);
-      }
-      this->Log("geometry:    " + geometry + " (" + std::to_string(images.size()) +
-        (images.size() == 1 ? " pose)" : " poses)"));
+      return;
     }
+    if (!WritePoseGeometry(poses, geometry, error))
+    {
+      Fail(error);
+    }
+    this->Log("geometry:    " + geometry + " (" + std::to_string(poses.size()) +
+      (poses.size() == 1 ? " pose)" : " poses)"));
   }
 
   void Write(vtkImageData* image, const std::string& path) const
@@ -640,6 +643,49 @@ private:
   vtkSmartPointer<vtkMCXProjectorBase> Projector;
   vtkSmartPointer<vtkMCXRadiograph> Radiograph;
 };
+
+// Every file the run will write (a sweep's numbered files, its geometry),
+// checked before any work: nothing the run reads is overwritten, and a
+// name that cannot be written fails now, not after the render.
+void CheckOutputs(const Settings& settings)
+{
+  std::vector<std::pair<std::string, std::string>> outputs; // file, option
+  const int poses = settings.Radiograph.PoseCount();
+  if (poses > 1 && !WritesStack(settings.Output))
+  {
+    for (int k = 0; k < poses; ++k)
+    {
+      outputs.emplace_back(NumberedOutput(settings.Output, k), "--output");
+    }
+  }
+  else
+  {
+    outputs.emplace_back(settings.Output, "--output");
+  }
+  if (!settings.OutputGeometry.empty())
+  {
+    for (const auto& output : outputs)
+    {
+      if (vtksys::SystemTools::CollapseFullPath(output.first) ==
+        vtksys::SystemTools::CollapseFullPath(settings.OutputGeometry))
+      {
+        Fail("--output-geometry names an image the run writes ('" + output.first + "')");
+      }
+    }
+    outputs.emplace_back(settings.OutputGeometry, "--output-geometry");
+  }
+  const std::string input = settings.Input.empty() ? BundledVolumePath() : settings.Input;
+  for (const auto& output : outputs)
+  {
+    CheckOutputDirectory(output.first);
+    const std::string nameProblem = OutputNameProblem(output.first, output.second);
+    if (!nameProblem.empty())
+    {
+      Fail(nameProblem);
+    }
+    CheckOutputIsNotInput(output.first, input, output.second);
+  }
+}
 }
 
 int RunRender(int argc, char* argv[])
@@ -663,14 +709,7 @@ int RunRender(int argc, char* argv[])
     vtkSMPTools::Initialize(settings.Threads);
   }
   mcx::SetMemoryBudget(settings.MemoryLimit);
-  CheckOutputDirectory(settings.Output);
-  const std::string nameProblem = OutputNameProblem(settings.Output, "--output");
-  if (!nameProblem.empty())
-  {
-    Fail(nameProblem);
-  }
-  CheckOutputIsNotInput(
-    settings.Output, settings.Input.empty() ? BundledVolumePath() : settings.Input, "--output");
+  CheckOutputs(settings);
   CheckTransferFunction(settings.TF);
   const ViewChoice view = ChooseView(settings);
   WarnOfLongRuns(settings);

@@ -249,11 +249,20 @@ class Geometry(unittest.TestCase):
                                "--extrinsics", "1,0,0,0,1,0,0,0,2,0,0,500"],
             "go together": ["--intrinsics", "1000,1000,16,16"],
             "expected 12 numbers": ["--projection-matrix", "1 2 3"],
+            "names an image the run writes": ["--output-geometry", os.path.join(self.work, "bad.vti")],
+            "is the input": ["--gantry", "0:90:2", "--output", os.path.join(self.work, "in.pfm")],
         }
+        # A sweep's numbered file that is the input: refused before any work.
+        shutil.copy(self.volume, os.path.join(self.work, "in_0001.pfm"))
         for expected, arguments in cases.items():
             with self.subTest(expected):
                 output = os.path.join(self.work, "bad.vti")
-                result = self.mcxray("--output", output, *arguments)
+                if expected == "is the input":
+                    result = subprocess.run([MCXRAY, "render", os.path.join(self.work, "in_0001.pfm"),
+                                             "--quiet", *arguments], capture_output=True, text=True)
+                    output = os.path.join(self.work, "in_0000.pfm")
+                else:
+                    result = self.mcxray("--output", output, *arguments)
                 self.assertNotEqual(0, result.returncode)
                 self.assertIn(expected, result.stderr)
                 self.assertEqual(1, len(result.stderr.strip().splitlines()), result.stderr)
