@@ -62,7 +62,6 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
   {
     mcx::ControlledSumsToValues(projection.Controlled(), values->GetPointer(0));
   }
-  fd->Initialize();
   mcx::AddFieldValue(
     fd, vtkMCXTypes::SampleCountName(), static_cast<long long>(projection.Count));
   mcx::AddFieldValue(fd, vtkMCXTypes::SampleWeightName(), projection.SampleWeight);

@@ -348,7 +348,8 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
   matrix->SetName(vtkMCXTypes::ProjectionMatrixName());
   matrix->SetNumberOfValues(12);
   mcx::MatrixFromGeometry(g, matrix->GetPointer(0));
-  output->GetFieldData()->RemoveArray(vtkMCXTypes::ProjectionMatrixName());
+  // The field data start afresh here, with the matrix; the subclasses add to them.
+  output->GetFieldData()->Initialize();
   output->GetFieldData()->AddArray(matrix);
   return values;
 }

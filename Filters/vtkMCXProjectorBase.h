@@ -183,7 +183,10 @@ protected:
    */
   bool FrameOnInputData(vtkDataObject* input, vtkInformation* inInfo);
 
-  /** Gives the output its extent, origin and spacing and a zeroed LineIntegral array. */
+  /**
+   * Gives the output its extent, origin and spacing, a zeroed LineIntegral
+   * array, and field data that hold only the ProjectionMatrix (call it first).
+   */
   vtkDoubleArray* AllocateLineIntegral(vtkImageData* output);
 
   /** The output's origin and direction matrix (see PlaceOnDetectorPlane). */

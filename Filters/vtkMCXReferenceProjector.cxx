@@ -249,7 +249,6 @@ int vtkMCXReferenceProjector::RequestData(
   vtkDoubleArray* values = this->AllocateLineIntegral(output);
   std::copy(current.begin(), current.end(), values->GetPointer(0));
   vtkFieldData* fd = output->GetFieldData();
-  fd->Initialize();
   mcx::AddFieldValue(fd, vtkMCXTypes::EstimatedRelativeErrorName(), change);
   mcx::AddFieldValue(fd, "RaysPerPixelAxis", static_cast<long long>(subdivision));
   mcx::AddFieldValue(fd, vtkMCXTypes::IntegralName(), integral);
