@@ -32,7 +32,8 @@ from vtkmodules.vtkCommonCore import vtkCommand, vtkSMPTools
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 
 from .MonteCarloXRayFilters import (vtkMCXAttenuationFunction, vtkMCXDensityIndex, vtkMCXProjector,
-                                    vtkMCXRadiograph, vtkMCXRadiographGeometry, vtkMCXTypes)
+                                    vtkMCXRadiograph, vtkMCXRadiographGeometry, vtkMCXReferenceProjector,
+                                    vtkMCXTypes)
 from .MonteCarloXRayIO import vtkMCXFirstErrorObserver, vtkMCXVolumeReader
 
 __all__ = ["drr", "Renderer", "DRRResult"]
@@ -47,7 +48,9 @@ _PRESET_POINTS = {
     "soft-tissue": ((-200.0, 0.0), (-50.0, 1.0), (150.0, 1.0), (300.0, 0.0)),
 }
 _PRESETS = "raw, bone, soft-tissue, mu or mu=MU_WATER"
-_METHODS = ("hybrid", "mc", "qmc", "every-voxel")  # view-ordered is the point sampler's alone
+# The command's --method values; view-ordered is the point sampler's alone,
+# reference the exact projector (vtkMCXReferenceProjector).
+_METHODS = ("hybrid", "mc", "qmc", "every-voxel", "reference")
 # static constexpr limits of the C++ classes, which the wrapper leaves out:
 # vtkMCXRadiographGeometry::MaximumDetectorPixels,
 # vtkMCXRadiograph::MaximumPhotonsPerPixel, vtkMCXTypes::LargestSampleExponent.
@@ -68,9 +71,11 @@ class DRRResult:
         -ln(I / I0).
     matrices: float64 (N, 3, 4), each image's projection matrix as the
         projector wrote it (field data "ProjectionMatrix"; any scale).
-    samples: int64 (N,), the samples each image took ("SampleCount").
+    samples: int64 (N,), the samples each image took ("SampleCount"; 0
+        for the reference method).
     estimated_errors: float64 (N,), the relative RMS error each image
-        estimates of itself ("EstimatedRelativeError"; NaN for every-voxel).
+        estimates of itself ("EstimatedRelativeError"; NaN for every-voxel,
+        the last refinement's change for reference).
     quantity: the projector's or radiograph's array the images hold:
         "LineIntegral", "Intensity" or "Attenuation".
     """
@@ -186,7 +191,8 @@ def _image_from_array(array, spacing, origin, direction):
     direction = _numbers(np.eye(3) if direction is None else direction, "direction", [(3, 3)])
     if abs(np.linalg.det(direction)) < 1e-12:
         raise ValueError("direction must be an invertible 3x3 matrix (its columns the x, y, z axes)")
-    values = np.ascontiguousarray(array).reshape(-1)  # x fastest, as VTK stores points
+    # x fastest, as VTK stores points, in the machine's byte order (VTK ignores NumPy's).
+    values = np.ascontiguousarray(array, dtype=array.dtype.newbyteorder("=")).reshape(-1)
     scalars = numpy_to_vtk(values, deep=False)
     scalars.SetName("values")
     image = vtkImageData()
@@ -251,11 +257,14 @@ class Renderer:
         self._set_threads()
         self._index.Update()
         self._messages.raise_if_any("cannot index the volume", stacklevel=3)
-        self._projector = vtkMCXProjector()
-        self._projector.SetInputConnection(self._index.GetOutputPort())
-        self._projector.UseProjectionMatrixOn()
-        self._default_exponent = self._projector.GetSampleExponent()
-        self._messages.watch(self._projector)
+        self._monte_carlo, self._reference = vtkMCXProjector(), vtkMCXReferenceProjector()
+        for projector in (self._monte_carlo, self._reference):
+            projector.SetInputConnection(self._index.GetOutputPort())
+            projector.UseProjectionMatrixOn()
+            self._messages.watch(projector)
+        self._default_exponent = self._monte_carlo.GetSampleExponent()
+        self._default_tolerance = self._reference.GetRelativeTolerance()
+        self._projector = self._monte_carlo  # the one the last call used
         self._radiograph = vtkMCXRadiograph()
         self._radiograph.SetInputConnection(self._projector.GetOutputPort())
         self._messages.watch(self._radiograph)
@@ -419,6 +428,7 @@ class Renderer:
             vup: Optional[Sequence[float]] = None, image_center: Optional[Sequence[float]] = None,
             deposit: str = "footprint", kernel: str = "tent", method: str = "hybrid",
             samples: Optional[int] = None, target_error: Optional[float] = None, seed: int = 0,
+            tolerance: Optional[float] = None,
             beer_lambert: bool = False, photons: float = 0.0, i0: float = 1.0,
             negative_log: bool = False, noise_seed: int = 0,
             progress: Optional[Callable[[float], Any]] = None) -> DRRResult:
@@ -452,7 +462,9 @@ class Renderer:
         "tent" or "box"; method "hybrid", "mc", "qmc" or "every-voxel";
         samples (rounded up to 2^k - 1) or target_error (relative RMS error);
         seed, the same for every pose (common random numbers: pose-to-pose
-        differences are not sampling noise).
+        differences are not sampling noise). method "reference": the exact
+        projector (vtkMCXReferenceProjector), to a relative tolerance
+        (default 1e-3), slow; its ``samples`` are 0.
 
         Physics (vtkMCXRadiograph, for a "mu" TF): beer_lambert (I0
         exp(-integral)), photons per unattenuated pixel (Poisson noise;
@@ -470,42 +482,61 @@ class Renderer:
         plastimatch = dict(sad=sad, sid=sid, gantry=gantry, detector=detector, pitch=pitch,
                            isocenter=isocenter, nrm=nrm, vup=vup, image_center=image_center)
         poses = self._poses(matrices, K, R, t, size, plastimatch)
-        self._configure(self.transfer_function(tf), deposit, kernel, method, samples, target_error, seed)
+        self._configure(self.transfer_function(tf), deposit, kernel, method, samples, target_error, seed,
+                        tolerance)
         physics = self._configure_physics(beer_lambert, photons, i0, negative_log, noise_seed)
         if progress is not None and not callable(progress):
             raise TypeError("progress must be a callable taking the fraction done")
         self._set_threads()
         return self._render(poses, physics, noise_seed, progress)
 
-    def _configure(self, tf, deposit, kernel, method, samples, target_error, seed):
-        projector = self._projector
+    def _configure(self, tf, deposit, kernel, method, samples, target_error, seed, tolerance):
         choices = (("deposit", deposit, vtkMCXTypes.DepositFromName, "footprint or point"),
                    ("kernel", kernel, vtkMCXTypes.KernelFromName, "tent or box"),
                    ("method", method, vtkMCXTypes.StrategyFromName, ", ".join(_METHODS)))
         values = {}
         for name, value, parse, expected in choices:
             number = parse(value) if isinstance(value, str) else -1
+            if name == "method" and value == "reference":
+                number = 0  # not a sampling strategy
             if number < 0 or (name == "method" and value not in _METHODS):
                 raise ValueError("unknown %s %r (expected %s)" % (name, value, expected))
             values[name] = number
         if samples is not None and target_error is not None:
             raise ValueError("give samples= or target_error=, not both")
-        projector.SetDeposit(values["deposit"])
-        projector.SetKernel(values["kernel"])
-        projector.SetStrategy(values["method"])
-        projector.SetSeed(_integer(seed, "seed", 0, 2**63 - 1))
-        if target_error is not None:
-            error = float(_numbers(target_error, "target_error", [()]))
-            if not 0 < error < 1:
-                raise ValueError("target_error must be between 0 and 1, got %g" % error)
-            projector.SetTargetRelativeError(error)
+        if method == "reference":
+            if samples is not None or target_error is not None:
+                raise ValueError("samples= and target_error= are for the Monte Carlo methods; "
+                                 "reference is exact to tolerance=")
+            projector = self._reference
+            tolerance = self._default_tolerance if tolerance is None else float(
+                _numbers(tolerance, "tolerance", [()]))
+            if not 0 < tolerance < 1:
+                raise ValueError("tolerance must be between 0 and 1, got %g" % tolerance)
+            projector.SetRelativeTolerance(tolerance)
         else:
-            projector.SetTargetRelativeError(0.0)
-            if samples is not None:
-                projector.SetNumberOfSamples(_integer(samples, "samples", 1, _MAXIMUM_SAMPLES))
+            if tolerance is not None:
+                raise ValueError("tolerance= goes with method='reference'")
+            projector = self._monte_carlo
+            projector.SetDeposit(values["deposit"])
+            projector.SetStrategy(values["method"])
+            projector.SetSeed(_integer(seed, "seed", 0, 2**63 - 1))
+            if target_error is not None:
+                error = float(_numbers(target_error, "target_error", [()]))
+                if not 0 < error < 1:
+                    raise ValueError("target_error must be between 0 and 1, got %g" % error)
+                projector.SetTargetRelativeError(error)
             else:
-                projector.SetSampleExponent(self._default_exponent)
+                projector.SetTargetRelativeError(0.0)
+                if samples is not None:
+                    projector.SetNumberOfSamples(_integer(samples, "samples", 1, _MAXIMUM_SAMPLES))
+                else:
+                    projector.SetSampleExponent(self._default_exponent)
+        projector.SetKernel(values["kernel"])
         projector.SetTransferFunction(tf)
+        if projector is not self._projector:
+            self._projector = projector
+            self._radiograph.SetInputConnection(projector.GetOutputPort())
 
     def _configure_physics(self, beer_lambert, photons, i0, negative_log, noise_seed):
         radiograph = self._radiograph
@@ -581,7 +612,8 @@ class Renderer:
                 # VTK's row 0 is the bottom; the matrices' v = 0 is the top row.
                 images.append(np.flipud(vtk_to_numpy(array).reshape(rows, columns)).astype(np.float32))
                 matrices.append(vtk_to_numpy(matrix).reshape(3, 4).copy())
-                samples.append(fields.GetArray(vtkMCXTypes.SampleCountName()).GetTuple1(0))
+                count = fields.GetArray(vtkMCXTypes.SampleCountName())  # none for reference
+                samples.append(count.GetTuple1(0) if count is not None else 0)
                 errors.append(fields.GetArray(vtkMCXTypes.EstimatedRelativeErrorName()).GetTuple1(0))
         finally:
             projector.RemoveObserver(tag)

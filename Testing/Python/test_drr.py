@@ -5,6 +5,8 @@ a vtkImageData and a file, N poses equal to one by one, the index built once,
 progress and interruption, and one clear exception per bad input."""
 import os
 import signal
+import subprocess
+import sys
 import tempfile
 import unittest
 import warnings
@@ -12,11 +14,13 @@ import warnings
 import numpy as np
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
 
 import mcxray
 
 MU_WATER = 0.02  # vtkMCXAttenuationFunction's default, per mm
+MCXRAY = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else None  # the command
 
 
 def water_box():
@@ -86,22 +90,20 @@ class Analytic(unittest.TestCase):
         self.assertLess(result.estimated_errors[0], 0.01)
 
     def test_monte_carlo_is_near_the_exact_projector(self):
-        # The exact projector on the same index and matrix: the same estimand,
-        # and it writes its matrix too.
-        result = self.renderer.drr("mu", gantry=40, detector=(33, 33), pitch=3.0, samples=2**20 - 1)
-        reference = mcxray.vtkMCXReferenceProjector()
-        reference.SetInputConnection(self.renderer.index.GetOutputPort())
-        reference.SetTransferFunction(self.renderer.transfer_function("mu"))
-        reference.SetProjectionMatrix(list(result.matrices[0].reshape(-1)))
-        reference.UseProjectionMatrixOn()
-        reference.SetImageSize(33, 33)
-        reference.Update()
-        exact = np.flipud(mcxray.image_to_numpy(reference.GetOutput()))
-        matrix = reference.GetOutput().GetFieldData().GetArray("ProjectionMatrix")
-        np.testing.assert_allclose([matrix.GetValue(i) for i in range(12)], result.matrices[0].reshape(-1))
-        error = np.sqrt(np.mean((result.images[0] - exact) ** 2) / np.mean(exact ** 2))
+        # The exact projector (the command's --method reference) on the same
+        # index: the same estimand, and the same matrix in its field data.
+        options = dict(gantry=40, detector=(33, 33), pitch=3.0)
+        result = self.renderer.drr("mu", samples=2**20 - 1, **options)
+        exact = self.renderer.drr("mu", method="reference", tolerance=1e-3, **options)
+        np.testing.assert_allclose(exact.matrices, result.matrices, rtol=1e-12, atol=1e-9)
+        self.assertEqual(0, exact.samples[0])
+        self.assertLess(exact.estimated_errors[0], 2e-3)  # the last refinement's change
+        error = np.sqrt(np.mean((result.images[0] - exact.images[0]) ** 2) / np.mean(exact.images[0] ** 2))
         self.assertLess(error, 0.01)
-        self.assertGreater(exact.max(), 0.3)
+        self.assertGreater(exact.images.max(), 0.3)
+        # The exact box: mu times the length through the middle.
+        along_x = self.renderer.drr("mu", method="reference", gantry=0, detector=(65, 65), pitch=1.5)
+        self.assertAlmostEqual(MU_WATER * 20, self.middle(along_x.images[0]), delta=1e-3 * MU_WATER * 20)
 
     def test_physics(self):
         kwargs = dict(gantry=0, detector=(33, 33), pitch=3.0, method="every-voxel")
@@ -168,7 +170,9 @@ class Inputs(unittest.TestCase):
             writer.SetInputData(image)
             writer.Write()
             from_file = mcxray.drr(path, **options)
-        for other in (from_image, from_file):
+        swapped = mcxray.drr(volume.astype(volume.dtype.newbyteorder(">")), spacing=spacing, origin=origin,
+                             **options)  # big-endian: the same values
+        for other in (from_image, from_file, swapped):
             np.testing.assert_array_equal(from_array.images, other.images)
             np.testing.assert_array_equal(from_array.matrices, other.matrices)
         self.assertGreater(from_array.images.max(), 0.1)
@@ -247,6 +251,37 @@ class Inputs(unittest.TestCase):
         self.assertIs(signal.default_int_handler, signal.getsignal(signal.SIGINT))  # given back
 
 
+@unittest.skipUnless(MCXRAY, "give the mcxray command as the first argument")
+class CommandLine(unittest.TestCase):
+    """The command and the API, same volume, options and seed: the same image
+    (the command's float64 values rounded to float32), for every preset."""
+
+    def test_the_command_makes_the_same_images(self):
+        volume = water_box()
+        volume[2:4, 3:6, 4:9] = 900
+        renderer = mcxray.Renderer(volume, spacing=(0.9, 1.1, 1.3), origin=(5, -3, 2))
+        with tempfile.TemporaryDirectory() as folder:
+            path, output = os.path.join(folder, "box.vti"), os.path.join(folder, "drr.vti")
+            writer = vtkXMLImageDataWriter()
+            writer.SetFileName(path)
+            writer.SetInputData(renderer.index.GetInput())
+            writer.Write()
+            for tf in ("raw", "bone", "soft-tissue", "mu", "mu=0.03"):
+                subprocess.run([MCXRAY, "render", path, "--tf", tf, "--sad", "800", "--sid", "1200",
+                                "--gantry", "30", "--detector", "40x30", "--pitch", "1.2", "--samples", "65535",
+                                "--seed", "3", "--output", output, "--quiet"], check=True)
+                reader = vtkXMLImageDataReader()
+                reader.SetFileName(output)
+                reader.Update()
+                image = reader.GetOutput()
+                columns, rows, _ = image.GetDimensions()
+                command = np.flipud(vtk_to_numpy(image.GetPointData().GetArray("LineIntegral")).reshape(rows, columns))
+                api = renderer.drr(tf, sad=800, sid=1200, gantry=30, detector=(40, 30), pitch=1.2,
+                                   samples=65535, seed=3).images[0]
+                np.testing.assert_array_equal(command.astype(np.float32), api, err_msg=tf)
+                self.assertGreater(api.max(), 0.4, tf)
+
+
 class BadInput(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -290,6 +325,9 @@ class BadInput(unittest.TestCase):
             (ValueError, r"unknown deposit 'splat' \(expected footprint or point\)",
              lambda: r.drr(deposit="splat")),
             (ValueError, "unknown method 'view-ordered'", lambda: r.drr(method="view-ordered")),
+            (ValueError, "samples= and target_error= are for the Monte Carlo methods",
+             lambda: r.drr(method="reference", samples=1023)),
+            (ValueError, "tolerance= goes with method='reference'", lambda: r.drr(tolerance=0.01)),
             (ValueError, "give samples= or target_error=, not both",
              lambda: r.drr(samples=1023, target_error=0.01)),
             (ValueError, "samples must be >= 1|samples must be 1 to", lambda: r.drr(samples=0)),
