@@ -12,7 +12,7 @@ import unittest
 import warnings
 
 import numpy as np
-from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonCore import VTK_SHORT, vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLImageDataWriter
@@ -158,10 +158,18 @@ class Inputs(unittest.TestCase):
         volume = water_box()
         volume[7, 9, 11] = 1200  # something off-centre
         spacing, origin = (0.8, 1.1, 1.7), (3.0, -4.0, 5.0)
+        direction = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]  # x along +y, y along -x
+        geometry = dict(spacing=spacing, origin=origin, direction=direction)
         options = dict(tf="mu", gantry=[15, 100], detector=(40, 30), pitch=1.0, samples=2**16 - 1, seed=7)
-        from_array = mcxray.drr(volume, spacing=spacing, origin=origin, **options)
-        image = vtkImageData()
-        image.DeepCopy(mcxray.Renderer(volume, spacing=spacing, origin=origin).index.GetInput())
+        from_array = mcxray.drr(volume, **geometry, **options)
+        image = vtkImageData()  # the same volume as VTK holds it: x fastest
+        image.SetDimensions(volume.shape[2], volume.shape[1], volume.shape[0])
+        image.SetSpacing(spacing)
+        image.SetOrigin(origin)
+        image.SetDirectionMatrix(sum(direction, []))
+        image.AllocateScalars(VTK_SHORT, 1)
+        for k, j, i in np.ndindex(*volume.shape):
+            image.SetScalarComponentFromDouble(i, j, k, 0, volume[k, j, i])
         from_image = mcxray.drr(image, **options)
         with tempfile.TemporaryDirectory() as folder:
             path = os.path.join(folder, "box.vti")
@@ -170,7 +178,7 @@ class Inputs(unittest.TestCase):
             writer.SetInputData(image)
             writer.Write()
             from_file = mcxray.drr(path, **options)
-        swapped = mcxray.drr(volume.astype(volume.dtype.newbyteorder(">")), spacing=spacing, origin=origin,
+        swapped = mcxray.drr(volume.astype(volume.dtype.newbyteorder(">")), **geometry,
                              **options)  # big-endian: the same values
         for other in (from_image, from_file, swapped):
             np.testing.assert_array_equal(from_array.images, other.images)
