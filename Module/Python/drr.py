@@ -278,6 +278,8 @@ class Renderer:
     @property
     def levels(self) -> np.ndarray:
         """The index's density levels: the distinct data values (or bin means), ascending."""
+        self._index.Update()  # a vtkImageData input changed since is indexed again
+        self._messages.raise_if_any("cannot index the volume")
         levels = self._index.GetOutput().GetFieldData().GetArray(vtkMCXTypes.LevelValuesName())
         return vtk_to_numpy(levels).astype(np.float64) if levels is not None else np.zeros(0)
 

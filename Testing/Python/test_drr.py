@@ -213,6 +213,20 @@ class Inputs(unittest.TestCase):
         self.assertEqual((1, 32, 32), first.images.shape)
         self.assertEqual((2, 24, 16), second.images.shape)
 
+    def test_a_changed_image_is_indexed_again(self):
+        image = vtkImageData()
+        image.SetDimensions(6, 5, 4)
+        image.AllocateScalars(VTK_SHORT, 1)
+        image.GetPointData().GetScalars().Fill(100)
+        renderer = mcxray.Renderer(image)
+        before = renderer.drr([(0, 0), (1000, 1)], detector=(8, 8), method="every-voxel").images
+        image.GetPointData().GetScalars().Fill(300)
+        image.Modified()
+        after = renderer.drr([(0, 0), (1000, 1)], detector=(8, 8), method="every-voxel").images
+        np.testing.assert_array_equal([300.0], renderer.levels)
+        np.testing.assert_allclose(after, 3 * before, rtol=1e-6)
+        self.assertGreater(before.max(), 0)
+
     def test_transfer_function_forms_agree(self):
         volume = (np.arange(8 * 9 * 10).reshape(8, 9, 10) * 7 % 1500 - 400).astype(np.int16)
         renderer = mcxray.Renderer(volume)
