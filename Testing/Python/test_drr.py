@@ -119,6 +119,36 @@ class Analytic(unittest.TestCase):
         np.testing.assert_allclose(noisy.mean(), np.exp(-plain.astype(np.float64)).mean(), rtol=0.01)
 
 
+class PlastimatchKeywords(unittest.TestCase):
+    """nrm, vup, image_center, pitch and isocenter as plastimatch drr's options mean them."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.renderer = mcxray.Renderer(water_box())
+        cls.isocenter = np.array(cls.renderer.index.GetOutput().GetCenter())
+
+    def test_nrm_is_the_gantry_direction(self):
+        options = dict(detector=(24, 20), samples=2**14 - 1, seed=2)
+        by_gantry = self.renderer.drr("mu", gantry=[0, 90], **options)
+        by_normal = self.renderer.drr("mu", nrm=[(1, 0, 0), (0, -1, 0)], **options)  # source on +x, on -y
+        np.testing.assert_allclose(by_normal.matrices, by_gantry.matrices, atol=1e-9)
+        np.testing.assert_allclose(by_normal.images, by_gantry.images, rtol=1e-5, atol=1e-6)
+
+    def test_vup_image_center_pitch_and_isocenter(self):
+        exact = dict(method="reference", detector=(17, 17))
+        upright = self.renderer.drr("mu", gantry=30, **exact).images[0]
+        upside_down = self.renderer.drr("mu", gantry=30, vup=(0, 0, -1), **exact).images[0]
+        np.testing.assert_allclose(upside_down, upright[::-1, ::-1], rtol=2e-3, atol=1e-4)
+        self.assertGreater(upright.max(), 0.1)
+        isocenter = self.isocenter + [1.0, -2.0, 3.0]
+        P = self.renderer.drr("mu", gantry=30, image_center=(3.0, 12.5), pitch=(0.5, 1.0),
+                              isocenter=isocenter, detector=(8, 8), samples=1023).matrices[0]
+        np.testing.assert_allclose(project(P, isocenter), (3.0, 12.5), atol=1e-9)
+        fx, fy = np.linalg.norm(P[0, :3] - P[2, :3] * project(P, isocenter)[0]), np.linalg.norm(
+            P[1, :3] - P[2, :3] * project(P, isocenter)[1])
+        self.assertAlmostEqual(2.0, fx / fy)  # half the pitch across the columns: twice the pixels per mm
+
+
 class Markers(unittest.TestCase):
     """Bright voxels, placed by an anisotropic, turned voxel grid, land where
     the returned matrices project their world positions."""
