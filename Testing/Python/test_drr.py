@@ -409,6 +409,9 @@ class BadInput(unittest.TestCase):
         for error, pattern, call in cases:
             with self.subTest(pattern):
                 self.check(error, pattern, call)
+        # A VTK warning is a RuntimeWarning, not a line on the terminal.
+        with self.assertWarnsRegex(RuntimeWarning, "zero over the whole volume"):
+            r.drr([(5000, 0), (6000, 1)], detector=(8, 8), samples=1023)
         # After all that, the renderer still renders.
         self.assertEqual((1, 8, 8), r.drr("mu", detector=(8, 8), samples=1023).images.shape)
 
