@@ -481,14 +481,14 @@ class Renderer:
         Raises ValueError or TypeError with one line for bad input, including
         a matrix that is no camera (the projector's reason).
         """
+        if progress is not None and not callable(progress):
+            raise TypeError("progress must be a callable taking the fraction done")
         plastimatch = dict(sad=sad, sid=sid, gantry=gantry, detector=detector, pitch=pitch,
                            isocenter=isocenter, nrm=nrm, vup=vup, image_center=image_center)
         poses = self._poses(matrices, K, R, t, size, plastimatch)
         self._configure(self.transfer_function(tf), deposit, kernel, method, samples, target_error, seed,
                         tolerance)
         physics = self._configure_physics(beer_lambert, photons, i0, negative_log, noise_seed)
-        if progress is not None and not callable(progress):
-            raise TypeError("progress must be a callable taking the fraction done")
         self._set_threads()
         return self._render(poses, physics, noise_seed, progress)
 
