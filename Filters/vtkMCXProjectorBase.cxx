@@ -349,7 +349,8 @@ vtkDoubleArray* vtkMCXProjectorBase::AllocateLineIntegral(vtkImageData* output)
   matrix->SetNumberOfComponents(12); // one tuple: the matrix, row-major
   matrix->SetNumberOfTuples(1);
   mcx::MatrixFromGeometry(g, matrix->GetPointer(0));
-  output->GetFieldData()->Initialize(); // nothing of an earlier request
+  // The field data start afresh here, with the matrix; the subclasses add to them.
+  output->GetFieldData()->Initialize();
   output->GetFieldData()->AddArray(matrix);
   return values;
 }

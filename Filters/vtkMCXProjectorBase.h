@@ -185,7 +185,7 @@ protected:
 
   /**
    * Gives the output its extent, origin and spacing, a zeroed LineIntegral
-   * array, and field data of the ProjectionMatrix alone.
+   * array, and field data that hold only the ProjectionMatrix (call it first).
    */
   vtkDoubleArray* AllocateLineIntegral(vtkImageData* output);
 

@@ -1,7 +1,7 @@
 # The Python package `mcxray`: the classes of the three modules (Filters,
-# Rendering and IO) wrapped by VTK's wrapper,
-# plus NumPy helpers in __init__.py. Importable by Debian's /usr/bin/python3
-# (with python3-vtk9) from the build tree (PYTHONPATH=<build>/${MCXRAY_PYTHON_DESTINATION})
+# Rendering and IO) wrapped by VTK's wrapper, plus NumPy helpers in
+# __init__.py and the NumPy-first DRR API in drr.py. Importable by Debian's
+# /usr/bin/python3 (with python3-vtk9) from the build tree (PYTHONPATH=<build>/${MCXRAY_PYTHON_DESTINATION})
 # and after `cmake --install` to a prefix whose dist-packages Python searches.
 vtk_module_python_default_destination(mcxray_python_default)
 if (EXISTS "/usr/lib/python3/dist-packages" AND DEFINED Python3_VERSION_MINOR)
@@ -25,7 +25,14 @@ vtk_module_wrap_python(
 
 configure_file("${CMAKE_CURRENT_LIST_DIR}/Python/__init__.py.in"
   "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py" @ONLY)
-install(FILES "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py"
+# The pure-Python modules, copied as they are (configure_file re-copies on change).
+set(mcxray_python_modules drr.py)
+foreach (module IN LISTS mcxray_python_modules)
+  configure_file("${CMAKE_CURRENT_LIST_DIR}/Python/${module}"
+    "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/${module}" COPYONLY)
+endforeach ()
+list(TRANSFORM mcxray_python_modules PREPEND "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/")
+install(FILES "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py" ${mcxray_python_modules}
   DESTINATION "${MCXRAY_PYTHON_DESTINATION}/mcxray")
 
 # The extension modules find the libraries relative to themselves once installed.

@@ -9,6 +9,7 @@
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
+#include "vtkMCXRadiographGeometry.h"
 #include "vtkMCXReferenceProjector.h"
 
 #include "vtkCamera.h"
@@ -487,4 +488,46 @@ TEST(CameraGeometry, ObliqueRaysCrossABoxAlongTheirLength)
   const double* s = sampled->GetSpacing();
   const double mass = 12.0 * 15.0 * 10.0;
   EXPECT_NEAR(mass, sum * s[0] * s[1] * (top - bottom) / chord, 1e-9 * mass);
+}
+
+TEST(CameraGeometry, ProjectorsWriteTheMatrixTheyWereGivenBesideTheirFields)
+{
+  // Both projectors, given a 3x4 matrix, write it (at some scale) as
+  // ProjectionMatrix next to their own fields, and a new matrix replaces it.
+  auto index = UniformBoxIndex();
+  vtkNew<vtkMCXRadiographGeometry> radiograph;
+  radiograph->SetIsocenter(6, 2, 5);
+  radiograph->SetDetectorPixels(16, 12);
+  radiograph->SetPixelPitch(4.0);
+  vtkNew<vtkMCXProjector> monteCarlo;
+  monteCarlo->SetNumberOfSamples(1023);
+  vtkNew<vtkMCXReferenceProjector> reference;
+  for (vtkMCXProjectorBase* projector :
+    { static_cast<vtkMCXProjectorBase*>(monteCarlo), static_cast<vtkMCXProjectorBase*>(reference) })
+  {
+    projector->SetInputConnection(index->GetOutputPort());
+    projector->UseProjectionMatrixOn();
+    projector->SetImageSize(16, 12);
+    for (double gantry : { 0.0, 70.0 })
+    {
+      radiograph->SetGantryAngle(gantry);
+      double given[12];
+      ASSERT_TRUE(radiograph->GetProjectionMatrix(given));
+      projector->SetProjectionMatrix(given);
+      projector->Update();
+      vtkFieldData* fd = projector->GetOutput()->GetFieldData();
+      vtkDataArray* written = fd->GetArray("ProjectionMatrix");
+      ASSERT_NE(nullptr, written) << projector->GetClassName() << " at gantry " << gantry;
+      ASSERT_EQ(12, written->GetNumberOfTuples());
+      const double scale = written->GetTuple1(11) / given[11];
+      for (int i = 0; i < 12; ++i)
+      {
+        EXPECT_NEAR(given[i] * scale, written->GetTuple1(i), 1e-9 * std::fabs(given[11] * scale))
+          << projector->GetClassName() << " entry " << i << " at gantry " << gantry;
+      }
+      EXPECT_NE(nullptr, fd->GetArray("EstimatedRelativeError")) << projector->GetClassName();
+    }
+  }
+  EXPECT_EQ(1023, mcxtest::FieldValue(monteCarlo->GetOutput(), "SampleCount"));
+  EXPECT_GE(mcxtest::FieldValue(reference->GetOutput(), "RaysPerPixelAxis"), 1);
 }

@@ -1,6 +1,10 @@
 """Run by the install test with the installed package on PYTHONPATH: the
 package imports with Debian's Python and VTK, and renders a cube of 64 unit
-voxels whose image, times the pixel area, sums to their integral, 64."""
+voxels whose image, times the pixel area, sums to their integral, 64, and
+through mcxray.drr."""
+import os
+import sys
+
 import mcxray
 from vtkmodules.vtkCommonCore import VTK_FLOAT
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
@@ -29,3 +33,8 @@ print("installed mcxray imports and renders:", mcxray.__file__)
 # The readers' module is installed too (its extension finds libMonteCarloXRayIO).
 reader = mcxray.vtkMCXDICOMSeriesReader()
 assert reader.GetSeriesIndex() == -1
+# The NumPy-first module is installed next to __init__.py.
+result = mcxray.drr(image, [(0, 1)], gantry=0, detector=(8, 8), samples=1023)
+assert result.images.shape == (1, 8, 8) and result.images.max() > 0, result.images
+assert os.path.dirname(sys.modules["mcxray.drr"].__file__) == os.path.dirname(mcxray.__file__)
+print("installed mcxray.drr renders:", sys.modules["mcxray.drr"].__file__)
