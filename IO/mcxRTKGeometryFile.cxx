@@ -198,7 +198,8 @@ private:
     }
   }
 
-  // The text as a message may quote it: trimmed, at most 40 characters.
+  // The text as a message quotes it: trimmed, at most 40 bytes (mcxray's
+  // error line escapes what is not printable).
   std::string Shown() const
   {
     const std::size_t first = this->Text.find_first_not_of(" \t\r\n");
@@ -208,10 +209,6 @@ private:
     }
     const std::size_t last = this->Text.find_last_not_of(" \t\r\n");
     std::string shown = this->Text.substr(first, last - first + 1);
-    for (char& c : shown)
-    {
-      c = (c >= 32 && c < 127) ? c : '?';
-    }
     return shown.size() > 40 ? shown.substr(0, 40) + "..." : shown;
   }
 

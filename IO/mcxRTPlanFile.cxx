@@ -1,5 +1,7 @@
 #include "mcxRTPlanFile.h"
 
+#include "mcxDicomFiles.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDICOMItem.h"
@@ -32,14 +34,11 @@ std::string Trimmed(const std::string& text)
   return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
 }
 
-// The text as a message may quote it.
+// The text as a message quotes it: trimmed, at most 40 bytes (mcxray's
+// error line escapes what is not printable).
 std::string Shown(const std::string& text)
 {
   std::string shown = Trimmed(text);
-  for (char& c : shown)
-  {
-    c = (c >= 32 && c < 127) ? c : '?';
-  }
   return shown.size() > 40 ? shown.substr(0, 40) + "..." : shown;
 }
 
@@ -202,6 +201,12 @@ std::string ReadRTPlanBeam(const std::string& path, const std::string& beam, RTP
   if (vtksys::SystemTools::FileLength(path) > MaximumFileBytes)
   {
     return named + "larger than 64 MiB: no plan";
+  }
+  // A file that crashes vtk-dicom's parser ends a child, not mcxray.
+  std::string crashed;
+  if (!ProbeDicomFiles({ path }, nullptr, crashed))
+  {
+    return named + crashed;
   }
   vtkNew<vtkDICOMMetaData> meta;
   vtkNew<vtkDICOMParser> parser;

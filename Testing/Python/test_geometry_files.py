@@ -407,6 +407,14 @@ class GeometryFiles(unittest.TestCase):
         write_plan(plan, [dict(number=1, isocenter=iso)], sop_class="1.2.840.10008.5.1.4.1.1.2")
         self.assert_one_error_line("is no RT Plan", ["--rtplan", plan])
         self.assert_one_error_line("not a DICOM file", ["--rtplan", self.volume])
+        # A plan cut in the middle of its beams.
+        plan = os.path.join(self.work, "cut.dcm")
+        write_plan(plan, [dict(number=1, isocenter=iso)])
+        with open(plan, "rb") as f:
+            data = f.read()
+        with open(plan, "wb") as f:
+            f.write(data[:len(data) - 60])
+        self.assert_one_error_line("RT plan '%s': " % plan, ["--rtplan", plan])
         self.assert_one_error_line("--beam chooses a beam of --rtplan", ["--beam", "1"])
 
 
