@@ -4,7 +4,8 @@ of a DICOM RT Plan (IEC 61217), each rendered as its own tools mean it.
 - RTK: the matrices of RTK's documentation (written by RTK) and RTK's
   GetMatrix formula (its Geometry.md, reproduced here in NumPy) on the
   projection image's pixel grid give our matrices to 1e-9; marker voxels
-  land where those matrices put them; a file RTK would refuse, or one that
+  land where those matrices put them; values hold from one projection to
+  the next as RTK's reader keeps them; a file RTK would refuse, or one that
   is no geometry, is one error line and no image.
 - RT Plan: marker voxels at known patient points appear where IEC 61217
   puts them (directions written out by hand below, not computed by the
@@ -282,6 +283,29 @@ class GeometryFiles(unittest.TestCase):
                 self.assertGreater(w, 0)
                 expected.append((u / w, v / w))
             self.assert_markers_at(images[k], expected, "projection %d" % k)
+
+    def test_rtk_values_hold_as_rtks_reader_keeps_them(self):
+        # Global distances; an angle given in projection 0 holds for 1 until
+        # 2 gives another; "Angle" is RTK's old name of GantryAngle; case
+        # does not matter.
+        text = ('<?xml version="1.0"?>\n<RTKThreeDCircularGeometry version="3">\n'
+                "<SourceToIsocenterDistance>900</SourceToIsocenterDistance>\n"
+                "<sourcetodetectordistance>1300</sourcetodetectordistance>\n"
+                "<Projection><GantryAngle>10</GantryAngle><InPlaneAngle>20</InPlaneAngle>"
+                "</Projection>\n"
+                "<Projection><Angle>40</Angle></Projection>\n"
+                "<Projection><GantryAngle>70</GantryAngle><InPlaneAngle>0</InPlaneAngle>"
+                "</Projection>\n</RTKThreeDCircularGeometry>\n")
+        path = self.write("kept.xml", text)
+        _, matrices = self.render("kept", "--rtk-geometry", path, "--detector", "32x32",
+                                  "--pitch", "4")
+        origin = (-62.0, -62.0)
+        for k, (gantry, in_plane) in enumerate([(10, 20), (40, 20), (70, 0)]):
+            theirs = -pixel_matrix(rtk_matrix(dict(
+                GantryAngle=gantry, InPlaneAngle=in_plane, SourceToIsocenterDistance=900,
+                SourceToDetectorDistance=1300)), origin, (4, 4), 32)
+            self.assertLess(numpy.abs(matrices[k] - theirs).max() / numpy.abs(theirs).max(), 1e-12,
+                            "projection %d" % k)
 
     def test_rtk_files_refused(self):
         good = dict(GantryAngle=10.0, SourceToIsocenterDistance=1000.0,
