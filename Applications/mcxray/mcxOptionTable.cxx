@@ -127,6 +127,7 @@ void SetDetectorSize(Settings& settings, const Argument& argument)
 void SetGantry(Settings& settings, const Argument& argument)
 {
   settings.Radiograph.Geometry = true;
+  settings.Radiograph.GantryGiven = true;
   const std::vector<std::string> parts = Split(argument.Value, ':');
   if (parts.size() == 1)
   {
@@ -221,9 +222,17 @@ const Option Options[] = {
       s.ViewGiven = true;
     } },
   { "--sad", Both, true,
-    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToAxis, a); } },
+    [](Settings& s, const Argument& a)
+    {
+      SetGeometryDistance(s, s.Radiograph.SourceToAxis, a);
+      s.Radiograph.SourceToAxisGiven = true;
+    } },
   { "--sid", Both, true,
-    [](Settings& s, const Argument& a) { SetGeometryDistance(s, s.Radiograph.SourceToImage, a); } },
+    [](Settings& s, const Argument& a)
+    {
+      SetGeometryDistance(s, s.Radiograph.SourceToImage, a);
+      s.Radiograph.SourceToImageGiven = true;
+    } },
   { "--pitch", Both, true,
     [](Settings& s, const Argument& a)
     {
@@ -246,7 +255,11 @@ const Option Options[] = {
   { "-n", Both, true, [](Settings& s, const Argument& a) { SetNormal(s, a); } },
   { "--nrm", Both, true, [](Settings& s, const Argument& a) { SetNormal(s, a); } },
   { "--vup", Both, true,
-    [](Settings& s, const Argument& a) { SetNumbers(s, a, 3, s.Radiograph.Up); } },
+    [](Settings& s, const Argument& a)
+    {
+      SetNumbers(s, a, 3, s.Radiograph.Up);
+      s.Radiograph.UpGiven = true;
+    } },
   { "-c", Render, true, [](Settings& s, const Argument& a) { SetImageCenter(s, a); } },
   { "--image-center", Render, true, [](Settings& s, const Argument& a) { SetImageCenter(s, a); } },
   { "--isocenter", Both, true, [](Settings& s, const Argument& a) { SetIsocenter(s, a); } },
@@ -268,6 +281,33 @@ const Option Options[] = {
     {
       SetNumbers(s, a, 12, s.Radiograph.Extrinsics);
       s.Radiograph.HasExtrinsics = true;
+    } },
+  { "--rtk-geometry", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Radiograph.RTKGeometry = a.Value;
+      s.Radiograph.Geometry = true;
+    } },
+  { "--detector-origin", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      SetNumbers(s, a, 2, s.Radiograph.DetectorOrigin);
+      s.Radiograph.HasDetectorOrigin = true;
+    } },
+  { "--rtplan", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Radiograph.RTPlan = a.Value;
+      s.Radiograph.Geometry = true;
+    } },
+  { "--beam", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      if (a.Value.empty())
+      {
+        Fail("--beam needs a beam number or name");
+      }
+      s.Radiograph.Beam = a.Value;
     } },
   { "--output-geometry", Render, true,
     [](Settings& s, const Argument& a) { s.OutputGeometry = a.Value; } },

@@ -2,7 +2,11 @@
 
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
+#include "mcxIECBeamView.h"
 #include "mcxProjectionMatrix.h"
+#include "mcxRTKGeometryFile.h"
+#include "mcxRTKView.h"
+#include "mcxRTPlanFile.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -14,6 +18,8 @@
 #include "vtkNew.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <string>
 
 namespace mcxapp
@@ -61,10 +67,167 @@ void Centre(vtkImageData* volume, double centre[3])
     centre[a] = (bounds[2 * a] + bounds[2 * a + 1]) / 2;
   }
 }
+
+// RTK's matrices are compared with the file's as RTK's reader compares
+// them (an absolute difference of 0.001 in any element).
+const double RTKMatrixTolerance = 0.001;
+
+// The detector pitch: --pitch, or -z over the pixels.
+void DetectorPitch(const RadiographSettings& settings, double pitch[2])
+{
+  for (int k = 0; k < 2; ++k)
+  {
+    pitch[k] =
+      settings.DetectorSizeGiven ? settings.DetectorSize[k] / settings.Detector[k] : settings.Pitch;
+  }
+}
+
+std::string Shown(double value)
+{
+  std::ostringstream text;
+  text.precision(15);
+  text << value;
+  return text.str();
+}
+}
+
+// Every projection of RTK's file on the detector's pixel grid.
+std::vector<Pose> RadiographSettings::RTKPoses() const
+{
+  std::vector<mcxio::RTKGeometryProjection> projections;
+  const std::string problem = mcxio::ReadRTKGeometry(this->RTKGeometry, MaximumPoses, projections);
+  if (!problem.empty())
+  {
+    Fail(problem);
+  }
+  double spacing[2], origin[2];
+  DetectorPitch(*this, spacing);
+  for (int k = 0; k < 2; ++k)
+  {
+    // RTK's tools centre a projection on the detector's origin by default.
+    origin[k] = this->HasDetectorOrigin ? this->DetectorOrigin[k]
+                                        : -0.5 * (this->Detector[k] - 1) * spacing[k];
+  }
+  std::vector<Pose> poses;
+  Pose pose;
+  pose.Size[0] = this->Detector[0];
+  pose.Size[1] = this->Detector[1];
+  for (std::size_t k = 0; k < projections.size(); ++k)
+  {
+    const mcxio::RTKGeometryProjection& projection = projections[k];
+    const std::string which =
+      "RTK geometry '" + this->RTKGeometry + "', projection " + std::to_string(k) + ": ";
+    const std::string why =
+      mcx::RTKPixelMatrix(projection.Parameters, this->Detector, origin, spacing, pose.Matrix);
+    if (!why.empty())
+    {
+      Fail(which + why);
+    }
+    if (projection.HasMatrix)
+    {
+      double M[12];
+      mcx::RTKMatrix(projection.Parameters, M);
+      for (int e = 0; e < 12; ++e)
+      {
+        if (!(std::abs(M[e] - projection.Matrix[e]) <= RTKMatrixTolerance))
+        {
+          Fail(which + "its Matrix and its parameters disagree (element " + std::to_string(e) +
+            ": " + Shown(projection.Matrix[e]) + " written, " + Shown(M[e]) +
+            " from the parameters), as RTK refuses them");
+        }
+      }
+    }
+    pose.FocalDistance = projection.Parameters.SourceToDetectorDistance;
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+// The beam of the RT plan, by IEC 61217 for a head first supine patient.
+Pose RadiographSettings::RTPlanPose() const
+{
+  mcxio::RTPlanBeam beam;
+  const std::string problem = mcxio::ReadRTPlanBeam(this->RTPlan, this->Beam, beam);
+  if (!problem.empty())
+  {
+    Fail(problem);
+  }
+  if (beam.HasSourceAxisDistance && this->SourceToAxisGiven)
+  {
+    Fail("beam " + std::to_string(beam.Number) + " of '" + this->RTPlan +
+      "' gives its SourceAxisDistance (" + Shown(beam.SourceAxisDistance) +
+      " mm): leave out --sad");
+  }
+  mcx::IECBeamView view;
+  view.GantryDegrees = beam.GantryAngle;
+  view.CollimatorDegrees = beam.BeamLimitingDeviceAngle;
+  view.CouchDegrees = beam.PatientSupportAngle;
+  view.SourceToAxis = beam.HasSourceAxisDistance ? beam.SourceAxisDistance : this->SourceToAxis;
+  view.SourceToImage = this->SourceToImage;
+  std::copy(beam.IsocenterPosition, beam.IsocenterPosition + 3, view.Isocenter);
+  view.Pixels[0] = this->Detector[0];
+  view.Pixels[1] = this->Detector[1];
+  DetectorPitch(*this, view.Pitch);
+  mcx::PinholeCamera camera;
+  const std::string why = view.Camera(camera);
+  if (!why.empty())
+  {
+    Fail("beam " + std::to_string(beam.Number) + " of '" + this->RTPlan + "': " + why);
+  }
+  Pose pose;
+  pose.Size[0] = this->Detector[0];
+  pose.Size[1] = this->Detector[1];
+  mcx::MatrixFromPinhole(camera, pose.Matrix);
+  pose.FocalDistance = view.SourceToAxis; // pixels measured at the isocentre, as --gantry's
+  return pose;
+}
+
+namespace
+{
+// A geometry file's options against the others; "" or why not.
+std::string FileCombinations(const RadiographSettings& r)
+{
+  const bool rtk = !r.RTKGeometry.empty(), plan = !r.RTPlan.empty();
+  if (rtk && plan)
+  {
+    return "give either --rtk-geometry or --rtplan, not both";
+  }
+  if (r.HasDetectorOrigin && !rtk)
+  {
+    return "--detector-origin places RTK's projections: it goes with --rtk-geometry";
+  }
+  if (!r.Beam.empty() && !plan)
+  {
+    return "--beam chooses a beam of --rtplan";
+  }
+  if (!rtk && !plan)
+  {
+    return std::string();
+  }
+  const char* file = rtk ? "--rtk-geometry" : "--rtplan";
+  if (r.GantryGiven || !r.GantryList.empty() || r.AngleCount > 1 || r.AngleStep != 0 ||
+    r.HasNormal || r.UpGiven || r.HasImageCenter || r.HasIsocenter || r.HasMatrix ||
+    r.HasIntrinsics || r.HasExtrinsics)
+  {
+    return std::string(file) +
+      " gives the whole view: it replaces --gantry, -a, -N, --nrm, --vup, --image-center, "
+      "--isocenter, --projection-matrix and --intrinsics/--extrinsics";
+  }
+  if (rtk && (r.SourceToAxisGiven || r.SourceToImageGiven))
+  {
+    return "--rtk-geometry gives the distances of each projection: leave out --sad and --sid";
+  }
+  return std::string();
+}
 }
 
 void RadiographSettings::CheckCombinations() const
 {
+  const std::string files = FileCombinations(*this);
+  if (!files.empty())
+  {
+    Fail(files);
+  }
   const bool sweep = !this->GantryList.empty() || this->AngleCount > 1;
   if ((this->HasMatrix || this->HasIntrinsics) &&
     (sweep || this->HasNormal || this->HasImageCenter))
@@ -111,6 +274,14 @@ int RadiographSettings::PoseCount() const
 
 std::vector<Pose> RadiographSettings::Poses(vtkImageData* volume) const
 {
+  if (!this->RTKGeometry.empty())
+  {
+    return this->RTKPoses();
+  }
+  if (!this->RTPlan.empty())
+  {
+    return { this->RTPlanPose() };
+  }
   std::vector<Pose> poses;
   Pose pose;
   pose.Size[0] = this->Detector[0];

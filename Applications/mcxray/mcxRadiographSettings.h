@@ -1,13 +1,15 @@
 // The radiograph options that render and view share: the view as
-// radiographers and registration tools give it (plastimatch drr's options,
-// a projection matrix, pinhole intrinsics and extrinsics, one pose or a
-// gantry sweep), and the physics applied after accumulation. Each is off
-// unless asked for.
+// radiographers, registration and radiotherapy tools give it (plastimatch
+// drr's options, a projection matrix, pinhole intrinsics and extrinsics,
+// one pose or a gantry sweep, RTK's geometry file, a beam of a DICOM RT
+// Plan), and the physics applied after accumulation. Each is off unless
+// asked for.
 #ifndef mcxRadiographSettings_h
 #define mcxRadiographSettings_h
 
 #include "vtkSmartPointer.h"
 
+#include <string>
 #include <vector>
 
 class vtkCamera;
@@ -39,16 +41,25 @@ struct RadiographSettings
   bool DetectorSizeGiven = false; // -z: the pitch is size / pixels
   double DetectorSize[2] = { 0, 0 };
   double Gantry = 0.0;
+  bool GantryGiven = false;       // --gantry, -y
   std::vector<double> GantryList; // --gantry START:STOP:COUNT or -a/-N: several poses
   int AngleCount = 1;             // -a
   double AngleStep = 0.0;         // -N
   bool HasNormal = false;
   double Normal[3] = { 1, 0, 0 };
   double Up[3] = { 0, 0, 1 };
+  bool UpGiven = false;
   bool HasImageCenter = false;
   double ImageCenter[2] = { 0, 0 };
   bool HasIsocenter = false;
   double Isocenter[3] = { 0, 0, 0 };
+  bool SourceToAxisGiven = false;  // --sad
+  bool SourceToImageGiven = false; // --sid
+  std::string RTKGeometry;         // --rtk-geometry: every projection of RTK's file
+  bool HasDetectorOrigin = false;  // --detector-origin: RTK's projection origin (mm)
+  double DetectorOrigin[2] = { 0, 0 };
+  std::string RTPlan; // --rtplan, with --beam
+  std::string Beam;
   bool HasMatrix = false; // --projection-matrix
   double Matrix[12] = { 0 };
   bool HasIntrinsics = false; // --intrinsics with --extrinsics
@@ -62,7 +73,7 @@ struct RadiographSettings
   bool NegativeLog = false;
 
   /// Fails on options that contradict each other (a matrix and a gantry
-  /// angle, --pitch and -z, ...).
+  /// angle, --pitch and -z, a geometry file and --gantry, ...).
   void CheckCombinations() const;
 
   /// How many poses the run renders (known before the volume is read).
@@ -71,6 +82,11 @@ struct RadiographSettings
   /// Every pose of the run, in order (isocentre: the volume's centre unless
   /// given). Fails on an impossible geometry.
   std::vector<Pose> Poses(vtkImageData* volume) const;
+
+  /// The poses of --rtk-geometry's projections; the pose of --rtplan's
+  /// beam. Fail on a file that does not give them.
+  std::vector<Pose> RTKPoses() const;
+  Pose RTPlanPose() const;
 
   /// The camera of the cone-beam geometry (one pose, square pixels centred
   /// on the isocentre's ray: what a renderer can show); sets the image size

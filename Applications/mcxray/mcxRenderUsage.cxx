@@ -102,6 +102,23 @@ options:
   --intrinsics FX,FY,CX,CY --extrinsics R11,...,R33,T1,T2,T3
                         the same as OpenCV's K and [R | t] (world to camera: x
                         right, y down, z forward), with --detector
+  --rtk-geometry FILE   every projection of RTK's circular geometry file
+                        (RTKThreeDCircularGeometry, versions 2 and 3; flat
+                        detector), with --detector, --pitch or -z, and
+                        --detector-origin U,V (mm: the projections' origin as
+                        RTK's tools take it; default centred): the images are
+                        RTK's projections, row j of the .vti being RTK's row j;
+                        pixels measured on the detector. Each <Matrix> must
+                        agree with its parameters (as RTK checks)
+  --rtplan FILE --beam N
+                        the beam numbered N (else named N; the only beam
+                        without --beam) of a DICOM RT Plan by IEC 61217, as a
+                        planning system's DRR: gantry, collimator and couch
+                        angles of its first control point about its
+                        IsocenterPosition, its SourceAxisDistance (else --sad),
+                        the detector at --sid, the image seen from the source
+                        (gantry, collimator, couch 0: head up, the patient's
+                        left on the right); head first supine patients only
   --output-geometry FILE
                         write each pose's P, K, R, t, source, size and spacing
                         as JSON (the .vti output holds P as field data
