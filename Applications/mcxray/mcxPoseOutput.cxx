@@ -130,6 +130,11 @@ PoseStack::PoseStack(int count, const int size[2])
   this->Image->SetExtent(0, size[0] - 1, 0, size[1] - 1, 0, count - 1);
 }
 
+vtkImageData* PoseStack::GetImage() const
+{
+  return this->Image;
+}
+
 void PoseStack::Add(int k, vtkImageData* image)
 {
   vtkImageData* stack = this->Image;

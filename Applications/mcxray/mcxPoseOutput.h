@@ -40,7 +40,7 @@ class PoseStack
 public:
   PoseStack(int count, const int size[2]);
   void Add(int k, vtkImageData* image);
-  vtkImageData* GetImage() const { return this->Image; }
+  vtkImageData* GetImage() const;
 
 private:
   vtkSmartPointer<vtkImageData> Image;

@@ -518,11 +518,14 @@ TEST(CameraGeometry, ProjectorsWriteTheMatrixTheyWereGivenBesideTheirFields)
       vtkFieldData* fd = projector->GetOutput()->GetFieldData();
       vtkDataArray* written = fd->GetArray("ProjectionMatrix");
       ASSERT_NE(nullptr, written) << projector->GetClassName() << " at gantry " << gantry;
-      ASSERT_EQ(12, written->GetNumberOfTuples());
-      const double scale = written->GetTuple1(11) / given[11];
+      // One tuple of 12: the matrix, row-major.
+      ASSERT_EQ(1, written->GetNumberOfTuples());
+      ASSERT_EQ(12, written->GetNumberOfComponents());
+      const double scale = written->GetComponent(0, 11) / given[11];
       for (int i = 0; i < 12; ++i)
       {
-        EXPECT_NEAR(given[i] * scale, written->GetTuple1(i), 1e-9 * std::fabs(given[11] * scale))
+        EXPECT_NEAR(
+          given[i] * scale, written->GetComponent(0, i), 1e-9 * std::fabs(given[11] * scale))
           << projector->GetClassName() << " entry " << i << " at gantry " << gantry;
       }
       EXPECT_NE(nullptr, fd->GetArray("EstimatedRelativeError")) << projector->GetClassName();
