@@ -5,6 +5,7 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
+#include "vtkMetaImageWriter.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
@@ -114,7 +115,7 @@ bool WritePNG(vtkImageData* image, const std::string& path, const PngWindow& win
 bool IsSupportedOutput(const std::string& path)
 {
   const std::string ext = Extension(path);
-  return ext == ".vti" || ext == ".png" || ext == ".pfm";
+  return ext == ".vti" || ext == ".mha" || ext == ".png" || ext == ".pfm";
 }
 
 namespace
@@ -183,7 +184,7 @@ bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& w
   const std::string ext = Extension(path);
   if (!IsSupportedOutput(path))
   {
-    error = "unknown output format '" + ext + "' (expected .vti, .png or .pfm)";
+    error = "unknown output format '" + ext + "' (expected .vti, .mha, .png or .pfm)";
     return false;
   }
   return WriteAtomically(
@@ -198,6 +199,17 @@ bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& w
         writer->SetDataModeToAppended();
         writer->SetCompressorTypeToZLib();
         return writer->Write() == 1 && writer->GetErrorCode() == 0;
+      }
+      if (ext == ".mha")
+      {
+        // One file, header and float64 data; no field data (the matrices:
+        // --output-geometry).
+        vtkNew<vtkMetaImageWriter> writer;
+        writer->SetInputData(image);
+        writer->SetFileName(temporary.c_str());
+        writer->SetCompression(false);
+        writer->Write();
+        return writer->GetErrorCode() == 0;
       }
       return ext == ".png" ? WritePNG(image, temporary, window) : WritePFM(image, temporary);
     },

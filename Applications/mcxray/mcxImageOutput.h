@@ -1,4 +1,4 @@
-// Writes a LineIntegral image as .vti (float64 with geometry), .png
+// Writes a LineIntegral image as .vti (float64 with geometry), .mha (float64), .png
 // (windowed, 8 or 16 bit) or .pfm (float32), all or nothing: the file is
 // written under a temporary name and renamed only when complete.
 #ifndef mcxImageOutput_h

@@ -282,6 +282,12 @@ const Option Options[] = {
       SetNumbers(s, a, 12, s.Radiograph.Extrinsics);
       s.Radiograph.HasExtrinsics = true;
     } },
+  { "--projection-matrices", Render, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Radiograph.MatrixFile = a.Value;
+      s.Radiograph.Geometry = true;
+    } },
   { "--rtk-geometry", Render, true,
     [](Settings& s, const Argument& a)
     {

@@ -91,7 +91,7 @@ void WritePose(std::ostream& out, const PoseRecord& pose)
 
 bool WritesStack(const std::string& path)
 {
-  return Extension(path) == ".vti";
+  return Extension(path) == ".vti" || Extension(path) == ".mha";
 }
 
 std::string NumberedOutput(const std::string& path, int index)

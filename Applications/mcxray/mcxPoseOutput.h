@@ -1,5 +1,5 @@
-// The outputs of a run of several poses: one stack (.vti: a 3D image, one
-// slice per pose, as RTK stores projections) or numbered files (NAME_0000.png
+// The outputs of a run of several poses: one stack (.vti or .mha: a 3D
+// image, one slice per pose, as RTK stores projections) or numbered files (NAME_0000.png
 // ...), and the poses' geometry as JSON (--output-geometry).
 #ifndef mcxPoseOutput_h
 #define mcxPoseOutput_h
@@ -14,7 +14,7 @@ class vtkImageData;
 namespace mcxapp
 {
 
-/// True when a run of several poses writes one stack to `path` (.vti);
+/// True when a run of several poses writes one stack to `path` (.vti, .mha);
 /// false when it writes a file per pose (.png, .pfm).
 bool WritesStack(const std::string& path);
 

@@ -3,6 +3,7 @@
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
 #include "mcxIECBeamView.h"
+#include "mcxMatrixFile.h"
 #include "mcxProjectionMatrix.h"
 #include "mcxRTKGeometryFile.h"
 #include "mcxRTKView.h"
@@ -187,10 +188,11 @@ namespace
 // A geometry file's options against the others; "" or why not.
 std::string FileCombinations(const RadiographSettings& r)
 {
-  const bool rtk = !r.RTKGeometry.empty(), plan = !r.RTPlan.empty();
-  if (rtk && plan)
+  const bool rtk = !r.RTKGeometry.empty(), plan = !r.RTPlan.empty(),
+             matrices = !r.MatrixFile.empty();
+  if (int(rtk) + int(plan) + int(matrices) > 1)
   {
-    return "give either --rtk-geometry or --rtplan, not both";
+    return "give one of --rtk-geometry, --rtplan and --projection-matrices";
   }
   if (r.HasDetectorOrigin && !rtk)
   {
@@ -200,11 +202,11 @@ std::string FileCombinations(const RadiographSettings& r)
   {
     return "--beam chooses a beam of --rtplan";
   }
-  if (!rtk && !plan)
+  if (!rtk && !plan && !matrices)
   {
     return std::string();
   }
-  const char* file = rtk ? "--rtk-geometry" : "--rtplan";
+  const char* file = rtk ? "--rtk-geometry" : (plan ? "--rtplan" : "--projection-matrices");
   if (r.GantryGiven || !r.GantryList.empty() || r.AngleCount > 1 || r.AngleStep != 0 ||
     r.HasNormal || r.UpGiven || r.HasImageCenter || r.HasIsocenter || r.HasMatrix ||
     r.HasIntrinsics || r.HasExtrinsics)
@@ -213,9 +215,13 @@ std::string FileCombinations(const RadiographSettings& r)
       " gives the whole view: it replaces --gantry, -a, -N, --nrm, --vup, --image-center, "
       "--isocenter, --projection-matrix and --intrinsics/--extrinsics";
   }
-  if (rtk && (r.SourceToAxisGiven || r.SourceToImageGiven))
+  if ((rtk || matrices) && (r.SourceToAxisGiven || r.SourceToImageGiven))
   {
-    return "--rtk-geometry gives the distances of each projection: leave out --sad and --sid";
+    return std::string(file) + " gives the distances of each projection: leave out --sad and --sid";
+  }
+  if (matrices && (r.PitchGiven || r.DetectorSizeGiven))
+  {
+    return "--projection-matrices gives each pose's pixels: leave out --pitch and -z";
   }
   return std::string();
 }
@@ -263,8 +269,63 @@ void RadiographSettings::CheckCombinations() const
   }
 }
 
+std::vector<Pose> RadiographSettings::MatrixFilePoses() const
+{
+  std::vector<mcxio::MatrixPose> matrices;
+  const std::string problem =
+    mcxio::ReadProjectionMatrices(this->MatrixFile, MaximumPoses, matrices);
+  if (!problem.empty())
+  {
+    Fail(problem);
+  }
+  std::vector<Pose> poses;
+  for (std::size_t k = 0; k < matrices.size(); ++k)
+  {
+    Pose pose;
+    mcx::PinholeCamera camera;
+    const std::string why = mcx::PinholeFromMatrix(matrices[k].Matrix, camera);
+    if (!why.empty())
+    {
+      Fail("bad --projection-matrices '" + this->MatrixFile + "', pose " + std::to_string(k) +
+        ": " + why);
+    }
+    std::copy(matrices[k].Matrix, matrices[k].Matrix + 12, pose.Matrix);
+    // The JSON of --output-geometry says each pose's pixels; text takes --detector's.
+    pose.Size[0] = matrices[k].HasSize ? matrices[k].Size[0] : this->Detector[0];
+    pose.Size[1] = matrices[k].HasSize ? matrices[k].Size[1] : this->Detector[1];
+    pose.FocalDistance = 0.0;
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+const std::vector<Pose>& RadiographSettings::FilePoses() const
+{
+  if (!this->FilePosesRead)
+  {
+    this->FilePosesRead = true;
+    if (!this->RTKGeometry.empty())
+    {
+      this->FilePoseList = this->RTKPoses();
+    }
+    else if (!this->RTPlan.empty())
+    {
+      this->FilePoseList = { this->RTPlanPose() };
+    }
+    else if (!this->MatrixFile.empty())
+    {
+      this->FilePoseList = this->MatrixFilePoses();
+    }
+  }
+  return this->FilePoseList;
+}
+
 int RadiographSettings::PoseCount() const
 {
+  if (!this->RTKGeometry.empty() || !this->RTPlan.empty() || !this->MatrixFile.empty())
+  {
+    return static_cast<int>(this->FilePoses().size());
+  }
   if (this->HasMatrix || this->HasIntrinsics)
   {
     return 1;
@@ -274,13 +335,9 @@ int RadiographSettings::PoseCount() const
 
 std::vector<Pose> RadiographSettings::Poses(vtkImageData* volume) const
 {
-  if (!this->RTKGeometry.empty())
+  if (!this->RTKGeometry.empty() || !this->RTPlan.empty() || !this->MatrixFile.empty())
   {
-    return this->RTKPoses();
-  }
-  if (!this->RTPlan.empty())
-  {
-    return { this->RTPlanPose() };
+    return this->FilePoses();
   }
   std::vector<Pose> poses;
   Pose pose;

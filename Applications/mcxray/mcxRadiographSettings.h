@@ -59,6 +59,7 @@ struct RadiographSettings
   bool HasDetectorOrigin = false;  // --detector-origin: RTK's projection origin (mm)
   double DetectorOrigin[2] = { 0, 0 };
   std::string RTPlan; // --rtplan, with --beam
+  std::string MatrixFile; // --projection-matrices: a pose per matrix of the file
   std::string Beam;
   bool HasMatrix = false; // --projection-matrix
   double Matrix[12] = { 0 };
@@ -84,9 +85,17 @@ struct RadiographSettings
   std::vector<Pose> Poses(vtkImageData* volume) const;
 
   /// The poses of --rtk-geometry's projections; the pose of --rtplan's
-  /// beam. Fail on a file that does not give them.
+  /// beam; the poses of --projection-matrices. Fail on a file that does not
+  /// give them.
   std::vector<Pose> RTKPoses() const;
   Pose RTPlanPose() const;
+  std::vector<Pose> MatrixFilePoses() const;
+
+  /// The poses of the geometry file given, read once (before the volume, so
+  /// that a bad file fails at once); empty without one.
+  const std::vector<Pose>& FilePoses() const;
+  mutable bool FilePosesRead = false;
+  mutable std::vector<Pose> FilePoseList;
 
   /// The camera of the cone-beam geometry (one pose, square pixels centred
   /// on the isocentre's ray: what a renderer can show); sets the image size

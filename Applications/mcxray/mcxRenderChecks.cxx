@@ -104,7 +104,7 @@ void CheckCombinations(const Settings& settings)
   }
   if (!IsSupportedOutput(settings.Output))
   {
-    Fail("unknown output format of '" + settings.Output + "' (expected .vti, .png or .pfm)");
+    Fail("unknown output format of '" + settings.Output + "' (expected .vti, .mha, .png or .pfm)");
   }
   settings.Radiograph.CheckCombinations();
   if (settings.Radiograph.Geometry &&

@@ -83,8 +83,8 @@ options:
   --gantry START:STOP:COUNT
                         COUNT poses from START, STOP excluded (0:360:100 is
                         plastimatch's -a 100 -N 3.6), from one read and index:
-                        a .vti output is one stack (slice k: pose k), a .png or
-                        .pfm output NAME.EXT is NAME_0000.EXT, NAME_0001.EXT ...
+                        a .vti or .mha output is one stack (slice k: pose k), a
+                        .png or .pfm output NAME.EXT is NAME_0000.EXT, NAME_0001.EXT ...
   plastimatch's own options, the same meaning: -r/--dim "C R" (pixels,
                         columns first, as its images are), -z/--detector-size
                         "W H" (mm), -c/--image-center "C R" (pixel of the
@@ -99,6 +99,10 @@ options:
                         world (LPS mm) to (u w, v w, w), u the column, v the row
                         from the top, 0 at the first pixel's centre (OpenCV's and
                         plastimatch's layout; any scale)
+  --projection-matrices FILE
+                        a pose per matrix of FILE: the JSON --output-geometry
+                        writes (each pose's P and size), or text of 12 numbers
+                        per pose, row by row ('#' comments; --detector sizes)
   --intrinsics FX,FY,CX,CY --extrinsics R11,...,R33,T1,T2,T3
                         the same as OpenCV's K and [R | t] (world to camera: x
                         right, y down, z forward), with --detector
@@ -137,7 +141,7 @@ options:
   --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
   --size WxH            image size in pixels (default: 512 along the longer side)
   --pixel-spacing S     pixel size in world units on the detector plane
-  --output FILE         .vti (float64 LineIntegral with geometry), .png or .pfm
+  --output FILE         .vti (float64 LineIntegral with geometry), .mha, .png or .pfm
                         (default: mcxray.png)
   --window LO:HI        PNG grey window in image units (default 0:maximum)
   --bits 8|16           PNG bit depth (default 8)

@@ -7,7 +7,8 @@
   (row 0 at the top);
 - a sweep renders each pose bit for bit as a run of that pose alone;
 - --projection-matrix, and --intrinsics with --extrinsics, give back the
-  image of the pose their matrix came from;
+  image of the pose their matrix came from, and --projection-matrices the
+  poses of the JSON --output-geometry wrote (or of the same matrices as text);
 - a matrix that is no camera, or options that contradict each other, end
   the run with one line and no image.
 
@@ -24,6 +25,7 @@ import unittest
 
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkMetaImageReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
 MCXRAY = sys.argv[1]
@@ -210,6 +212,18 @@ class Geometry(unittest.TestCase):
             alone, _ = self.render("alone%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
                                    method=method)
             self.assertTrue(numpy.array_equal(stack[k], alone[0]), "pose %d" % k)
+        # A MetaImage stack: the same slices (float64; its matrices are in
+        # --output-geometry, MetaImage has no field data).
+        mha = os.path.join(self.work, "stack.mha")
+        result = self.mcxray("--tf", ATTENUATION, *method, *self.plastimatch_options("-a", "3", "-N", "40", "-y", "5"),
+                             "--output", mha)
+        self.assertEqual(0, result.returncode, result.stderr)
+        reader = vtkMetaImageReader()
+        reader.SetFileName(mha)
+        reader.Update()
+        self.assertEqual((PIXELS, PIXELS, 3), reader.GetOutput().GetDimensions())
+        values = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
+        self.assertTrue(numpy.array_equal(values.reshape(3, PIXELS, PIXELS)[:, ::-1, :], stack))
         # Numbered files for formats without slices.
         output = os.path.join(self.work, "numbered.pfm")
         result = self.mcxray("--tf", ATTENUATION, *method, "--gantry", "0:90:2",
@@ -234,6 +248,43 @@ class Geometry(unittest.TestCase):
                                                          list(numpy.ravel(pose["R"])) + pose["t"]), *size)
         for image in (by_matrix, by_krt):
             self.assertLess(relative_rms(image[0], reference[0]), 1e-9)
+
+    def test_a_file_of_matrices_gives_back_its_poses(self):
+        # The JSON of --output-geometry, and the same matrices as text, give
+        # back the poses of the sweep that wrote them (in one run, one stack).
+        geometry = os.path.join(self.work, "sweep3.json")
+        swept, matrices = self.render("sweep3", *self.plastimatch_options("--gantry", "10:130:3"),
+                                      "--output-geometry", geometry)
+        text = os.path.join(self.work, "sweep3.txt")
+        with open(text, "w") as f:
+            f.write("# three poses, a 3x4 matrix each\n")
+            for P in matrices:
+                f.write("\n".join(" ".join(repr(float(x)) for x in row) for row in P) + "\n\n")
+        for name, extra in (("json", []), ("text", ["-r", "%d %d" % (PIXELS, PIXELS)])):
+            with self.subTest(name):
+                source = geometry if name == "json" else text
+                again, again_matrices = self.render("again-" + name, "--projection-matrices", source, *extra)
+                self.assertEqual(3, len(again))
+                for k in range(3):
+                    self.assertLess(relative_rms(again[k], swept[k]), 1e-9)
+                    self.assertLess(numpy.abs(normalized(again_matrices[k]) - normalized(matrices[k])).max(),
+                                    1e-12)
+        bad = {"not a multiple of 12": "1 2 3 4 5 6 7 8 9 10 11\n",
+               "is not a finite number": "1 0 0 0 0 1 0 0 0 0 1 nan\n",
+               "not valid JSON": "{\"poses\": [\n",
+               "no \"poses\" array": "{\"P\": 1}\n",
+               "rank below 3": "1 0 0 0 0 1 0 0 1 1 0 0\n"}
+        for expected, content in bad.items():
+            with self.subTest(expected):
+                path = os.path.join(self.work, "bad-matrices.txt")
+                with open(path, "w") as f:
+                    f.write(content)
+                output = os.path.join(self.work, "bad-matrices.vti")
+                result = self.mcxray("--projection-matrices", path, "--output", output)
+                self.assertNotEqual(0, result.returncode)
+                self.assertIn(expected, result.stderr)
+                self.assertEqual(1, len(result.stderr.strip().splitlines()), result.stderr)
+                self.assertFalse(os.path.exists(output))
 
     def test_bad_geometry_is_one_line(self):
         singular = "1 0 0 0 0 1 0 0 1 1 0 0"
