@@ -26,7 +26,8 @@ import unittest
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkMetaImageReader
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+
+from geometry_support import normalized, read_stack, write_metaimage
 
 MCXRAY = sys.argv[1]
 DIMS = (41, 37, 33)  # x, y, z
@@ -47,27 +48,6 @@ def phantom():
     return hu
 
 
-def write_metaimage(path, hu):
-    with open(path, "wb") as f:
-        f.write(("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
-                 "TransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = 0 0 0\n"
-                 "ElementSpacing = %g %g %g\nDimSize = %d %d %d\nElementType = MET_SHORT\n"
-                 "ElementDataFile = LOCAL\n" % ((SPACING,) * 3 + DIMS)).encode())
-        f.write(hu.astype("<i2").tobytes())
-
-
-def read_vti(path):
-    reader = vtkXMLImageDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    dims = image.GetDimensions()
-    values = vtk_to_numpy(image.GetPointData().GetArray("LineIntegral"))
-    matrices = vtk_to_numpy(image.GetFieldData().GetArray("ProjectionMatrix")).reshape(-1, 3, 4)
-    # Slices of the stack; row 0 of each at the top, as the matrices count rows.
-    return values.reshape(dims[2], dims[1], dims[0])[:, ::-1, :], matrices
-
-
 def read_pfm(path):
     with open(path, "rb") as f:
         f.readline()
@@ -85,10 +65,6 @@ def read_plastimatch_matrix(path):
     return numpy.array([[1, 0, centre[0]], [0, 1, centre[1]], [0, 0, 1]]) @ matrix
 
 
-def normalized(matrix):
-    return matrix / numpy.linalg.norm(matrix)
-
-
 def relative_rms(a, b):
     return math.sqrt(numpy.mean((a - b) ** 2) / numpy.mean(b ** 2))
 
@@ -98,7 +74,7 @@ class Geometry(unittest.TestCase):
     def setUpClass(cls):
         cls.work = tempfile.mkdtemp(prefix="mcxray-geometry-")
         cls.volume = os.path.join(cls.work, "phantom.mha")
-        write_metaimage(cls.volume, phantom())
+        write_metaimage(cls.volume, phantom(), SPACING)
         cls.centre = (numpy.array(DIMS) - 1) * SPACING / 2
         cls.iso = " ".join(repr(float(x)) for x in cls.centre)
 
@@ -118,7 +94,7 @@ class Geometry(unittest.TestCase):
         output = os.path.join(self.work, name + ".vti")
         result = self.mcxray("--tf", ATTENUATION, *method, "--output", output, *extra)
         self.assertEqual(0, result.returncode, result.stderr)
-        return read_vti(output)
+        return read_stack(output)
 
     def test_a_plastimatch_sweep_is_plastimatchs(self):
         if shutil.which("plastimatch") is None:
@@ -172,7 +148,7 @@ class Geometry(unittest.TestCase):
         for x, y, z in markers:
             hu[z, y, x] = 4000
         path = os.path.join(self.work, "markers.mha")
-        write_metaimage(path, hu)
+        write_metaimage(path, hu, SPACING)
         output = os.path.join(self.work, "markers.vti")
         geometry = os.path.join(self.work, "markers.json")
         result = subprocess.run([MCXRAY, "render", path, "--quiet", "--tf", ATTENUATION, "--method",
@@ -181,7 +157,7 @@ class Geometry(unittest.TestCase):
                                  "--output", output, "--output-geometry", geometry],
                                 capture_output=True, text=True, timeout=300)
         self.assertEqual(0, result.returncode, result.stderr)
-        images, _ = read_vti(output)
+        images, _ = read_stack(output)
         with open(geometry) as f:
             poses = json.load(f)["poses"]
         self.assertEqual(5, len(poses))

@@ -28,8 +28,8 @@ import unittest
 import numpy
 import pydicom
 from pydicom.dataset import Dataset, FileDataset, FileMetaDataset
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+
+from geometry_support import normalized, read_stack, write_metaimage
 
 MCXRAY = sys.argv[1]
 DIMS = (41, 37, 33)  # x, y, z
@@ -58,31 +58,6 @@ RTK_DOCUMENTED = [
 
 def centred_origin():
     return -(numpy.array(DIMS) - 1) * SPACING / 2
-
-
-def write_metaimage(path, hu, origin):
-    with open(path, "wb") as f:
-        f.write(("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
-                 "TransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = %r %r %r\n"
-                 "ElementSpacing = %g %g %g\nDimSize = %d %d %d\nElementType = MET_SHORT\n"
-                 "ElementDataFile = LOCAL\n" % (tuple(origin) + (SPACING,) * 3 + DIMS)).encode())
-        f.write(hu.astype("<i2").tobytes())
-
-
-def read_vti(path):
-    reader = vtkXMLImageDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    dims = image.GetDimensions()
-    values = vtk_to_numpy(image.GetPointData().GetArray("LineIntegral"))
-    # Row 0 of each slice at the top, as the matrices count rows.
-    return values.reshape(dims[2], dims[1], dims[0])[:, ::-1, :]
-
-
-def normalized(matrix):
-    matrix = numpy.asarray(matrix, float)
-    return matrix / numpy.linalg.norm(matrix)
 
 
 def rtk_matrix(p):
@@ -181,7 +156,7 @@ class GeometryFiles(unittest.TestCase):
             hu[z, y, x] = 4000
         cls.origin = centred_origin()
         cls.volume = os.path.join(cls.work, "markers.mha")
-        write_metaimage(cls.volume, hu, cls.origin)
+        write_metaimage(cls.volume, hu, SPACING, cls.origin)
         cls.points = [cls.origin + SPACING * numpy.array(m, float) for m in MARKERS]
 
     @classmethod
@@ -200,7 +175,7 @@ class GeometryFiles(unittest.TestCase):
         self.assertEqual(0, result.returncode, result.stderr)
         with open(geometry) as f:
             poses = json.load(f)["poses"]
-        return read_vti(output), [numpy.array(pose["P"]) for pose in poses]
+        return read_stack(output)[0], [numpy.array(pose["P"]) for pose in poses]
 
     def assert_markers_at(self, image, expected, label):
         """Each marker's image mass has its centroid at the expected pixel."""
