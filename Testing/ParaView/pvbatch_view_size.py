@@ -6,7 +6,11 @@
    and ends at the view's size): the frames at the passing sizes are
    interactive prefixes, and the frame back at the view's size is the
    refined image again (every point, the same values), without a restart;
-   a TF edit or a camera change in between starts over.
+   a TF edit or a camera change in between starts over;
+2. X-Ray Projector following the view with an automatic Image Size makes
+   an image of the view's aspect (600 x 300: 512 x 256), the image
+   vtkMCXProjector makes for that camera and size; a resize that keeps the
+   aspect projects nothing again; a set Image Size is kept.
 
     pvbatch pvbatch_view_size.py PLUGIN VOLUME.vti OUTPUT_DIR
 """
@@ -19,7 +23,8 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import (  # noqa: E402
-    check, failures, line_integral_image, mapper_call, xray_representation)
+    as_array, check, failures, invoke, line_integral_image, mapper_call, obj, xray_representation)
+from vtkmodules.vtkRenderingCore import vtkCamera  # noqa: E402
 
 plugin, volume_path, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -113,6 +118,45 @@ view.ViewSize = SIZE
 view.SMProxy.InteractiveRender()
 edited = frame(representation)
 check(edited[0] < FULL, "after a TF edit the view's size showed the old TF's %d points" % edited[0])
+
+# 2. The projector's automatic image takes its view's aspect.
+def line_integrals(proxy):
+    proxy.UpdatePipeline()
+    return as_array(servermanager.Fetch(proxy), "LineIntegral")
+
+
+wide = CreateView("RenderView")
+wide.ViewSize = [600, 300]
+SetActiveView(wide)
+Show(reader, wide)  # an outline, to frame
+ResetCamera(wide)
+index = XRayDensityIndex(Input=reader)
+index.UpdatePipeline()  # the TF's default ramp spans the densities
+follower = XRayProjector(Input=index, SampleExponent=18)
+image = line_integrals(follower)
+print("the projector's automatic image for a 600 x 300 view: %d x %d" % (image.shape[1], image.shape[0]))
+check(image.shape == (256, 512), "a 600 x 300 view gave a %d x %d image, not 512 x 256" % image.shape[::-1])
+reference = XRayProjector(Input=index, UseActiveViewCamera=0, ImageSize=[512, 256], SampleExponent=18)
+camera = vtkCamera()
+camera.DeepCopy(wide.SMProxy.GetActiveCamera())
+invoke("Invoke %s SetCamera %s" % (obj(reference.GetClientSideObject()), obj(camera)))
+expected = as_array(servermanager.Fetch(reference), "LineIntegral")
+check(image.shape == expected.shape and numpy.allclose(image, expected, rtol=1e-9, atol=1e-9 * abs(expected).max()),
+      "the 512 x 256 image is not vtkMCXProjector's for the view's camera and that size")
+check((image > 0.05 * image.max()).mean() > 0.1, "the wide image is nearly empty")
+projected = follower.GetClientSideObject().GetOutputDataObject(0)
+projections = projected.GetMTime()
+wide.ViewSize = [1200, 600]  # the same aspect: nothing to project again
+Render(wide)
+follower.UpdatePipeline()
+check(projected.GetMTime() == projections,
+      "a resize that keeps the aspect projected again")
+wide.ViewSize = [300, 600]
+Render(wide)
+tall = line_integrals(follower)
+check(tall.shape == (512, 256), "a 300 x 600 view gave a %d x %d image, not 256 x 512" % tall.shape[::-1])
+follower.ImageSize = [64, 48]
+check(line_integrals(follower).shape == (48, 64), "a set Image Size was not kept")
 
 if failures:
     print("%d view-size checks failed" % len(failures))
