@@ -123,26 +123,27 @@ vtkTypeInt64 vtkMCXXRayMapper::GetNumberOfInputPoints()
 
 vtkTypeInt64 vtkMCXXRayMapper::GetNumberOfAccumulatedSamples()
 {
-  return this->Internals->HasImage ? static_cast<vtkTypeInt64>(this->Internals->Image.Count()) : 0;
+  return this->Internals->HasImage ? static_cast<vtkTypeInt64>(this->Internals->Image->Count()) : 0;
 }
 
 bool vtkMCXXRayMapper::IsRefinementComplete()
 {
   return this->Internals->HasImage &&
-    this->Internals->Image.Count() >= this->Internals->NumberOfPoints;
+    this->Internals->Image->Count() >= this->Internals->NumberOfPoints;
 }
 
 double vtkMCXXRayMapper::GetEstimatedRelativeError()
 {
   const vtkInternals& in = *this->Internals;
   // Every voxel once: nothing to estimate, unless nothing was drawn (0).
-  return in.HasImage && !(in.EveryVoxel && in.Image.Count() > 0) ? in.Image.EstimateRelativeError()
-                                                                 : std::nan("");
+  return in.HasImage && !(in.EveryVoxel && in.Image->Count() > 0)
+    ? in.Image->EstimateRelativeError()
+    : std::nan("");
 }
 
 bool vtkMCXXRayMapper::GetLastRenderUsedControlImage()
 {
-  return this->Internals->HasImage && this->Internals->Image.IsControlled();
+  return this->Internals->HasImage && this->Internals->Image->IsControlled();
 }
 
 void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
@@ -153,15 +154,15 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   {
     return;
   }
-  const mcx::ProjectionGeometry& g = in.Image.GetGeometry();
+  const mcx::ProjectionGeometry& g = in.Image->GetGeometry();
   output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
   output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
   output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
   vtkNew<vtkDoubleArray> values;
   values->SetName(vtkMCXTypes::LineIntegralName());
-  values->SetNumberOfValues(static_cast<vtkIdType>(in.Image.NumberOfPixels()));
-  const std::uint64_t count = in.Image.Count();
-  in.Image.ToValues(in.SampleWeight(), values->GetPointer(0));
+  values->SetNumberOfValues(static_cast<vtkIdType>(in.Image->NumberOfPixels()));
+  const std::uint64_t count = in.Image->Count();
+  in.Image->ToValues(in.SampleWeight(), values->GetPointer(0));
   output->GetPointData()->SetScalars(values);
   mcx::AddFieldValue(
     output->GetFieldData(), vtkMCXTypes::SampleCountName(), static_cast<long long>(count));
@@ -210,7 +211,7 @@ void vtkMCXXRayMapper::RenderImage(vtkRenderer* renderer, vtkVolume* volume)
     return;
   }
   const bool needWindowSource = this->AutomaticWindowLevel && !in.WindowSourceKept;
-  if (needWindowSource && in.HasImage && in.Image.Count() > in.WindowPrefix(view.Size))
+  if (needWindowSource && in.HasImage && in.Image->Count() > in.WindowPrefix(view.Size))
   {
     in.HasImage = false; // the window's prefix has passed: project again from its start
   }
@@ -232,11 +233,11 @@ void vtkMCXXRayMapper::RenderImage(vtkRenderer* renderer, vtkVolume* volume)
   {
     // A render that made the window's prefix shows it (at least 4 points a
     // pixel); later renders add what the time budget affords.
-    target = sourceMade && static_cast<double>(in.Image.Count()) >= floor
-      ? in.Image.Count()
+    target = sourceMade && static_cast<double>(in.Image->Count()) >= floor
+      ? in.Image->Count()
       : in.RefinementTarget(this->RenderTimeBudget(volume), floor);
   }
-  if (target > in.Image.Count())
+  if (target > in.Image->Count())
   {
     in.Advance(cloud->GetPoints(), target); // stage 4: refine within the time budget
     if (!restart)

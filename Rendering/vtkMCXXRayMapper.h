@@ -42,7 +42,11 @@
  * Work follows what changed:
  * - a different camera, viewport, prop matrix, occluding depth or input
  *   restarts the projection (a TF edit re-samples the cloud, which is a new
- *   input; re-sampling does not re-index);
+ *   input; re-sampling does not re-index); the most refined image of
+ *   another view of the same input is kept aside, and a render of that view
+ *   again (a viewport resized and back, as ParaView's screenshot dialog
+ *   does, or a camera set back) takes it back instead of restarting (the
+ *   cost: a second accumulation buffer);
  * - a display change (window, level, inversion) only redraws the accumulated
  *   buffer;
  * - otherwise, with ProgressiveRefinement on, each render adds the largest

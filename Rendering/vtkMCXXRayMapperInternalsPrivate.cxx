@@ -26,6 +26,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace
@@ -207,56 +208,97 @@ bool vtkMCXXRayMapper::vtkInternals::ReadView(vtkMCXXRayMapper* self, vtkRendere
 bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
   vtkMCXXRayMapper* self, vtkPolyData* cloud, View& view)
 {
+  const double reach = self->GetFootprintReach();
   const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime;
   if (this->HasImage && !newInput && mcx::SameGeometry(view.Geometry, this->Geometry) &&
     std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth &&
-    self->GetFootprintReach() == this->FootprintReach)
+    reach == this->FootprintReach)
   {
     return false;
   }
-  vtkCamera* camera = view.Camera;
-  std::vector<double> limits(view.Depth.size());
-  const double* range = camera->GetClippingRange();
-  for (std::size_t p = 0; p < view.Depth.size(); ++p)
+  const Shelf& shelf = this->Shelved;
+  // Not while the automatic window needs its source (the first points):
+  // a restored image may hold more.
+  const bool sourceStays =
+    !self->GetAutomaticWindowLevel() || (this->WindowSourceKept && !this->AutomaticWindowPending);
+  const bool shelfFits = this->HasImage && sourceStays && shelf.Held && cloud == shelf.Cloud &&
+    cloud->GetMTime() == shelf.CloudTime && reach == shelf.FootprintReach &&
+    mcx::SameGeometry(view.Geometry, shelf.Geometry) &&
+    std::equal(view.Matrix, view.Matrix + 16, shelf.Matrix) && view.Depth == shelf.Depth;
+  // The image on screen is set aside when it holds more points than the
+  // shelf's (interactive frames do not push a refined image out).
+  const bool onScreenKept = this->HasImage && !newInput;
+  const bool shelve =
+    onScreenKept && (shelfFits || !shelf.Held || this->Image->Count() > shelf.Image->Count());
+  if (shelfFits || shelve)
   {
-    limits[p] = DepthToDistance(view.Depth[p], view.Geometry.Perspective, range[0], range[1]);
+    this->SwapWithShelf();
+    this->Shelved.Held = shelve;
   }
-  const bool hidesNothing = HidesNothing(limits, cloud, view.Geometry);
+  else if (newInput)
+  {
+    this->Shelved.Held = false; // another input's image
+  }
   const double* m = view.Matrix;
-  const double origin[3] = { m[3], m[7], m[11] };
-  const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
-  this->Image.Reset(view.Geometry, origin, linear, std::move(limits),
-    mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear, self->GetFootprintReach()));
+  const bool restart = !shelfFits;
+  if (restart)
+  {
+    vtkCamera* camera = view.Camera;
+    std::vector<double> limits(view.Depth.size());
+    const double* range = camera->GetClippingRange();
+    for (std::size_t p = 0; p < view.Depth.size(); ++p)
+    {
+      limits[p] = DepthToDistance(view.Depth[p], view.Geometry.Perspective, range[0], range[1]);
+    }
+    const bool hidesNothing = HidesNothing(limits, cloud, view.Geometry);
+    const double origin[3] = { m[3], m[7], m[11] };
+    const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
+    this->Image->Reset(view.Geometry, origin, linear, std::move(limits),
+      mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear, reach));
+    this->Cloud = cloud;
+    this->CloudTime = cloud->GetMTime();
+    this->FootprintReach = reach;
+    this->Geometry = view.Geometry;
+    std::copy(m, m + 16, this->Matrix);
+    this->Depth = std::move(view.Depth);
+    // A view-ordered cloud's control image holds for its own frame (no prop
+    // matrix) with every sample visible.
+    static const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    if (hidesNothing && std::equal(m, m + 16, identity))
+    {
+      std::vector<double> control = mcx::CloudControlImage(cloud, view.Geometry);
+      if (!control.empty())
+      {
+        this->Image->SetControl(std::move(control),
+          cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0));
+      }
+    }
+  }
   this->HasImage = true;
-  this->Cloud = cloud;
-  this->CloudTime = cloud->GetMTime();
-  this->FootprintReach = self->GetFootprintReach();
-  this->Geometry = view.Geometry;
-  std::copy(m, m + 16, this->Matrix);
-  this->Depth = std::move(view.Depth);
   vtkPoints* points = cloud->GetPoints();
   this->NumberOfPoints = points ? static_cast<std::uint64_t>(points->GetNumberOfPoints()) : 0;
   this->EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
   const double integral =
     cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0);
   this->ScaledIntegral = integral * std::fabs(vtkMatrix4x4::Determinant(m));
-  // A view-ordered cloud's control image holds for its own frame (no prop
-  // matrix) with every sample visible.
-  static const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-  if (hidesNothing && std::equal(m, m + 16, identity))
-  {
-    std::vector<double> control = mcx::CloudControlImage(cloud, view.Geometry);
-    if (!control.empty())
-    {
-      this->Image.SetControl(std::move(control), integral);
-    }
-  }
   this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
   this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
   // A new input needs a new source; so does a new view while the last
   // source showed nothing (the camera had not reached the volume yet).
   this->WindowSourceKept = this->WindowSourceKept && !newInput && !this->AutomaticWindowPending;
-  return true;
+  return restart;
+}
+
+void vtkMCXXRayMapper::vtkInternals::SwapWithShelf()
+{
+  Shelf& shelf = this->Shelved;
+  std::swap(this->Image, shelf.Image);
+  std::swap(this->Cloud, shelf.Cloud);
+  std::swap(this->CloudTime, shelf.CloudTime);
+  std::swap(this->FootprintReach, shelf.FootprintReach);
+  std::swap(this->Geometry, shelf.Geometry);
+  std::swap_ranges(this->Matrix, this->Matrix + 16, shelf.Matrix);
+  std::swap(this->Depth, shelf.Depth);
 }
 
 std::uint64_t vtkMCXXRayMapper::vtkInternals::WindowPrefix(const int size[2]) const
@@ -280,12 +322,12 @@ std::uint64_t vtkMCXXRayMapper::vtkInternals::WindowPrefix(const int size[2]) co
 void vtkMCXXRayMapper::vtkInternals::KeepWindowSource(vtkPoints* points, const int size[2])
 {
   const std::uint64_t prefix = this->WindowPrefix(size);
-  if (this->Image.Count() < prefix)
+  if (this->Image->Count() < prefix)
   {
     this->Advance(points, prefix);
   }
-  this->WindowSource.resize(this->Image.NumberOfPixels());
-  this->Image.ToValues(this->SampleWeight(), this->WindowSource.data());
+  this->WindowSource.resize(this->Image->NumberOfPixels());
+  this->Image->ToValues(this->SampleWeight(), this->WindowSource.data());
   this->WindowSourceSize[0] = size[0];
   this->WindowSourceSize[1] = size[1];
   this->WindowSourceKept = true;
@@ -314,7 +356,8 @@ bool vtkMCXXRayMapper::vtkInternals::UploadIfChanged(
     this->Effects = effects;
     this->AutomaticWindowPending = true; // other quantity, other scale
   }
-  if (!newEffects && this->Image.Count() == this->UploadedCount && this->Display.HasImageIn(window))
+  if (!newEffects && this->Image->Count() == this->UploadedCount &&
+    this->Display.HasImageIn(window))
   {
     return false;
   }
@@ -324,13 +367,13 @@ bool vtkMCXXRayMapper::vtkInternals::UploadIfChanged(
 
 double vtkMCXXRayMapper::vtkInternals::SampleWeight() const
 {
-  const double carried = this->Image.CountedWeight();
+  const double carried = this->Image->CountedWeight();
   return carried > 0 ? this->ScaledIntegral / carried : 0.0;
 }
 
 std::uint64_t vtkMCXXRayMapper::vtkInternals::RefinementTarget(double budget, double floor) const
 {
-  const std::uint64_t current = this->Image.Count();
+  const std::uint64_t current = this->Image->Count();
   const double affordable = budget > 0 && std::isfinite(budget)
     ? static_cast<double>(current) + budget / this->SecondsPerSample
     : std::numeric_limits<double>::infinity();
@@ -345,19 +388,19 @@ std::uint64_t vtkMCXXRayMapper::vtkInternals::RefinementTarget(double budget, do
 
 void vtkMCXXRayMapper::vtkInternals::Advance(vtkPoints* points, std::uint64_t target)
 {
-  const std::uint64_t current = this->Image.Count();
+  const std::uint64_t current = this->Image->Count();
   const auto start = std::chrono::steady_clock::now();
   mcx::WithPointWeights(this->Weights,
     [&](const auto* weights)
     {
       if (points->GetDataType() == VTK_FLOAT)
       {
-        this->Image.Advance(mcx::SMPExecutor(),
+        this->Image->Advance(mcx::SMPExecutor(),
           static_cast<const float*>(points->GetVoidPointer(0)), target, weights);
       }
       else
       {
-        this->Image.Advance(mcx::SMPExecutor(),
+        this->Image->Advance(mcx::SMPExecutor(),
           static_cast<const double*>(points->GetVoidPointer(0)), target, weights);
       }
     });
@@ -372,8 +415,8 @@ void vtkMCXXRayMapper::vtkInternals::Advance(vtkPoints* points, std::uint64_t ta
 
 void vtkMCXXRayMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* window, int width, int height)
 {
-  this->Values.resize(this->Image.NumberOfPixels());
-  this->Image.ToValues(this->SampleWeight(), this->Values.data());
+  this->Values.resize(this->Image->NumberOfPixels());
+  this->Image->ToValues(this->SampleWeight(), this->Values.data());
   if (this->Effects.Any())
   {
     float* values = this->Values.data();
@@ -386,5 +429,5 @@ void vtkMCXXRayMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* window, int w
     this->AutomaticWindowPending = false;
   }
   this->Display.Upload(window, width, height, this->Values.data());
-  this->UploadedCount = this->Image.Count();
+  this->UploadedCount = this->Image->Count();
 }

@@ -15,6 +15,7 @@
 #include "vtkMCXXRayMapper.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 class vtkCamera;
@@ -24,8 +25,26 @@ class vtkRenderer;
 
 struct vtkMCXXRayMapper::vtkInternals
 {
-  mcx::ProgressiveImage<mcx::SMPExecutor> Image;
+  using ProgressiveImage = mcx::ProgressiveImage<mcx::SMPExecutor>;
+  std::unique_ptr<ProgressiveImage> Image{ new ProgressiveImage };
   bool HasImage = false;
+
+  // The most refined image of another view of the same input, set aside at
+  // a restart: a view that comes back to it (a resize and back, as
+  // ParaView's screenshot dialog does with its preview) shows it at once
+  // and goes on refining it, instead of starting over from a noisy prefix.
+  struct Shelf
+  {
+    std::unique_ptr<ProgressiveImage> Image{ new ProgressiveImage };
+    bool Held = false;
+    vtkPolyData* Cloud = nullptr; // compared only, never dereferenced
+    vtkMTimeType CloudTime = 0;
+    double FootprintReach = 0.0;
+    mcx::ProjectionGeometry Geometry;
+    double Matrix[16] = { 0 };
+    std::vector<float> Depth;
+  };
+  Shelf Shelved;
 
   // What the image on screen was made from.
   vtkPolyData* Cloud = nullptr;    // compared only, never dereferenced
@@ -91,8 +110,12 @@ struct vtkMCXXRayMapper::vtkInternals
     vtkOpenGLRenderWindow* window, View& view);
 
   // Stage 3: starts the image over when the input or the view changed;
-  // true when it did.
+  // true when it did. A view that the shelved image was made for takes it
+  // back instead (false: not a restart).
   bool RestartIfChanged(vtkMCXXRayMapper* self, vtkPolyData* cloud, View& view);
+
+  // Swaps the image on screen, and what it was made from, with the shelf's.
+  void SwapWithShelf();
 
   // The points the automatic window is taken from: the smallest prefix of
   // 2^k - 1 points with at least 4 per pixel (64 per 4 x 4 block), or all

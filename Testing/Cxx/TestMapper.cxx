@@ -322,7 +322,9 @@ TEST(Mapper, SameImageForAnyNumberOfThreads)
     vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads[t] },
       [&]
       {
-        // Away and back: a new projection of the same view each time.
+        // Away and back: a new projection of the same view each time (the
+        // sampler runs again, so no view takes back the image kept for it).
+        scene.Sampler->Modified();
         vtkCamera* camera = scene.Renderer->GetActiveCamera();
         camera->SetPosition(102, -400, 70);
         scene.Window->Render();
@@ -376,6 +378,53 @@ TEST(Mapper, RefinesByHaltonPrefixesWithoutRestarting)
   scene.Window->Render();
   EXPECT_TRUE(scene.Mapper->IsRefinementComplete());
   EXPECT_EQ(2, scene.Mapper->GetNumberOfRestarts());
+}
+
+TEST(Mapper, AViewThatComesBackTakesBackItsRefinedImage)
+{
+  // ParaView's screenshot dialog lays the view out at other sizes and back
+  // to its own, each an interactive render: the last size is the view's.
+  Scene scene(18);
+  scene.Mapper->AutomaticWindowLevelOff();
+  scene.Mapper->SetInitialSampleExponent(10);
+  scene.Window->SetDesiredUpdateRate(0.0001); // a still render: every point
+  scene.Window->Render();
+  ASSERT_TRUE(scene.Mapper->IsRefinementComplete());
+  const auto refined = scene.OnScreen();
+  const double error = scene.Mapper->GetEstimatedRelativeError();
+  scene.Window->SetDesiredUpdateRate(1e6); // interactive: the first prefix
+  scene.Window->SetSize(150, 120);
+  scene.Window->Render();
+  EXPECT_EQ((1 << 10) - 1, scene.Mapper->GetNumberOfAccumulatedSamples());
+  scene.Window->SetSize(160, 128);
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->IsRefinementComplete());
+  EXPECT_EQ(error, scene.Mapper->GetEstimatedRelativeError());
+  EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), refined));
+  EXPECT_EQ(2, scene.Mapper->GetNumberOfRestarts()) << "the view's own size restarted";
+
+  // The prefixes of a moving camera do not push the refined image out.
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  double position[3];
+  camera->GetPosition(position);
+  for (int step = 0; step < 3; ++step)
+  {
+    camera->Azimuth(5);
+    scene.Window->Render();
+  }
+  camera->SetPosition(position);
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->IsRefinementComplete());
+  EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), refined));
+
+  // A TF edit in between: the kept image is another input's.
+  scene.Window->SetSize(150, 120);
+  scene.Window->Render();
+  scene.TransferFunction->AddPoint(1000, 0.1);
+  scene.Window->SetSize(160, 128);
+  scene.Window->Render();
+  EXPECT_EQ((1 << 10) - 1, scene.Mapper->GetNumberOfAccumulatedSamples());
+  EXPECT_EQ(0, DifferingPixels(scene.OnScreen(), scene.Offline((1 << 10) - 1)));
 }
 
 TEST(Mapper, FootprintCloudRefinesLikeTheOfflineProjector)

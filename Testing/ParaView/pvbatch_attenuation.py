@@ -7,11 +7,11 @@ with X-Ray Beer-Lambert on:
   about 100 and the image black; the representation says so in exactly one
   line, once, however often the view renders;
 - X-Ray Attenuation "HU to mu": the points weigh mu(HU) x TF (mcxray's
-  --tf mu map at X-Ray Water Attenuation, times the editor's 0-1 TF), the
+  --tf mu map at X-Ray Water mu, times the editor's 0-1 TF), the
   line integrals are those of an attenuation (a few, not a hundred), the
   picture is neither black nor flat and nothing more is said; the editor's
   TF is left as it was;
-- X-Ray Water Attenuation scales the line integrals (twice mu, twice the
+- X-Ray Water mu scales the line integrals (twice mu, twice the
   integrals), and noise and the negative log apply on top;
 - X-Ray Projector's Attenuation and Water Attenuation do the same to its
   LineIntegral image.

@@ -12,7 +12,8 @@
    array already shown (recomputed on a new array or a TF edit);
 9. the orientation axes' labels read on the film: black on a light film
    (X-Ray Invert, Beer-Lambert's intensity), white again on a dark one, a
-   colour the user chose left alone;
+   colour the user chose left alone; the X-Ray properties sit under X-Ray
+   headings of the display's panel, shown only with the X-ray;
 7. pvpython: XRayDensityIndex(Input=reader) on a reader not yet updated
    indexes the active scalars (Density left empty), without an error.
 
@@ -322,6 +323,27 @@ film.XRayBeerLambert = 0
 axes_view.OrientationAxesLabelColor = [1.0, 0.0, 0.0]  # the user's choice
 Render(axes_view)
 check(list(axes_view.OrientationAxesLabelColor) == [1.0, 0.0, 0.0], "the user's label colour was replaced")
+
+# The X-Ray properties in the panel: under X-Ray headings of their own (not
+# under Lighting), shown only with the Monte Carlo X-Ray representation, and
+# labels short enough for the default panel width.
+proxy = film.SMProxy
+grouped = {}
+for g in range(proxy.GetNumberOfPropertyGroups()):
+    group = proxy.GetPropertyGroup(g)
+    hints = group.GetHints()
+    decorator = hints.FindNestedElementByName("PropertyWidgetDecorator") if hints else None
+    shown_with = (decorator.GetAttribute("property"), decorator.GetAttribute("value")) if decorator else None
+    for i in range(group.GetNumberOfProperties()):
+        grouped[proxy.GetPropertyName(group.GetProperty(i))] = (group.GetXMLLabel() or "", shown_with)
+xray_properties = [name for name in film.ListProperties() if name.startswith("XRay")]
+check(len(xray_properties) >= 20, "only %d X-Ray properties on the display" % len(xray_properties))
+for name in xray_properties:
+    label, shown_with = grouped.get(name, ("", None))
+    check(label.startswith("X-Ray ") and shown_with == ("Representation", "Monte Carlo X-Ray"),
+          "%s is in group '%s' shown with %s, not an X-Ray group shown with the X-ray" % (name, label, shown_with))
+check(film.GetProperty("XRayWaterAttenuation").SMProperty.GetXMLLabel() == "X-Ray Water mu",
+      "X-Ray Water Attenuation's label is %s" % film.GetProperty("XRayWaterAttenuation").SMProperty.GetXMLLabel())
 
 if failures:
     print("%d failures" % len(failures))

@@ -60,7 +60,7 @@ class XMLDefaults(unittest.TestCase):
     PARAVIEW_CLASSES = {"vtkMCXViewProjector": "vtkMCXProjector"}
     PARAVIEW_ONLY = {"ViewCameraInUse", "ViewCameraPosition", "ViewCameraFocalPoint", "ViewCameraViewUp",
                      "ViewCameraViewAngle", "ViewCameraParallelScale", "ViewCameraParallelProjection",
-                     "Attenuation", "WaterAttenuation"}
+                     "Attenuation", "WaterAttenuation", "ViewAspect"}
 
     def properties(self):
         for proxy in self.filters:

@@ -17,7 +17,12 @@ namespace mcx
 {
 
 /// A TF whose values reach above this (per world unit) is not an attenuation
-/// per mm (water 0.02, dense bone about 0.08 at 70 keV).
+/// per mm of what a CT holds: CT numbers stop at 3071 HU (12 bits), which
+/// mu = mu_water (1 + HU / 1000) makes 4.07 mu_water, 0.092 per mm at 50 keV
+/// (water 0.0227 per mm, NIST XCOM; the lowest energy X-Ray Water
+/// Attenuation lists, and mu only falls with energy above it). A 0-1 weight
+/// reaches 1. Metal (steel about 1 per mm at 60 keV) is above it too, but a
+/// CT number cannot say so.
 constexpr double LargestAttenuation = 0.1;
 
 /// The densities of a density index (its LevelValues, lowest and highest);

@@ -35,6 +35,31 @@ bool AutomaticWindow(vtkDataArray* values, const int dimensions[3], double& wind
     { return values->GetComponent(static_cast<vtkIdType>(p), 0); },
     dimensions[0], dimensions[1], window);
 }
+
+// Sets an int[2] for a scope and puts the old values back (the superclass
+// reads ImageSize; the filter is not modified by a run).
+class ScopedSize
+{
+public:
+  ScopedSize(int* target, const int* value)
+    : Target(target)
+    , Old{ target[0], target[1] }
+  {
+    target[0] = value[0];
+    target[1] = value[1];
+  }
+  ~ScopedSize()
+  {
+    this->Target[0] = this->Old[0];
+    this->Target[1] = this->Old[1];
+  }
+  ScopedSize(const ScopedSize&) = delete;
+  ScopedSize& operator=(const ScopedSize&) = delete;
+
+private:
+  int* Target;
+  int Old[2];
+};
 }
 
 vtkMCXViewProjector::vtkMCXViewProjector() = default;
@@ -86,9 +111,41 @@ void vtkMCXViewProjector::SetViewCameraParallelProjection(bool parallel)
   this->ViewCamera->SetParallelProjection(parallel);
 }
 
+bool vtkMCXViewProjector::ViewImageSize(int size[2]) const
+{
+  if (!this->ViewCameraInUse || !(this->ViewAspect > 0.0) || this->ImageSize[0] != 0 ||
+    this->ImageSize[1] != 0)
+  {
+    return false;
+  }
+  // The longer side is the automatic size; the other keeps the view's aspect.
+  const int longest = this->DefaultImageSize;
+  const bool wide = this->ViewAspect >= 1.0;
+  const double other = wide ? longest / this->ViewAspect : longest * this->ViewAspect;
+  const int shorter = std::max(1, static_cast<int>(std::lround(other)));
+  size[0] = wide ? longest : shorter;
+  size[1] = wide ? shorter : longest;
+  return true;
+}
+
+int vtkMCXViewProjector::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  int size[2];
+  if (!this->ViewImageSize(size))
+  {
+    return this->Superclass::RequestInformation(request, inputVector, outputVector);
+  }
+  ScopedSize scoped(this->ImageSize, size);
+  return this->Superclass::RequestInformation(request, inputVector, outputVector);
+}
+
 int vtkMCXViewProjector::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  int size[2] = { this->ImageSize[0], this->ImageSize[1] };
+  this->ViewImageSize(size);
+  ScopedSize scoped(this->ImageSize, size);
   // An index input projects 2^m - 1 samples, unless every voxel once or a
   // target chooses the count (from a pilot run, up to the maximum).
   if (vtkImageData::GetData(inputVector[0], 0) && this->GetStrategy() != vtkMCXTypes::EVERY_VOXEL)
@@ -156,6 +213,7 @@ void vtkMCXViewProjector::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ViewCameraInUse: " << this->ViewCameraInUse << "\n";
+  os << indent << "ViewAspect: " << this->ViewAspect << "\n";
   os << indent << "Attenuation: " << this->Attenuation << "\n";
   os << indent << "WaterAttenuation: " << this->WaterAttenuation << "\n";
   os << indent << "ViewCamera:\n";

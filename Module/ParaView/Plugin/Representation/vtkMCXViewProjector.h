@@ -14,6 +14,12 @@
  * LineIntegral), which vtkSMMCXViewProjectorProxy gives the image's colour
  * map when it is first shown.
  *
+ * With the view's camera in use and ImageSize automatic (0 x 0), the
+ * image has the view's aspect (ViewAspect, width / height of the view in
+ * pixels, copied with the camera): DefaultImageSize pixels along its longer
+ * side, as vtkMCXProjector makes it for that camera and size. Without a
+ * view aspect (0) it is DefaultImageSize square.
+ *
  * Attenuation HU_TO_MU (default WEIGHT_ONLY) projects an index input under
  * mu(HU) x TF instead of the TF, as vtkMCXXRayRepresentation's X-Ray
  * Attenuation does (mcxray's `--tf mu` map at WaterAttenuation per world
@@ -59,6 +65,15 @@ public:
   vtkCamera* GetViewCamera() { return this->ViewCamera; }
   ///@}
 
+  ///@{
+  /**
+   * The view's width / height in pixels (default 0: none, a square image),
+   * for an automatic ImageSize with the view's camera (see the class comment).
+   */
+  vtkSetClampMacro(ViewAspect, double, 0.0, 65536.0);
+  vtkGetMacro(ViewAspect, double);
+  ///@}
+
   /** What an index input is projected under: the TF, or mu(HU) x the TF. */
   enum AttenuationModes
   {
@@ -85,15 +100,20 @@ protected:
   vtkMCXViewProjector();
   ~vtkMCXViewProjector() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   vtkNew<vtkCamera> ViewCamera;
   bool ViewCameraInUse = false;
+  double ViewAspect = 0.0;
   int Attenuation = WEIGHT_ONLY;
   double WaterAttenuation = 0.02;
 
 private:
   vtkMCXViewProjector(const vtkMCXViewProjector&) = delete;
+  /// The size of an automatic image of the view's aspect; false when ImageSize
+  /// or the aspect leaves it to the superclass.
+  bool ViewImageSize(int size[2]) const;
   void operator=(const vtkMCXViewProjector&) = delete;
 };
 

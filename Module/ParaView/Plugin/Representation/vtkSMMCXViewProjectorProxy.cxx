@@ -216,6 +216,15 @@ bool vtkSMMCXViewProjectorProxy::CopyActiveViewCamera()
     vtkSMPropertyHelper(this, "ViewCameraParallelProjection").Set(camera->GetParallelProjection());
     changed = true;
   }
+  // The view's aspect, for an automatic image size: a resize that keeps it
+  // (a screenshot at a multiple of the view's size) projects nothing again.
+  int viewSize[2] = { 0, 0 };
+  vtkSMPropertyHelper(view, "ViewSize").Get(viewSize, 2);
+  if (this->GetProperty("ViewAspect") && viewSize[0] > 0 && viewSize[1] > 0)
+  {
+    const double aspect = static_cast<double>(viewSize[0]) / viewSize[1];
+    set("ViewAspect", &aspect, 1);
+  }
   return changed;
 }
 
