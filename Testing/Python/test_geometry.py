@@ -181,6 +181,8 @@ class Geometry(unittest.TestCase):
             self.assertLess(numpy.abs(normalized(K @ numpy.c_[R, t]) - normalized(P)).max(), 1e-12)
 
     def test_a_sweep_is_each_pose_alone_bit_for_bit(self):
+        # The sweep samples one stored cloud for its poses (footprint
+        # deposit); each pose alone samples as it projects: the same image.
         method = ("--samples", "65535", "--seed", "3")
         stack, _ = self.render("stack", *self.plastimatch_options("-a", "3", "-N", "40", "-y", "5"),
                                method=method)
