@@ -232,7 +232,7 @@ public:
       {
         continue; // the image is the first process's: it logs, applies the physics and writes
       }
-      vtkImageData* image = this->ApplyRadiograph(projected);
+      vtkImageData* image = this->ApplyRadiograph(projected, k);
       records.push_back(RecordOf(image));
       if (stack)
       {
@@ -504,11 +504,15 @@ private:
   }
 
   // The physics after accumulation, only what was asked for.
-  vtkImageData* ApplyRadiograph(vtkImageData* image)
+  // Pose k's noise has the seed --noise-seed + k: the poses of a sweep are
+  // independent exposures (as the Python API's), and pose k alone with
+  // --noise-seed N + k is the same image.
+  vtkImageData* ApplyRadiograph(vtkImageData* image, int k)
   {
     const RadiographSettings& physics = this->Options.Radiograph;
     this->Radiograph = vtkSmartPointer<vtkMCXRadiograph>::New();
     physics.Configure(this->Radiograph.GetPointer());
+    this->Radiograph->SetNoiseSeed(physics.NoiseSeed + k);
     if (!this->Radiograph->HasEffects())
     {
       return image;

@@ -137,7 +137,7 @@ options:
   --i0 I                unattenuated intensity I0 (default 1)
   --photons N           quantum noise: N photons reach an unattenuated pixel,
                         counts are Poisson (implies --beer-lambert; default off)
-  --noise-seed N        seed of the noise (default 0)
+  --noise-seed N        seed of the noise (default 0; pose k of a sweep: N + k)
   --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
   --size WxH            image size in pixels (default: 512 along the longer side)
   --pixel-spacing S     pixel size in world units on the detector plane

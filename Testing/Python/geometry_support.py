@@ -20,14 +20,14 @@ def write_metaimage(path, hu, spacing, origin=(0, 0, 0)):
 
 
 def read_stack(path):
-    """The slices of a .vti (N, rows, columns), row 0 at the top, and its
+    """The slices of a .vti (N, rows, columns; its active scalars), row 0 at the top, and its
     ProjectionMatrix field as (N, 3, 4)."""
     reader = vtkXMLImageDataReader()
     reader.SetFileName(path)
     reader.Update()
     image = reader.GetOutput()
     dims = image.GetDimensions()
-    values = vtk_to_numpy(image.GetPointData().GetArray("LineIntegral"))
+    values = vtk_to_numpy(image.GetPointData().GetScalars())  # LineIntegral, or the physics'
     matrices = vtk_to_numpy(image.GetFieldData().GetArray("ProjectionMatrix")).reshape(-1, 3, 4)
     return values.reshape(dims[2], dims[1], dims[0])[:, ::-1, :], matrices
 

@@ -190,6 +190,13 @@ class Geometry(unittest.TestCase):
             alone, _ = self.render("alone%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
                                    method=method)
             self.assertTrue(numpy.array_equal(stack[k], alone[0]), "pose %d" % k)
+        # Noise: pose k of a sweep is an exposure of its own, --noise-seed N + k.
+        noisy, _ = self.render("noisy", *self.plastimatch_options("--gantry", "5:85:2"), "--photons", "1000",
+                               "--noise-seed", "7", method=method)
+        for k in range(2):
+            alone, _ = self.render("noisy%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
+                                   "--photons", "1000", "--noise-seed", str(7 + k), method=method)
+            self.assertTrue(numpy.array_equal(noisy[k], alone[0]), "noisy pose %d" % k)
         # A MetaImage stack: the same slices (float64; its matrices are in
         # --output-geometry, MetaImage has no field data).
         mha = os.path.join(self.work, "stack.mha")
