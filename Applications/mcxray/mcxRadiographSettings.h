@@ -83,10 +83,10 @@ struct RadiographSettings
   /// given). Fails on an impossible geometry.
   std::vector<Pose> Poses(vtkImageData* volume) const;
 
-  /// The poses of --rtk-geometry's projections; the pose of --rtplan's
-  /// beam. Fail on a file that does not give them.
-  std::vector<Pose> RTKPoses() const;
-  Pose RTPlanPose() const;
+  /// The poses of --rtk-geometry's projections or of --rtplan's beam, as
+  /// IO's mcxGeometryFilePoses makes them for every caller. Fails on a file
+  /// that does not give them.
+  std::vector<Pose> FilePoses() const;
 
   /// The camera of the cone-beam geometry (one pose, square pixels centred
   /// on the isocentre's ray: what a renderer can show); sets the image size
