@@ -2,12 +2,9 @@
 
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
-#include "mcxIECBeamView.h"
+#include "mcxGeometryFilePoses.h"
 #include "mcxMatrixFile.h"
 #include "mcxProjectionMatrix.h"
-#include "mcxRTKGeometryFile.h"
-#include "mcxRTKView.h"
-#include "mcxRTPlanFile.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -20,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 
 namespace mcxapp
@@ -69,10 +65,6 @@ void Centre(vtkImageData* volume, double centre[3])
   }
 }
 
-// RTK's matrices are compared with the file's as RTK's reader compares
-// them (an absolute difference of 0.001 in any element).
-const double RTKMatrixTolerance = 0.001;
-
 // The detector pitch: --pitch, or -z over the pixels.
 void DetectorPitch(const RadiographSettings& settings, double pitch[2])
 {
@@ -82,105 +74,36 @@ void DetectorPitch(const RadiographSettings& settings, double pitch[2])
       settings.DetectorSizeGiven ? settings.DetectorSize[k] / settings.Detector[k] : settings.Pitch;
   }
 }
-
-std::string Shown(double value)
-{
-  std::ostringstream text;
-  text.precision(15);
-  text << value;
-  return text.str();
-}
 }
 
-// Every projection of RTK's file on the detector's pixel grid.
-std::vector<Pose> RadiographSettings::RTKPoses() const
+// The geometry file's poses, as IO turns a file into poses for every caller.
+std::vector<Pose> RadiographSettings::GeometryFilePoses() const
 {
-  std::vector<mcxio::RTKGeometryProjection> projections;
-  const std::string problem = mcxio::ReadRTKGeometry(this->RTKGeometry, MaximumPoses, projections);
+  mcxio::GeometryFileDetector detector;
+  std::copy(this->Detector, this->Detector + 2, detector.Pixels);
+  DetectorPitch(*this, detector.Pitch);
+  detector.HasOrigin = this->HasDetectorOrigin;
+  std::copy(this->DetectorOrigin, this->DetectorOrigin + 2, detector.Origin);
+  detector.SourceToImage = this->SourceToImage;
+  detector.SourceToAxis = this->SourceToAxis;
+  detector.SourceToAxisOption = this->SourceToAxisGiven ? "--sad" : "";
+  std::vector<mcxio::GeometryFilePose> found(1);
+  const std::string problem = this->RTKGeometry.empty()
+    ? mcxio::RTPlanPose(this->RTPlan, this->Beam, detector, found[0])
+    : mcxio::RTKGeometryPoses(this->RTKGeometry, MaximumPoses, detector, found);
   if (!problem.empty())
   {
     Fail(problem);
   }
-  double spacing[2], origin[2];
-  DetectorPitch(*this, spacing);
-  for (int k = 0; k < 2; ++k)
+  std::vector<Pose> poses(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k)
   {
-    // RTK's tools centre a projection on the detector's origin by default.
-    origin[k] = this->HasDetectorOrigin ? this->DetectorOrigin[k]
-                                        : -0.5 * (this->Detector[k] - 1) * spacing[k];
-  }
-  std::vector<Pose> poses;
-  Pose pose;
-  pose.Size[0] = this->Detector[0];
-  pose.Size[1] = this->Detector[1];
-  for (std::size_t k = 0; k < projections.size(); ++k)
-  {
-    const mcxio::RTKGeometryProjection& projection = projections[k];
-    const std::string which =
-      "RTK geometry '" + this->RTKGeometry + "', projection " + std::to_string(k) + ": ";
-    const std::string why =
-      mcx::RTKPixelMatrix(projection.Parameters, this->Detector, origin, spacing, pose.Matrix);
-    if (!why.empty())
-    {
-      Fail(which + why);
-    }
-    if (projection.HasMatrix)
-    {
-      double M[12];
-      mcx::RTKMatrix(projection.Parameters, M);
-      for (int e = 0; e < 12; ++e)
-      {
-        if (!(std::abs(M[e] - projection.Matrix[e]) <= RTKMatrixTolerance))
-        {
-          Fail(which + "its Matrix and its parameters disagree (element " + std::to_string(e) +
-            ": " + Shown(projection.Matrix[e]) + " written, " + Shown(M[e]) +
-            " from the parameters), as RTK refuses them");
-        }
-      }
-    }
-    pose.FocalDistance = projection.Parameters.SourceToDetectorDistance;
-    poses.push_back(pose);
+    std::copy(found[k].Matrix, found[k].Matrix + 12, poses[k].Matrix);
+    poses[k].Size[0] = this->Detector[0];
+    poses[k].Size[1] = this->Detector[1];
+    poses[k].FocalDistance = found[k].FocalDistance;
   }
   return poses;
-}
-
-// The beam of the RT plan, by IEC 61217 for a head first supine patient.
-Pose RadiographSettings::RTPlanPose() const
-{
-  mcxio::RTPlanBeam beam;
-  const std::string problem = mcxio::ReadRTPlanBeam(this->RTPlan, this->Beam, beam);
-  if (!problem.empty())
-  {
-    Fail(problem);
-  }
-  if (beam.HasSourceAxisDistance && this->SourceToAxisGiven)
-  {
-    Fail("beam " + std::to_string(beam.Number) + " of '" + this->RTPlan +
-      "' gives its SourceAxisDistance (" + Shown(beam.SourceAxisDistance) +
-      " mm): leave out --sad");
-  }
-  mcx::IECBeamView view;
-  view.GantryDegrees = beam.GantryAngle;
-  view.CollimatorDegrees = beam.BeamLimitingDeviceAngle;
-  view.CouchDegrees = beam.PatientSupportAngle;
-  view.SourceToAxis = beam.HasSourceAxisDistance ? beam.SourceAxisDistance : this->SourceToAxis;
-  view.SourceToImage = this->SourceToImage;
-  std::copy(beam.IsocenterPosition, beam.IsocenterPosition + 3, view.Isocenter);
-  view.Pixels[0] = this->Detector[0];
-  view.Pixels[1] = this->Detector[1];
-  DetectorPitch(*this, view.Pitch);
-  mcx::PinholeCamera camera;
-  const std::string why = view.Camera(camera);
-  if (!why.empty())
-  {
-    Fail("beam " + std::to_string(beam.Number) + " of '" + this->RTPlan + "': " + why);
-  }
-  Pose pose;
-  pose.Size[0] = this->Detector[0];
-  pose.Size[1] = this->Detector[1];
-  mcx::MatrixFromPinhole(camera, pose.Matrix);
-  pose.FocalDistance = view.SourceToAxis; // pixels measured at the isocentre, as --gantry's
-  return pose;
 }
 
 namespace
@@ -304,13 +227,9 @@ const std::vector<Pose>& RadiographSettings::FilePoses() const
   if (!this->FilePosesRead)
   {
     this->FilePosesRead = true;
-    if (!this->RTKGeometry.empty())
+    if (!this->RTKGeometry.empty() || !this->RTPlan.empty())
     {
-      this->FilePoseList = this->RTKPoses();
-    }
-    else if (!this->RTPlan.empty())
-    {
-      this->FilePoseList = { this->RTPlanPose() };
+      this->FilePoseList = this->GeometryFilePoses();
     }
     else if (!this->MatrixFile.empty())
     {

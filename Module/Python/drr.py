@@ -34,7 +34,7 @@ from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from .MonteCarloXRayFilters import (vtkMCXAttenuationFunction, vtkMCXDensityIndex, vtkMCXProjector,
                                     vtkMCXRadiograph, vtkMCXRadiographGeometry, vtkMCXReferenceProjector,
                                     vtkMCXTypes)
-from .MonteCarloXRayIO import vtkMCXFirstErrorObserver, vtkMCXVolumeReader
+from .MonteCarloXRayIO import vtkMCXFirstErrorObserver, vtkMCXProjectionGeometryReader, vtkMCXVolumeReader
 
 __all__ = ["drr", "Renderer", "DRRResult"]
 
@@ -336,8 +336,12 @@ class Renderer:
                 result.AddPoint(value, weight)
         return result
 
-    def _poses(self, matrices, K, R, t, size, plastimatch):
+    def _poses(self, matrices, K, R, t, size, plastimatch, files):
         """[(P as 12 numbers, (columns, rows))], from exactly one of the conventions."""
+        if any(value is not None for value in files.values()):
+            others = [name for name, value in (("matrices", matrices), ("K", K), ("R", R), ("t", t),
+                                               ("size", size)) if value is not None]
+            return self._file_matrices(plastimatch, others, **files)
         given = [name for name, value in plastimatch.items() if value is not None]
         pinhole = [name for name, value in (("K", K), ("R", R), ("t", t)) if value is not None]
         if matrices is not None and (pinhole or given):
@@ -378,6 +382,51 @@ class Renderer:
                 raise ValueError("R%s is no rotation (R R^T = I and det R = +1 within 1e-6)"
                                  % ("" if n == 1 else "[%d]" % i))
         return np.einsum("nij,njk->nik", K, np.concatenate([R, t[:, :, None]], axis=2))
+
+    @staticmethod
+    def _file_matrices(plastimatch, others, rtk_geometry, rtplan, beam, detector_origin):
+        """RTK's XML or an RT Plan's beam, made poses where mcxray's are (vtkMCXProjectionGeometryReader)."""
+        rtk = rtk_geometry is not None
+        if rtk and rtplan is not None:
+            raise ValueError("give either rtk_geometry= or rtplan=, not both")
+        if detector_origin is not None and not rtk:
+            raise ValueError("detector_origin= places RTK's projections: it goes with rtk_geometry=")
+        if beam is not None and rtplan is None:
+            raise ValueError("beam= chooses a beam of rtplan=")
+        kept = ("detector", "pitch") if rtk else ("detector", "pitch", "sad", "sid")
+        others += [name for name, value in plastimatch.items() if value is not None and name not in kept]
+        if others:
+            raise ValueError("%s gives the whole view: leave out %s=" % (
+                "rtk_geometry=" if rtk else "rtplan=", "=, ".join(others)))
+        reader = vtkMCXProjectionGeometryReader()
+        messages = _Messages()
+        reader.AddObserver(vtkCommand.ErrorEvent, messages._on_error)
+        path = os.fspath(rtk_geometry if rtk else rtplan)
+        reader.SetFileName(path)
+        if isinstance(beam, (bool, np.bool_)) or not isinstance(beam, (str, int, np.integer, type(None))):
+            raise TypeError("beam must be a BeamNumber or a BeamName, got %r" % (beam,))
+        reader.SetBeam("" if beam is None else str(beam))
+        if plastimatch["detector"] is not None:
+            reader.SetDetectorPixels(*_size(plastimatch["detector"], "detector"))
+        if plastimatch["pitch"] is not None:
+            reader.SetPixelPitch(*np.broadcast_to(_numbers(plastimatch["pitch"], "pitch", [(), (2,)]), (2,)))
+        if plastimatch["sad"] is not None:  # for a beam without SourceAxisDistance; refused with one
+            reader.SetSourceToAxisDistance(float(_numbers(plastimatch["sad"], "sad", [()])))
+            reader.UseSourceToAxisDistanceOn()
+        if plastimatch["sid"] is not None:
+            reader.SetSourceToImageDistance(float(_numbers(plastimatch["sid"], "sid", [()])))
+        if detector_origin is not None:
+            reader.SetDetectorOrigin(*_numbers(detector_origin, "detector_origin", [(2,)]))
+            reader.UseDetectorOriginOn()
+        if not reader.Update():
+            messages.raise_if_any(stacklevel=5)
+            raise ValueError("cannot read %r" % path)
+        matrices = [[0.0] * 12 for _ in range(reader.GetNumberOfPoses())]
+        for k, P in enumerate(matrices):
+            reader.GetProjectionMatrix(k, P)
+        # The command's focal planes too: the footprints' rounding, so the images, depend on them.
+        return [(np.array(P), tuple(reader.GetDetectorPixels()), reader.GetFocalPlaneDistance(k))
+                for k, P in enumerate(matrices)]
 
     def _plastimatch_matrices(self, sad, sid, gantry, detector, pitch, isocenter, nrm, vup, image_center):
         if gantry is not None and nrm is not None:
@@ -428,6 +477,8 @@ class Renderer:
             detector: Optional[Sequence[int]] = None, pitch: Optional[Union[float, Sequence[float]]] = None,
             isocenter: Optional[Sequence[float]] = None, nrm: Optional[Any] = None,
             vup: Optional[Sequence[float]] = None, image_center: Optional[Sequence[float]] = None,
+            rtk_geometry: Optional[str] = None, detector_origin: Optional[Sequence[float]] = None,
+            rtplan: Optional[str] = None, beam: Optional[Union[str, int]] = None,
             deposit: str = "footprint", kernel: str = "tent", method: str = "hybrid",
             samples: Optional[int] = None, target_error: Optional[float] = None, seed: int = 0,
             tolerance: Optional[float] = None,
@@ -445,7 +496,7 @@ class Renderer:
             the TF, so exactly. It is first called once with the levels as a
             float64 array, and value by value if that fails or gives another shape.
 
-        The geometry, in one of three conventions, for one pose or N:
+        The geometry, in one of four conventions, for one pose or N:
         - matrices: (3, 4) or (N, 3, 4) projection matrices (world LPS mm to
           (u w, v w, w), u the column, v the row from the top, 0 at the first
           pixel's centre; any nonzero scale), with size=(columns, rows);
@@ -457,7 +508,13 @@ class Renderer:
           detector=(columns, rows) (default 512, 512), pitch (mm, one or
           (columns, rows); default 0.8), isocenter (default the volume's
           centre), vup (towards the top row; default +z), image_center
-          (the pixel (column, row from the top) of the isocentre's ray).
+          (the pixel (column, row from the top) of the isocentre's ray);
+        - a file, as the command's --rtk-geometry and --rtplan read it, with
+          detector and pitch: rtk_geometry (RTK's circular geometry XML, every
+          projection; detector_origin: the first pixel's centre, mm, in RTK's
+          detector frame; default centred) or rtplan (DICOM RT Plan, IEC 61217)
+          with beam (BeamNumber or BeamName; default the only beam), sid, sad
+          (for a beam without SourceAxisDistance; one giving it refuses sad).
         Without any, plastimatch's geometry at gantry 0.
 
         Sampling (vtkMCXProjector): deposit "footprint" or "point"; kernel
@@ -485,7 +542,8 @@ class Renderer:
             raise TypeError("progress must be a callable taking the fraction done")
         plastimatch = dict(sad=sad, sid=sid, gantry=gantry, detector=detector, pitch=pitch,
                            isocenter=isocenter, nrm=nrm, vup=vup, image_center=image_center)
-        poses = self._poses(matrices, K, R, t, size, plastimatch)
+        files = dict(rtk_geometry=rtk_geometry, rtplan=rtplan, beam=beam, detector_origin=detector_origin)
+        poses = self._poses(matrices, K, R, t, size, plastimatch, files)
         self._configure(self.transfer_function(tf), deposit, kernel, method, samples, target_error, seed,
                         tolerance)
         physics = self._configure_physics(beer_lambert, photons, i0, negative_log, noise_seed)
@@ -589,9 +647,10 @@ class Renderer:
         self._stop = False
         projector.SetAbortExecute(0)
         try:
-            for i, (P, size) in enumerate(poses):
+            for i, (P, size, *focal) in enumerate(poses):
                 current[0] = i
                 projector.SetProjectionMatrix(list(P))
+                projector.SetFocalPlaneDistance(focal[0] if focal else 0.0)
                 projector.SetImageSize(*size)
                 if physics and radiograph.GetPhotonsPerPixel() > 0:
                     radiograph.SetNoiseSeed(noise_seed + i)

@@ -1,0 +1,118 @@
+#include "vtkMCXProjectionGeometryReader.h"
+
+#include "mcxGeometryFilePoses.h"
+
+#include "vtkObjectFactory.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXProjectionGeometryReader);
+
+struct vtkMCXProjectionGeometryReader::PoseList
+{
+  std::vector<mcxio::GeometryFilePose> List;
+};
+
+vtkMCXProjectionGeometryReader::vtkMCXProjectionGeometryReader()
+  : Poses(new PoseList)
+{
+}
+
+vtkMCXProjectionGeometryReader::~vtkMCXProjectionGeometryReader()
+{
+  this->SetFileName(nullptr);
+  this->SetBeam(nullptr);
+}
+
+bool vtkMCXProjectionGeometryReader::Update()
+{
+  this->Poses->List.clear();
+  this->FileKind = NoFile;
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "no geometry file: set FileName");
+    return false;
+  }
+  const std::string path = this->FileName;
+  mcxio::GeometryFileKind kind;
+  std::string problem = mcxio::GeometryFileKindOf(path, kind);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  mcxio::GeometryFileDetector detector;
+  std::copy(this->DetectorPixels, this->DetectorPixels + 2, detector.Pixels);
+  std::copy(this->PixelPitch, this->PixelPitch + 2, detector.Pitch);
+  detector.HasOrigin = this->UseDetectorOrigin;
+  std::copy(this->DetectorOrigin, this->DetectorOrigin + 2, detector.Origin);
+  detector.SourceToImage = this->SourceToImageDistance;
+  detector.SourceToAxis = this->SourceToAxisDistance;
+  detector.SourceToAxisOption =
+    this->UseSourceToAxisDistance ? "the source-to-axis distance given" : "";
+  std::vector<mcxio::GeometryFilePose> poses(1);
+  problem = kind == mcxio::GeometryFileKind::RTPlan
+    ? mcxio::RTPlanPose(path, this->Beam ? this->Beam : "", detector, poses[0])
+    : mcxio::RTKGeometryPoses(path, mcxio::MaximumGeometryFilePoses, detector, poses);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return false;
+  }
+  this->Poses->List = std::move(poses);
+  this->FileKind = kind == mcxio::GeometryFileKind::RTPlan ? RTPlanFile : RTKGeometryFile;
+  return true;
+}
+
+const char* vtkMCXProjectionGeometryReader::GetFileKindAsString()
+{
+  switch (this->FileKind)
+  {
+    case RTKGeometryFile:
+      return "RTK geometry";
+    case RTPlanFile:
+      return "RT plan";
+    default:
+      return "none";
+  }
+}
+
+int vtkMCXProjectionGeometryReader::GetNumberOfPoses()
+{
+  return static_cast<int>(this->Poses->List.size());
+}
+
+bool vtkMCXProjectionGeometryReader::GetProjectionMatrix(int k, double P[12])
+{
+  if (k < 0 || k >= this->GetNumberOfPoses())
+  {
+    return false;
+  }
+  std::copy(this->Poses->List[k].Matrix, this->Poses->List[k].Matrix + 12, P);
+  return true;
+}
+
+double vtkMCXProjectionGeometryReader::GetFocalPlaneDistance(int k)
+{
+  return k < 0 || k >= this->GetNumberOfPoses() ? 0.0 : this->Poses->List[k].FocalDistance;
+}
+
+void vtkMCXProjectionGeometryReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Beam: " << (this->Beam ? this->Beam : "(none)") << "\n";
+  os << indent << "DetectorPixels: " << this->DetectorPixels[0] << " x " << this->DetectorPixels[1]
+     << "\n";
+  os << indent << "PixelPitch: " << this->PixelPitch[0] << ", " << this->PixelPitch[1] << "\n";
+  os << indent << "SourceToImageDistance: " << this->SourceToImageDistance << "\n";
+  os << indent << "SourceToAxisDistance: " << this->SourceToAxisDistance << "\n";
+  os << indent << "UseSourceToAxisDistance: " << this->UseSourceToAxisDistance << "\n";
+  os << indent << "DetectorOrigin: " << this->DetectorOrigin[0] << ", " << this->DetectorOrigin[1]
+     << "\n";
+  os << indent << "UseDetectorOrigin: " << this->UseDetectorOrigin << "\n";
+  os << indent << "FileKind: " << this->GetFileKindAsString() << "\n";
+  os << indent << "NumberOfPoses: " << this->GetNumberOfPoses() << "\n";
+}
