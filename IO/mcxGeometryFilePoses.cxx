@@ -1,6 +1,7 @@
 #include "mcxGeometryFilePoses.h"
 
 #include "mcxIECBeamView.h"
+#include "mcxMatrixFile.h"
 #include "mcxProjectionMatrix.h"
 #include "mcxRTKGeometryFile.h"
 #include "mcxRTKView.h"
@@ -67,7 +68,12 @@ std::string GeometryFileKindOf(const std::string& path, GeometryFileKind& kind)
     kind = GeometryFileKind::RTKGeometry;
     return std::string();
   }
-  return named + "neither RTK's geometry XML nor a DICOM RT Plan";
+  if (first < length && std::strchr("{#+-.0123456789", head[first]) && head[first] != '\0')
+  {
+    kind = GeometryFileKind::ProjectionMatrices;
+    return std::string();
+  }
+  return named + "neither RTK's geometry XML, a DICOM RT Plan nor a file of projection matrices";
 }
 
 std::string RTKGeometryPoses(const std::string& path, std::size_t limit,
@@ -115,6 +121,7 @@ std::string RTKGeometryPoses(const std::string& path, std::size_t limit,
       }
     }
     pose.FocalDistance = projection.Parameters.SourceToDetectorDistance;
+    std::copy(detector.Pixels, detector.Pixels + 2, pose.Size);
     poses.push_back(pose);
   }
   return std::string();
@@ -153,6 +160,7 @@ std::string RTPlanPose(const std::string& path, const std::string& beamName,
   }
   mcx::MatrixFromPinhole(camera, pose.Matrix);
   pose.FocalDistance = view.SourceToAxis; // pixels measured at the isocentre, as --gantry's
+  std::copy(detector.Pixels, detector.Pixels + 2, pose.Size);
   return std::string();
 #else
   (void)beamName;
@@ -160,6 +168,37 @@ std::string RTPlanPose(const std::string& path, const std::string& beamName,
   (void)pose;
   return "RT plan '" + path + "': this build reads no DICOM (vtk-dicom was not found)";
 #endif
+}
+
+std::string MatrixFilePoses(const std::string& path, std::size_t limit,
+  const GeometryFileDetector& detector, std::vector<GeometryFilePose>& poses)
+{
+  poses.clear();
+  std::vector<MatrixPose> matrices;
+  const std::string problem = ReadProjectionMatrices(path, limit, matrices);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  for (std::size_t k = 0; k < matrices.size(); ++k)
+  {
+    mcx::PinholeCamera camera;
+    const std::string why = mcx::PinholeFromMatrix(matrices[k].Matrix, camera);
+    if (!why.empty())
+    {
+      poses.clear();
+      return "projection matrices '" + path + "', pose " + std::to_string(k) + ": " + why;
+    }
+    GeometryFilePose pose;
+    std::copy(matrices[k].Matrix, matrices[k].Matrix + 12, pose.Matrix);
+    // The JSON of --output-geometry says each pose's pixels; text takes the detector's.
+    for (int a = 0; a < 2; ++a)
+    {
+      pose.Size[a] = matrices[k].HasSize ? matrices[k].Size[a] : detector.Pixels[a];
+    }
+    poses.push_back(pose);
+  }
+  return std::string();
 }
 
 } // namespace mcxio

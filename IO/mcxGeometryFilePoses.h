@@ -1,8 +1,10 @@
 // The one place a geometry file becomes poses: RTK's circular geometry XML
-// (mcxRTKGeometryFile, mcxRTKView) and a beam of a DICOM RT Plan
-// (mcxRTPlanFile, mcxIECBeamView), each as 3x4 projection matrices on a
-// detector's pixel grid (Core/mcxProjectionMatrix.h's convention). mcxray's
-// --rtk-geometry and --rtplan and vtkMCXProjectionGeometryReader (so
+// (mcxRTKGeometryFile, mcxRTKView), a beam of a DICOM RT Plan
+// (mcxRTPlanFile, mcxIECBeamView) and a file of projection matrices
+// (mcxMatrixFile: the JSON of mcxray's --output-geometry, or text), each as
+// 3x4 projection matrices on a detector's pixel grid
+// (Core/mcxProjectionMatrix.h's convention). mcxray's --rtk-geometry,
+// --rtplan and --projection-matrices and vtkMCXProjectionGeometryReader (so
 // Python's mcxray.drr) call these functions; messages name the caller's
 // settings as the caller passes them.
 #ifndef mcxGeometryFilePoses_h
@@ -23,7 +25,8 @@ const std::size_t MaximumGeometryFilePoses = 100000;
 struct GeometryFilePose
 {
   double Matrix[12] = { 0 };
-  double FocalDistance = 0.0;
+  double FocalDistance = 0.0; // 0: through the volume's centre
+  int Size[2] = { 0, 0 };     // the detector's pixels, columns and rows
 };
 
 /// The detector and the distances a file does not give.
@@ -41,11 +44,13 @@ struct GeometryFileDetector
 enum class GeometryFileKind
 {
   RTKGeometry,
-  RTPlan
+  RTPlan,
+  ProjectionMatrices
 };
 
 /// The kind of the file at path by its content (DICOM's "DICM" after the
-/// preamble, or XML's '<'). Returns "" or one line saying why not.
+/// preamble, XML's '<', JSON's '{', or text starting with a number or a '#'
+/// comment). Returns "" or one line saying why not.
 std::string GeometryFileKindOf(const std::string& path, GeometryFileKind& kind);
 
 /// Every projection of RTK's file, at most limit of them; its Matrix,
@@ -60,6 +65,12 @@ std::string RTKGeometryPoses(const std::string& path, std::size_t limit,
 /// one line saying why not (always, in a build without vtk-dicom).
 std::string RTPlanPose(const std::string& path, const std::string& beam,
   const GeometryFileDetector& detector, GeometryFilePose& pose);
+
+/// The poses of a file of projection matrices, at most limit of them: each
+/// a pinhole camera, its size the JSON's or else the detector's. Returns ""
+/// or one line saying why not.
+std::string MatrixFilePoses(const std::string& path, std::size_t limit,
+  const GeometryFileDetector& detector, std::vector<GeometryFilePose>& poses);
 
 } // namespace mcxio
 

@@ -53,16 +53,28 @@ bool vtkMCXProjectionGeometryReader::Update()
   detector.SourceToAxisOption =
     this->UseSourceToAxisDistance ? "the source-to-axis distance given" : "";
   std::vector<mcxio::GeometryFilePose> poses(1);
-  problem = kind == mcxio::GeometryFileKind::RTPlan
-    ? mcxio::RTPlanPose(path, this->Beam ? this->Beam : "", detector, poses[0])
-    : mcxio::RTKGeometryPoses(path, mcxio::MaximumGeometryFilePoses, detector, poses);
+  switch (kind)
+  {
+    case mcxio::GeometryFileKind::RTPlan:
+      problem = mcxio::RTPlanPose(path, this->Beam ? this->Beam : "", detector, poses[0]);
+      this->FileKind = RTPlanFile;
+      break;
+    case mcxio::GeometryFileKind::RTKGeometry:
+      problem = mcxio::RTKGeometryPoses(path, mcxio::MaximumGeometryFilePoses, detector, poses);
+      this->FileKind = RTKGeometryFile;
+      break;
+    case mcxio::GeometryFileKind::ProjectionMatrices:
+      problem = mcxio::MatrixFilePoses(path, mcxio::MaximumGeometryFilePoses, detector, poses);
+      this->FileKind = ProjectionMatricesFile;
+      break;
+  }
   if (!problem.empty())
   {
+    this->FileKind = NoFile;
     vtkErrorMacro(<< problem);
     return false;
   }
   this->Poses->List = std::move(poses);
-  this->FileKind = kind == mcxio::GeometryFileKind::RTPlan ? RTPlanFile : RTKGeometryFile;
   return true;
 }
 
@@ -74,6 +86,8 @@ const char* vtkMCXProjectionGeometryReader::GetFileKindAsString()
       return "RTK geometry";
     case RTPlanFile:
       return "RT plan";
+    case ProjectionMatricesFile:
+      return "projection matrices";
     default:
       return "none";
   }
@@ -91,6 +105,16 @@ bool vtkMCXProjectionGeometryReader::GetProjectionMatrix(int k, double P[12])
     return false;
   }
   std::copy(this->Poses->List[k].Matrix, this->Poses->List[k].Matrix + 12, P);
+  return true;
+}
+
+bool vtkMCXProjectionGeometryReader::GetImageSize(int k, int size[2])
+{
+  if (k < 0 || k >= this->GetNumberOfPoses())
+  {
+    return false;
+  }
+  std::copy(this->Poses->List[k].Size, this->Poses->List[k].Size + 2, size);
   return true;
 }
 

@@ -1,16 +1,19 @@
 /**
  * @class   vtkMCXProjectionGeometryReader
  * @brief   The poses of a geometry file as 3x4 projection matrices: RTK's
- *          circular geometry XML (every projection) or a beam of a DICOM RT
- *          Plan (IEC 61217, head first supine), told apart by content.
+ *          circular geometry XML (every projection), a beam of a DICOM RT
+ *          Plan (IEC 61217, head first supine), or a file of projection
+ *          matrices (the JSON of mcxray's --output-geometry, or 12 numbers
+ *          per pose as text), told apart by content.
  *
  * The matrices follow Core/mcxProjectionMatrix.h: P maps a world point in
  * patient space (LPS, mm) to (u w, v w, w), u the column, v the row counted
  * from the top, 0 at the first pixel's centre; give them to
  * vtkMCXProjector::SetProjectionMatrix with the detector's pixels as its
- * image size. The conversion is mcxray's own (mcxGeometryFilePoses, which
- * --rtk-geometry and --rtplan call): the same file and detector give the
- * same matrices here, in the command and in Python's mcxray.drr.
+ * image size (GetImageSize). The conversion is mcxray's own
+ * (mcxGeometryFilePoses, which --rtk-geometry, --rtplan and
+ * --projection-matrices call): the same file and detector give the same
+ * matrices here, in the command and in Python's mcxray.drr.
  *
  * RTK's file gives each projection's distances; the detector's first pixel
  * lies at DetectorOrigin (mm, RTK's projection origin) when
@@ -89,12 +92,13 @@ public:
   {
     NoFile = 0,
     RTKGeometryFile = 1,
-    RTPlanFile = 2
+    RTPlanFile = 2,
+    ProjectionMatricesFile = 3
   };
 
   /** What the last successful Update read (NoFile before one, or after a failure). */
   vtkGetMacro(FileKind, int);
-  /** "none", "RTK geometry" or "RT plan". */
+  /** "none", "RTK geometry", "RT plan" or "projection matrices". */
   const char* GetFileKindAsString();
 
   /** The poses the last Update gave: all of RTK's projections, or one beam. */
@@ -102,6 +106,12 @@ public:
 
   /** Pose k's projection matrix, row by row. False for a k out of range. */
   bool GetProjectionMatrix(int k, double P[12]);
+
+  /**
+   * Pose k's detector pixels, columns and rows: DetectorPixels, or the size
+   * a JSON file of matrices gives the pose. False for a k out of range.
+   */
+  bool GetImageSize(int k, int size[2]);
 
   /**
    * The distance (mm) from the source of the plane pose k's pixels are

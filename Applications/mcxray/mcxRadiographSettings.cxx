@@ -3,7 +3,6 @@
 #include "mcxErrorCapture.h"
 #include "mcxFail.h"
 #include "mcxGeometryFilePoses.h"
-#include "mcxMatrixFile.h"
 #include "mcxProjectionMatrix.h"
 
 #include "vtkCallbackCommand.h"
@@ -88,9 +87,19 @@ std::vector<Pose> RadiographSettings::GeometryFilePoses() const
   detector.SourceToAxis = this->SourceToAxis;
   detector.SourceToAxisOption = this->SourceToAxisGiven ? "--sad" : "";
   std::vector<mcxio::GeometryFilePose> found(1);
-  const std::string problem = this->RTKGeometry.empty()
-    ? mcxio::RTPlanPose(this->RTPlan, this->Beam, detector, found[0])
-    : mcxio::RTKGeometryPoses(this->RTKGeometry, MaximumPoses, detector, found);
+  std::string problem;
+  if (!this->RTKGeometry.empty())
+  {
+    problem = mcxio::RTKGeometryPoses(this->RTKGeometry, MaximumPoses, detector, found);
+  }
+  else if (!this->RTPlan.empty())
+  {
+    problem = mcxio::RTPlanPose(this->RTPlan, this->Beam, detector, found[0]);
+  }
+  else
+  {
+    problem = mcxio::MatrixFilePoses(this->MatrixFile, MaximumPoses, detector, found);
+  }
   if (!problem.empty())
   {
     Fail(problem);
@@ -99,8 +108,7 @@ std::vector<Pose> RadiographSettings::GeometryFilePoses() const
   for (std::size_t k = 0; k < found.size(); ++k)
   {
     std::copy(found[k].Matrix, found[k].Matrix + 12, poses[k].Matrix);
-    poses[k].Size[0] = this->Detector[0];
-    poses[k].Size[1] = this->Detector[1];
+    std::copy(found[k].Size, found[k].Size + 2, poses[k].Size);
     poses[k].FocalDistance = found[k].FocalDistance;
   }
   return poses;
@@ -192,48 +200,14 @@ void RadiographSettings::CheckCombinations() const
   }
 }
 
-std::vector<Pose> RadiographSettings::MatrixFilePoses() const
-{
-  std::vector<mcxio::MatrixPose> matrices;
-  const std::string problem =
-    mcxio::ReadProjectionMatrices(this->MatrixFile, MaximumPoses, matrices);
-  if (!problem.empty())
-  {
-    Fail(problem);
-  }
-  std::vector<Pose> poses;
-  for (std::size_t k = 0; k < matrices.size(); ++k)
-  {
-    Pose pose;
-    mcx::PinholeCamera camera;
-    const std::string why = mcx::PinholeFromMatrix(matrices[k].Matrix, camera);
-    if (!why.empty())
-    {
-      Fail("bad --projection-matrices '" + this->MatrixFile + "', pose " + std::to_string(k) +
-        ": " + why);
-    }
-    std::copy(matrices[k].Matrix, matrices[k].Matrix + 12, pose.Matrix);
-    // The JSON of --output-geometry says each pose's pixels; text takes --detector's.
-    pose.Size[0] = matrices[k].HasSize ? matrices[k].Size[0] : this->Detector[0];
-    pose.Size[1] = matrices[k].HasSize ? matrices[k].Size[1] : this->Detector[1];
-    pose.FocalDistance = 0.0;
-    poses.push_back(pose);
-  }
-  return poses;
-}
-
 const std::vector<Pose>& RadiographSettings::FilePoses() const
 {
   if (!this->FilePosesRead)
   {
     this->FilePosesRead = true;
-    if (!this->RTKGeometry.empty() || !this->RTPlan.empty())
+    if (!this->RTKGeometry.empty() || !this->RTPlan.empty() || !this->MatrixFile.empty())
     {
       this->FilePoseList = this->GeometryFilePoses();
-    }
-    else if (!this->MatrixFile.empty())
-    {
-      this->FilePoseList = this->MatrixFilePoses();
     }
   }
   return this->FilePoseList;

@@ -84,11 +84,10 @@ struct RadiographSettings
   /// given). Fails on an impossible geometry.
   std::vector<Pose> Poses(vtkImageData* volume) const;
 
-  /// The poses of --rtk-geometry's projections or of --rtplan's beam, as
-  /// IO's mcxGeometryFilePoses makes them for every caller; the poses of
-  /// --projection-matrices. Fail on a file that does not give them.
+  /// The poses of --rtk-geometry's projections, --rtplan's beam or
+  /// --projection-matrices, as IO's mcxGeometryFilePoses makes them for
+  /// every caller. Fails on a file that does not give them.
   std::vector<Pose> GeometryFilePoses() const;
-  std::vector<Pose> MatrixFilePoses() const;
 
   /// The poses of the geometry file given, read once (before the volume, so
   /// that a bad file fails at once); empty without one.

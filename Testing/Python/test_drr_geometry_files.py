@@ -48,7 +48,7 @@ class GeometryFilesInPython(unittest.TestCase):
             hu[z, y, x] = 4000
         hu[10:20, 12:25, 15:30] = 0  # water, so that every view crosses something
         cls.volume = os.path.join(cls.work, "markers.mha")
-        write_metaimage(cls.volume, hu, centred_origin())
+        write_metaimage(cls.volume, hu, SPACING, centred_origin())
         cls.renderer = mcxray.Renderer(cls.volume)
         cls.rtk = os.path.join(cls.work, "geometry.xml")
         with open(cls.rtk, "w") as f:
@@ -133,6 +133,35 @@ class GeometryFilesInPython(unittest.TestCase):
         self.assertFalse(reader.GetProjectionMatrix(3, P))
         self.assertEqual(0.0, reader.GetFocalPlaneDistance(-1))
 
+    def test_a_file_of_matrices_as_the_command(self):
+        # The JSON the command's --output-geometry wrote: the class reads it
+        # (by content) as --projection-matrices does, each pose's size its own.
+        images, matrices, _ = self.command("--rtk-geometry", self.rtk)
+        json_path = os.path.join(self.work, "matrices.json")
+        shutil.copy(os.path.join(self.work, "drr.vti.json"), json_path)
+        reader = self.reader(json_path, DetectorPixels=(7, 9))
+        self.assertEqual(mcxray.vtkMCXProjectionGeometryReader.ProjectionMatricesFile, reader.GetFileKind())
+        self.assertEqual("projection matrices", reader.GetFileKindAsString())
+        self.assertEqual(len(RTK_PROJECTIONS), reader.GetNumberOfPoses())
+        for k in range(reader.GetNumberOfPoses()):
+            P, size = [0.0] * 12, [0, 0]
+            self.assertTrue(reader.GetProjectionMatrix(k, P))
+            self.assertTrue(reader.GetImageSize(k, size))
+            self.assertEqual(list(DETECTOR), size)  # the JSON's, not DetectorPixels
+            np.testing.assert_array_equal(matrices[k], np.reshape(P, (3, 4)))
+        # The command given the file back: the same images (no pitch: P has the pixels).
+        output = os.path.join(self.work, "again.vti")
+        result = subprocess.run([MCXRAY, "render", self.volume, "--quiet", "--tf", "mu", "--samples", "65535",
+                                 "--seed", "3", "--projection-matrices", json_path, "--output", output],
+                                capture_output=True, text=True, timeout=300)
+        self.assertEqual(0, result.returncode, result.stderr)
+        again = vtkXMLImageDataReader()
+        again.SetFileName(output)
+        again.Update()
+        values = vtk_to_numpy(again.GetOutput().GetPointData().GetArray("LineIntegral"))
+        values = values.reshape(len(RTK_PROJECTIONS), DETECTOR[1], DETECTOR[0])[:, ::-1, :].astype(np.float32)
+        self.assertLess(np.abs(values - images).max(), 1e-6 * images.max())
+
     def test_rtplan_beams_as_the_command(self):
         cases = [(["--beam", "2"], dict(beam="2")), (["--beam", "LAT"], dict(beam="LAT")),
                  (["--beam", "1", "--sid", "1300"], dict(beam=1, sid=1300))]
@@ -186,7 +215,7 @@ class GeometryFilesInPython(unittest.TestCase):
             f.write("gantry 90\n")
         missing = os.path.join(self.work, "missing.xml")
         self.assert_raises_line("geometry file '%s': no such file" % missing, rtk_geometry=missing)
-        self.assert_raises_line("neither RTK's geometry XML nor a DICOM RT Plan", rtplan=text)
+        self.assert_raises_line("neither RTK's geometry XML, a DICOM RT Plan nor a file of projection matrices", rtplan=text)
         self.assert_raises_line("leave out the source-to-axis distance given", rtplan=self.plan, beam=1, sad=900)
         self.assert_raises_line("beam 1 of '%s': the source-axis and source-to-image distances must be "
                                 "positive and finite" % self.plan, rtplan=self.plan, beam="1", sid=-5)
