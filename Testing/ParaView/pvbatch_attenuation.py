@@ -23,12 +23,10 @@ import sys
 
 import numpy
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
-from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.vtkConstants import VTK_STRING
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import (  # noqa: E402
-    check, failures, invoke, line_integral_image, mapper_call, obj, read_png, xray_representation)
+    Warnings, check, failures, invoke, line_integral_image, mapper_call, obj, read_png, xray_representation)
 
 plugin, body_path, output_dir = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -38,18 +36,6 @@ name = body.PointData.keys()[0]
 low, high = body.PointData[name].GetRange()
 check(low < -1000 and high > 3000, "the body CT's range is %g..%g, not HU with padding" % (low, high))
 
-
-class Warnings:
-    """The warning texts a VTK object reports (caught, not printed)."""
-
-    def __init__(self, vtk_object):
-        self.texts = []
-        vtk_object.AddObserver("WarningEvent", self.on_warning)
-
-    @calldata_type(VTK_STRING)
-    def on_warning(self, caller, event, text):
-        lines = text.strip().split("\n")
-        self.texts.append(lines[1] if len(lines) == 2 else text)
 
 
 view = CreateView("RenderView")

@@ -9,7 +9,9 @@ from paraview.modules.vtkRemotingClientServerStream import (
     vtkClientServerInterpreterInitializer,
     vtkClientServerStream,
 )
+from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkIOImage import vtkPNGReader
 
@@ -99,3 +101,16 @@ def read_png(path):
     reader.Update()
     image = reader.GetOutput()
     return as_array(image, image.GetPointData().GetScalars().GetName())
+
+
+class Warnings:
+    """The warning texts a VTK object reports (caught, not printed)."""
+
+    def __init__(self, vtk_object):
+        self.texts = []
+        vtk_object.AddObserver("WarningEvent", self.on_warning)
+
+    @calldata_type(VTK_STRING)
+    def on_warning(self, caller, event, text):
+        lines = text.strip().split("\n")
+        self.texts.append(lines[1] if len(lines) == 2 else text)

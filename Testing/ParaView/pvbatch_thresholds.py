@@ -14,13 +14,11 @@ import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
-from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkDoubleArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pvbatch_support import check, failures, xray_representation  # noqa: E402
+from pvbatch_support import Warnings, check, failures, xray_representation  # noqa: E402
 
 plugin, volume_path = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -30,18 +28,6 @@ reader.UpdatePipeline()
 LARGEST_ATTENUATION = 0.1
 NOT_ATTENUATION_MEAN = 20.0
 
-
-class Warnings:
-    """The warning texts a VTK object reports (caught, not printed)."""
-
-    def __init__(self, vtk_object):
-        self.texts = []
-        vtk_object.AddObserver("WarningEvent", self.on_warning)
-
-    @calldata_type(VTK_STRING)
-    def on_warning(self, caller, event, text):
-        lines = text.strip().split("\n")
-        self.texts.append(lines[1] if len(lines) == 2 else text)
 
 
 # 1. The TF's largest value against 0.1 per mm: below, then above (the
