@@ -190,6 +190,14 @@ class Geometry(unittest.TestCase):
             alone, _ = self.render("alone%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
                                    method=method)
             self.assertTrue(numpy.array_equal(stack[k], alone[0]), "pose %d" % k)
+        # The point deposit keeps the fused path in a sweep (a stored cloud
+        # rounds its points to float32): the same images as alone too.
+        point = method + ("--deposit", "point")
+        swept, _ = self.render("point", *self.plastimatch_options("--gantry", "5:85:2"), method=point)
+        for k in range(2):
+            alone, _ = self.render("point%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
+                                   method=point)
+            self.assertTrue(numpy.array_equal(swept[k], alone[0]), "point deposit, pose %d" % k)
         # Noise: pose k of a sweep is an exposure of its own, --noise-seed N + k.
         noisy, _ = self.render("noisy", *self.plastimatch_options("--gantry", "5:85:2"), "--photons", "1000",
                                "--noise-seed", "7", method=method)
