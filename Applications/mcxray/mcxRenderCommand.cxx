@@ -174,13 +174,14 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
 // its projection only, about a quarter less (performance.md). Not for the
 // point deposit (a stored point is rounded to float32 where the fused path
 // keeps doubles), every voxel once (its random parts differ), the target
-// controls (they choose the count per pose), nor a cloud that would take
-// more than half the memory budget (24 bytes a point at most).
+// controls (they choose the count per pose), a run on MPI (where a stored
+// cloud is made whole on every process), nor a cloud that would take more
+// than half the memory budget (24 bytes a point at most).
 bool SweepStoresPoints(const Settings& settings, int poses)
 {
-  return poses > 1 && IsCloudMethod(settings.Method) && settings.Method != "every-voxel" &&
-    settings.Deposit == "footprint" && settings.TargetError == 0 &&
-    settings.QuantizationLevels == 0 &&
+  return poses > 1 && NumberOfProcesses() == 1 && IsCloudMethod(settings.Method) &&
+    settings.Method != "every-voxel" && settings.Deposit == "footprint" &&
+    settings.TargetError == 0 && settings.QuantizationLevels == 0 &&
     settings.Samples <= (1LL << vtkMCXTypes::MaximumPointCloudExponent) - 1 &&
     24.0 * static_cast<double>(settings.Samples) <= 0.5 * mcx::MemoryBudget();
 }
