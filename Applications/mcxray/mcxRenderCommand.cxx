@@ -168,24 +168,6 @@ vtkSmartPointer<vtkImageData> ReadInput(const Settings& settings)
   return volume;
 }
 
-// A sweep of footprint deposits samples one cloud and projects it for every
-// pose: the images are those of each pose alone bit for bit (the fused
-// path deposits the same footprints in the same order), and a pose costs
-// its projection only, about a quarter less (performance.md). Not for the
-// point deposit (a stored point is rounded to float32 where the fused path
-// keeps doubles), every voxel once (its random parts differ), the target
-// controls (they choose the count per pose), a run on MPI (where a stored
-// cloud is made whole on every process), nor a cloud that would take more
-// than half the memory budget (24 bytes a point at most).
-bool SweepStoresPoints(const Settings& settings, int poses)
-{
-  return poses > 1 && NumberOfProcesses() == 1 && IsCloudMethod(settings.Method) &&
-    settings.Method != "every-voxel" && settings.Deposit == "footprint" &&
-    settings.TargetError == 0 && settings.QuantizationLevels == 0 &&
-    settings.Samples <= (1LL << vtkMCXTypes::MaximumPointCloudExponent) - 1 &&
-    24.0 * static_cast<double>(settings.Samples) <= 0.5 * mcx::MemoryBudget();
-}
-
 // The render of a volume, stage by stage: index, (sample,) project,
 // radiograph physics, write. Each stage logs a line unless --quiet; an
 // error from a watched algorithm, or else from VTK itself, ends the run.
@@ -214,11 +196,12 @@ public:
     {
       Fail(error);
     }
-    // One read, one index (and one stored cloud): every pose from them,
-    // each image written (or kept in the stack) as it is made.
+    // One read and one index (and with --stored-points one cloud): every
+    // pose from them, each image written (or kept in the stack) as it is
+    // made. Without --stored-points each pose samples as it projects, as it
+    // would alone: a stored cloud's footprints round differently, so only
+    // the fused path gives each pose's image of a run of that pose alone.
     const int count = static_cast<int>(std::max<std::size_t>(1, poses.size()));
-    this->Options.StoredPoints =
-      this->Options.StoredPoints || SweepStoresPoints(this->Options, count);
     this->SetUpProjector(tf);
     std::unique_ptr<PoseStack> stack;
     if (count > 1 && WritesStack(this->Options.Output) && IsFirstProcess())

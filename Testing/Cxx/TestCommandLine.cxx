@@ -621,7 +621,7 @@ TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
   // mpirun -np N mcxray render ...: each process renders its z-slab and the
   // first writes the image, byte for byte the one process's file, for point
   // and footprint deposits in a parallel view and a cone-beam radiograph,
-  // sampled and every voxel once.
+  // sampled and every voxel once, and a sweep's stack.
   // (No hwloc probing of X displays: the render tests' Xvfb servers come
   // and go, and one that goes kills the probing process. Open MPI's own
   // allocations show as leaks in a sanitized build.)
@@ -630,7 +630,9 @@ TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
   const std::string runs[] = { "--samples 262143 --size 96x80",
     "--samples 262143 --size 96x80 --deposit point --view -y --tf bone",
     "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --gantry 30 --tf mu",
-    "--method every-voxel --sad 700 --sid 1100 --detector 90x70 --tf mu" };
+    "--method every-voxel --sad 700 --sid 1100 --detector 90x70 --tf mu",
+    // A sweep: each pose as alone, on any number of processes.
+    "--samples 131071 --sad 700 --sid 1100 --detector 60x50 --pitch 3 --gantry 0:90:3 --tf mu" };
   for (const std::string& arguments : runs)
   {
     const std::string single = Temporary("mpirun-single.vti");

@@ -181,8 +181,6 @@ class Geometry(unittest.TestCase):
             self.assertLess(numpy.abs(normalized(K @ numpy.c_[R, t]) - normalized(P)).max(), 1e-12)
 
     def test_a_sweep_is_each_pose_alone_bit_for_bit(self):
-        # The sweep samples one stored cloud for its poses (footprint
-        # deposit); each pose alone samples as it projects: the same image.
         method = ("--samples", "65535", "--seed", "3")
         stack, _ = self.render("stack", *self.plastimatch_options("-a", "3", "-N", "40", "-y", "5"),
                                method=method)
@@ -190,8 +188,7 @@ class Geometry(unittest.TestCase):
             alone, _ = self.render("alone%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
                                    method=method)
             self.assertTrue(numpy.array_equal(stack[k], alone[0]), "pose %d" % k)
-        # The point deposit keeps the fused path in a sweep (a stored cloud
-        # rounds its points to float32): the same images as alone too.
+        # The point deposit: the same images as alone too.
         point = method + ("--deposit", "point")
         swept, _ = self.render("point", *self.plastimatch_options("--gantry", "5:85:2"), method=point)
         for k in range(2):
