@@ -188,6 +188,12 @@ class Geometry(unittest.TestCase):
             alone, _ = self.render("alone%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
                                    method=method)
             self.assertTrue(numpy.array_equal(stack[k], alone[0]), "pose %d" % k)
+        # --stored-points: one cloud for all poses, each image that of a
+        # --stored-points run of the pose alone.
+        stored = method + ("--stored-points",)
+        swept, _ = self.render("stored", *self.plastimatch_options("--gantry", "5:85:2"), method=stored)
+        alone, _ = self.render("stored1", *self.plastimatch_options("--gantry", "45"), method=stored)
+        self.assertTrue(numpy.array_equal(swept[1], alone[0]), "stored cloud, pose 1")
         # The point deposit: the same images as alone too.
         point = method + ("--deposit", "point")
         swept, _ = self.render("point", *self.plastimatch_options("--gantry", "5:85:2"), method=point)
