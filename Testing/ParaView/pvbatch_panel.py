@@ -27,12 +27,11 @@ import xml.etree.ElementTree as ET
 import numpy
 
 from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
-from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.vtkConstants import VTK_STRING
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import (  # noqa: E402
-    as_array, check, failures, invoke, mapper_call, obj, read_png, reply_number, xray_representation)
+    Warnings, as_array, check, failures, invoke, mapper_call, obj, read_png, reply_number,
+    xray_representation)
 from vtkmodules.vtkRenderingCore import vtkCamera  # noqa: E402
 
 plugin, volume_path, output_dir = sys.argv[1:4]
@@ -42,19 +41,6 @@ XML = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Modu
 reader = XMLImageDataReader(FileName=[volume_path])
 reader.UpdatePipeline()
 
-
-class Warnings:
-    """The warning texts a VTK object reports (caught, not printed)."""
-
-    def __init__(self, vtk_object):
-        self.texts = []
-        vtk_object.AddObserver("WarningEvent", self.on_warning)
-
-    @calldata_type(VTK_STRING)
-    def on_warning(self, caller, event, text):
-        # "Warning: In FILE, line N" then the message, which is one line.
-        lines = text.strip().split("\n")
-        self.texts.append(lines[1] if len(lines) == 2 else text)
 
 
 def screenshot_array(view):

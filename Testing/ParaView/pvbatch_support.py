@@ -112,5 +112,6 @@ class Warnings:
 
     @calldata_type(VTK_STRING)
     def on_warning(self, caller, event, text):
+        # "Warning: In FILE, line N" then the message, which is one line.
         lines = text.strip().split("\n")
         self.texts.append(lines[1] if len(lines) == 2 else text)
