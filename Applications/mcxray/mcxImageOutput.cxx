@@ -216,6 +216,12 @@ bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& w
     error, beforeRename);
 }
 
+bool WriteFileAtomically(
+  const std::string& path, const std::function<bool(const std::string&)>& write, std::string& error)
+{
+  return WriteAtomically(path, write, error);
+}
+
 bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error)
 {
   if (Extension(path) != ".png")

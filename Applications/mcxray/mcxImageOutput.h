@@ -35,6 +35,12 @@ using BeforeRename = std::function<std::string()>;
 bool WriteImage(vtkImageData* image, const std::string& path, const PngWindow& window,
   std::string& error, const BeforeRename& beforeRename = BeforeRename());
 
+/// Any file all or nothing, as the images: write(temporary) writes it whole
+/// under the temporary name beside path, renamed to path only if write
+/// returned true (and removed otherwise, or on a signal).
+bool WriteFileAtomically(const std::string& path,
+  const std::function<bool(const std::string&)>& write, std::string& error);
+
 /// Writes an 8-bit RGB(A) image, a screenshot, as .png, all or nothing.
 bool WriteScreenshot(vtkImageData* image, const std::string& path, std::string& error);
 

@@ -1,7 +1,7 @@
 #include "mcxPoseOutput.h"
 
 #include "mcxFail.h"
-#include "mcxPartialFileGuard.h"
+#include "mcxImageOutput.h"
 #include "mcxProjectionMatrix.h"
 
 #include "vtkDataArray.h"
@@ -13,13 +13,10 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-#include <unistd.h>
 
 namespace mcxapp
 {
@@ -178,29 +175,16 @@ bool WritePoseGeometry(
     out << (k + 1 < poses.size() ? ",\n" : "\n");
   }
   out << "  ]\n}\n";
-  // All or nothing: a temporary beside the file, renamed when complete.
-  const std::string temporary = path + ".part-" + std::to_string(getpid());
-  const PartialFileGuard guard(temporary);
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << out.str();
-    file.close();
-    if (!file)
+  return WriteFileAtomically(
+    path,
+    [&](const std::string& temporary)
     {
-      const int cause = errno;
-      std::remove(temporary.c_str());
-      error = "cannot write '" + path + "': " + std::strerror(cause);
-      return false;
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    const int cause = errno;
-    std::remove(temporary.c_str());
-    error = "cannot write '" + path + "': " + std::strerror(cause);
-    return false;
-  }
-  return true;
+      std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+      file << out.str();
+      file.close();
+      return static_cast<bool>(file);
+    },
+    error);
 }
 
 } // namespace mcxapp
