@@ -13,11 +13,13 @@
 #include "vtkMultiProcessController.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -26,6 +28,11 @@ using mcx::Accumulator;
 using mcx::CollectSums;
 using mcx::Projection;
 using mcx::RandomPartsOf;
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Stage 1b: samples generated from the index and deposited as they come,
 // never stored. Under a controller of several processes the index is this
@@ -52,7 +59,7 @@ public:
           this->WholeExtent, this->Levels, this->View, this->Table, this->Integral)
       : mcx::PrepareSampling(
           this->Self, "project", index, tf, this->View, this->Table, this->Integral);
-    if (prepared && this->EveryVoxel)
+    if (prepared && (this->EveryVoxel || this->ChoosesDeposit))
     {
       this->WeighEveryVoxel(tf);
     }
@@ -60,6 +67,10 @@ public:
   }
 
   bool IsEmpty() const { return this->Table.IsEmpty(); }
+
+  /// Voxels of non-zero weight in the whole volume (after Prepare, with
+  /// EveryVoxel or ChoosesDeposit).
+  std::int64_t KeptVoxels() const { return this->KeptVoxelCount; }
 
   /// The image of 2^m - 1 samples, progress running from progressBegin to progressEnd.
   Projection Project(unsigned m, double progressBegin, double progressEnd) const
@@ -116,6 +127,8 @@ public:
   mcx::Strategy Method =
     mcx::Strategy::Hybrid; // with EveryVoxel: Hybrid, which no voxel choice uses
   bool EveryVoxel = false; // vtkMCXTypes::EVERY_VOXEL instead of Method (set before Prepare)
+  bool ChoosesDeposit =
+    false; // a target's choice, every voxel once among them (set before Prepare)
   mcx::Kernel Reconstruction = mcx::Kernel::Tent;
   std::uint64_t Seed = 0;
   mcx::Deposit DepositMode = mcx::Deposit::Point;
@@ -127,6 +140,7 @@ private:
   template <typename Deposit>
   void Run(Projection& projection, Deposit&& deposit) const
   {
+    const auto start = std::chrono::steady_clock::now();
     Accumulator accumulator;
     double origin[3], matrix[9];
     this->View.SourceToWorld(origin, matrix);
@@ -134,10 +148,15 @@ private:
     accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), settings);
     projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
     projection.RandomParts = RandomPartsOf(accumulator, settings, this->FootprintReach);
+    projection.Deposit = static_cast<int>(this->DepositMode);
+    projection.Strategy =
+      this->EveryVoxel ? vtkMCXTypes::EVERY_VOXEL : static_cast<int>(this->Method);
     std::string error;
     try
     {
+      const auto depositStart = std::chrono::steady_clock::now();
       projection.Completed = deposit(accumulator);
+      projection.DepositSeconds = SecondsSince(depositStart);
       CollectSums(accumulator, projection);
     }
     catch (const std::bad_alloc&)
@@ -165,6 +184,16 @@ private:
     if (!error.empty())
     {
       throw std::runtime_error(error);
+    }
+    projection.FixedSeconds = SecondsSince(start) - projection.DepositSeconds;
+    if (this->Controller)
+    {
+      // The slowest process's times, so that every process makes the same choice with them.
+      const double mine[2] = { projection.DepositSeconds, projection.FixedSeconds };
+      double slowest[2] = { 0, 0 };
+      this->Controller->AllReduce(mine, slowest, 2, vtkCommunicator::MAX_OP);
+      projection.DepositSeconds = slowest[0];
+      projection.FixedSeconds = slowest[1];
     }
   }
 
@@ -284,16 +313,16 @@ private:
   std::int64_t KeptVoxelCount = 0;  // in the whole volume, with EveryVoxel
 };
 
-// The sample count a target asks for, measured on a projection.
-double SamplesNeeded(const Projection& projection, double targetError, int targetLevels)
+// The sample count a target asks for, measured on a projection whose
+// error falls as M^-decay.
+double SamplesNeeded(
+  const Projection& projection, double targetError, int targetLevels, double decay)
 {
   double needed = 0.0;
   if (targetError > 0)
   {
     const double ratio = projection.EstimatedError() / targetError;
-    needed = std::max(needed,
-      static_cast<double>(projection.Count) *
-        std::pow(ratio, 1.0 / mcx::ErrorDecayExponent(projection.FallsAsInverseM)));
+    needed = std::max(needed, static_cast<double>(projection.Count) * std::pow(ratio, 1.0 / decay));
   }
   if (targetLevels > 0)
   {
@@ -302,22 +331,28 @@ double SamplesNeeded(const Projection& projection, double targetError, int targe
   return needed;
 }
 
-// Stage 2 (target controls): a pilot run (about 4 samples per pixel)
-// measures the image; the sample count is then scaled to meet the target and
-// re-checked on the larger run (up to three times), within
-// [pilot, maximumExponent].
-Projection ProjectToTarget(const IndexProjection& sampler, const mcx::ProjectionGeometry& geometry,
-  double targetError, int targetLevels, unsigned maximumExponent)
+// The pilot run's exponent: about 4 samples per pixel, within
+// [PilotSampleExponent, maximumExponent].
+unsigned PilotExponent(const mcx::ProjectionGeometry& geometry, unsigned maximumExponent)
 {
   const long long pixels = static_cast<long long>(geometry.Size[0]) * geometry.Size[1];
-  unsigned m = std::min(maximumExponent,
+  return std::min(maximumExponent,
     std::max(static_cast<unsigned>(vtkMCXTypes::PilotSampleExponent),
       mcx::ExponentForSampleCount(4 * pixels)));
-  Projection projection = sampler.Project(m, 0.0, 0.05);
+}
+
+// Stage 2 (target controls): from a pilot run of 2^m - 1 samples that
+// measured the image, the sample count is scaled to meet the target and
+// re-checked on the larger run (up to three times), within [pilot,
+// maximumExponent].
+Projection RefineToTarget(const IndexProjection& sampler, Projection projection, unsigned m,
+  double decay, double targetError, int targetLevels, unsigned maximumExponent,
+  double progressStart)
+{
   const double passEnd[] = { 0.8, 0.95, 1.0 };
   for (int pass = 0; pass < 3 && projection.Completed; ++pass)
   {
-    const double needed = SamplesNeeded(projection, targetError, targetLevels);
+    const double needed = SamplesNeeded(projection, targetError, targetLevels, decay);
     const unsigned next = std::min(maximumExponent,
       mcx::ExponentForSampleCount(static_cast<long long>(std::min(needed, 9.0e18))));
     if (next <= m)
@@ -325,9 +360,106 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
       break;
     }
     m = next;
-    projection = sampler.Project(m, pass == 0 ? 0.05 : passEnd[pass - 1], passEnd[pass]);
+    projection = sampler.Project(m, pass == 0 ? progressStart : passEnd[pass - 1], passEnd[pass]);
   }
   return projection;
+}
+
+Projection ProjectToTarget(const IndexProjection& sampler, const mcx::ProjectionGeometry& geometry,
+  double targetError, int targetLevels, unsigned maximumExponent)
+{
+  const unsigned m = PilotExponent(geometry, maximumExponent);
+  Projection pilot = sampler.Project(m, 0.0, 0.05);
+  const double decay = mcx::ErrorDecayExponent(pilot.FallsAsInverseM);
+  return RefineToTarget(
+    sampler, std::move(pilot), m, decay, targetError, targetLevels, maximumExponent, 0.05);
+}
+
+// Seconds a deposit would take for `samples`, extrapolated from a pilot:
+// the fixed part (the view's tables, the sums' collection) once, the
+// deposits' part in proportion.
+double PredictedSeconds(const Projection& pilot, double samples)
+{
+  return pilot.FixedSeconds +
+    pilot.DepositSeconds * std::max(1.0, samples / static_cast<double>(pilot.Count));
+}
+
+// The exponent a of a deposit's error, falling as M^-a, measured between
+// two pilots: a footprint's error falls as M^-1 only where voxels project
+// to a pixel or more (on a CT of voxels 6 times smaller than its pixels it
+// falls as M^-1/2, as a point deposit's does). Within [1/2, the deposit's
+// own exponent].
+double MeasuredDecay(const Projection& small, const Projection& large)
+{
+  const double nominal = mcx::ErrorDecayExponent(large.FallsAsInverseM);
+  if (!(small.EstimatedError() > 0) || !(large.EstimatedError() > 0) || large.Count <= small.Count)
+  {
+    return nominal;
+  }
+  const double decay = std::log(small.EstimatedError() / large.EstimatedError()) /
+    std::log(static_cast<double>(large.Count) / static_cast<double>(small.Count));
+  return std::max(0.5, std::min(nominal, decay));
+}
+
+// Stage 2 choosing the deposit (ChooseDepositForTarget): a pilot of each
+// deposit measures its error and time (the footprint's two, of M and 4 M
+// samples, also how fast its error falls; the point deposit's falls as
+// M^-1/2); the deposit predicted to reach the target soonest is refined
+// from its larger pilot. Every voxel once competes as well (relative error
+// targets): it is the footprint deposit of every voxel, so its error is
+// taken as the footprint's extrapolated to that many samples (an upper
+// bound: it has no sampling noise) and its time as that many footprints.
+Projection ChooseAndProjectToTarget(IndexProjection& sampler,
+  const mcx::ProjectionGeometry& geometry, double targetError, int targetLevels,
+  unsigned maximumExponent)
+{
+  const unsigned small = PilotExponent(geometry, maximumExponent);
+  const unsigned m = std::min(maximumExponent, small + 2);
+  const mcx::Deposit modes[2] = { mcx::Deposit::Point, mcx::Deposit::Footprint };
+  Projection pilots[2];
+  double seconds[2], decays[2];
+  for (int d = 0; d < 2; ++d)
+  {
+    sampler.DepositMode = modes[d];
+    if (modes[d] == mcx::Deposit::Footprint && small < m)
+    {
+      const Projection first = sampler.Project(small, 0.02, 0.04);
+      pilots[d] = sampler.Project(m, 0.04, 0.08);
+      decays[d] = MeasuredDecay(first, pilots[d]);
+    }
+    else
+    {
+      pilots[d] = sampler.Project(m, 0.0, 0.02);
+      decays[d] = mcx::ErrorDecayExponent(pilots[d].FallsAsInverseM);
+    }
+    if (!pilots[d].Completed)
+    {
+      return std::move(pilots[d]);
+    }
+    const double needed = std::min(SamplesNeeded(pilots[d], targetError, targetLevels, decays[d]),
+      static_cast<double>(mcx::SampleCount(maximumExponent)));
+    seconds[d] = PredictedSeconds(pilots[d], needed);
+  }
+  const int best = seconds[1] < seconds[0] ? 1 : 0;
+  const double voxels = static_cast<double>(sampler.KeptVoxels());
+  if (targetLevels == 0 && voxels > 0 && pilots[1].Count > 0)
+  {
+    const double everyVoxelError = pilots[1].EstimatedError() *
+      std::pow(static_cast<double>(pilots[1].Count) / voxels, decays[1]);
+    if (everyVoxelError <= targetError && PredictedSeconds(pilots[1], voxels) < seconds[best])
+    {
+      sampler.DepositMode = mcx::Deposit::Footprint;
+      sampler.EveryVoxel = true;
+      return sampler.ProjectEveryVoxel();
+    }
+  }
+  // Refined as a fixed deposit is, with its nominal exponent: the measured
+  // one, from errors of 4 and 16 samples a pixel, can be lower than the
+  // asymptote and overshoot the count (the re-checks catch a shortfall).
+  sampler.DepositMode = modes[best];
+  const double decay = mcx::ErrorDecayExponent(pilots[best].FallsAsInverseM);
+  return RefineToTarget(
+    sampler, std::move(pilots[best]), m, decay, targetError, targetLevels, maximumExponent, 0.08);
 }
 }
 
@@ -353,6 +485,7 @@ bool ProjectIndex(vtkMCXProjector* self, vtkImageData* index, const int wholeExt
   sampler.Seed = static_cast<std::uint64_t>(self->GetSeed());
   sampler.DepositMode = static_cast<mcx::Deposit>(self->GetDeposit());
   sampler.FootprintReach = self->GetFootprintReach();
+  sampler.ChoosesDeposit = targeted && self->GetChooseDepositForTarget();
   if (!sampler.Prepare(index, self->GetTransferFunction()))
   {
     return false;
@@ -364,11 +497,21 @@ bool ProjectIndex(vtkMCXProjector* self, vtkImageData* index, const int wholeExt
   }
   // Under a target SampleExponent is ignored (0 included).
   const unsigned m = sampler.IsEmpty() ? 0u : static_cast<unsigned>(self->GetSampleExponent());
-  projection = !sampler.IsEmpty() && targeted
-    ? ProjectToTarget(sampler, geometry, self->GetTargetRelativeError(),
-        self->GetTargetQuantizationLevels(),
-        static_cast<unsigned>(self->GetMaximumSampleExponent()))
-    : sampler.Project(m, 0.0, 1.0);
+  const double targetError = self->GetTargetRelativeError();
+  const int targetLevels = self->GetTargetQuantizationLevels();
+  const unsigned maximum = static_cast<unsigned>(self->GetMaximumSampleExponent());
+  if (sampler.IsEmpty() || !targeted)
+  {
+    projection = sampler.Project(m, 0.0, 1.0);
+  }
+  else if (sampler.ChoosesDeposit)
+  {
+    projection = ChooseAndProjectToTarget(sampler, geometry, targetError, targetLevels, maximum);
+  }
+  else
+  {
+    projection = ProjectToTarget(sampler, geometry, targetError, targetLevels, maximum);
+  }
   return true;
 }
 }

@@ -34,6 +34,14 @@ struct Projection
   bool Completed = true;
   bool FallsAsInverseM = false; // see mcx::FootprintErrorCalibration
   bool EveryVoxel = false;      // not estimated: see mcx::IsEveryVoxelCloud
+  // How an index input was projected (vtkMCXTypes' values; -1: a cloud's
+  // own), and the run's wall-clock seconds: the deposits', and the rest
+  // (the view's footprint tables, collecting the sums), what a target's
+  // choice of deposit extrapolates.
+  int Deposit = -1;
+  int Strategy = -1;
+  double DepositSeconds = 0.0;
+  double FixedSeconds = 0.0;
   std::string RandomParts;      // the deposit's random parts, if any (RandomPartsOf)
   // A view-ordered cloud's control (mcx::CloudControlImage; empty: none):
   // H, the sums of the points counted once (as Sums), the weight the points

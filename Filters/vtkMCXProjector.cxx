@@ -68,6 +68,12 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
   mcx::AddFieldValue(fd, vtkMCXTypes::IntegralName(), projection.Integral);
   mcx::AddFieldValue(
     fd, vtkMCXTypes::EstimatedRelativeErrorName(), projection.EstimatedError());
+  if (projection.Deposit >= 0) // an index input's: a cloud brings its own in its field data
+  {
+    mcx::AddFieldValue(fd, vtkMCXTypes::DepositName(), static_cast<long long>(projection.Deposit));
+    mcx::AddFieldValue(
+      fd, vtkMCXTypes::StrategyName(), static_cast<long long>(projection.Strategy));
+  }
 }
 }
 
@@ -216,6 +222,7 @@ void vtkMCXProjector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Deposit: " << this->Deposit << "\n";
   os << indent << "FootprintReach: " << this->FootprintReach << "\n";
   os << indent << "TargetRelativeError: " << this->TargetRelativeError << "\n";
+  os << indent << "ChooseDepositForTarget: " << this->ChooseDepositForTarget << "\n";
   os << indent << "TargetQuantizationLevels: " << this->TargetQuantizationLevels << "\n";
   os << indent << "MaximumSampleExponent: " << this->MaximumSampleExponent << "\n";
   os << indent << "Controller: " << this->Controller << "\n";

@@ -99,6 +99,24 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Under a target (TargetRelativeError or TargetQuantizationLevels) with an
+   * index input, choose the deposit by measurement instead of Deposit: a
+   * pilot run of each deposit measures its error and its seconds, and the
+   * one predicted to reach the target soonest is refined; every voxel once
+   * competes for relative-error targets (its error taken as the footprint
+   * pilot's extrapolated to every voxel, its time as that many footprints).
+   * The output's field data Deposit and Strategy say what was chosen. Off by
+   * default: the choice rests on measured times, so near a tie a busy
+   * machine may choose differently from one run to the next (each image
+   * meets the target, but is not the same bit for bit).
+   */
+  vtkSetMacro(ChooseDepositForTarget, bool);
+  vtkGetMacro(ChooseDepositForTarget, bool);
+  vtkBooleanMacro(ChooseDepositForTarget, bool);
+  ///@}
+
+  ///@{
   /** Grey levels L of the paper's quantization criterion (0, the default: off). */
   vtkSetClampMacro(TargetQuantizationLevels, int, 0, 65536);
   vtkGetMacro(TargetQuantizationLevels, int);
@@ -143,6 +161,7 @@ protected:
   double FootprintReach = 16.0;
   double TargetRelativeError = 0.0;
   int TargetQuantizationLevels = 0;
+  bool ChooseDepositForTarget = false;
   int MaximumSampleExponent = 30;
   vtkMultiProcessController* Controller = nullptr;
 

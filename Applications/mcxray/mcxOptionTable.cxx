@@ -203,7 +203,12 @@ const Option Options[] = {
     { s.QuantizationLevels = static_cast<int>(ParseInteger(a.Value, a.Name, 2, INT_MAX)); } },
   { "--method", Both, true, [](Settings& s, const Argument& a) { s.Method = a.Value; } },
   { "--kernel", Both, true, [](Settings& s, const Argument& a) { s.Kernel = a.Value; } },
-  { "--deposit", Both, true, [](Settings& s, const Argument& a) { s.Deposit = a.Value; } },
+  { "--deposit", Both, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.Deposit = a.Value;
+      s.DepositGiven = true;
+    } },
   { "--seed", Both, true,
     [](Settings& s, const Argument& a)
     { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },

@@ -343,6 +343,7 @@ private:
     monteCarlo->SetDeposit(DepositOf(this->Options.Deposit));
     monteCarlo->SetTargetRelativeError(this->Options.TargetError);
     monteCarlo->SetTargetQuantizationLevels(this->Options.QuantizationLevels);
+    monteCarlo->SetChooseDepositForTarget(!this->Options.DepositGiven);
     return monteCarlo;
   }
 
@@ -460,10 +461,26 @@ private:
     else
     {
       const double samples = fields->GetArray(vtkMCXTypes::SampleCountName())->GetTuple1(0);
+      const bool chosen = this->Projector->IsA("vtkMCXProjector") &&
+        static_cast<vtkMCXProjector*>(this->Projector.Get())->GetChooseDepositForTarget() &&
+        (this->Options.TargetError > 0 || this->Options.QuantizationLevels > 0);
+      const bool everyVoxel = fields->GetArray(vtkMCXTypes::StrategyName())
+        ? fields->GetArray(vtkMCXTypes::StrategyName())->GetTuple1(0) == vtkMCXTypes::EVERY_VOXEL
+        : this->Options.Method == "every-voxel";
       line << (this->Options.StoredPoints ? "projection:  "
                                           : "sampling + projection (off-line, fused): ")
-           << seconds << " s (" << static_cast<long long>(samples);
-      if (this->Options.Method == "every-voxel")
+           << seconds << " s (";
+      if (chosen) // the target's choice, by a pilot of each deposit
+      {
+        line << "chose "
+             << (everyVoxel ? "every voxel once"
+                            : std::string(vtkMCXTypes::DepositCommandName(static_cast<int>(
+                                fields->GetArray(vtkMCXTypes::DepositName())->GetTuple1(0)))) +
+                      " deposit")
+             << " by measured error per second; ";
+      }
+      line << static_cast<long long>(samples);
+      if (everyVoxel)
       {
         line << (noisy ? " voxels, each once, with random parts: their noise is not estimated)"
                        : " voxels, each once: no sampling error to estimate)");

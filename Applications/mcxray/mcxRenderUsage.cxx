@@ -34,11 +34,18 @@ options:
   --samples N           number of samples, rounded up to 2^m - 1 (default 4194303;
                         at most 2^40 - 1, about 3 to 12 hours on 2 cores)
   --target-error E      choose the sample count for a relative RMS error E (a
-                        pilot run of 65535 samples measures the image; up to
-                        2^30 - 1 samples); replaces --samples
+                        pilot run of about 4 samples per pixel, at least 65535,
+                        measures the image; up to 2^30 - 1 samples); replaces
+                        --samples. Without --deposit the deposit is chosen too:
+                        a pilot of each measures its error and seconds, and the
+                        one predicted to reach E soonest is taken, or every
+                        voxel once when that is predicted sooner still (the
+                        choice rests on measured times: give --deposit for the
+                        same image bit for bit on every run)
   --quantization-levels L
                         choose the sample count by the paper's criterion: the
-                        mean pixel deviation below one of L grey levels
+                        mean pixel deviation below one of L grey levels (the
+                        deposit chosen as for --target-error)
   --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
                         non-zero weight once, weighted by the TF: no sampling
                         noise while each voxel's footprint reaches at most 16

@@ -22,6 +22,7 @@ struct Settings
   std::string Method = "hybrid";
   std::string Kernel = "tent";
   std::string Deposit = "footprint";
+  bool DepositGiven = false; // without it a target chooses the deposit by measurement
   unsigned long long Seed = 0;
   int Threads = 0;            // 0: all cores
   double MemoryLimit = 0.0;   // bytes; 0: the machine's physical memory

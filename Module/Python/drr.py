@@ -479,7 +479,7 @@ class Renderer:
             vup: Optional[Sequence[float]] = None, image_center: Optional[Sequence[float]] = None,
             rtk_geometry: Optional[str] = None, detector_origin: Optional[Sequence[float]] = None,
             rtplan: Optional[str] = None, beam: Optional[Union[str, int]] = None,
-            deposit: str = "footprint", kernel: str = "tent", method: str = "hybrid",
+            deposit: Optional[str] = None, kernel: str = "tent", method: str = "hybrid",
             samples: Optional[int] = None, target_error: Optional[float] = None, seed: int = 0,
             tolerance: Optional[float] = None,
             beer_lambert: bool = False, photons: float = 0.0, i0: float = 1.0,
@@ -517,9 +517,9 @@ class Renderer:
           (for a beam without SourceAxisDistance; one giving it refuses sad).
         Without any, plastimatch's geometry at gantry 0.
 
-        Sampling (vtkMCXProjector): deposit "footprint" or "point"; kernel
-        "tent" or "box"; method "hybrid", "mc", "qmc" or "every-voxel";
-        samples (rounded up to 2^k - 1) or target_error (relative RMS error);
+        Sampling (vtkMCXProjector): deposit "footprint" (default; chosen by measurement
+        under target_error, as mcxray's) or "point"; kernel "tent" or "box"; method "hybrid",
+        "mc", "qmc" or "every-voxel"; samples (rounded up to 2^k - 1) or target_error (relative RMS error);
         seed, the same for every pose (common random numbers: pose-to-pose
         differences are not sampling noise). method "reference": the exact
         projector (vtkMCXReferenceProjector), to a relative tolerance
@@ -551,6 +551,7 @@ class Renderer:
         return self._render(poses, physics, noise_seed, progress)
 
     def _configure(self, tf, deposit, kernel, method, samples, target_error, seed, tolerance):
+        choose, deposit = deposit is None, "footprint" if deposit is None else deposit
         choices = (("deposit", deposit, vtkMCXTypes.DepositFromName, "footprint or point"),
                    ("kernel", kernel, vtkMCXTypes.KernelFromName, "tent or box"),
                    ("method", method, vtkMCXTypes.StrategyFromName, ", ".join(_METHODS)))
@@ -579,6 +580,7 @@ class Renderer:
                 raise ValueError("tolerance= goes with method='reference'")
             projector = self._monte_carlo
             projector.SetDeposit(values["deposit"])
+            projector.SetChooseDepositForTarget(choose)
             projector.SetStrategy(values["method"])
             projector.SetSeed(_integer(seed, "seed", 0, 2**63 - 1))
             if target_error is not None:
