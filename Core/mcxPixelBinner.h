@@ -7,6 +7,7 @@
 #include "mcxProjectionGeometry.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 namespace mcx
@@ -17,17 +18,32 @@ namespace mcx
 class PixelBinner
 {
 public:
+  /// The affine map to the detector and the perspective constants.
+  struct Map
+  {
+    bool Perspective = false;
+    double Near = 0.0;
+    double FocalSquared = 0.0;
+    double Offset[3] = { 0, 0, 0 };
+    double Rows[9] = { 0 };
+    double PixelScale[2] = { 0, 0 };
+    double PixelOffset[2] = { 0, 0 };
+  };
+
+  /// LocatePoints reads x, y and z up to n rounded up to a multiple of this
+  /// (the widest SIMD vector of doubles: 8 on AVX-512, up to 32 on SVE).
+  static constexpr std::size_t LanePadding = 32;
   /// sourceOrigin and sourceMatrix (row-major 3x3) take source coordinates to world.
   PixelBinner(
     const ProjectionGeometry& g, const double sourceOrigin[3], const double sourceMatrix[9])
-    : Perspective(g.Perspective)
-    , Width(g.Size[0])
+    : Width(g.Size[0])
     , Height(g.Size[1])
     , WidthAsDouble(g.Size[0])
     , HeightAsDouble(g.Size[1])
-    , Near(g.NearDistance)
-    , FocalSquared(g.FocalDistance * g.FocalDistance)
   {
+    this->Lanes.Perspective = g.Perspective;
+    this->Lanes.Near = g.NearDistance;
+    this->Lanes.FocalSquared = g.FocalDistance * g.FocalDistance;
     // Rows k = 0, 1 give (x - E) . U, . V (perspective) or the plane
     // coordinates x . U - o_0 x . W, x . V - o_1 x . W (parallel, obliquity
     // o), row 2 the depth (x - E) . W, as affine functions of the source
@@ -35,7 +51,7 @@ public:
     double planeAxes[2][3];
     for (int k = 0; k < 2; ++k)
     {
-      const double o = this->Perspective ? 0.0 : g.Obliquity[k];
+      const double o = this->Lanes.Perspective ? 0.0 : g.Obliquity[k];
       const double* axis = k == 0 ? g.U : g.V;
       for (int r = 0; r < 3; ++r)
       {
@@ -45,11 +61,11 @@ public:
     const double* axes[3] = { planeAxes[0], planeAxes[1], g.W };
     for (int k = 0; k < 3; ++k)
     {
-      this->Offset[k] = 0.0;
+      this->Lanes.Offset[k] = 0.0;
       for (int r = 0; r < 3; ++r)
       {
-        const double base = sourceOrigin[r] - (this->Perspective || k == 2 ? g.Eye[r] : 0.0);
-        this->Offset[k] += axes[k][r] * base;
+        const double base = sourceOrigin[r] - (this->Lanes.Perspective || k == 2 ? g.Eye[r] : 0.0);
+        this->Lanes.Offset[k] += axes[k][r] * base;
       }
       for (int c = 0; c < 3; ++c)
       {
@@ -58,24 +74,25 @@ public:
         {
           sum += axes[k][r] * sourceMatrix[3 * r + c];
         }
-        this->Rows[3 * k + c] = sum;
+        this->Lanes.Rows[3 * k + c] = sum;
       }
     }
     for (int k = 0; k < 2; ++k)
     {
-      if (this->Perspective)
+      if (this->Lanes.Perspective)
       {
-        this->PixelScale[k] = g.FocalDistance / g.Spacing[k];
-        this->PixelOffset[k] = -g.Origin[k] / g.Spacing[k] + 0.5;
+        this->Lanes.PixelScale[k] = g.FocalDistance / g.Spacing[k];
+        this->Lanes.PixelOffset[k] = -g.Origin[k] / g.Spacing[k] + 0.5;
       }
       else
       {
         // Fold the pixel scaling into the rows: one affine map to pixel units.
         for (int c = 0; c < 3; ++c)
         {
-          this->Rows[3 * k + c] /= g.Spacing[k];
+          this->Lanes.Rows[3 * k + c] /= g.Spacing[k];
         }
-        this->PixelOffset[k] = this->Offset[k] / g.Spacing[k] - g.Origin[k] / g.Spacing[k] + 0.5;
+        this->Lanes.PixelOffset[k] =
+          this->Lanes.Offset[k] / g.Spacing[k] - g.Origin[k] / g.Spacing[k] + 0.5;
       }
     }
   }
@@ -91,7 +108,8 @@ public:
     {
       return false;
     }
-    increment = this->Perspective || weight != 1.0 ? FixedIncrement(f * weight) : FixedOneInteger;
+    increment =
+      this->Lanes.Perspective || weight != 1.0 ? FixedIncrement(f * weight) : FixedOneInteger;
     pixel = static_cast<std::int64_t>(fx) + static_cast<std::int64_t>(fy) * this->Width;
     return true;
   }
@@ -102,30 +120,40 @@ public:
   /// false when it lies nearer than the near plane (perspective).
   bool Locate(const double p[3], double& fx, double& fy, double& f, double& inverseDepth) const
   {
-    const double* m = this->Rows;
-    if (!this->Perspective)
+    const double* m = this->Lanes.Rows;
+    if (!this->Lanes.Perspective)
     {
-      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->PixelOffset[0];
-      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->PixelOffset[1];
+      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.PixelOffset[0];
+      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.PixelOffset[1];
       f = 1.0;
       inverseDepth = 0.0;
       return std::isfinite(fx) && std::isfinite(fy);
     }
-    const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[0];
-    const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Offset[1];
-    const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Offset[2];
-    if (!(z >= this->Near))
+    const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.Offset[0];
+    const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.Offset[1];
+    const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Lanes.Offset[2];
+    if (!(z >= this->Lanes.Near))
     {
       return false;
     }
     inverseDepth = 1.0 / z;
-    fx = u * inverseDepth * this->PixelScale[0] + this->PixelOffset[0];
-    fy = v * inverseDepth * this->PixelScale[1] + this->PixelOffset[1];
+    fx = u * inverseDepth * this->Lanes.PixelScale[0] + this->Lanes.PixelOffset[0];
+    fy = v * inverseDepth * this->Lanes.PixelScale[1] + this->Lanes.PixelOffset[1];
     // U, V, W are orthonormal, so the distance from the eye is |(u, v, z)|.
     const double s = std::sqrt(u * u + v * v + z * z);
-    f = this->FocalSquared * s * inverseDepth * inverseDepth * inverseDepth;
+    f = this->Lanes.FocalSquared * s * inverseDepth * inverseDepth * inverseDepth;
     return std::isfinite(fx) && std::isfinite(fy);
   }
+
+  /// Locate for n points (x, y, z readable up to n rounded up to a
+  /// multiple of LanePadding) on the CPU's widest SIMD lanes, bit for bit
+  /// the same: fx, fy, f of point i, and located[i] = Locate's result
+  /// (mcxPixelBinnerLanes.cxx).
+  void LocatePoints(const double* x, const double* y, const double* z, std::size_t n, double* fx,
+    double* fy, double* f, std::uint8_t* located) const;
+
+  /// The instruction set LocatePoints runs on (Highway's name: AVX3, AVX2, SSE4, EMU128...).
+  static const char* LanesInstructionSet();
 
   /// A voxel's edges (given in the source frame: row-major, column k is edge
   /// k) in pixels on the detector: exact in parallel views; in perspective
@@ -137,36 +165,30 @@ public:
     {
       for (int a = 0; a < 2; ++a)
       {
-        const double* row = this->Rows + 3 * a;
+        const double* row = this->Lanes.Rows + 3 * a;
         const double step = row[0] * voxel[k] + row[1] * voxel[3 + k] + row[2] * voxel[6 + k];
-        axes[k][a] = step * (this->Perspective ? this->PixelScale[a] : 1.0);
+        axes[k][a] = step * (this->Lanes.Perspective ? this->Lanes.PixelScale[a] : 1.0);
       }
     }
   }
 
-  bool IsPerspective() const { return this->Perspective; }
+  bool IsPerspective() const { return this->Lanes.Perspective; }
   int GetWidth() const { return this->Width; }
   int GetHeight() const { return this->Height; }
 
   /// Distance of a point from the eye along the viewing direction W.
   double Depth(const double p[3]) const
   {
-    const double* m = this->Rows + 6;
-    return m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Offset[2];
+    const double* m = this->Lanes.Rows + 6;
+    return m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.Offset[2];
   }
 
 private:
-  bool Perspective;
+  Map Lanes; // what Locate computes with, also on SIMD lanes
   int Width;
   int Height;
   double WidthAsDouble;
   double HeightAsDouble;
-  double Near;
-  double FocalSquared;
-  double Offset[3] = { 0, 0, 0 };
-  double Rows[9] = { 0 };
-  double PixelScale[2] = { 0, 0 };
-  double PixelOffset[2] = { 0, 0 };
 };
 
 } // namespace mcx

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 namespace mcx
@@ -61,6 +62,87 @@ public:
       }
     }
   }
+
+  /// DepositPoint for the n samples k[i] at (x[i], y[i], z[i]), each of
+  /// weight 1, their projection done on SIMD lanes
+  /// (PixelBinner::LocatePoints: the arrays readable up to its padding): the
+  /// same sums, bit for bit.
+  void DepositPoints(
+    const std::uint64_t* k, const double* x, const double* y, const double* z, std::size_t n) const
+  {
+    constexpr std::size_t Most = PointBatch::Capacity;
+    double fx[Most], fy[Most], f[Most];
+    std::uint8_t located[Most];
+    const PixelBinner& binner = *this->Binner;
+    binner.LocatePoints(x, y, z, n, fx, fy, f, located);
+    const bool perspective = binner.IsPerspective();
+    const double width = binner.GetWidth(), height = binner.GetHeight();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      // Bin's tests and increment from Locate's results.
+      if (!located[i] || !(fx[i] >= 0 && fx[i] < width && fy[i] >= 0 && fy[i] < height))
+      {
+        continue;
+      }
+      const std::int64_t pixel =
+        static_cast<std::int64_t>(fx[i]) + static_cast<std::int64_t>(fy[i]) * binner.GetWidth();
+      if (this->DepthLimits)
+      {
+        const double p[3] = { x[i], y[i], z[i] };
+        if (!(binner.Depth(p) < this->DepthLimits[pixel]))
+        {
+          continue;
+        }
+      }
+      const FixedSum increment = perspective ? FixedIncrement(f[i]) : FixedOneInteger;
+      this->Add(k[i], pixel, increment);
+      if (this->Controlled)
+      {
+        this->Sums->Add(k[i] < this->Split ? 2 : 3, pixel, increment);
+      }
+    }
+  }
+
+  /// Samples of weight 1 gathered for DepositPoints, Capacity at a time:
+  /// the point deposit of a sample source's sink (Add), Flush()ed at the
+  /// end of each chunk of work.
+  class PointBatch
+  {
+  public:
+    static constexpr std::size_t Capacity = 64;
+    static_assert(Capacity % PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
+
+    explicit PointBatch(const ThreadImage& image)
+      : Image(image)
+    {
+    }
+
+    void Add(std::uint64_t k, const double p[3])
+    {
+      this->K[this->Count] = k;
+      this->X[this->Count] = p[0];
+      this->Y[this->Count] = p[1];
+      this->Z[this->Count] = p[2];
+      if (++this->Count == Capacity)
+      {
+        this->Flush();
+      }
+    }
+
+    void Flush()
+    {
+      this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count);
+      this->Count = 0;
+    }
+
+  private:
+    const ThreadImage& Image;
+    std::size_t Count = 0;
+    std::uint64_t K[Capacity];
+    double X[Capacity] = {};
+    double Y[Capacity] = {};
+    double Z[Capacity] = {};
+  };
 
   /// The footprint of the voxel centred at p (its random part, if the
   /// plan has one, drawn from the footprint stream of sample k), scaled

@@ -287,7 +287,20 @@ private:
       [&](std::uint64_t b, std::uint64_t e)
       {
         const Accumulator::ThreadImage image = accumulator.Local();
-        auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
+        // Points are projected a batch at a time, on SIMD lanes.
+        Accumulator::ThreadImage::PointBatch points(image);
+        const bool footprints = this->DepositMode == mcx::Deposit::Footprint;
+        auto deposit = [&](std::uint64_t k, const double p[3])
+        {
+          if (footprints)
+          {
+            image.Deposit(k, p);
+          }
+          else
+          {
+            points.Add(k, p);
+          }
+        };
         std::size_t r =
           static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
         for (; r < runs.size() && b < e; ++r)
@@ -298,6 +311,7 @@ private:
             runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
           b = stop;
         }
+        points.Flush();
       });
   }
 

@@ -1,0 +1,230 @@
+// The SIMD kernels give the scalar code's results bit for bit on every
+// instruction set Highway compiles them for (scalar to AVX-512 here): each
+// is forced in turn (hwy::SetSupportedTargetsForTest) and compared with the
+// scalar PixelBinner::Locate and ThreadImage::DepositPoint.
+#include "mcxExecutor.h"
+#include "mcxPixelBinner.h"
+#include "mcxSampleAccumulator.h"
+
+#include <hwy/highway.h>
+#include <hwy/targets.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+mcx::ProjectionGeometry Geometry(bool perspective)
+{
+  mcx::ProjectionGeometry g;
+  g.Perspective = perspective;
+  g.Size[0] = 37; // not a multiple of any vector width
+  g.Size[1] = 29;
+  g.Spacing[0] = 0.75;
+  g.Spacing[1] = 0.5;
+  g.Origin[0] = -13.0;
+  g.Origin[1] = -7.0;
+  // An oblique frame: U, V, W orthonormal, turned about two axes.
+  const double a = 0.3, b = -0.7;
+  const double u[3] = { std::cos(a), std::sin(a), 0 };
+  const double v[3] = { -std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b) };
+  for (int r = 0; r < 3; ++r)
+  {
+    g.U[r] = u[r];
+    g.V[r] = v[r];
+  }
+  g.W[0] = u[1] * v[2] - u[2] * v[1];
+  g.W[1] = u[2] * v[0] - u[0] * v[2];
+  g.W[2] = u[0] * v[1] - u[1] * v[0];
+  for (int r = 0; r < 3; ++r)
+  {
+    g.Eye[r] = -60.0 * g.W[r] + 1.5 * r;
+  }
+  g.FocalDistance = 90.0;
+  g.NearDistance = perspective ? 6.0 : 0.0;
+  if (!perspective)
+  {
+    g.Obliquity[0] = 0.125;
+  }
+  return g;
+}
+
+// Points around the volume, and the awkward ones: behind the near plane,
+// on it, not finite, overflowing to infinity in the products, subnormal.
+std::vector<double> Points(std::size_t n)
+{
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> around(-40.0, 40.0);
+  std::vector<double> xyz(3 * n);
+  for (double& c : xyz)
+  {
+    c = around(random);
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double awkward[][3] = { { nan, 0, 0 }, { 0, inf, 0 }, { 0, 0, -inf }, { 1e300, 1e300, 0 },
+    { 4.9e-324, -4.9e-324, 0 }, { 0, 0, 0 }, { -1e308, 1e308, 1e308 } };
+  for (std::size_t i = 0; i < sizeof(awkward) / sizeof(awkward[0]); ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      xyz[3 * (5 * i + 3) + a] = awkward[i][a];
+    }
+  }
+  return xyz;
+}
+
+bool SameBits(double a, double b)
+{
+  return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+
+// Every compiled target the CPU runs, one at a time (the mock is reset
+// after each test).
+std::vector<std::int64_t> Targets()
+{
+  return hwy::SupportedAndGeneratedTargets();
+}
+
+struct ResetTargets
+{
+  ~ResetTargets() { hwy::SetSupportedTargetsForTest(0); }
+};
+}
+
+TEST(SIMDLanes, LocatePointsIsLocateBitForBitOnEveryInstructionSet)
+{
+  ResetTargets reset;
+  const std::string dispatched = mcx::PixelBinner::LanesInstructionSet(); // before any mock
+  const std::vector<std::int64_t> targets = Targets();
+  // The portable one and the CPU's widest at least (one only where the
+  // CPU's widest is the portable one).
+  ASSERT_GE(targets.size(), 1u);
+  std::vector<std::string> names;
+  const std::size_t n = 1000; // not a multiple of any vector width
+  const std::vector<double> xyz = Points(n);
+  std::vector<double> x(n + mcx::PixelBinner::LanePadding), y(x.size()), z(x.size());
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    x[i] = xyz[3 * i];
+    y[i] = xyz[3 * i + 1];
+    z[i] = xyz[3 * i + 2];
+  }
+  const double origin[3] = { -3.0, 2.0, 1.0 };
+  const double matrix[9] = { 0.8, 0.1, 0, 0, 1.1, 0.05, 0.02, 0, 1.3 };
+  for (bool perspective : { false, true })
+  {
+    const mcx::PixelBinner binner(Geometry(perspective), origin, matrix);
+    for (std::int64_t target : targets)
+    {
+      hwy::SetSupportedTargetsForTest(target);
+      names.push_back(hwy::TargetName(target));
+      std::vector<double> fx(n), fy(n), f(n);
+      std::vector<std::uint8_t> located(n);
+      binner.LocatePoints(
+        x.data(), y.data(), z.data(), n, fx.data(), fy.data(), f.data(), located.data());
+      int inImage = 0, refused = 0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        double ex = 0, ey = 0, ef = 0, depth = 0;
+        const double p[3] = { x[i], y[i], z[i] };
+        const bool expected = binner.Locate(p, ex, ey, ef, depth);
+        ASSERT_EQ(expected, located[i] != 0)
+          << hwy::TargetName(target) << " point " << i << (perspective ? " perspective" : "");
+        if (expected)
+        {
+          EXPECT_TRUE(SameBits(ex, fx[i]) && SameBits(ey, fy[i]) && SameBits(ef, f[i]))
+            << hwy::TargetName(target) << " point " << i << ": " << ex << " " << ey << " " << ef
+            << " against " << fx[i] << " " << fy[i] << " " << f[i];
+          inImage += ex >= 0 && ex < 37 && ey >= 0 && ey < 29 ? 1 : 0;
+        }
+        else
+        {
+          ++refused;
+        }
+      }
+      // The comparison covers points in the image and refused ones alike.
+      EXPECT_GT(inImage, 50) << hwy::TargetName(target);
+      EXPECT_GT(refused, 2) << hwy::TargetName(target);
+    }
+  }
+  std::string tested;
+  for (const std::string& name : names)
+  {
+    tested += name + " ";
+  }
+  std::cout << "instruction sets compared: " << tested << "(dispatch picks " << dispatched << ")"
+            << std::endl;
+}
+
+TEST(SIMDLanes, DepositPointsAddsWhatDepositPointAdds)
+{
+  // The batch's scalar half (image bounds, depth limits, the first Halton
+  // half's split, the control images) against one DepositPoint per sample,
+  // on every instruction set: the collected sums must be equal.
+  ResetTargets reset;
+  const std::size_t n = 5000;
+  const std::vector<double> xyz = Points(n);
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  for (bool perspective : { false, true })
+  {
+    const mcx::ProjectionGeometry g = Geometry(perspective);
+    const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
+    std::vector<double> limits(pixels);
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      limits[p] = 40.0 + 50.0 * static_cast<double>(p % 7) / 7.0; // hides some samples
+    }
+    for (std::int64_t target : Targets())
+    {
+      hwy::SetSupportedTargetsForTest(target);
+      std::vector<mcx::FixedSum> sums[2][4];
+      for (int batched = 0; batched < 2; ++batched)
+      {
+        mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
+        accumulator.Reset(g, origin, identity, limits);
+        accumulator.SetControlled(true);
+        accumulator.SetSplit(n / 3);
+        const auto image = accumulator.Local();
+        mcx::ThreadImage::PointBatch batch(image);
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          if (batched)
+          {
+            batch.Add(i, &xyz[3 * i]);
+          }
+          else
+          {
+            image.DepositPoint(i, &xyz[3 * i]);
+          }
+        }
+        batch.Flush();
+        for (auto& s : sums[batched])
+        {
+          s.assign(pixels, 0);
+        }
+        accumulator.Collect(sums[batched][0].data(), sums[batched][1].data(),
+          sums[batched][2].data(), sums[batched][3].data());
+      }
+      mcx::FixedSum total = 0;
+      for (int s = 0; s < 4; ++s)
+      {
+        for (std::size_t p = 0; p < pixels; ++p)
+        {
+          ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
+            << hwy::TargetName(target) << " image " << s << " pixel " << p;
+          total += sums[0][s][p];
+        }
+      }
+      EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
+    }
+  }
+}
