@@ -51,6 +51,7 @@
 #include <vector>
 
 #include <sys/mman.h>
+#include <time.h>
 
 namespace
 {
@@ -324,6 +325,35 @@ std::unique_ptr<Volume> Load(bool large, double largeVoxels)
   return v;
 }
 
+// The cores a timed loop kept busy (process CPU time over wall time), and
+// the threads vtkSMPTools said it would use: on a shared machine a 2-thread
+// row may not get 2 cores.
+class CoresUsed
+{
+public:
+  CoresUsed()
+    : Cpu(Now(CLOCK_PROCESS_CPUTIME_ID))
+    , Wall(Now(CLOCK_MONOTONIC))
+  {
+  }
+  void Report(benchmark::State& state) const
+  {
+    const double wall = Now(CLOCK_MONOTONIC) - this->Wall;
+    state.counters["cores_used"] =
+      wall > 0 ? (Now(CLOCK_PROCESS_CPUTIME_ID) - this->Cpu) / wall : 0;
+    state.counters["smp_threads"] = vtkSMPTools::GetEstimatedNumberOfThreads();
+  }
+
+private:
+  static double Now(clockid_t clock)
+  {
+    timespec t{};
+    clock_gettime(clock, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+  double Cpu, Wall;
+};
+
 std::string Dimensions(vtkImageData* image)
 {
   int d[3];
@@ -347,11 +377,13 @@ void Fused(benchmark::State& state, Volume* v, int view, int deposit, int thread
     [&]()
     {
       projector->Update(); // the first run: allocations, footprint tables
+      const CoresUsed cores;
       for (auto _ : state)
       {
         projector->Modified();
         projector->Update();
       }
+      cores.Report(state);
     });
   state.SetItemsProcessed(state.iterations() * projector->GetNumberOfSamples());
   state.SetLabel(Dimensions(v->Image));
@@ -376,11 +408,13 @@ void CloudSampling(benchmark::State& state, Volume* v, int deposit, int threads)
     [&]()
     {
       sampler->Update(); // the first cloud, allocated
+      const CoresUsed cores;
       for (auto _ : state)
       {
         sampler->Modified();
         sampler->Update();
       }
+      cores.Report(state);
     });
   state.SetItemsProcessed(state.iterations() * sampler->GetOutput()->GetNumberOfPoints());
   state.SetLabel(Dimensions(v->Image));
@@ -401,11 +435,13 @@ void CloudProjection(benchmark::State& state, Volume* v, int view, int deposit, 
     [&]()
     {
       projector->Update();
+      const CoresUsed cores;
       for (auto _ : state)
       {
         projector->Modified();
         projector->Update();
       }
+      cores.Report(state);
     });
   state.SetItemsProcessed(state.iterations() * cloud->GetNumberOfPoints());
   state.SetLabel(Dimensions(v->Image));
