@@ -316,7 +316,8 @@ struct SummaryRow
   mcxbench::PeerRun Peer;
   std::string Method;
   Reached Best;
-  std::string Speedup; // empty without plastimatch; "<": an upper bound
+  double Speedup = 0;        // 0 without plastimatch
+  bool SpeedupBound = false; // an upper bound: no method reached the target
 };
 
 std::string Ratio(double peerSeconds, double ours, bool bound, int& nonsense)
@@ -384,10 +385,13 @@ SummaryRow AtTarget(std::ostream& csv, const std::string& volume, double voxels,
       row.Best = r;
     }
   }
+  std::string speedup;
   if (peer.Done)
   {
-    row.Speedup = Ratio(peer.RenderSeconds, row.Best.Found ? row.Best.Value.Seconds : fastestLast,
-      !row.Best.Found, nonsense);
+    const double ours = row.Best.Found ? row.Best.Value.Seconds : fastestLast;
+    speedup = Ratio(peer.RenderSeconds, ours, !row.Best.Found, nonsense);
+    row.Speedup = peer.RenderSeconds / ours;
+    row.SpeedupBound = !row.Best.Found;
   }
   const char* mark = row.Best.Found ? "" : ">";
   csv << ',' << goal.Name << ',';
@@ -400,8 +404,7 @@ SummaryRow AtTarget(std::ostream& csv, const std::string& volume, double voxels,
     csv << ',';
   }
   csv << ',' << row.Method << ',' << mark << static_cast<long long>(row.Best.Value.Samples) << ','
-      << mark << row.Best.Value.Seconds << ',' << row.Best.Value.Error << ',' << row.Speedup
-      << '\n';
+      << mark << row.Best.Value.Seconds << ',' << row.Best.Value.Error << ',' << speedup << '\n';
   return row;
 }
 
@@ -413,17 +416,21 @@ void PrintSummary(const std::vector<SummaryRow>& rows)
                "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SummaryRow& r : rows)
   {
-    char peer[64] = "- | -", line[512];
+    char peer[64] = "- | -", speedup[32] = "-", line[512];
     if (r.Peer.Done)
     {
       std::snprintf(peer, sizeof(peer), "%.3g | %.2f %%", r.Peer.RenderSeconds, 100 * r.Peer.Error);
+    }
+    if (r.Peer.Done)
+    {
+      std::snprintf(speedup, sizeof(speedup), "%s%.2f", r.SpeedupBound ? "<" : "", r.Speedup);
     }
     const char* mark = r.Best.Found ? "" : ">";
     std::snprintf(line, sizeof(line),
       "| %s | %.1f M | %d^2 | %s (%.2f %%) | %s | %s | %s%.0f | %s%.3g | %.2f %% | %s |\n",
       r.Volume.c_str(), r.Voxels / 1e6, r.Size, r.Goal.Name.c_str(), 100 * r.Goal.Error, peer,
       r.Method.c_str(), mark, r.Best.Value.Samples, mark, r.Best.Value.Seconds,
-      100 * r.Best.Value.Error, r.Speedup.empty() ? "-" : r.Speedup.c_str());
+      100 * r.Best.Value.Error, speedup);
     std::cout << line;
   }
   std::cout << std::endl;
