@@ -274,7 +274,6 @@ std::string Quoted(const std::string& text)
 {
   return '"' + text + '"';
 }
-}
 
 // A target error: 2 %, 1 %, or the error plastimatch reached in the case.
 struct Target
@@ -420,9 +419,6 @@ void PrintSummary(const std::vector<SummaryRow>& rows)
     if (r.Peer.Done)
     {
       std::snprintf(peer, sizeof(peer), "%.3g | %.2f %%", r.Peer.RenderSeconds, 100 * r.Peer.Error);
-    }
-    if (r.Peer.Done)
-    {
       std::snprintf(speedup, sizeof(speedup), "%s%.2f", r.SpeedupBound ? "<" : "", r.Speedup);
     }
     const char* mark = r.Best.Found ? "" : ">";
@@ -434,6 +430,7 @@ void PrintSummary(const std::vector<SummaryRow>& rows)
     std::cout << line;
   }
   std::cout << std::endl;
+}
 }
 
 int main(int argc, char* argv[])
