@@ -5,16 +5,20 @@
 // the CT body, the CT chest, and the CT chest upsampled (linear) past 400 M
 // voxels, where plastimatch's cost grows with the voxels and ours does not.
 // For each volume and image size (256^2, 512^2): the exact reference,
-// plastimatch `exact`, and our point and footprint deposits at growing M, all
-// against the reference; the time each deposit takes to reach 2 % and 1 %;
+// plastimatch `exact`, and our point and footprint deposits at growing M
+// and every voxel once, all against the reference; the time each method
+// takes to reach 2 %, 1 % and plastimatch's own error, our best method at
+// each and its speedup over plastimatch (printed as a Markdown table too);
 // and the latency of a TF edit to a complete 2 % image in the interactive
 // mapper (a stored footprint cloud, 256^2). VTK's GPU ray-cast mapper
 // (additive, software GL) is measured beside them on the small volumes.
 // Writes volumes.csv, peers.csv, time-to-target.csv and tf-edit.csv.
 //
-// Usage: BenchmarkPeers [--quick] [--output DIR] [--data DIR]
-//   --quick: small images, sample counts and "large" volume (a smoke run).
+// Usage: BenchmarkPeers [--quick] [--cases LIST] [--output DIR] [--data DIR]
+//   --quick: small images, sample counts and "large" volume (a smoke run);
+//   --cases: some of body,chest,large (default all), e.g. --cases large.
 #include "mcxAccuracyMeasures.h"
+#include "mcxPeerRuns.h"
 #include "mcxTransferFunctionSpec.h"
 #include "mcxVolumeReader.h"
 
@@ -24,10 +28,8 @@
 #include "vtkMCXXRayMapper.h"
 
 #include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkImageInterpolator.h"
 #include "vtkImageResize.h"
@@ -41,8 +43,6 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
@@ -61,16 +61,18 @@
 namespace
 {
 using mcxbench::Clock;
+using mcxbench::PeerRun;
+using mcxbench::RenderWithVTK;
 using mcxbench::Since;
 
 // Hounsfield units to plastimatch's attenuation, mu = 0.0022 (1 + HU/1000)
 // per mm (measured from its output), clamped at air.
 const char* const AttenuationTF = "-1000:0,4000:0.011";
-const double Targets[2] = { 0.02, 0.01 };
-const double SourceToIsocentre = 1000, SourceToDetector = 1500, DetectorSize = 600;
+const mcxbench::ConeBeam Beam;
 
 struct VolumeCase
 {
+  std::string Key; // its name for --cases
   std::string Name;
   std::string File;
   double LeastVoxels; // upsample (linear) until the volume has at least these; 0: as read
@@ -91,11 +93,11 @@ vtkSmartPointer<vtkCamera> ConeBeamCamera(vtkImageData* volume)
   camera->SetFocalPoint(
     (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2);
   const double* iso = camera->GetFocalPoint();
-  camera->SetPosition(iso[0] + SourceToIsocentre, iso[1], iso[2]);
+  camera->SetPosition(iso[0] + Beam.SourceToIsocentre, iso[1], iso[2]);
   camera->SetViewUp(0, 0, 1);
   camera->SetViewAngle(
-    2 * vtkMath::DegreesFromRadians(std::atan(DetectorSize / 2 / SourceToDetector)));
-  camera->SetClippingRange(1.0, 10 * SourceToIsocentre);
+    2 * vtkMath::DegreesFromRadians(std::atan(Beam.DetectorSize / 2 / Beam.SourceToDetector)));
+  camera->SetClippingRange(1.0, 10 * Beam.SourceToIsocentre);
   return camera;
 }
 
@@ -148,149 +150,6 @@ Run Render(vtkAlgorithm* index, vtkPiecewiseFunction* tf, vtkCamera* camera, int
   }
   run.Seconds = mcxbench::Median(seconds);
   return run;
-}
-
-// plastimatch drr -i exact: its own render time ("Total time: ... secs",
-// after loading) and the whole process's, medians of 3, and its error.
-struct PeerRun
-{
-  double RenderSeconds = 0;
-  double ProcessSeconds = 0;
-  double Error = 1;
-  bool Done = false;
-};
-
-double ReadTotalTime(const std::string& log)
-{
-  std::ifstream in(log);
-  std::string line;
-  double seconds = -1;
-  while (std::getline(in, line))
-  {
-    const std::size_t at = line.find("Total time");
-    if (at != std::string::npos)
-    {
-      const std::size_t number = line.find_first_of("0123456789", at);
-      if (number != std::string::npos)
-      {
-        seconds = std::atof(line.c_str() + number);
-      }
-    }
-  }
-  return seconds;
-}
-
-PeerRun RunPlastimatch(const std::string& mha, const std::string& output, const double iso[3],
-  int size, vtkImageData* reference)
-{
-  PeerRun peer;
-  std::vector<double> render, process;
-  const std::string prefix = output + "/plastimatch_" + std::to_string(size) + "_";
-  const std::string log = prefix + "log.txt";
-  for (int repetition = 0; repetition < 3; ++repetition)
-  {
-    std::ostringstream command;
-    command << "plastimatch drr -I " << mha << " -O " << prefix << " -t pfm -i exact -r \"" << size
-            << " " << size << "\" -z \"" << DetectorSize << " " << DetectorSize << "\" --sad "
-            << SourceToIsocentre << " --sid " << SourceToDetector << " -o \"" << iso[0] << " "
-            << iso[1] << " " << iso[2] << "\" > " << log << " 2>&1";
-    const Clock::time_point start = Clock::now();
-    const int status = std::system(command.str().c_str());
-    process.push_back(Since(start));
-    const double seconds = ReadTotalTime(log);
-    std::vector<double> values;
-    if (status != 0 || seconds < 0 ||
-      !mcxbench::ReadPlastimatchPFM(prefix + "0000.pfm", size, values))
-    {
-      std::cerr << "plastimatch failed (" << command.str() << ")" << std::endl;
-      return peer;
-    }
-    render.push_back(seconds);
-    peer.Error = mcxbench::RelativeRMS(values, reference);
-  }
-  for (const char* suffix : { "0000.pfm", "0000.txt", "log.txt" })
-  {
-    std::remove((prefix + suffix).c_str());
-  }
-  peer.RenderSeconds = mcxbench::Median(render);
-  peer.ProcessSeconds = mcxbench::Median(process);
-  peer.Done = true;
-  return peer;
-}
-
-// VTK's GPU ray-cast mapper in additive blend mode (software GL under Xvfb
-// here): an 8-bit, clamped sum of the opacity along each ray. The opacity TF
-// is our TF scaled down until nothing saturates; one least-squares gain then
-// maps the grey levels to line integrals. False without a display.
-bool RenderWithVTK(vtkImageData* volume, vtkPiecewiseFunction* tf, vtkCamera* camera, int size,
-  vtkImageData* reference, double& seconds, double& error)
-{
-  if (!std::getenv("DISPLAY"))
-  {
-    return false;
-  }
-  vtkDataArray* exact =
-    reference->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName());
-  double scale = 1.0;
-  for (int attempt = 0; attempt < 12; ++attempt, scale /= 4)
-  {
-    vtkNew<vtkPiecewiseFunction> opacity;
-    for (int n = 0; n < tf->GetSize(); ++n)
-    {
-      double node[4];
-      tf->GetNodeValue(n, node);
-      opacity->AddPoint(node[0], std::min(1.0, node[1] * scale));
-    }
-    vtkNew<vtkColorTransferFunction> white;
-    white->AddRGBPoint(tf->GetRange()[0], 1, 1, 1);
-    white->AddRGBPoint(tf->GetRange()[1], 1, 1, 1);
-    vtkNew<vtkVolumeProperty> property;
-    property->SetScalarOpacity(opacity);
-    property->SetColor(white);
-    property->SetInterpolationTypeToLinear();
-    vtkNew<vtkGPUVolumeRayCastMapper> mapper;
-    mapper->SetInputData(volume);
-    mapper->SetBlendModeToAdditive();
-    vtkNew<vtkVolume> prop;
-    prop->SetMapper(mapper);
-    prop->SetProperty(property);
-    vtkNew<vtkRenderer> renderer;
-    renderer->AddVolume(prop);
-    renderer->SetActiveCamera(camera);
-    vtkNew<vtkRenderWindow> window;
-    window->SetOffScreenRendering(1);
-    window->AddRenderer(renderer);
-    window->SetSize(size, size);
-    window->Render(); // compiles shaders, uploads the volume
-    const Clock::time_point start = Clock::now();
-    window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
-    grab->SetInputBufferTypeToRGB();
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    seconds = Since(start);
-    vtkDataArray* grey = grab->GetOutput()->GetPointData()->GetScalars();
-    if (grey->GetRange(0)[1] >= 255)
-    {
-      continue; // saturated: scale the opacity down
-    }
-    double product = 0, squares = 0;
-    for (vtkIdType i = 0; i < grey->GetNumberOfTuples(); ++i)
-    {
-      product += grey->GetComponent(i, 0) * exact->GetTuple1(i);
-      squares += grey->GetComponent(i, 0) * grey->GetComponent(i, 0);
-    }
-    const double gain = squares > 0 ? product / squares : 0.0;
-    std::vector<double> values(static_cast<std::size_t>(grey->GetNumberOfTuples()));
-    for (vtkIdType i = 0; i < grey->GetNumberOfTuples(); ++i)
-    {
-      values[static_cast<std::size_t>(i)] = gain * grey->GetComponent(i, 0);
-    }
-    error = mcxbench::RelativeRMS(values, reference);
-    return true;
-  }
-  return false;
 }
 
 // The TF edit of the interactive path: a node at 200 HU that doubles the
@@ -415,12 +274,189 @@ std::string Quoted(const std::string& text)
 {
   return '"' + text + '"';
 }
+
+// A target error: 2 %, 1 %, or the error plastimatch reached in the case.
+struct Target
+{
+  double Error;
+  std::string Name;
+};
+
+// The first run of a sweep within a target (the cheapest), or its last run
+// (Found false: the sweep's cap came first).
+struct Reached
+{
+  Run Value;
+  bool Found = false;
+};
+
+Reached FirstWithin(const std::vector<Run>& runs, double target)
+{
+  Reached reached;
+  for (const Run& run : runs)
+  {
+    reached.Value = run;
+    if (run.Error <= target)
+    {
+      reached.Found = true;
+      break;
+    }
+  }
+  return reached;
+}
+
+// A case at a target: plastimatch, and our best method there.
+struct SummaryRow
+{
+  std::string Volume;
+  double Voxels = 0;
+  int Size = 0;
+  Target Goal;
+  mcxbench::PeerRun Peer;
+  std::string Method;
+  Reached Best;
+  double Speedup = 0;        // 0 without plastimatch
+  bool SpeedupBound = false; // an upper bound: no method reached the target
+};
+
+std::string Ratio(double peerSeconds, double ours, bool bound, int& nonsense)
+{
+  const double ratio = peerSeconds / ours;
+  nonsense += std::isfinite(ratio) && ratio > 0 ? 0 : 1;
+  std::ostringstream text;
+  text << (bound ? "<" : "") << ratio;
+  return text.str();
+}
+
+// Writes a time-to-target.csv row: the first columns as before (each
+// deposit's first run within the target, plastimatch, and the speedup over
+// the faster deposit), then the target's name, every voxel once, and our
+// best method of all (every voxel once included): the fastest within the
+// target, or where none is, the most accurate run (">": not reached, its
+// speedup "<" a bound from the fastest last run).
+SummaryRow AtTarget(std::ostream& csv, const std::string& volume, double voxels, int size,
+  const Target& goal, const std::vector<Run> sweeps[2], const std::vector<Run>& every,
+  const mcxbench::PeerRun& peer, int& nonsense)
+{
+  const Reached deposit[2] = { FirstWithin(sweeps[0], goal.Error),
+    FirstWithin(sweeps[1], goal.Error) };
+  csv << Quoted(volume) << ',' << size << ',' << goal.Error;
+  for (const Reached& r : deposit)
+  {
+    csv << ',' << (r.Found ? "" : ">") << static_cast<long long>(r.Value.Samples) << ','
+        << (r.Found ? "" : ">") << r.Value.Seconds << ',' << r.Value.Error;
+  }
+  if (peer.Done)
+  {
+    const bool any = deposit[0].Found || deposit[1].Found;
+    double ours = std::numeric_limits<double>::infinity();
+    for (const Reached& r : deposit)
+    {
+      ours = r.Found || !any ? std::min(ours, r.Value.Seconds) : ours;
+    }
+    csv << ',' << peer.RenderSeconds << ',' << peer.Error << ','
+        << Ratio(peer.RenderSeconds, ours, !any, nonsense);
+  }
+  else
+  {
+    csv << ",,,";
+  }
+  SummaryRow row;
+  row.Volume = volume;
+  row.Voxels = voxels;
+  row.Size = size;
+  row.Goal = goal;
+  row.Peer = peer;
+  const Reached once = FirstWithin(every, goal.Error);
+  const std::pair<const char*, Reached> methods[3] = { { "point", deposit[0] },
+    { "footprint", deposit[1] }, { "every voxel", once } };
+  double fastestLast = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < (every.empty() ? 2 : 3); ++k)
+  {
+    const Reached& r = methods[k].second;
+    fastestLast = std::min(fastestLast, r.Value.Seconds);
+    const bool better = row.Method.empty() ||
+      (r.Found && (!row.Best.Found || r.Value.Seconds < row.Best.Value.Seconds)) ||
+      (!r.Found && !row.Best.Found && r.Value.Error < row.Best.Value.Error);
+    if (better)
+    {
+      row.Method = methods[k].first;
+      row.Best = r;
+    }
+  }
+  std::string speedup;
+  if (peer.Done)
+  {
+    const double ours = row.Best.Found ? row.Best.Value.Seconds : fastestLast;
+    speedup = Ratio(peer.RenderSeconds, ours, !row.Best.Found, nonsense);
+    row.Speedup = peer.RenderSeconds / ours;
+    row.SpeedupBound = !row.Best.Found;
+  }
+  const char* mark = row.Best.Found ? "" : ">";
+  csv << ',' << goal.Name << ',';
+  if (!every.empty())
+  {
+    csv << every[0].Seconds << ',' << every[0].Error;
+  }
+  else
+  {
+    csv << ',';
+  }
+  csv << ',' << row.Method << ',' << mark << static_cast<long long>(row.Best.Value.Samples) << ','
+      << mark << row.Best.Value.Seconds << ',' << row.Best.Value.Error << ',' << speedup << '\n';
+  return row;
+}
+
+// The summary of time-to-target.csv as a Markdown table.
+void PrintSummary(const std::vector<SummaryRow>& rows)
+{
+  std::cout << "\n| volume | voxels | size | target | plastimatch s | plastimatch error | our best "
+               "method | samples | seconds | error | speedup |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SummaryRow& r : rows)
+  {
+    char peer[64] = "- | -", speedup[32] = "-", line[512];
+    if (r.Peer.Done)
+    {
+      std::snprintf(peer, sizeof(peer), "%.3g | %.2f %%", r.Peer.RenderSeconds, 100 * r.Peer.Error);
+      std::snprintf(speedup, sizeof(speedup), "%s%.2f", r.SpeedupBound ? "<" : "", r.Speedup);
+    }
+    const char* mark = r.Best.Found ? "" : ">";
+    std::snprintf(line, sizeof(line),
+      "| %s | %.1f M | %d^2 | %s (%.2f %%) | %s | %s | %s%.0f | %s%.3g | %.2f %% | %s |\n",
+      r.Volume.c_str(), r.Voxels / 1e6, r.Size, r.Goal.Name.c_str(), 100 * r.Goal.Error, peer,
+      r.Method.c_str(), mark, r.Best.Value.Samples, mark, r.Best.Value.Seconds,
+      100 * r.Best.Value.Error, speedup);
+    std::cout << line;
+  }
+  std::cout << std::endl;
+}
 }
 
 int main(int argc, char* argv[])
 {
+  // --cases LIST (comma-separated: body, chest, large) is ours; the rest
+  // is the accuracy benchmarks' command line.
+  std::vector<std::string> chosen;
+  std::vector<char*> rest = { argv[0] };
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--cases") == 0 && i + 1 < argc)
+    {
+      std::istringstream list(argv[++i]);
+      for (std::string key; std::getline(list, key, ',');)
+      {
+        chosen.push_back(key);
+      }
+    }
+    else
+    {
+      rest.push_back(argv[i]);
+    }
+  }
   mcxbench::BenchmarkArguments arguments;
-  if (!mcxbench::ParseArguments(argc, argv, "BenchmarkPeers", MCXRAY_SHARED_DATA_DIR, arguments))
+  if (!mcxbench::ParseArguments(static_cast<int>(rest.size()), rest.data(),
+        "BenchmarkPeers [--cases body,chest,large]", MCXRAY_SHARED_DATA_DIR, arguments))
   {
     return 2;
   }
@@ -440,11 +476,20 @@ int main(int argc, char* argv[])
   const std::array<int, 2> footprintRange =
     quick ? std::array<int, 2>{ 10, 16 } : std::array<int, 2>{ 14, 26 };
   const std::vector<VolumeCase> cases = {
-    { "CT body", data + "/ct_body_totalseg.nii.gz", 0, true, true },
-    { "CT chest", data + "/ct_chest_cta_totalseg.nii.gz", 0, true, true },
-    { quick ? "CT chest upsampled past 8 M voxels" : "CT chest upsampled past 400 M voxels",
+    { "body", "CT body", data + "/ct_body_totalseg.nii.gz", 0, true, true },
+    { "chest", "CT chest", data + "/ct_chest_cta_totalseg.nii.gz", 0, true, true },
+    { "large",
+      quick ? "CT chest upsampled past 8 M voxels" : "CT chest upsampled past 400 M voxels",
       data + "/ct_chest_cta_totalseg.nii.gz", quick ? 8.0e6 : 4.0e8, false, false },
   };
+  for (const std::string& key : chosen)
+  {
+    if (std::none_of(cases.begin(), cases.end(), [&](const VolumeCase& c) { return c.Key == key; }))
+    {
+      std::cerr << "BenchmarkPeers: no case " << key << " (body, chest, large)" << std::endl;
+      return 2;
+    }
+  }
 
   std::ofstream volumes(output + "/volumes.csv");
   volumes << "volume,dimensions,voxels,index_seconds,peak_resident_megabytes\n";
@@ -453,13 +498,19 @@ int main(int argc, char* argv[])
   std::ofstream targets(output + "/time-to-target.csv");
   targets << "volume,size,target,point_samples,point_seconds,point_error,footprint_samples,"
              "footprint_seconds,footprint_error,plastimatch_exact_seconds,plastimatch_error,"
-             "speedup\n";
+             "speedup,target_name,every_voxel_seconds,every_voxel_error,best_method,best_samples,"
+             "best_seconds,best_error,best_speedup\n";
   std::ofstream edits(output + "/tf-edit.csv");
   edits << "volume,size,cloud,points,first_render_ms,median_ms,error,error_after_edit\n";
 
   int nonsense = 0; // failed peers, non-finite errors: the run must fail loudly
+  std::vector<SummaryRow> summary;
   for (const VolumeCase& c : cases)
   {
+    if (!chosen.empty() && std::find(chosen.begin(), chosen.end(), c.Key) == chosen.end())
+    {
+      continue;
+    }
     vtkSmartPointer<vtkImageData> volume = mcxbench::ReadInStoredFrame(c.File, c.Name);
     if (!volume)
     {
@@ -502,7 +553,8 @@ int main(int argc, char* argv[])
       PeerRun peer;
       if (havePlastimatch)
       {
-        peer = RunPlastimatch(mha, output, camera->GetFocalPoint(), size, reference);
+        peer =
+          mcxbench::RunPlastimatch(mha, output, camera->GetFocalPoint(), size, Beam, reference);
         nonsense += peer.Done && std::isfinite(peer.Error) ? 0 : 1;
         if (peer.Done)
         {
@@ -519,81 +571,60 @@ int main(int argc, char* argv[])
               << ",VTK GPU ray cast (additive; software GL),8-bit,0," << gpuSeconds << ','
               << gpuError << '\n';
       }
-      // Each deposit's sweep; the first run that reaches each target.
-      Run reached[2][2]; // [deposit][target]
-      bool found[2][2] = { { false, false }, { false, false } };
+      // The targets: 2 %, 1 % and, where it ran, plastimatch's own error.
+      std::vector<Target> goals = { { 0.02, "2 %" }, { 0.01, "1 %" } };
+      if (peer.Done)
+      {
+        goals.push_back({ peer.Error, "plastimatch's error" });
+      }
+      double least = 1;
+      for (const Target& goal : goals)
+      {
+        least = std::min(least, goal.Error);
+      }
+      // Each deposit's sweep, until the least target is reached or the cap.
+      std::vector<Run> sweeps[2];
       const int deposits[2] = { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT };
       for (int d = 0; d < 2; ++d)
       {
         const std::array<int, 2>& span = d == 0 ? pointRange : footprintRange;
-        Run last;
-        for (int m = span[0]; m <= span[1] && !found[d][1]; ++m)
+        for (int m = span[0]; m <= span[1] && (sweeps[d].empty() || sweeps[d].back().Error > least);
+             ++m)
         {
-          last = Render(index, tf, camera, size, m, deposits[d], reference);
+          const Run last = Render(index, tf, camera, size, m, deposits[d], reference);
+          sweeps[d].push_back(last);
           peers << Quoted(c.Name) << ',' << size << ",MonteCarloXRay,"
                 << (d == 0 ? "hybrid point" : "hybrid footprint") << ',' << last.Samples << ','
                 << last.Seconds << ',' << last.Error << '\n';
           nonsense += std::isfinite(last.Error) && last.Seconds > 0 ? 0 : 1;
-          for (int t = 0; t < 2; ++t)
-          {
-            if (!found[d][t] && last.Error <= Targets[t])
-            {
-              reached[d][t] = last;
-              found[d][t] = true;
-            }
-          }
-        }
-        for (int t = 0; t < 2; ++t)
-        {
-          reached[d][t] = found[d][t] ? reached[d][t] : last; // capped: the last run
         }
       }
+      std::vector<Run> every;
       if (c.EveryVoxel)
       {
         // The fused DRR of every voxel once: one run, no sample count.
-        const Run every = Render(index, tf, camera, size, 0, vtkMCXTypes::FOOTPRINT,
-          reference, vtkMCXTypes::EVERY_VOXEL);
+        every.push_back(Render(
+          index, tf, camera, size, 0, vtkMCXTypes::FOOTPRINT, reference, vtkMCXTypes::EVERY_VOXEL));
         peers << Quoted(c.Name) << ',' << size << ",MonteCarloXRay,every voxel footprint,"
-              << every.Samples << ',' << every.Seconds << ',' << every.Error << '\n';
-        nonsense += std::isfinite(every.Error) && every.Seconds > 0 ? 0 : 1;
+              << every[0].Samples << ',' << every[0].Seconds << ',' << every[0].Error << '\n';
+        nonsense += std::isfinite(every[0].Error) && every[0].Seconds > 0 ? 0 : 1;
       }
-      for (int t = 0; t < 2; ++t)
+      for (const Target& goal : goals)
       {
-        targets << Quoted(c.Name) << ',' << size << ',' << Targets[t];
-        for (int d = 0; d < 2; ++d)
-        {
-          const Run& run = reached[d][t];
-          targets << ',' << (found[d][t] ? "" : ">") << static_cast<long long>(run.Samples) << ','
-                  << (found[d][t] ? "" : ">") << run.Seconds << ',' << run.Error;
-        }
-        if (peer.Done)
-        {
-          // Against the faster deposit that reached the target; where none
-          // did, an upper bound from the last runs ("<").
-          const bool any = found[0][t] || found[1][t];
-          double ours = std::numeric_limits<double>::infinity();
-          for (int d = 0; d < 2; ++d)
-          {
-            ours = found[d][t] || !any ? std::min(ours, reached[d][t].Seconds) : ours;
-          }
-          const double speedup = peer.RenderSeconds / ours;
-          nonsense += std::isfinite(speedup) && speedup > 0 ? 0 : 1;
-          targets << ',' << peer.RenderSeconds << ',' << peer.Error << ',' << (any ? "" : "<")
-                  << speedup << '\n';
-        }
-        else
-        {
-          targets << ",,,\n";
-        }
+        summary.push_back(
+          AtTarget(targets, c.Name, static_cast<double>(volume->GetNumberOfPoints()), size, goal,
+            sweeps, every, peer, nonsense));
       }
       // The interactive path at the smallest size: the footprint count that
       // reached 2 %, every voxel of non-zero weight once (where they are
       // fewer than 2^30 points), and the view-ordered count that reaches 2 %.
       if (size == sizes.front())
       {
-        const int m = static_cast<int>(std::lround(std::log2(reached[1][0].Samples + 1)));
+        const double twoPercent = 0.02;
+        const int m = static_cast<int>(
+          std::lround(std::log2(FirstWithin(sweeps[1], twoPercent).Value.Samples + 1)));
         const int viewOrderedM = ViewOrderedExponentForTarget(
-          index, tf, camera, size, reference, Targets[0], footprintRange[0], m);
+          index, tf, camera, size, reference, twoPercent, footprintRange[0], m);
         for (const int strategy : { vtkMCXTypes::HYBRID, vtkMCXTypes::EVERY_VOXEL,
                vtkMCXTypes::VIEW_ORDERED })
         {
@@ -621,6 +652,7 @@ int main(int argc, char* argv[])
             << volume->GetNumberOfPoints() << ',' << indexSeconds << ','
             << mcxbench::PeakResidentMegabytes() << '\n';
   }
+  PrintSummary(summary);
   std::cout << "wrote " << output << std::endl;
   if (nonsense > 0)
   {
