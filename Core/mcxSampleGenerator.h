@@ -125,6 +125,11 @@ struct SampleSource
   const std::uint16_t* LevelInBin = nullptr;
   const std::int64_t* BinFirstLevel = nullptr;
   const double* LevelRatio = nullptr;
+  /// Generate emits only the samples k >= FirstSample: the first 2^j - 1
+  /// samples of a run are, bit for bit, the 2^j - 1 sample run (the voxel
+  /// choice and the offsets of sample k do not depend on M), so a run
+  /// extending one already deposited draws the rest alone.
+  std::uint64_t FirstSample = 0;
 
   std::uint64_t NumberOfSamples() const { return SampleCount(this->Exponent); }
 
@@ -152,7 +157,7 @@ struct SampleSource
     }
     if (this->Method == Strategy::MonteCarlo)
     {
-      this->GenerateInOutputOrder(begin, end, sink);
+      this->GenerateInOutputOrder(std::max(begin, this->FirstSample), end, sink);
       return;
     }
     const std::uint64_t key = SeedKey(this->Seed);
@@ -173,6 +178,10 @@ struct SampleSource
         ++c;
       }
       const std::uint64_t k = HaltonPosition(i, this->Exponent);
+      if (k < this->FirstSample)
+      {
+        continue;
+      }
       CounterRandom random(key, k);
       this->Emit(k, target, c, random, shift, sink);
     }

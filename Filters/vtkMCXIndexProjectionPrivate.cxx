@@ -72,11 +72,23 @@ public:
   /// EveryVoxel or ChoosesDeposit).
   std::int64_t KeptVoxels() const { return this->KeptVoxelCount; }
 
-  /// The image of 2^m - 1 samples, progress running from progressBegin to progressEnd.
-  Projection Project(unsigned m, double progressBegin, double progressEnd) const
+  /// The image of 2^m - 1 samples, progress running from progressBegin to
+  /// progressEnd. Given `prefix`, this projector's image of fewer samples
+  /// (2^j - 1, j < m, the same deposit), only the samples after them are
+  /// drawn and its sums added: the same image, bit for bit, as all 2^m - 1
+  /// drawn (SampleSource::FirstSample), so that a target's pilot and
+  /// re-checks are not paid twice.
+  Projection Project(
+    unsigned m, double progressBegin, double progressEnd, const Projection* prefix = nullptr) const
   {
     Projection projection;
     projection.Count = mcx::SampleCount(m);
+    if (prefix &&
+      (prefix->Count >= projection.Count || prefix->EveryVoxel ||
+        prefix->Deposit != static_cast<int>(this->DepositMode)))
+    {
+      prefix = nullptr;
+    }
     projection.Integral = this->Integral;
     projection.SampleWeight =
       projection.Count > 0 ? this->Integral / static_cast<double>(projection.Count) : 0.0;
@@ -88,10 +100,22 @@ public:
         {
           return true;
         }
+        const std::uint64_t first = prefix ? prefix->Count : 0;
+        projection.Drawn = projection.Count - first;
         return this->View.WideIds
-          ? this->Generate<std::uint64_t>(m, accumulator, progressBegin, progressEnd)
-          : this->Generate<std::uint32_t>(m, accumulator, progressBegin, progressEnd);
+          ? this->Generate<std::uint64_t>(m, first, accumulator, progressBegin, progressEnd)
+          : this->Generate<std::uint32_t>(m, first, accumulator, progressBegin, progressEnd);
       });
+    if (prefix && projection.Completed)
+    {
+      // The prefix's samples are all in the first Halton half of the longer run.
+      const std::size_t pixels = projection.Sums.size() / 2;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        projection.Sums[p] += prefix->Sums[p];
+        projection.Sums[pixels + p] += prefix->Sums[p];
+      }
+    }
     return projection;
   }
 
@@ -264,14 +288,15 @@ private:
   }
 
   template <typename IdType>
-  bool Generate(
-    unsigned m, Accumulator& accumulator, double progressBegin, double progressEnd) const
+  bool Generate(unsigned m, std::uint64_t firstSample, Accumulator& accumulator,
+    double progressBegin, double progressEnd) const
   {
     mcx::SampleSource<IdType> source = this->View.MakeSource<IdType>(this->Table);
     source.Method = this->Method;
     source.Reconstruction = this->Reconstruction;
     source.Seed = this->Seed;
     source.Exponent = m;
+    source.FirstSample = firstSample;
     source.Centres = this->DepositMode == mcx::Deposit::Footprint;
     // The runs of sample ranks this piece deposits (all of them for a whole
     // index), laid end to end.
@@ -374,7 +399,8 @@ Projection RefineToTarget(const IndexProjection& sampler, Projection projection,
       break;
     }
     m = next;
-    projection = sampler.Project(m, pass == 0 ? progressStart : passEnd[pass - 1], passEnd[pass]);
+    projection =
+      sampler.Project(m, pass == 0 ? progressStart : passEnd[pass - 1], passEnd[pass], &projection);
   }
   return projection;
 }
@@ -389,13 +415,19 @@ Projection ProjectToTarget(const IndexProjection& sampler, const mcx::Projection
     sampler, std::move(pilot), m, decay, targetError, targetLevels, maximumExponent, 0.05);
 }
 
-// Seconds a deposit would take for `samples`, extrapolated from a pilot:
-// the fixed part (the view's tables, the sums' collection) once, the
-// deposits' part in proportion.
+// Seconds a deposit would take to go on from its pilot to `samples`
+// (those the pilot drew are kept: Project's prefix), extrapolated from the
+// pilot: the fixed part (the view's tables, the sums' collection) once, the
+// deposits' part in proportion to the samples left to draw.
+double SecondsPerSample(const Projection& pilot)
+{
+  return pilot.DepositSeconds / std::max<double>(1.0, static_cast<double>(pilot.Drawn));
+}
+
 double PredictedSeconds(const Projection& pilot, double samples)
 {
   return pilot.FixedSeconds +
-    pilot.DepositSeconds * std::max(1.0, samples / static_cast<double>(pilot.Count));
+    SecondsPerSample(pilot) * std::max(0.0, samples - static_cast<double>(pilot.Count));
 }
 
 // The exponent a of a deposit's error, falling as M^-a, measured between
@@ -419,7 +451,8 @@ double MeasuredDecay(const Projection& small, const Projection& large)
 // deposit measures its error and time (the footprint's two, of M and 4 M
 // samples, also how fast its error falls; the point deposit's falls as
 // M^-1/2); the deposit predicted to reach the target soonest is refined
-// from its larger pilot. Every voxel once competes as well (relative error
+// from its larger pilot, whose samples it keeps (only the other deposit's
+// pilot is spent). Every voxel once competes as well (relative error
 // targets): it is the footprint deposit of every voxel, so its error is
 // taken as the footprint's extrapolated to that many samples (an upper
 // bound: it has no sampling noise) and its time as that many footprints.
@@ -438,7 +471,7 @@ Projection ChooseAndProjectToTarget(IndexProjection& sampler,
     if (modes[d] == mcx::Deposit::Footprint && small < m)
     {
       const Projection first = sampler.Project(small, 0.02, 0.04);
-      pilots[d] = sampler.Project(m, 0.04, 0.08);
+      pilots[d] = sampler.Project(m, 0.04, 0.08, &first);
       decays[d] = MeasuredDecay(first, pilots[d]);
     }
     else
@@ -460,7 +493,8 @@ Projection ChooseAndProjectToTarget(IndexProjection& sampler,
   {
     const double everyVoxelError = pilots[1].EstimatedError() *
       std::pow(static_cast<double>(pilots[1].Count) / voxels, decays[1]);
-    if (everyVoxelError <= targetError && PredictedSeconds(pilots[1], voxels) < seconds[best])
+    const double everyVoxelSeconds = pilots[1].FixedSeconds + SecondsPerSample(pilots[1]) * voxels;
+    if (everyVoxelError <= targetError && everyVoxelSeconds < seconds[best])
     {
       sampler.DepositMode = mcx::Deposit::Footprint;
       sampler.EveryVoxel = true;

@@ -42,6 +42,7 @@ struct Projection
   int Strategy = -1;
   double DepositSeconds = 0.0;
   double FixedSeconds = 0.0;
+  std::uint64_t Drawn = 0;      // the samples this run drew (Count less a prefix it extends)
   std::string RandomParts;      // the deposit's random parts, if any (RandomPartsOf)
   // A view-ordered cloud's control (mcx::CloudControlImage; empty: none):
   // H, the sums of the points counted once (as Sums), the weight the points

@@ -703,6 +703,42 @@ TEST(Projection, PerspectiveErrorEstimateTracksTheTrueError)
   }
 }
 
+TEST(Projection, ATargetsImageIsTheFixedRunOfItsSampleCountBitForBit)
+{
+  // The target control keeps the samples of its pilot and of each re-check
+  // and draws only the rest (the first 2^j - 1 samples of a run are the
+  // 2^j - 1 run): its image must be, bit for bit, the image of one run of
+  // the count it chose, for every strategy and both deposits.
+  Scene scene;
+  for (int strategy :
+    { vtkMCXTypes::HYBRID, vtkMCXTypes::MONTE_CARLO, vtkMCXTypes::QUASI_MONTE_CARLO })
+  {
+    for (int deposit : { vtkMCXTypes::POINT, vtkMCXTypes::FOOTPRINT })
+    {
+      vtkNew<vtkMCXProjector> targeted;
+      scene.Configure(targeted.Get(), nullptr, 48);
+      targeted->SetStrategy(strategy);
+      targeted->SetDeposit(deposit);
+      // Past the pilot of 65535 samples (about 1 % on this scene's point deposit).
+      targeted->SetTargetRelativeError(deposit == vtkMCXTypes::POINT ? 0.004 : 0.002);
+      targeted->Update();
+      const double samples = mcxtest::FieldValue(targeted->GetOutput(), "SampleCount");
+      ASSERT_GT(samples, 65535.0); // more than the pilot: at least one extension
+      vtkNew<vtkMCXProjector> fixed;
+      scene.Configure(fixed.Get(), nullptr, 48);
+      fixed->SetStrategy(strategy);
+      fixed->SetDeposit(deposit);
+      fixed->SetSampleExponent(static_cast<int>(std::lround(std::log2(samples + 1))));
+      fixed->Update();
+      EXPECT_EQ(0.0, mcxtest::RelativeRMS(targeted->GetOutput(), fixed->GetOutput()))
+        << "strategy " << strategy << ", deposit " << deposit;
+      EXPECT_EQ(mcxtest::FieldValue(fixed->GetOutput(), "EstimatedRelativeError"),
+        mcxtest::FieldValue(targeted->GetOutput(), "EstimatedRelativeError"))
+        << "strategy " << strategy << ", deposit " << deposit;
+    }
+  }
+}
+
 TEST(Projection, TargetAccuracyControlsChooseEnoughSamples)
 {
   Scene scene;
