@@ -1,0 +1,152 @@
+#include "vtkMCXPolychromaticRadiograph.h"
+
+#include "mcxMaterialDecomposition.h"
+#include "mcxPolychromaticModel.h"
+#include "mcxRadiographEffects.h"
+#include "mcxTubeSpectrum.h"
+#include "vtkMCXSMPExecutor.h"
+#include "vtkMCXTypes.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+
+#include <stdexcept>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXPolychromaticRadiograph);
+
+vtkMCXPolychromaticRadiograph::vtkMCXPolychromaticRadiograph()
+{
+  this->SetSpectrum("70kVp,2.5mmAl");
+  this->SetDetector("integrating");
+  this->SetMaterials("default");
+}
+
+vtkMCXPolychromaticRadiograph::~vtkMCXPolychromaticRadiograph()
+{
+  this->SetSpectrum(nullptr);
+  this->SetDetector(nullptr);
+  this->SetMaterials(nullptr);
+}
+
+int vtkMCXPolychromaticRadiograph::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  return 1;
+}
+
+const mcx::PolychromaticModel* vtkMCXPolychromaticRadiograph::Model()
+{
+  const auto text = [](const char* s) { return std::string(s ? s : ""); };
+  const std::string key =
+    text(this->Spectrum) + '\n' + text(this->Detector) + '\n' + text(this->Materials);
+  if (!this->Cached || key != this->CachedKey)
+  {
+    this->Cached.reset();
+    try
+    {
+      const mcx::Spectrum spectrum = mcx::SpectrumFromText(text(this->Spectrum));
+      const mcx::Detector detector = mcx::ParseDetector(text(this->Detector));
+      const mcx::MaterialSet set = mcx::MaterialsFromText(text(this->Materials));
+      this->Cached.reset(new mcx::PolychromaticModel(spectrum, detector, set.Names()));
+      this->CachedKey = key;
+      this->CachedMeanEnergy = spectrum.MeanEnergy();
+    }
+    catch (const std::exception& error)
+    {
+      vtkErrorMacro(<< error.what());
+      return nullptr;
+    }
+  }
+  return this->Cached.get();
+}
+
+double vtkMCXPolychromaticRadiograph::GetMeanEnergy()
+{
+  return this->Model() ? this->CachedMeanEnergy : 0.0;
+}
+
+int vtkMCXPolychromaticRadiograph::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  const mcx::PolychromaticModel* model = this->Model();
+  if (!model)
+  {
+    return 0;
+  }
+  const int channels = inputVector[0]->GetNumberOfInformationObjects();
+  if (channels != static_cast<int>(model->Materials()))
+  {
+    vtkErrorMacro("" << channels << " channel images for " << model->Materials()
+                     << " materials: connect one per material, in the materials' order.");
+    return 0;
+  }
+  std::vector<std::vector<double>> values(channels);
+  std::vector<const double*> pointers(channels);
+  vtkIdType pixels = -1;
+  for (int m = 0; m < channels; ++m)
+  {
+    vtkImageData* image = vtkImageData::GetData(inputVector[0], m);
+    vtkDataArray* line =
+      image ? image->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName()) : nullptr;
+    if (!line || line->GetNumberOfComponents() != 1 ||
+      (pixels >= 0 && line->GetNumberOfTuples() != pixels))
+    {
+      vtkErrorMacro(
+        "Channel " << m << " has no one-component LineIntegral array of the others' size.");
+      return 0;
+    }
+    pixels = line->GetNumberOfTuples();
+    values[m].resize(pixels);
+    for (vtkIdType p = 0; p < pixels; ++p)
+    {
+      values[m][p] = line->GetComponent(p, 0);
+    }
+    pointers[m] = values[m].data();
+    if (m == 0)
+    {
+      output->CopyStructure(image);
+    }
+  }
+  vtkNew<vtkDoubleArray> effective;
+  effective->SetName("EffectiveLineIntegral");
+  effective->SetNumberOfValues(pixels);
+  // The channels are g/cm^3 x mm: 0.1 of that is g/cm^2.
+  model->EffectiveImage(mcx::SMPExecutor(), pixels, pointers.data(), 0.1, effective->GetPointer(0));
+  const mcx::RadiographEffects effects =
+    mcx::RadiographEffects::FromProperties(true, this->IncidentIntensity, this->PhotonsPerPixel,
+      static_cast<std::uint64_t>(this->NoiseSeed), this->NegativeLog);
+  vtkNew<vtkDoubleArray> result;
+  result->SetName(
+    this->NegativeLog ? vtkMCXTypes::AttenuationName() : vtkMCXTypes::IntensityName());
+  result->SetNumberOfValues(pixels);
+  const double* l = effective->GetPointer(0);
+  effects.ApplyToImage(
+    mcx::SMPExecutor(), pixels, [&](std::int64_t p) { return l[p]; }, result->GetPointer(0));
+  output->GetPointData()->AddArray(effective);
+  output->GetPointData()->AddArray(result);
+  output->GetPointData()->SetActiveScalars(result->GetName());
+  return 1;
+}
+
+void vtkMCXPolychromaticRadiograph::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Spectrum: " << (this->Spectrum ? this->Spectrum : "(none)") << "\n";
+  os << indent << "Detector: " << (this->Detector ? this->Detector : "(none)") << "\n";
+  os << indent << "Materials: " << (this->Materials ? this->Materials : "(none)") << "\n";
+  os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";
+  os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";
+  os << indent << "NoiseSeed: " << this->NoiseSeed << "\n";
+  os << indent << "NegativeLog: " << this->NegativeLog << "\n";
+  os << indent << "CachedKey: " << this->CachedKey << "\n";
+  os << indent << "CachedMeanEnergy: " << this->CachedMeanEnergy << "\n";
+}
