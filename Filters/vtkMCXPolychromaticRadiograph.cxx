@@ -9,6 +9,7 @@
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -113,7 +114,10 @@ int vtkMCXPolychromaticRadiograph::RequestData(
     pointers[m] = values[m].data();
     if (m == 0)
     {
+      // The geometry and the projector's fields (its matrix, sample count)
+      // of the first channel: every channel has the same.
       output->CopyStructure(image);
+      output->GetFieldData()->ShallowCopy(image->GetFieldData());
     }
   }
   vtkNew<vtkDoubleArray> effective;
