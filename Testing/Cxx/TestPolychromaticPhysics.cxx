@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 namespace
 {
@@ -239,4 +240,29 @@ TEST(PolychromaticPhysics, StepWedgeTransmissionAndBeamHardening)
   EXPECT_THROW(
     mcx::ParseDetector("integrating,CsI:0.6"), std::invalid_argument); // formula: density
   EXPECT_THROW(mcx::ParseDetector("integrating,CsI:-1:4.5"), std::invalid_argument);
+}
+
+// The vectorisable exponential against the C library's, over the normal
+// range, and 0 beyond it (exp(-745.2) is below 2^-1074).
+TEST(PolychromaticPhysics, ExponentialMatchesTheLibrary)
+{
+  std::vector<double> a;
+  for (double x = 0.0; x < 707.9; x += 0.0137)
+  {
+    a.push_back(x);
+  }
+  a.insert(a.end(), { 0.0, 745.2, 1e12, 1e-300 });
+  std::vector<double> out(a.size()), work(a.size());
+  mcx::PolychromaticModel::ExpOfNegative(a.data(), out.data(), work.data(), a.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i + 4 < a.size(); ++i)
+  {
+    worst = std::max(worst, std::abs(out[i] / std::exp(-a[i]) - 1.0));
+  }
+  EXPECT_LT(worst, 1e-15);
+  const std::size_t last = a.size() - 4;
+  EXPECT_EQ(out[last], 1.0);
+  EXPECT_EQ(out[last + 1], 0.0);
+  EXPECT_EQ(out[last + 2], 0.0);
+  EXPECT_EQ(out[last + 3], 1.0);
 }
