@@ -620,6 +620,9 @@ int RunRender(int argc, char* argv[])
   mcx::SetMemoryBudget(settings.MemoryLimit);
   CheckOutputs(settings);
   CheckTransferFunction(settings.TF);
+  {
+    PolychromaticStage check(settings); // its options' errors before any output
+  }
   const ViewChoice view = ChooseView(settings);
   WarnOfLongRuns(settings);
   vtkSmartPointer<vtkImageData> volume = ReadInput(settings);
