@@ -134,7 +134,11 @@ Spectrum TungstenSpectrum(const TubeSettings& settings)
     throw std::invalid_argument("anode angle must be 5-45 degrees");
   }
   const double sine = std::sin(settings.AnodeAngle * M_PI / 180.0);
-  const double c = ThomsonWhiddington;
+  if (!(settings.MeanProductionDepth > 0.0 && settings.MeanProductionDepth < 1.0))
+  {
+    throw std::invalid_argument("the mean production depth must be in (0, 1) g/cm^2");
+  }
+  const double c = 1e4 * 2.0 / 3.0 / settings.MeanProductionDepth;
   Spectrum spectrum;
   const int bins = static_cast<int>(std::floor(t0 / settings.BinWidth + 1e-9));
   int firstBin = 0;
