@@ -122,8 +122,10 @@ Spectrum TungstenSpectrum(const TubeSettings& settings)
   const double t0 = settings.Kilovolts;
   if (!(t0 >= MinimumKilovolts && t0 <= MaximumKilovolts))
   {
-    throw std::invalid_argument("tube voltage " + std::to_string(t0) + " kVp is outside " +
-      std::to_string(int(MinimumKilovolts)) + "-" + std::to_string(int(MaximumKilovolts)) + " kVp");
+    std::ostringstream message;
+    message << "tube voltage " << t0 << " kVp is outside " << MinimumKilovolts << "-"
+            << MaximumKilovolts << " kVp";
+    throw std::invalid_argument(message.str());
   }
   if (!(settings.BinWidth >= 0.1 && settings.BinWidth <= 5.0))
   {

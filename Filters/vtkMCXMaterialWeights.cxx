@@ -64,27 +64,26 @@ const mcx::MaterialSet* vtkMCXMaterialWeights::Set()
   return this->Parsed.get();
 }
 
-bool vtkMCXMaterialWeights::Describe(int& count, std::string* names, vtkPiecewiseFunction* density)
+bool vtkMCXMaterialWeights::FillDensityFunction(vtkPiecewiseFunction* density)
 {
   const mcx::MaterialSet* set = this->Set();
-  if (!set)
+  if (!set || !density)
   {
     return false;
   }
-  count = static_cast<int>(set->Size());
-  for (int m = 0; names && m < count; ++m)
+  density->RemoveAllPoints();
+  for (std::size_t i = 0; i < set->Density.HU.size(); ++i)
   {
-    names[m] = set->Materials[m].Name;
-  }
-  if (density)
-  {
-    density->RemoveAllPoints();
-    for (std::size_t i = 0; i < set->Density.HU.size(); ++i)
-    {
-      density->AddPoint(set->Density.HU[i], set->Density.Value[i]);
-    }
+    density->AddPoint(set->Density.HU[i], set->Density.Value[i]);
   }
   return true;
+}
+
+const char* vtkMCXMaterialWeights::GetMaterialName(int m)
+{
+  const mcx::MaterialSet* set = this->Set();
+  return set && m >= 0 && m < static_cast<int>(set->Size()) ? set->Materials[m].Name.c_str()
+                                                            : nullptr;
 }
 
 int vtkMCXMaterialWeights::GetNumberOfMaterials()

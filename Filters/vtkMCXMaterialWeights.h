@@ -28,6 +28,7 @@
 #include "vtkSmartPointer.h" // for the density function
 
 #include <memory> // for the material set
+#include <string> // for the parsed text
 
 class vtkPiecewiseFunction;
 namespace mcx
@@ -57,13 +58,17 @@ public:
   /** The volume of input 1. */
   void SetVolumeConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
 
+  ///@{
   /**
-   * The materials' number, their xraylib names and the density curve as a
-   * transfer function (HU -> g/cm^3) for the sampler; false with an error
-   * when Materials is not usable.
+   * The materials of Materials: their number (0 with an error when Materials
+   * is not usable), the xraylib name of material m (null outside 0..number -
+   * 1), and the density curve (HU -> g/cm^3) as the sampler's transfer
+   * function (false with an error when Materials is not usable).
    */
-  bool Describe(int& count, std::string* names, vtkPiecewiseFunction* density);
   int GetNumberOfMaterials();
+  const char* GetMaterialName(int m);
+  bool FillDensityFunction(vtkPiecewiseFunction* density);
+  ///@}
 
 protected:
   vtkMCXMaterialWeights();

@@ -80,8 +80,11 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   this->Enabled = true;
   this->Weights->SetMaterials(settings.Materials.c_str());
   this->Count = this->Weights->GetNumberOfMaterials();
-  this->Names.resize(this->Count);
-  this->Weights->Describe(this->Count, this->Names.data(), this->DensityFunction);
+  for (int m = 0; m < this->Count; ++m)
+  {
+    this->Names.emplace_back(this->Weights->GetMaterialName(m));
+  }
+  this->Weights->FillDensityFunction(this->DensityFunction);
   this->Filter->SetSpectrum(settings.Spectrum.c_str());
   this->Filter->SetMaterials(settings.Materials.c_str());
   this->Filter->SetDetector(detector.c_str());

@@ -82,9 +82,10 @@ struct Pipeline
     this->Index->SetInputData(this->Volume);
     vtkNew<vtkMCXMaterialWeights> describe;
     describe->SetMaterials(this->Materials.c_str());
-    int count = 0;
-    EXPECT_TRUE(describe->Describe(count, nullptr, this->Density));
-    EXPECT_EQ(count, 2);
+    EXPECT_TRUE(describe->FillDensityFunction(this->Density));
+    EXPECT_EQ(describe->GetNumberOfMaterials(), 2);
+    EXPECT_STREQ(describe->GetMaterialName(1), "Al");
+    EXPECT_EQ(describe->GetMaterialName(2), nullptr);
     this->Sampler->SetInputConnection(this->Index->GetOutputPort());
     this->Sampler->SetTransferFunction(this->Density);
     this->Sampler->SetSampleExponent(SampleExponent);
