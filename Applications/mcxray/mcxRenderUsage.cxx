@@ -141,7 +141,7 @@ options:
   --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
   --spectrum S          a polychromatic radiograph (Documentation/polychromatic.md):
                         a tungsten tube "70kVp,2.5mmAl[,0.1mmCu][,12deg][,1keV]"
-                        (filters: mm of an element or formula) or a file of
+                        (filters: mm of an element) or a file of
                         "energy_keV photons" lines; the volume is in HU, --tf
                         is not used; one cloud under the materials' density,
                         one projection of it per material
