@@ -14,6 +14,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -21,6 +22,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -140,34 +142,62 @@ int vtkMCXMaterialWeights::RequestData(
   weights->SetName(vtkMCXTypes::PointWeightName());
   weights->SetNumberOfValues(count);
   double* w = weights->GetPointer(0);
-  std::vector<double> fractions(set->Size());
-  for (vtkIdType i = 0; i < count; ++i)
+  // The world-to-voxel map once, then every point in parallel: a point's
+  // weight depends on it alone, so any split of the work gives the same.
+  vtkMatrix4x4* toIndex = volume->GetPhysicalToIndexMatrix();
+  double m[12];
+  for (int r = 0; r < 3; ++r)
   {
-    double x[3], ijk[3];
-    cloud->GetPoint(i, x);
-    volume->TransformPhysicalPointToContinuousIndex(x, ijk);
-    int index[3];
-    for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 4; ++c)
     {
-      index[a] = static_cast<int>(std::lround(ijk[a]));
-      // Voxel centres only: a point between voxels has no material of its own.
-      if (std::abs(ijk[a] - index[a]) > 1e-3 || index[a] < 0 || index[a] >= dims[a])
+      m[4 * r + c] = toIndex->GetElement(r, c);
+    }
+  }
+  vtkDataArray* points = cloud->GetPoints() ? cloud->GetPoints()->GetData() : nullptr;
+  std::atomic<vtkIdType> outside(-1);
+  const int channel = this->Channel;
+  mcx::SMPExecutor().For(0, count, 4096,
+    [&](std::int64_t begin, std::int64_t end)
+    {
+      std::vector<double> fractions(set->Size());
+      for (std::int64_t i = begin; i < end; ++i)
       {
-        vtkErrorMacro("Point " << i
-                               << " is not at a voxel centre of the volume: sample it with "
-                                  "the footprint deposit (vtkMCXPointSampler's default).");
-        return 0;
+        double x[3];
+        points->GetTuple(i, x);
+        int index[3];
+        bool centre = true;
+        for (int a = 0; a < 3; ++a)
+        {
+          const double ijk =
+            m[4 * a] * x[0] + m[4 * a + 1] * x[1] + m[4 * a + 2] * x[2] + m[4 * a + 3];
+          index[a] = static_cast<int>(std::lround(ijk));
+          // Voxel centres only: a point between voxels has no material of its own.
+          centre =
+            centre && std::abs(ijk - index[a]) <= 1e-3 && index[a] >= 0 && index[a] < dims[a];
+        }
+        if (!centre)
+        {
+          outside = i;
+          w[i] = 0.0;
+          continue;
+        }
+        if (channel < 0)
+        {
+          w[i] = 1.0;
+          continue;
+        }
+        const vtkIdType voxel =
+          index[0] + dims[0] * (index[1] + static_cast<vtkIdType>(dims[1]) * index[2]);
+        set->FixedFractionsAt(scalars->GetComponent(voxel, 0), fractions.data());
+        w[i] = fractions[channel];
       }
-    }
-    if (this->Channel < 0)
-    {
-      w[i] = 1.0;
-      continue;
-    }
-    const vtkIdType voxel =
-      index[0] + dims[0] * (index[1] + static_cast<vtkIdType>(dims[1]) * index[2]);
-    set->FixedFractionsAt(scalars->GetComponent(voxel, 0), fractions.data());
-    w[i] = fractions[this->Channel];
+    });
+  if (outside >= 0)
+  {
+    vtkErrorMacro("Point " << outside.load()
+                           << " is not at a voxel centre of the volume: sample it with the "
+                              "footprint deposit (vtkMCXPointSampler's default).");
+    return 0;
   }
   const mcx::FixedSum sum =
     mcx::PointWeightSum(mcx::SMPExecutor(), w, 0, static_cast<std::uint64_t>(count));

@@ -394,4 +394,14 @@ TEST(PolychromaticRadiograph, BadSettingsAreOneLineErrors)
   mcxtest::FirstError unreadable(weights);
   EXPECT_EQ(weights->GetNumberOfMaterials(), 0);
   EXPECT_NE(unreadable.Text.find("cannot be read"), std::string::npos) << unreadable.Text;
+  // A cloud of the point deposit (kernel offsets) has no voxel per point.
+  pipeline.Sampler->SetDepositToPoint();
+  vtkNew<vtkMCXMaterialWeights> offsets;
+  offsets->SetMaterials(pipeline.Materials.c_str());
+  offsets->SetInputConnection(pipeline.Sampler->GetOutputPort());
+  offsets->SetInputData(1, pipeline.Volume);
+  offsets->SetChannel(0);
+  mcxtest::FirstError between(offsets);
+  offsets->Update();
+  EXPECT_NE(between.Text.find("is not at a voxel centre"), std::string::npos) << between.Text;
 }
