@@ -160,10 +160,14 @@ public:
 
   /// out[p] = EffectiveLineIntegral of pixel p for p < pixels, where the
   /// line integral of material m at pixel p is channels[m][p] x scale
-  /// (scale turns the channels' units into g/cm^2), in parallel.
+  /// (scale turns the channels' units into g/cm^2), in parallel. With
+  /// `channelErrors` (each channel's relative error) and `errors`, errors[p]
+  /// is the first-order error of out[p]: sum_m |L_m d(-ln T)/dL_m| x
+  /// channelErrors[m], the channels' contributions added (a bound for any
+  /// correlation between them: they come from the same samples).
   template <typename Executor, typename Channel, typename Out>
   void EffectiveImage(const Executor& executor, std::int64_t pixels, const Channel* const* channels,
-    double scale, Out* out) const
+    double scale, Out* out, const double* channelErrors = nullptr, double* errors = nullptr) const
   {
     executor.For(0, pixels, 1024,
       [&](std::int64_t begin, std::int64_t end)
@@ -177,8 +181,39 @@ public:
           }
           const double t = this->Transmission(l.data(), scratch.data());
           out[p] = static_cast<Out>(t > 0.0 ? -std::log(t) : HUGE_VAL);
+          if (errors)
+          {
+            errors[p] = this->PropagatedError(l.data(), scratch.data(), t, channelErrors);
+          }
         }
       });
+  }
+
+  /// sum_m |L_m d(-ln T)/dL_m| relativeErrors[m], with d(-ln T)/dL_m =
+  /// sum_E w(E) (mu/rho)_m(E) exp(-a(E)) / T from the exponentials that
+  /// Transmission left in scratch (its second Bins() values).
+  double PropagatedError(
+    const double* areaDensity, const double* scratch, double t, const double* relativeErrors) const
+  {
+    if (!(t > 0.0))
+    {
+      return 0.0;
+    }
+    const std::size_t bins = this->Bins();
+    const double* value = scratch + bins;
+    double error = 0.0;
+    for (std::size_t m = 0; m < this->MaterialCount; ++m)
+    {
+      const double l = areaDensity[m] > 0.0 ? std::min(areaDensity[m], 1e6) : 0.0;
+      const double* mu = this->Attenuation.data() + m * bins;
+      double slope = 0.0;
+      for (std::size_t e = 0; e < bins; ++e)
+      {
+        slope += this->Weights[e] * mu[e] * value[e];
+      }
+      error += l * slope / t * relativeErrors[m];
+    }
+    return error;
   }
 
 private:

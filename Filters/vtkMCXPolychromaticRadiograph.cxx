@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -91,6 +92,7 @@ int vtkMCXPolychromaticRadiograph::RequestData(
     return 0;
   }
   std::vector<std::vector<double>> values(channels);
+  std::vector<double> channelErrors(channels, 0.0);
   std::vector<const double*> pointers(channels);
   vtkIdType pixels = -1;
   for (int m = 0; m < channels; ++m)
@@ -106,6 +108,9 @@ int vtkMCXPolychromaticRadiograph::RequestData(
       return 0;
     }
     pixels = line->GetNumberOfTuples();
+    vtkDataArray* estimate =
+      image->GetFieldData()->GetArray(vtkMCXTypes::EstimatedRelativeErrorName());
+    channelErrors[m] = estimate ? estimate->GetComponent(0, 0) : 0.0;
     values[m].resize(pixels);
     for (vtkIdType p = 0; p < pixels; ++p)
     {
@@ -124,7 +129,22 @@ int vtkMCXPolychromaticRadiograph::RequestData(
   effective->SetName("EffectiveLineIntegral");
   effective->SetNumberOfValues(pixels);
   // The channels are g/cm^3 x mm: 0.1 of that is g/cm^2.
-  model->EffectiveImage(mcx::SMPExecutor(), pixels, pointers.data(), 0.1, effective->GetPointer(0));
+  std::vector<double> errors(pixels);
+  model->EffectiveImage(mcx::SMPExecutor(), pixels, pointers.data(), 0.1, effective->GetPointer(0),
+    channelErrors.data(), errors.data());
+  // The effective line integral's relative RMS error, as the projector
+  // states its own: sqrt(sum of squared errors / sum of squared values),
+  // summed in pixel order (the same for any number of threads).
+  double squaredErrors = 0.0, squaredValues = 0.0;
+  for (vtkIdType p = 0; p < pixels; ++p)
+  {
+    const double value = effective->GetValue(p);
+    if (std::isfinite(value))
+    {
+      squaredErrors += errors[p] * errors[p];
+      squaredValues += value * value;
+    }
+  }
   const mcx::RadiographEffects effects =
     mcx::RadiographEffects::FromProperties(true, this->IncidentIntensity, this->PhotonsPerPixel,
       static_cast<std::uint64_t>(this->NoiseSeed), this->NegativeLog);
@@ -135,6 +155,11 @@ int vtkMCXPolychromaticRadiograph::RequestData(
   const double* l = effective->GetPointer(0);
   effects.ApplyToImage(
     mcx::SMPExecutor(), pixels, [&](std::int64_t p) { return l[p]; }, result->GetPointer(0));
+  vtkNew<vtkDoubleArray> estimate;
+  estimate->SetName(vtkMCXTypes::EstimatedRelativeErrorName());
+  estimate->InsertNextValue(squaredValues > 0.0 ? std::sqrt(squaredErrors / squaredValues) : 0.0);
+  output->GetFieldData()->RemoveArray(vtkMCXTypes::EstimatedRelativeErrorName());
+  output->GetFieldData()->AddArray(estimate);
   output->GetPointData()->AddArray(effective);
   output->GetPointData()->AddArray(result);
   output->GetPointData()->SetActiveScalars(result->GetName());

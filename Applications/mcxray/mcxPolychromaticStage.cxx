@@ -11,6 +11,7 @@
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMCXMaterialWeights.h"
 #include "vtkMCXPolychromaticRadiograph.h"
@@ -148,6 +149,10 @@ vtkImageData* PolychromaticStage::Radiograph(const Settings& settings, int k, st
               ? ", Poisson noise of " + std::to_string(physics.Photons) + " photons per pixel"
               : "")
        << "), range " << range[0] << " .. " << range[1];
+  if (vtkDataArray* estimate = result->GetFieldData()->GetArray("EstimatedRelativeError"))
+  {
+    text << ", -ln(I/I0) estimated relative RMS error " << estimate->GetComponent(0, 0);
+  }
   line = text.str();
   return result;
 }

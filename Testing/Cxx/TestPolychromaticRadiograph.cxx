@@ -273,13 +273,33 @@ TEST(PolychromaticRadiograph, OneEnergyIsTheMonochromaticImage)
   vtkNew<vtkMCXPolychromaticRadiograph> radiograph;
   radiograph->SetMaterials(pipeline.Materials.c_str());
   radiograph->SetSpectrum(line.c_str());
-  radiograph->AddInputData(pipeline.Channel(0));
-  radiograph->AddInputData(pipeline.Channel(1));
+  auto water = pipeline.Channel(0);
+  auto al = pipeline.Channel(1);
+  radiograph->AddInputData(water);
+  radiograph->AddInputData(al);
   radiograph->SetNegativeLog(true);
   radiograph->Update();
   vtkImageData* poly = radiograph->GetOutput();
   const double muWater = CS_Total_CP("Water, Liquid", 60.0, nullptr) * 0.1; // per mm at 1 g/cm^3
   const double muAl = CS_Total_CP("Al", 60.0, nullptr) * AlDensity * 0.1;
+  // The final image's error estimate: with one energy -ln T = sum mu_m L_m,
+  // so the propagation adds mu_m L_m times each channel's estimate.
+  {
+    const char* name = vtkMCXTypes::EstimatedRelativeErrorName();
+    const double ew = mcxtest::FieldValue(water, name), ea = mcxtest::FieldValue(al, name);
+    ASSERT_GT(ew, 0.0);
+    ASSERT_GT(ea, 0.0);
+    double errors = 0.0, values = 0.0;
+    for (int p = 0; p < N * N; ++p)
+    {
+      // Channels in g/cm^3 x mm, attenuations per mm at 1 g/cm^3.
+      const double lw = Pixel(water, vtkMCXTypes::LineIntegralName(), p, 0) * muWater;
+      const double la = Pixel(al, vtkMCXTypes::LineIntegralName(), p, 0) * muAl / AlDensity;
+      errors += (lw * ew + la * ea) * (lw * ew + la * ea);
+      values += (lw + la) * (lw + la);
+    }
+    EXPECT_NEAR(mcxtest::FieldValue(poly, name), std::sqrt(errors / values), 1e-9);
+  }
   vtkNew<vtkPiecewiseFunction> mu;
   mu->AddPoint(-1000, 0.0);
   mu->AddPoint(0, muWater);
