@@ -176,6 +176,7 @@ void vtkMCXPolychromaticRadiograph::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";
   os << indent << "NoiseSeed: " << this->NoiseSeed << "\n";
   os << indent << "NegativeLog: " << this->NegativeLog << "\n";
+  os << indent << "Cached: " << (this->Cached ? "a model" : "none") << "\n";
   os << indent << "CachedKey: " << this->CachedKey << "\n";
   os << indent << "CachedMeanEnergy: " << this->CachedMeanEnergy << "\n";
 }

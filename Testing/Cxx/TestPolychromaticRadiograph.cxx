@@ -18,6 +18,7 @@
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
@@ -390,6 +391,42 @@ TEST(PolychromaticRadiograph, ExactChannelsGiveTheSpectrumSumInEveryPixel)
       }
     }
   }
+}
+
+// Channels, radiograph, noise and error estimate: bit for bit the same on
+// one thread and on two.
+TEST(PolychromaticRadiograph, BitIdenticalForOneAndTwoThreads)
+{
+  std::vector<vtkSmartPointer<vtkImageData>> images;
+  for (int threads : { 1, 2 })
+  {
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads },
+      [&]()
+      {
+        Pipeline pipeline;
+        pipeline.Sampler->SetSampleExponent(18);
+        vtkNew<vtkMCXPolychromaticRadiograph> radiograph;
+        radiograph->SetMaterials(pipeline.Materials.c_str());
+        radiograph->SetSpectrum("90kVp,3mmAl");
+        radiograph->SetPhotonsPerPixel(1e4);
+        radiograph->SetNoiseSeed(7);
+        radiograph->AddInputData(pipeline.Channel(0));
+        radiograph->AddInputData(pipeline.Channel(1));
+        radiograph->Update();
+        auto image = vtkSmartPointer<vtkImageData>::New();
+        image->DeepCopy(radiograph->GetOutput());
+        images.push_back(image);
+      });
+  }
+  for (const char* name : { "EffectiveLineIntegral", vtkMCXTypes::IntensityName() })
+  {
+    for (int p = 0; p < N * N; ++p)
+    {
+      ASSERT_EQ(Pixel(images[0], name, p, 0), Pixel(images[1], name, p, 0)) << name << " " << p;
+    }
+  }
+  const char* estimate = vtkMCXTypes::EstimatedRelativeErrorName();
+  EXPECT_EQ(mcxtest::FieldValue(images[0], estimate), mcxtest::FieldValue(images[1], estimate));
 }
 
 TEST(PolychromaticRadiograph, BadSettingsAreOneLineErrors)
