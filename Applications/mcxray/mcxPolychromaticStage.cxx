@@ -50,6 +50,10 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   {
     Fail("--spectrum renders on one process (not under mpirun)");
   }
+  if (settings.TF != "raw")
+  {
+    Fail("--spectrum samples the materials' density (--materials): leave out --tf");
+  }
   if (settings.Radiograph.BeerLambert)
   {
     Fail("--spectrum makes a radiograph already: leave out --beer-lambert");

@@ -142,8 +142,8 @@ options:
   --spectrum S          a polychromatic radiograph (Documentation/polychromatic.md):
                         a tungsten tube "70kVp,2.5mmAl[,0.1mmCu][,12deg][,1keV]"
                         (filters: mm of an element) or a file of
-                        "energy_keV photons" lines; the volume is in HU, --tf
-                        is not used; one cloud under the materials' density,
+                        "energy_keV photons" lines; the volume is in HU (no
+                        --tf); one cloud under the materials' density,
                         one projection of it per material
   --materials M         default (air, adipose, soft tissue, cortical bone;
                         add ",iodine=HU" and/or ",titanium=HU" thresholds) or

@@ -84,4 +84,5 @@ TEST(PolychromaticCommandLine, BadOptionsAreOneLineErrors)
   mcxtest::ExpectOneLineError(
     "render --spectrum 70kVp --detector-material CsI:0.6" + quiet, output);
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --beer-lambert" + quiet, output);
+  mcxtest::ExpectOneLineError("render --spectrum 70kVp --tf mu" + quiet, output);
 }
