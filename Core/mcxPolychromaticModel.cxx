@@ -5,8 +5,37 @@
 #include <sstream>
 #include <stdexcept>
 
+// AVX2 where the CPU has it, the baseline elsewhere, chosen when the program
+// loads (GCC's function multi-versioning). No FMA: both versions do the same
+// operations in the same order, so they give the same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define MCX_ALSO_AVX2 __attribute__((target_clones("avx2", "default")))
+#else
+#define MCX_ALSO_AVX2
+#endif
+
 namespace mcx
 {
+
+MCX_ALSO_AVX2 void PolychromaticModel::EffectiveRange(std::int64_t begin, std::int64_t end,
+  const double* const* channels, double scale, double* out, const double* channelErrors,
+  double* errors) const
+{
+  std::vector<double> l(this->MaterialCount), scratch(this->ScratchSize());
+  for (std::int64_t p = begin; p < end; ++p)
+  {
+    for (std::size_t m = 0; m < this->MaterialCount; ++m)
+    {
+      l[m] = channels[m][p] * scale;
+    }
+    const double t = this->Transmission(l.data(), scratch.data());
+    out[p] = t > 0.0 ? -std::log(t) : HUGE_VAL;
+    if (errors)
+    {
+      errors[p] = this->PropagatedError(l.data(), scratch.data(), t, channelErrors);
+    }
+  }
+}
 
 std::vector<double> Detector::Response(const Spectrum& spectrum) const
 {
