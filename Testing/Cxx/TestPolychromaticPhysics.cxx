@@ -1,6 +1,7 @@
 // The polychromatic physics without a pipeline: tube spectra against the IEC
 // 61267 RQR qualities, half-value layers, materials from HU and the per-pixel
 // model, each against values computed here from xraylib directly.
+#include "mcxExecutor.h"
 #include "mcxHalfValueLayer.h"
 #include "mcxMaterialAttenuation.h"
 #include "mcxMaterialDecomposition.h"
@@ -292,4 +293,34 @@ TEST(PolychromaticPhysics, ExponentialMatchesTheLibrary)
   EXPECT_EQ(out[last + 1], 0.0);
   EXPECT_EQ(out[last + 2], 0.0);
   EXPECT_EQ(out[last + 3], 1.0);
+}
+
+// The image routine (its AVX2 version where the CPU has one) gives the very
+// bits of the per-pixel sum compiled here for the baseline instruction set.
+TEST(PolychromaticPhysics, ImageRoutineGivesTheBaselineBits)
+{
+  const mcx::Spectrum spectrum = mcx::TungstenSpectrum(mcx::ParseTubeSettings("101kVp,2.5mmAl"));
+  const mcx::PolychromaticModel model(spectrum, mcx::Detector{},
+    { mcx::materials::Air, mcx::materials::Adipose, mcx::materials::SoftTissue,
+      mcx::materials::CorticalBone });
+  constexpr int pixels = 4096;
+  std::vector<double> channels[4];
+  const double* pointers[4];
+  for (int m = 0; m < 4; ++m)
+  {
+    for (int p = 0; p < pixels; ++p)
+    {
+      channels[m].push_back((m + 1) * 20.0 * (1.0 + (p % 97) / 97.0) * (p % 5 == m ? 0.0 : 1.0));
+    }
+    pointers[m] = channels[m].data();
+  }
+  std::vector<double> out(pixels);
+  model.EffectiveImage(mcx::SerialExecutor(), pixels, pointers, 0.1, out.data());
+  std::vector<double> scratch(model.ScratchSize());
+  for (int p = 0; p < pixels; ++p)
+  {
+    const double l[4] = { channels[0][p] * 0.1, channels[1][p] * 0.1, channels[2][p] * 0.1,
+      channels[3][p] * 0.1 };
+    ASSERT_EQ(out[p], -std::log(model.Transmission(l, scratch.data()))) << p;
+  }
 }
