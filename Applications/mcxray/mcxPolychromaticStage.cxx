@@ -39,7 +39,7 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   }
   if (!IsCloudMethod(settings.Method) || settings.Method == "every-voxel")
   {
-    Fail("--spectrum projects one cloud per material: use --method hybrid, mc or qmc");
+    Fail("--spectrum projects one drawn cloud once per material: use --method hybrid, mc or qmc");
   }
   if (settings.Deposit != "footprint")
   {
