@@ -28,14 +28,13 @@ namespace
 {
 
 constexpr int Tungsten = 74;
-// Thomson-Whiddington constant of tungsten in keV^2 cm^2/g. Electrons diffuse
-// in tungsten, so photons are made far shallower than a straight path to the
-// CSDA range (0.035 g/cm^2 at 100 keV, which hardens the spectra far too much:
-// Documentation/polychromatic.md shows it): the constant puts the mean depth
-// of production of a 100 kVp tube at 1 um of tungsten (19.3 g/cm^3; the mean
-// depth is 2/3 of T0^2 / C). A model parameter chosen here, not a measurement.
-constexpr double MeanDepth100kV = 1e-4 * 19.3;                          // g/cm^2
-constexpr double ThomsonWhiddington = 1e4 * 2.0 / 3.0 / MeanDepth100kV; // keV^2 cm^2/g
+// The Thomson-Whiddington constant C (keV^2 cm^2/g) comes from the settings'
+// mean production depth at 100 kVp, 2/3 of T0^2 / C. Electrons diffuse in
+// tungsten, so photons are made far shallower than on a straight path to the
+// CSDA range (taken as 0.035 g/cm^2 at 100 keV, NIST ESTAR's value as we
+// recall it, not checked here; mean depth 0.023), which hardens the spectra
+// far too much (Documentation/polychromatic.md shows both); the default, 1 um
+// of tungsten, is a model parameter chosen here, not a measurement.
 constexpr int DepthSteps = 64;
 // xraylib's tables start at 1 keV; no such photon passes a tube's window.
 constexpr double LowestEnergy = 1.0;
