@@ -5,7 +5,7 @@
  *
  * Input 0: a footprint cloud of vtkMCXPointSampler (voxel centres, the
  * default deposit) sampled under the materials' total transfer function,
- * the density curve (vtkMCXMaterialWeights::DensityFunction gives it).
+ * the density curve (FillDensityFunction gives it).
  * Input 1: the volume the index was built from (its first scalar component
  * is the CT number in HU). Output: the same points with PointWeight = the
  * Channel-th material's mass fraction at each point's voxel (multiples of
