@@ -31,9 +31,9 @@ struct BeamFilter
 
 struct TubeSettings
 {
-  double Kilovolts = 70.0;         // tube voltage, 40-150 kVp
-  double AnodeAngle = 12.0;        // degrees between anode face and central ray
-  double BinWidth = 1.0;           // keV, 0.1-5
+  double Kilovolts = 70.0;  // tube voltage, 40-150 kVp
+  double AnodeAngle = 12.0; // degrees between anode face and central ray
+  double BinWidth = 1.0;    // keV, 0.1-5
   /// Mean depth in the anode, g/cm^2, at which a 100 kVp tube makes its
   /// bremsstrahlung (it scales as kVp^2): 1 um of tungsten, a model parameter
   /// (see the .cxx); the straight path to the CSDA range would be 0.023.
