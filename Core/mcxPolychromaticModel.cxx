@@ -32,7 +32,9 @@ MCX_ALSO_AVX2 void PolychromaticModel::EffectiveRange(std::int64_t begin, std::i
     out[p] = t > 0.0 ? -std::log(t) : HUGE_VAL;
     if (errors)
     {
-      errors[p] = this->PropagatedError(l.data(), scratch.data(), t, channelErrors);
+      errors[p] = p % ErrorStride == 0
+        ? this->PropagatedError(l.data(), scratch.data(), t, channelErrors)
+        : 0.0;
     }
   }
 }

@@ -134,9 +134,10 @@ int vtkMCXPolychromaticRadiograph::RequestData(
     channelErrors.data(), errors.data());
   // The effective line integral's relative RMS error, as the projector
   // states its own: sqrt(sum of squared errors / sum of squared values),
-  // summed in pixel order (the same for any number of threads).
+  // over the pixels whose error was propagated, summed in pixel order (the
+  // same for any number of threads).
   double squaredErrors = 0.0, squaredValues = 0.0;
-  for (vtkIdType p = 0; p < pixels; ++p)
+  for (vtkIdType p = 0; p < pixels; p += mcx::PolychromaticModel::ErrorStride)
   {
     const double value = effective->GetValue(p);
     if (std::isfinite(value))

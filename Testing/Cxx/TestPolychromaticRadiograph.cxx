@@ -291,7 +291,7 @@ TEST(PolychromaticRadiograph, OneEnergyIsTheMonochromaticImage)
     ASSERT_GT(ew, 0.0);
     ASSERT_GT(ea, 0.0);
     double errors = 0.0, values = 0.0;
-    for (int p = 0; p < N * N; ++p)
+    for (int p = 0; p < N * N; p += mcx::PolychromaticModel::ErrorStride)
     {
       // Channels in g/cm^3 x mm, attenuations per mm at 1 g/cm^3.
       const double lw = Pixel(water, vtkMCXTypes::LineIntegralName(), p, 0) * muWater;
