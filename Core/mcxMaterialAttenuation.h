@@ -15,10 +15,12 @@ namespace mcx
 void CheckMaterialName(const std::string& material);
 
 /// Total mass attenuation coefficient (coherent scattering included) in cm^2/g
-/// at `energyKeV`: xraylib's CS_Total_CP.
+/// at `energyKeV`: xraylib's CS_Total of each element by mass fraction (what
+/// CS_Total_CP computes; see the .cxx for why it is not called).
 double MassAttenuation(const std::string& material, double energyKeV);
 
-/// Mass energy-absorption coefficient in cm^2/g: xraylib's CS_Energy_CP.
+/// Mass energy-absorption coefficient in cm^2/g: xraylib's CS_Energy of each
+/// element by mass fraction (CS_Energy_CP's rule).
 double MassEnergyAbsorption(const std::string& material, double energyKeV);
 
 /// Density in g/cm^3: the NIST compound's, else the element's (xraylib's

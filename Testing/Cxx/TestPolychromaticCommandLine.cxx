@@ -3,6 +3,7 @@
 #include "mcxCommandLineRunner.h"
 #include "mcxTestHelpers.h"
 #include "mcxTubeSpectrum.h"
+#include "mcxXraylibReference.h"
 
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
@@ -43,13 +44,13 @@ TEST(PolychromaticCommandLine, SoftTissueCubeAgreesWithTheSpectrumSum)
   vtkDataArray* values = image->GetPointData()->GetArray("Attenuation");
   ASSERT_NE(values, nullptr);
   // 32 mm of soft tissue at xraylib's density in every interior column.
-  const double density = GetCompoundDataNISTByName("Tissue, Soft (ICRP)", nullptr)->density;
+  const double density = mcxtest::NistDensity("Tissue, Soft (ICRP)");
   const mcx::Spectrum spectrum = mcx::TungstenSpectrum(mcx::ParseTubeSettings("70kVp,2.5mmAl"));
   double open = 0.0, behind = 0.0;
   for (std::size_t e = 0; e < spectrum.Size(); ++e)
   {
     const double energy = spectrum.Energies[e];
-    const double mu = CS_Total_CP("Tissue, Soft (ICRP)", energy, nullptr);
+    const double mu = mcxtest::XrlTotal("Tissue, Soft (ICRP)", energy);
     open += spectrum.Photons[e] * energy;
     behind += spectrum.Photons[e] * energy * std::exp(-mu * density * 3.2);
   }

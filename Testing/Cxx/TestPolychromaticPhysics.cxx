@@ -7,6 +7,7 @@
 #include "mcxMaterialDecomposition.h"
 #include "mcxPolychromaticModel.h"
 #include "mcxTubeSpectrum.h"
+#include "mcxXraylibReference.h"
 
 #include <gtest/gtest.h>
 #include <xraylib.h>
@@ -20,10 +21,7 @@
 namespace
 {
 
-double XrlTotal(const char* material, double energy)
-{
-  return CS_Total_CP(material, energy, nullptr);
-}
+using mcxtest::XrlTotal;
 
 std::string WriteFile(const std::string& name, const std::string& text)
 {

@@ -6,6 +6,7 @@
 #include "mcxPolychromaticModel.h"
 #include "mcxTestHelpers.h"
 #include "mcxTubeSpectrum.h"
+#include "mcxXraylibReference.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXMaterialWeights.h"
 #include "vtkMCXPointSampler.h"
@@ -156,7 +157,7 @@ double DirectEffectiveLineIntegral(
     const double w = spectrum.Photons[e] * response[e];
     open += w;
     behind += w *
-      std::exp(-CS_Total_CP("Water, Liquid", energy, nullptr) * water -
+      std::exp(-mcxtest::XrlTotal("Water, Liquid", energy) * water -
         CS_Total_CP("Al", energy, nullptr) * al);
   }
   return -std::log(behind / open);
@@ -281,7 +282,7 @@ TEST(PolychromaticRadiograph, OneEnergyIsTheMonochromaticImage)
   radiograph->SetNegativeLog(true);
   radiograph->Update();
   vtkImageData* poly = radiograph->GetOutput();
-  const double muWater = CS_Total_CP("Water, Liquid", 60.0, nullptr) * 0.1; // per mm at 1 g/cm^3
+  const double muWater = mcxtest::XrlTotal("Water, Liquid", 60.0) * 0.1; // per mm at 1 g/cm^3
   const double muAl = CS_Total_CP("Al", 60.0, nullptr) * AlDensity * 0.1;
   // The final image's error estimate: with one energy -ln T = sum mu_m L_m,
   // so the propagation adds mu_m L_m times each channel's estimate.
