@@ -3,9 +3,9 @@
 // Monte Carlo simulations of clinical dose distributions", Phys. Med. Biol. 45
 // (2000) 459: CT numbers between two reference tissues are mixtures of them by
 // mass, linear in HU. The reference tissues are xraylib's NIST compounds, at
-// the densities of xraylib's table, placed at the HU a CT scanner gives them:
-// air -1000, adipose tissue -100, soft tissue 40, cortical bone 1400 (the
-// bone's HU from Schneider et al.'s fit of cortical bone, about 1.9 g/cm^3).
+// the densities of xraylib's table, placed at the HU this model assumes a
+// scanner gives them: air -1000, adipose tissue -100, soft tissue 40,
+// cortical bone 1400 (our choice, not checked against the paper's tables).
 // Above 1400 HU the density keeps the soft-tissue-to-bone slope up to 3071 HU
 // (the 12-bit scale's top).
 #include "mcxMaterialDecomposition.h"
@@ -91,7 +91,7 @@ MaterialSet DefaultMaterials(double iodineHU, double titaniumHU)
   base.HU.push_back(top);
   base.Value.push_back(base.Value[3] + slope * (top - hu[3]));
   // Iodine: soft tissue carrying iodine from iodineHU on, 1 mg/ml more per
-  // 25 HU (contrast CT's usual 25-30 HU per mg/ml at 120 kVp) at 1000 HU, the
+  // 25 HU (an assumption of this model, of the order contrast CT shows) at 1000 HU, the
   // mass fraction linear in HU from 0 at the threshold, fading out towards
   // the bone's HU; its mass comes out of the soft tissue's.
   const double iodineEnd = 1000.0;
