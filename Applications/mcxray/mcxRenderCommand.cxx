@@ -7,6 +7,7 @@
 #include "mcxFail.h"
 #include "mcxImageOutput.h"
 #include "mcxOptionTable.h"
+#include "mcxPolychromaticStage.h"
 #include "mcxPoseOutput.h"
 #include "mcxPreflight.h"
 #include "mcxProcesses.h"
@@ -178,7 +179,10 @@ public:
     : Options(settings)
     , Capture(capture)
     , View(view)
+    , Polychromatic(settings)
   {
+    // Channels are projected from one stored cloud.
+    this->Options.StoredPoints = this->Options.StoredPoints || this->Polychromatic.Active();
   }
 
   int Run(vtkImageData* volume)
@@ -189,9 +193,11 @@ public:
       poses = this->Options.Radiograph.Poses(volume);
     }
     this->BuildIndex(volume);
+    this->Volume = volume;
     std::string error;
-    vtkSmartPointer<vtkPiecewiseFunction> tf =
-      MakeTransferFunction(this->Options.TF, this->DataRange(), error);
+    vtkSmartPointer<vtkPiecewiseFunction> tf = this->Polychromatic.Active()
+      ? vtkSmartPointer<vtkPiecewiseFunction>(this->Polychromatic.Density())
+      : MakeTransferFunction(this->Options.TF, this->DataRange(), error);
     if (!tf)
     {
       Fail(error);
@@ -211,7 +217,32 @@ public:
     std::vector<PoseRecord> records;
     for (int k = 0; k < count; ++k)
     {
-      vtkImageData* projected = this->Project(poses.empty() ? nullptr : &poses[k], k, count);
+      const Pose* pose = poses.empty() ? nullptr : &poses[k];
+      if (this->Polychromatic.Active())
+      {
+        std::string line;
+        this->Log(this->Polychromatic.Describe());
+        for (int m = 0; m < this->Polychromatic.Channels(); ++m)
+        {
+          this->Log("channel:     " + this->Polychromatic.Name(m));
+          this->Polychromatic.SetChannel(m);
+          this->Polychromatic.Keep(this->Project(pose, k, count));
+        }
+        vtkImageData* image = this->Polychromatic.Radiograph(this->Options, k, line);
+        this->Log(line);
+        records.push_back(RecordOf(image));
+        if (stack)
+        {
+          stack->Add(k, image);
+        }
+        else
+        {
+          this->Write(
+            image, count > 1 ? NumberedOutput(this->Options.Output, k) : this->Options.Output);
+        }
+        continue;
+      }
+      vtkImageData* projected = this->Project(pose, k, count);
       if (!IsFirstProcess())
       {
         continue; // the image is the first process's: it logs, applies the physics and writes
@@ -383,7 +414,9 @@ private:
     projector->SetInputConnection(this->Index->GetOutputPort());
     if (this->Options.StoredPoints)
     {
-      projector->SetInputConnection(this->SampleStoredPoints(tf));
+      vtkAlgorithmOutput* cloud = this->SampleStoredPoints(tf);
+      projector->SetInputConnection(
+        this->Polychromatic.Active() ? this->Polychromatic.Connect(cloud, this->Volume) : cloud);
     }
     projector->SetTransferFunction(tf);
     projector->SetKernel(KernelOf(this->Options.Kernel));
@@ -576,6 +609,8 @@ private:
   vtkSmartPointer<vtkMCXPointSampler> Sampler;
   vtkSmartPointer<vtkMCXProjectorBase> Projector;
   vtkSmartPointer<vtkMCXRadiograph> Radiograph;
+  PolychromaticStage Polychromatic;
+  vtkImageData* Volume = nullptr; // the run's, for the materials of the cloud's voxels
 };
 }
 
@@ -602,6 +637,9 @@ int RunRender(int argc, char* argv[])
   mcx::SetMemoryBudget(settings.MemoryLimit);
   CheckOutputs(settings);
   CheckTransferFunction(settings.TF);
+  {
+    PolychromaticStage check(settings); // its options' errors before any output
+  }
   const ViewChoice view = ChooseView(settings);
   WarnOfLongRuns(settings);
   vtkSmartPointer<vtkImageData> volume = ReadInput(settings);

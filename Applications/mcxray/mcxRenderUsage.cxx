@@ -146,6 +146,19 @@ options:
                         counts are Poisson (implies --beer-lambert; default off)
   --noise-seed N        seed of the noise (default 0; pose k of a sweep: N + k)
   --negative-log        output -ln(I / I0), the radiologist's display (bone bright)
+  --spectrum S          a polychromatic radiograph (Documentation/polychromatic.md):
+                        a tungsten tube "70kVp,2.5mmAl[,0.1mmCu][,12deg][,1keV]"
+                        (filters: mm of an element) or a file of
+                        "energy_keV photons" lines; the volume is in HU (no
+                        --tf); one cloud under the materials' density,
+                        one projection of it per material
+  --materials M         default (air, adipose, soft tissue, cortical bone;
+                        add ",iodine=HU" and/or ",titanium=HU" thresholds) or
+                        a materials file
+  --detector-material M:MM[:G/CM3]
+                        the detector's screen, e.g. CsI:0.6:4.51 (default: an
+                        ideal absorber)
+  --photon-counting     count photons (default: integrate energy)
   --size WxH            image size in pixels (default: 512 along the longer side)
   --pixel-spacing S     pixel size in world units on the detector plane
   --output FILE         .vti (float64 LineIntegral with geometry), .mha, .png or .pfm

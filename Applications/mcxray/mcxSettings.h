@@ -47,6 +47,11 @@ struct Settings
   bool StoredPoints = false;
   double TargetError = 0.0;
   int QuantizationLevels = 0;
+  std::string Spectrum; // --spectrum: a polychromatic radiograph (mcxPolychromaticStage.h)
+  std::string Materials = "default"; // --materials
+  bool MaterialsGiven = false;
+  std::string DetectorMaterial; // --detector-material M:mm[:g/cm3]
+  bool PhotonCounting = false;  // --photon-counting
 
   // view only
   std::string Screenshot;

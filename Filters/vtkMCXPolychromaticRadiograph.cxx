@@ -1,0 +1,183 @@
+#include "vtkMCXPolychromaticRadiograph.h"
+
+#include "mcxMaterialDecomposition.h"
+#include "mcxPolychromaticModel.h"
+#include "mcxRadiographEffects.h"
+#include "mcxTubeSpectrum.h"
+#include "vtkMCXSMPExecutor.h"
+#include "vtkMCXTypes.h"
+
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+vtkStandardNewMacro(vtkMCXPolychromaticRadiograph);
+
+vtkMCXPolychromaticRadiograph::vtkMCXPolychromaticRadiograph()
+{
+  this->SetSpectrum("70kVp,2.5mmAl");
+  this->SetDetector("integrating");
+  this->SetMaterials("default");
+}
+
+vtkMCXPolychromaticRadiograph::~vtkMCXPolychromaticRadiograph()
+{
+  this->SetSpectrum(nullptr);
+  this->SetDetector(nullptr);
+  this->SetMaterials(nullptr);
+}
+
+int vtkMCXPolychromaticRadiograph::FillInputPortInformation(int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Set(vtkAlgorithm::INPUT_IS_REPEATABLE(), 1);
+  return 1;
+}
+
+const mcx::PolychromaticModel* vtkMCXPolychromaticRadiograph::Model()
+{
+  const auto text = [](const char* s) { return std::string(s ? s : ""); };
+  const std::string key =
+    text(this->Spectrum) + '\n' + text(this->Detector) + '\n' + text(this->Materials);
+  if (!this->Cached || key != this->CachedKey)
+  {
+    this->Cached.reset();
+    try
+    {
+      const mcx::Spectrum spectrum = mcx::SpectrumFromText(text(this->Spectrum));
+      const mcx::Detector detector = mcx::ParseDetector(text(this->Detector));
+      const mcx::MaterialSet set = mcx::MaterialsFromText(text(this->Materials));
+      this->Cached.reset(new mcx::PolychromaticModel(spectrum, detector, set.Names()));
+      this->CachedKey = key;
+      this->CachedMeanEnergy = spectrum.MeanEnergy();
+    }
+    catch (const std::exception& error)
+    {
+      vtkErrorMacro(<< error.what());
+      return nullptr;
+    }
+  }
+  return this->Cached.get();
+}
+
+double vtkMCXPolychromaticRadiograph::GetMeanEnergy()
+{
+  return this->Model() ? this->CachedMeanEnergy : 0.0;
+}
+
+int vtkMCXPolychromaticRadiograph::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  const mcx::PolychromaticModel* model = this->Model();
+  if (!model)
+  {
+    return 0;
+  }
+  const int channels = inputVector[0]->GetNumberOfInformationObjects();
+  if (channels != static_cast<int>(model->Materials()))
+  {
+    vtkErrorMacro("" << channels << " channel images for " << model->Materials()
+                     << " materials: connect one per material, in the materials' order.");
+    return 0;
+  }
+  std::vector<std::vector<double>> values(channels);
+  std::vector<double> channelErrors(channels, 0.0);
+  std::vector<const double*> pointers(channels);
+  vtkIdType pixels = -1;
+  for (int m = 0; m < channels; ++m)
+  {
+    vtkImageData* image = vtkImageData::GetData(inputVector[0], m);
+    vtkDataArray* line =
+      image ? image->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName()) : nullptr;
+    if (!line || line->GetNumberOfComponents() != 1 ||
+      (pixels >= 0 && line->GetNumberOfTuples() != pixels))
+    {
+      vtkErrorMacro(
+        "Channel " << m << " has no one-component LineIntegral array of the others' size.");
+      return 0;
+    }
+    pixels = line->GetNumberOfTuples();
+    vtkDataArray* estimate =
+      image->GetFieldData()->GetArray(vtkMCXTypes::EstimatedRelativeErrorName());
+    channelErrors[m] = estimate ? estimate->GetComponent(0, 0) : 0.0;
+    values[m].resize(pixels);
+    for (vtkIdType p = 0; p < pixels; ++p)
+    {
+      values[m][p] = line->GetComponent(p, 0);
+    }
+    pointers[m] = values[m].data();
+    if (m == 0)
+    {
+      // The geometry and the projector's fields (its matrix, sample count)
+      // of the first channel: every channel has the same.
+      output->CopyStructure(image);
+      output->GetFieldData()->ShallowCopy(image->GetFieldData());
+    }
+  }
+  vtkNew<vtkDoubleArray> effective;
+  effective->SetName("EffectiveLineIntegral");
+  effective->SetNumberOfValues(pixels);
+  // The channels are g/cm^3 x mm: 0.1 of that is g/cm^2.
+  std::vector<double> errors(pixels);
+  model->EffectiveImage(mcx::SMPExecutor(), pixels, pointers.data(), 0.1, effective->GetPointer(0),
+    channelErrors.data(), errors.data());
+  // The effective line integral's relative RMS error, as the projector
+  // states its own: sqrt(sum of squared errors / sum of squared values),
+  // over the pixels whose error was propagated, summed in pixel order (the
+  // same for any number of threads).
+  double squaredErrors = 0.0, squaredValues = 0.0;
+  for (vtkIdType p = 0; p < pixels; p += mcx::PolychromaticModel::ErrorStride)
+  {
+    const double value = effective->GetValue(p);
+    if (std::isfinite(value))
+    {
+      squaredErrors += errors[p] * errors[p];
+      squaredValues += value * value;
+    }
+  }
+  const mcx::RadiographEffects effects =
+    mcx::RadiographEffects::FromProperties(true, this->IncidentIntensity, this->PhotonsPerPixel,
+      static_cast<std::uint64_t>(this->NoiseSeed), this->NegativeLog);
+  vtkNew<vtkDoubleArray> result;
+  result->SetName(
+    this->NegativeLog ? vtkMCXTypes::AttenuationName() : vtkMCXTypes::IntensityName());
+  result->SetNumberOfValues(pixels);
+  const double* l = effective->GetPointer(0);
+  effects.ApplyToImage(
+    mcx::SMPExecutor(), pixels, [&](std::int64_t p) { return l[p]; }, result->GetPointer(0));
+  vtkNew<vtkDoubleArray> estimate;
+  estimate->SetName(vtkMCXTypes::EstimatedRelativeErrorName());
+  estimate->InsertNextValue(squaredValues > 0.0 ? std::sqrt(squaredErrors / squaredValues) : 0.0);
+  output->GetFieldData()->RemoveArray(vtkMCXTypes::EstimatedRelativeErrorName());
+  output->GetFieldData()->AddArray(estimate);
+  output->GetPointData()->AddArray(effective);
+  output->GetPointData()->AddArray(result);
+  output->GetPointData()->SetActiveScalars(result->GetName());
+  return 1;
+}
+
+void vtkMCXPolychromaticRadiograph::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Spectrum: " << (this->Spectrum ? this->Spectrum : "(none)") << "\n";
+  os << indent << "Detector: " << (this->Detector ? this->Detector : "(none)") << "\n";
+  os << indent << "Materials: " << (this->Materials ? this->Materials : "(none)") << "\n";
+  os << indent << "IncidentIntensity: " << this->IncidentIntensity << "\n";
+  os << indent << "PhotonsPerPixel: " << this->PhotonsPerPixel << "\n";
+  os << indent << "NoiseSeed: " << this->NoiseSeed << "\n";
+  os << indent << "NegativeLog: " << this->NegativeLog << "\n";
+  os << indent << "Cached: " << (this->Cached ? "a model" : "none") << "\n";
+  os << indent << "CachedKey: " << this->CachedKey << "\n";
+  os << indent << "CachedMeanEnergy: " << this->CachedMeanEnergy << "\n";
+}
