@@ -447,45 +447,64 @@ double MeasuredDecay(const Projection& small, const Projection& large)
   return std::max(0.5, std::min(nominal, decay));
 }
 
+// Seconds a deposit would take from its pilot to the target, its error
+// falling as M^-decay (capped at the largest count).
+double SecondsToTarget(const Projection& pilot, double decay, double targetError, int targetLevels,
+  unsigned maximumExponent)
+{
+  const double needed = std::min(SamplesNeeded(pilot, targetError, targetLevels, decay),
+    static_cast<double>(mcx::SampleCount(maximumExponent)));
+  return PredictedSeconds(pilot, needed);
+}
+
 // Stage 2 choosing the deposit (ChooseDepositForTarget): a pilot of each
-// deposit measures its error and time (the footprint's two, of M and 4 M
-// samples, also how fast its error falls; the point deposit's falls as
-// M^-1/2); the deposit predicted to reach the target soonest is refined
-// from its larger pilot, whose samples it keeps (only the other deposit's
-// pilot is spent). Every voxel once competes as well (relative error
-// targets): it is the footprint deposit of every voxel, so its error is
-// taken as the footprint's extrapolated to that many samples (an upper
-// bound: it has no sampling noise) and its time as that many footprints.
+// deposit (about 4 samples a pixel) measures its error and time. The point
+// deposit's error falls as M^-1/2; the footprint's as M^-1 only where
+// voxels cover a pixel or more, else as M^-1/2. When the footprint wins
+// (or loses) under either law, that decides; in between a second footprint
+// pilot of 4 times the samples measures how fast its error falls. The
+// deposit predicted to reach the target soonest is refined from its pilot,
+// whose samples it keeps (only the other deposit's pilot is spent). Every
+// voxel once competes as well (relative error targets): it is the
+// footprint deposit of every voxel, so its error is taken as the
+// footprint's extrapolated to that many samples (an upper bound: it has no
+// sampling noise) and its time as that many footprints.
 Projection ChooseAndProjectToTarget(IndexProjection& sampler,
   const mcx::ProjectionGeometry& geometry, double targetError, int targetLevels,
   unsigned maximumExponent)
 {
   const unsigned small = PilotExponent(geometry, maximumExponent);
-  const unsigned m = std::min(maximumExponent, small + 2);
   const mcx::Deposit modes[2] = { mcx::Deposit::Point, mcx::Deposit::Footprint };
   Projection pilots[2];
-  double seconds[2], decays[2];
   for (int d = 0; d < 2; ++d)
   {
     sampler.DepositMode = modes[d];
-    if (modes[d] == mcx::Deposit::Footprint && small < m)
-    {
-      const Projection first = sampler.Project(small, 0.02, 0.04);
-      pilots[d] = sampler.Project(m, 0.04, 0.08, &first);
-      decays[d] = MeasuredDecay(first, pilots[d]);
-    }
-    else
-    {
-      pilots[d] = sampler.Project(m, 0.0, 0.02);
-      decays[d] = mcx::ErrorDecayExponent(pilots[d].FallsAsInverseM);
-    }
+    pilots[d] = sampler.Project(small, 0.02 * d, 0.02 * (d + 1));
     if (!pilots[d].Completed)
     {
       return std::move(pilots[d]);
     }
-    const double needed = std::min(SamplesNeeded(pilots[d], targetError, targetLevels, decays[d]),
-      static_cast<double>(mcx::SampleCount(maximumExponent)));
-    seconds[d] = PredictedSeconds(pilots[d], needed);
+  }
+  double decays[2] = { mcx::ErrorDecayExponent(pilots[0].FallsAsInverseM),
+    mcx::ErrorDecayExponent(pilots[1].FallsAsInverseM) };
+  double seconds[2];
+  seconds[0] = SecondsToTarget(pilots[0], decays[0], targetError, targetLevels, maximumExponent);
+  seconds[1] = SecondsToTarget(pilots[1], decays[1], targetError, targetLevels, maximumExponent);
+  const double slowest =
+    SecondsToTarget(pilots[1], 0.5, targetError, targetLevels, maximumExponent);
+  unsigned m = small;
+  if (seconds[1] < seconds[0] && slowest > seconds[0] && small < maximumExponent)
+  {
+    sampler.DepositMode = mcx::Deposit::Footprint;
+    m = std::min(maximumExponent, small + 2);
+    Projection first = std::move(pilots[1]);
+    pilots[1] = sampler.Project(m, 0.04, 0.08, &first);
+    if (!pilots[1].Completed)
+    {
+      return std::move(pilots[1]);
+    }
+    decays[1] = MeasuredDecay(first, pilots[1]);
+    seconds[1] = SecondsToTarget(pilots[1], decays[1], targetError, targetLevels, maximumExponent);
   }
   const int best = seconds[1] < seconds[0] ? 1 : 0;
   const double voxels = static_cast<double>(sampler.KeptVoxels());
@@ -506,8 +525,8 @@ Projection ChooseAndProjectToTarget(IndexProjection& sampler,
   // asymptote and overshoot the count (the re-checks catch a shortfall).
   sampler.DepositMode = modes[best];
   const double decay = mcx::ErrorDecayExponent(pilots[best].FallsAsInverseM);
-  return RefineToTarget(
-    sampler, std::move(pilots[best]), m, decay, targetError, targetLevels, maximumExponent, 0.08);
+  return RefineToTarget(sampler, std::move(pilots[best]), best == 1 ? m : small, decay, targetError,
+    targetLevels, maximumExponent, 0.08);
 }
 }
 
