@@ -312,31 +312,36 @@ private:
       [&](std::uint64_t b, std::uint64_t e)
       {
         const Accumulator::ThreadImage image = accumulator.Local();
-        // Points are projected a batch at a time, on SIMD lanes.
-        Accumulator::ThreadImage::PointBatch points(image);
-        const bool footprints = this->DepositMode == mcx::Deposit::Footprint;
-        auto deposit = [&](std::uint64_t k, const double p[3])
+        // This chunk's runs of ranks, each sample handed to `deposit`.
+        auto generate = [&](auto& deposit)
         {
-          if (footprints)
+          std::size_t r =
+            static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
+          for (; r < runs.size() && b < e; ++r)
           {
-            image.Deposit(k, p);
-          }
-          else
-          {
-            points.Add(k, p);
+            const std::uint64_t runBegin = ends[r] - (runs[r].second - runs[r].first);
+            const std::uint64_t stop = std::min(e, ends[r]);
+            source.Generate(
+              runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
+            b = stop;
           }
         };
-        std::size_t r =
-          static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), b) - ends.begin());
-        for (; r < runs.size() && b < e; ++r)
+        // Points of perspective views are projected a batch at a time, on
+        // SIMD lanes: their division and square root pay for the batch's
+        // stores and loads, a parallel view's few products do not. Each
+        // deposit gets a loop of its own.
+        if (this->DepositMode == mcx::Deposit::Point && this->Geometry.Perspective)
         {
-          const std::uint64_t runBegin = ends[r] - (runs[r].second - runs[r].first);
-          const std::uint64_t stop = std::min(e, ends[r]);
-          source.Generate(
-            runs[r].first + (b - runBegin), runs[r].first + (stop - runBegin), deposit);
-          b = stop;
+          Accumulator::ThreadImage::PointBatch points(image);
+          auto batch = [&](std::uint64_t k, const double p[3]) { points.Add(k, p); };
+          generate(batch);
+          points.Flush();
         }
-        points.Flush();
+        else
+        {
+          auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
+          generate(deposit);
+        }
       });
   }
 
