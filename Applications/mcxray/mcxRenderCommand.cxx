@@ -218,36 +218,17 @@ public:
     for (int k = 0; k < count; ++k)
     {
       const Pose* pose = poses.empty() ? nullptr : &poses[k];
-      if (this->Polychromatic.Active())
-      {
-        std::string line;
-        this->Log(this->Polychromatic.Describe());
-        for (int m = 0; m < this->Polychromatic.Channels(); ++m)
-        {
-          this->Log("channel:     " + this->Polychromatic.Name(m));
-          this->Polychromatic.SetChannel(m);
-          this->Polychromatic.Keep(this->Project(pose, k, count));
-        }
-        vtkImageData* image = this->Polychromatic.Radiograph(this->Options, k, line);
-        this->Log(line);
-        records.push_back(RecordOf(image));
-        if (stack)
-        {
-          stack->Add(k, image);
-        }
-        else
-        {
-          this->Write(
-            image, count > 1 ? NumberedOutput(this->Options.Output, k) : this->Options.Output);
-        }
-        continue;
-      }
-      vtkImageData* projected = this->Project(pose, k, count);
+      const bool polychromatic = this->Polychromatic.Active();
+      vtkImageData* image =
+        polychromatic ? this->ProjectChannels(pose, k, count) : this->Project(pose, k, count);
       if (!IsFirstProcess())
       {
         continue; // the image is the first process's: it logs, applies the physics and writes
       }
-      vtkImageData* image = this->ApplyRadiograph(projected, k);
+      if (!polychromatic)
+      {
+        image = this->ApplyRadiograph(image, k);
+      }
       records.push_back(RecordOf(image));
       if (stack)
       {
@@ -427,6 +408,23 @@ private:
     projector->SetDetectorAxisV(this->View.DetectorV);
     this->Capture.Watch(projector);
     this->Watch(projector);
+  }
+
+  // The polychromatic radiograph of pose k: one projection per material
+  // channel of the one stored cloud, then the spectrum's model per pixel.
+  vtkImageData* ProjectChannels(const Pose* pose, int k, int count)
+  {
+    this->Log(this->Polychromatic.Describe());
+    for (int m = 0; m < this->Polychromatic.Channels(); ++m)
+    {
+      this->Log("channel:     " + this->Polychromatic.Name(m));
+      this->Polychromatic.SetChannel(m);
+      this->Polychromatic.Keep(this->Project(pose, k, count));
+    }
+    std::string line;
+    vtkImageData* image = this->Polychromatic.Radiograph(this->Options, k, line);
+    this->Log(line);
+    return image;
   }
 
   // The image of pose k of count (null: the view of --view or --camera).

@@ -23,11 +23,10 @@
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXProjector.h"
 
+#include "mcxUpsample.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
-#include "vtkImageInterpolator.h"
-#include "vtkImageResize.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
@@ -260,25 +259,6 @@ void MakeViews(Volume& v)
   }
 }
 
-// Linear upsampling until the voxel count reaches least (as BenchmarkPeers).
-vtkSmartPointer<vtkImageData> Upsample(vtkImageData* volume, double least)
-{
-  int dims[3];
-  volume->GetDimensions(dims);
-  const double factor =
-    std::cbrt(least / static_cast<double>(volume->GetNumberOfPoints())) * (1 + 1e-3);
-  vtkNew<vtkImageInterpolator> linear;
-  linear->SetInterpolationModeToLinear();
-  vtkNew<vtkImageResize> resize;
-  resize->SetInputData(volume);
-  resize->SetInterpolator(linear);
-  resize->SetOutputDimensions(static_cast<int>(std::ceil(dims[0] * factor)),
-    static_cast<int>(std::ceil(dims[1] * factor)), static_cast<int>(std::ceil(dims[2] * factor)));
-  resize->Update();
-  vtkSmartPointer<vtkImageData> output = resize->GetOutput();
-  return output;
-}
-
 // The bonsai (BenchmarkCore's TF: 0 below 20 % of the range), or the CT
 // chest upsampled, with the peers' HU-to-attenuation TF (every tissue
 // voxel weighs). Null, the reason printed, when the file is missing.
@@ -313,7 +293,7 @@ std::unique_ptr<Volume> Load(bool large, double largeVoxels)
       std::cerr << "BenchmarkKernels: cannot read the CT chest: " << error << std::endl;
       return nullptr;
     }
-    v->Image = Upsample(chest, largeVoxels);
+    v->Image = mcxbench::Upsample(chest, largeVoxels);
     v->TF->AddPoint(-1000, 0.0);
     v->TF->AddPoint(4000, 0.011);
     v->Name = "large";

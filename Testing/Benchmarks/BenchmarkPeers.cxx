@@ -27,12 +27,11 @@
 #include "vtkMCXProjector.h"
 #include "vtkMCXXRayMapper.h"
 
+#include "mcxUpsample.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
-#include "vtkImageInterpolator.h"
-#include "vtkImageResize.h"
 #include "vtkMath.h"
 #include "vtkMetaImageWriter.h"
 #include "vtkNew.h"
@@ -99,25 +98,6 @@ vtkSmartPointer<vtkCamera> ConeBeamCamera(vtkImageData* volume)
     2 * vtkMath::DegreesFromRadians(std::atan(Beam.DetectorSize / 2 / Beam.SourceToDetector)));
   camera->SetClippingRange(1.0, 10 * Beam.SourceToIsocentre);
   return camera;
-}
-
-// Linear upsampling until the voxel count reaches least (the same bounds).
-vtkSmartPointer<vtkImageData> Upsample(vtkImageData* volume, double least)
-{
-  int dims[3];
-  volume->GetDimensions(dims);
-  const double factor =
-    std::cbrt(least / static_cast<double>(volume->GetNumberOfPoints())) * (1 + 1e-3);
-  vtkNew<vtkImageInterpolator> linear;
-  linear->SetInterpolationModeToLinear();
-  vtkNew<vtkImageResize> resize;
-  resize->SetInputData(volume);
-  resize->SetInterpolator(linear);
-  resize->SetOutputDimensions(static_cast<int>(std::ceil(dims[0] * factor)),
-    static_cast<int>(std::ceil(dims[1] * factor)), static_cast<int>(std::ceil(dims[2] * factor)));
-  resize->Update();
-  vtkSmartPointer<vtkImageData> output = resize->GetOutput();
-  return output;
 }
 
 // One render of ours: samples, render seconds (median of up to 3 runs, fresh
@@ -519,7 +499,7 @@ int main(int argc, char* argv[])
     std::string error;
     if (c.LeastVoxels > 0)
     {
-      volume = Upsample(volume, c.LeastVoxels);
+      volume = mcxbench::Upsample(volume, c.LeastVoxels);
     }
     int dims[3];
     volume->GetDimensions(dims);
