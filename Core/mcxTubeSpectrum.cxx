@@ -56,7 +56,10 @@ double TungstenAttenuation(double energy)
 }
 
 // Integral over T in [from, t0] of exp(-a (t0^2 - T^2)) dT by the midpoint
-// rule on DepthSteps steps (smooth integrand: the error is far below 1e-4).
+// rule on DepthSteps steps: smooth where the anode absorbs little (the error
+// far below 1e-4 from about 5 keV); near 1 keV, where tungsten's mu/rho is in
+// the thousands of cm^2/g, the integrand falls steeply and the error reaches
+// the percent level, for photons that any filtration removes.
 double DepthIntegral(double a, double from, double t0)
 {
   const double step = (t0 - from) / DepthSteps;

@@ -83,9 +83,11 @@ public:
   {
     Projection projection;
     projection.Count = mcx::SampleCount(m);
+    const int strategy =
+      this->EveryVoxel ? vtkMCXTypes::EVERY_VOXEL : static_cast<int>(this->Method);
     if (prefix &&
       (prefix->Count >= projection.Count || prefix->EveryVoxel ||
-        prefix->Deposit != static_cast<int>(this->DepositMode)))
+        prefix->Deposit != static_cast<int>(this->DepositMode) || prefix->Strategy != strategy))
     {
       prefix = nullptr;
     }
@@ -106,7 +108,7 @@ public:
           ? this->Generate<std::uint64_t>(m, first, accumulator, progressBegin, progressEnd)
           : this->Generate<std::uint32_t>(m, first, accumulator, progressBegin, progressEnd);
       });
-    if (prefix && projection.Completed)
+    if (prefix && projection.Completed && prefix->Sums.size() == projection.Sums.size())
     {
       // The prefix's samples are all in the first Halton half of the longer run.
       const std::size_t pixels = projection.Sums.size() / 2;

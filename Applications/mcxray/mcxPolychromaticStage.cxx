@@ -58,6 +58,11 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   {
     Fail("--spectrum makes a radiograph already: leave out --beer-lambert");
   }
+  if (settings.TargetError > 0 || settings.QuantizationLevels > 0)
+  {
+    Fail("--spectrum projects a stored cloud of --samples points per material: leave out "
+         "--target-error and --quantization-levels");
+  }
   std::string detector = settings.PhotonCounting ? "counting" : "integrating";
   if (!settings.DetectorMaterial.empty())
   {

@@ -492,9 +492,11 @@ private:
     else
     {
       const double samples = fields->GetArray(vtkMCXTypes::SampleCountName())->GetTuple1(0);
+      // The target's choice, when it made one (an index input's: its field data say so).
       const bool chosen = this->Projector->IsA("vtkMCXProjector") &&
         static_cast<vtkMCXProjector*>(this->Projector.Get())->GetChooseDepositForTarget() &&
-        (this->Options.TargetError > 0 || this->Options.QuantizationLevels > 0);
+        (this->Options.TargetError > 0 || this->Options.QuantizationLevels > 0) &&
+        fields->GetArray(vtkMCXTypes::DepositName());
       const bool everyVoxel = fields->GetArray(vtkMCXTypes::StrategyName())
         ? fields->GetArray(vtkMCXTypes::StrategyName())->GetTuple1(0) == vtkMCXTypes::EVERY_VOXEL
         : this->Options.Method == "every-voxel";

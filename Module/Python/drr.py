@@ -517,10 +517,10 @@ class Renderer:
           (for a beam without SourceAxisDistance; one giving it refuses sad).
         Without any, plastimatch's geometry at gantry 0.
 
-        Sampling (vtkMCXProjector): deposit "footprint" (default; chosen by measurement
-        under target_error, as mcxray's) or "point"; kernel "tent" or "box"; method "hybrid",
-        "mc", "qmc" or "every-voxel"; samples (rounded up to 2^k - 1) or target_error (relative RMS error);
-        seed, the same for every pose (common random numbers: pose-to-pose
+        Sampling (vtkMCXProjector): deposit "footprint" (default; under target_error chosen by measurement
+        for each pose, as mcxray's: give it for common random numbers) or "point"; kernel "tent" or "box";
+        method "hybrid", "mc", "qmc" or "every-voxel"; samples (rounded up to 2^k - 1) or target_error
+        (relative RMS error); seed, the same for every pose (common random numbers: pose-to-pose
         differences are not sampling noise). method "reference": the exact
         projector (vtkMCXReferenceProjector), to a relative tolerance
         (default 1e-3), slow; its ``samples`` are 0.

@@ -86,4 +86,7 @@ TEST(PolychromaticCommandLine, BadOptionsAreOneLineErrors)
     "render --spectrum 70kVp --detector-material CsI:0.6" + quiet, output);
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --beer-lambert" + quiet, output);
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --tf mu" + quiet, output);
+  // A stored cloud per material has no target control (it crashed before it was refused).
+  mcxtest::ExpectOneLineError("render --spectrum 70kVp --target-error 0.05" + quiet, output);
+  mcxtest::ExpectOneLineError("render --spectrum 70kVp --quantization-levels 64" + quiet, output);
 }
