@@ -177,7 +177,11 @@ int vtkMCXMaterialWeights::RequestData(
         }
         if (!centre)
         {
-          outside = i;
+          // The first such point, whichever thread finds it: the message is the same on every run.
+          vtkIdType seen = outside.load();
+          while ((seen < 0 || i < seen) && !outside.compare_exchange_weak(seen, i))
+          {
+          }
           w[i] = 0.0;
           continue;
         }
