@@ -103,8 +103,17 @@ public:
   bool Bin(const double p[3], std::int64_t& pixel, FixedSum& increment, double weight = 1.0) const
   {
     double fx, fy, f, inverseDepth;
-    if (!this->Locate(p, fx, fy, f, inverseDepth) ||
-      !(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
+    return this->Locate(p, fx, fy, f, inverseDepth) &&
+      this->PixelOf(fx, fy, f, pixel, increment, weight);
+  }
+
+  /// Bin's second half, for a point Locate (or LocatePoints) placed at
+  /// (fx, fy) with perspective weight f: its pixel and increment, or false
+  /// when it misses the image.
+  bool PixelOf(double fx, double fy, double f, std::int64_t& pixel, FixedSum& increment,
+    double weight = 1.0) const
+  {
+    if (!(fx >= 0 && fx < this->WidthAsDouble && fy >= 0 && fy < this->HeightAsDouble))
     {
       return false;
     }

@@ -75,17 +75,14 @@ public:
     std::uint8_t located[Most];
     const PixelBinner& binner = *this->Binner;
     binner.LocatePoints(x, y, z, n, fx, fy, f, located);
-    const bool perspective = binner.IsPerspective();
-    const double width = binner.GetWidth(), height = binner.GetHeight();
     for (std::size_t i = 0; i < n; ++i)
     {
-      // Bin's tests and increment from Locate's results.
-      if (!located[i] || !(fx[i] >= 0 && fx[i] < width && fy[i] >= 0 && fy[i] < height))
+      std::int64_t pixel;
+      FixedSum increment;
+      if (!located[i] || !binner.PixelOf(fx[i], fy[i], f[i], pixel, increment))
       {
         continue;
       }
-      const std::int64_t pixel =
-        static_cast<std::int64_t>(fx[i]) + static_cast<std::int64_t>(fy[i]) * binner.GetWidth();
       if (this->DepthLimits)
       {
         const double p[3] = { x[i], y[i], z[i] };
@@ -94,7 +91,6 @@ public:
           continue;
         }
       }
-      const FixedSum increment = perspective ? FixedIncrement(f[i]) : FixedOneInteger;
       this->Add(k[i], pixel, increment);
       if (this->Controlled)
       {

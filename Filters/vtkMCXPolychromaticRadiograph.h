@@ -20,6 +20,7 @@
 
 #include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+#include "vtkMCXRadiograph.h" // for MaximumPhotonsPerPixel
 
 #include <memory> // for the model
 
@@ -65,7 +66,7 @@ public:
 
   ///@{
   /** Photons reaching an open pixel; 0 (default): no noise. */
-  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, 1e15);
+  vtkSetClampMacro(PhotonsPerPixel, double, 0.0, vtkMCXRadiograph::MaximumPhotonsPerPixel);
   vtkGetMacro(PhotonsPerPixel, double);
   ///@}
 
