@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace mcx
@@ -89,8 +90,9 @@ struct EveryVoxelSource
   std::uint64_t Size() const { return this->Ends.empty() ? 0 : this->Ends.back(); }
 
   /// Emits voxels [begin, end) of the kept levels' ids, laid end to end,
-  /// as sink(k, p, weight): k the voxel's id in the whole volume, p its point
-  /// in the whole volume's voxel coordinates (EveryVoxelPoint).
+  /// as sink(k, p, weight), or sink(k, p, weight, level) to a sink that
+  /// takes the voxel's level: k the voxel's id in the whole volume, p its
+  /// point in the whole volume's voxel coordinates (EveryVoxelPoint).
   template <typename Sink>
   void Generate(std::uint64_t begin, std::uint64_t end, Sink&& sink) const
   {
@@ -116,7 +118,15 @@ struct EveryVoxelSource
           voxel[0] + this->WholeDimensions[0] * (voxel[1] + this->WholeDimensions[1] * voxel[2]);
         double p[3];
         EveryVoxelPoint(voxel, this->Reconstruction, this->Centres, key, k, p);
-        sink(k, p, weight);
+        if constexpr (std::is_invocable_v<Sink&, std::uint64_t, const double*, double,
+                        std::int64_t>)
+        {
+          sink(k, p, weight, level);
+        }
+        else
+        {
+          sink(k, p, weight);
+        }
       }
       begin = stop;
     }

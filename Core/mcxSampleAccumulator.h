@@ -73,6 +73,7 @@ public:
     this->DepthLimits = std::move(depthLimits);
     this->Split = 0;
     this->Controlled = false;
+    this->Channels = 0;
     // Collect() leaves the images zeroed: only another size is reallocated.
     for (ThreadSums& sums : this->Images)
     {
@@ -96,6 +97,12 @@ public:
       !this->Ladder->AnyRandomSplit();
   }
 
+  /// Deposits given fractions (ThreadImage::Deposit) are split into
+  /// `channels` images as well (mcxChannelSplit.h; 0 to MaximumChannels),
+  /// which Collect's `channels` receive. Reset() sets none.
+  void SetChannels(int channels) { this->Channels = channels; }
+  int GetChannels() const { return this->Channels; }
+
   /// Samples with k < split count in the first half's sums as well.
   void SetSplit(std::uint64_t split) { this->Split = split; }
 
@@ -108,9 +115,10 @@ public:
   ThreadImage Local()
   {
     ThreadSums& sums = this->Images.Local();
-    sums.Allocate(this->Pixels, this->Controlled ? 4 : 2);
+    sums.Allocate(this->Pixels, this->Controlled ? 4 : 2, this->Channels);
     ThreadImage local;
     local.Sums = &sums;
+    local.Channels = this->Channels;
     local.Controlled = this->Controlled;
     local.Binner = this->Binner.get();
     local.Ladder = this->Ladder.get();
@@ -203,14 +211,16 @@ public:
 
   /// Adds the threads' sums to all (every sample) and firstHalf (k < split),
   /// NumberOfPixels() each, and the control images to controlAll and
-  /// controlFirstHalf when controlled, and zeroes them for the next
-  /// deposits; call it after every round of deposits.
+  /// controlFirstHalf when controlled, channel c's to channels[c] (all,
+  /// then the first half: 2 x NumberOfPixels()) when split, and zeroes them
+  /// for the next deposits; call it after every round of deposits.
   void Collect(FixedSum* all, FixedSum* firstHalf, FixedSum* controlAll = nullptr,
-    FixedSum* controlFirstHalf = nullptr)
+    FixedSum* controlFirstHalf = nullptr, FixedSum* const* channels = nullptr)
   {
     for (ThreadSums& sums : this->Images)
     {
-      sums.CollectInto(this->Pixels, all, firstHalf, controlAll, controlFirstHalf);
+      sums.CollectInto(this->Pixels, all, firstHalf, controlAll, controlFirstHalf, channels,
+        channels ? this->Channels : 0);
     }
   }
 
@@ -223,6 +233,7 @@ private:
   std::vector<double> DepthLimits;
   std::uint64_t Split = 0;
   bool Controlled = false;
+  int Channels = 0;
   typename Executor::template ThreadLocal<ThreadSums> Images;
 };
 

@@ -121,7 +121,9 @@ struct SampleSource
   /// SortedIds and LevelOffsets are then its ids and bin offsets, the table
   /// draws its bins, and sample k of slot s in bin b carries the weight
   /// LevelRatio[BinFirstLevel[b] + LevelInBin[s]] to sinks that take one,
-  /// sink(k, p, weight) (1 for every sample otherwise).
+  /// sink(k, p, weight) (1 for every sample otherwise), and the sample's
+  /// level of the index (of LevelRatio's levels when binned) to sinks that
+  /// take sink(k, p, weight, level).
   const std::uint16_t* LevelInBin = nullptr;
   const std::int64_t* BinFirstLevel = nullptr;
   const double* LevelRatio = nullptr;
@@ -507,7 +509,14 @@ private:
         p[a] = static_cast<double>(fixed) * 0x1.0p-21;
       }
     }
-    if constexpr (std::is_invocable_v<Sink&, std::uint64_t, const double*, double>)
+    if constexpr (std::is_invocable_v<Sink&, std::uint64_t, const double*, double, std::int64_t>)
+    {
+      // The level of the index the voxel is in (the bin's level of it when binned).
+      const std::int64_t level =
+        this->LevelInBin ? this->BinFirstLevel[c - 1] + this->LevelInBin[slot] : c - 1;
+      sink(k, p, this->LevelInBin ? this->LevelRatio[level] : 1.0, level);
+    }
+    else if constexpr (std::is_invocable_v<Sink&, std::uint64_t, const double*, double>)
     {
       sink(k, p,
         this->LevelInBin ? this->LevelRatio[this->BinFirstLevel[c - 1] + this->LevelInBin[slot]]

@@ -7,6 +7,7 @@
 #ifndef mcxThreadImage_h
 #define mcxThreadImage_h
 
+#include "mcxChannelSplit.h"
 #include "mcxDepositSettings.h"
 #include "mcxFixedPoint.h"
 #include "mcxFootprint.h"
@@ -33,29 +34,32 @@ class ThreadImage
 {
 public:
   /// Deposits sample k at p by the accumulator's deposit, counting
-  /// `weight` times (finite, >= 0).
-  void Deposit(std::uint64_t k, const double p[3], double weight = 1.0) const
+  /// `weight` times (finite, >= 0). With channels (SampleAccumulator::
+  /// SetChannels), `fractions` are the sample's (mcxChannelSplit.h).
+  void Deposit(std::uint64_t k, const double p[3], double weight = 1.0,
+    const std::uint64_t* fractions = nullptr) const
   {
     if (this->Ladder)
     {
-      this->DepositFootprint(k, p, weight);
+      this->DepositFootprint(k, p, weight, fractions);
     }
     else
     {
-      this->DepositPoint(k, p, weight);
+      this->DepositPoint(k, p, weight, fractions);
     }
   }
 
   /// One count (times the perspective weight and the point's `weight`)
   /// where p lands.
-  void DepositPoint(std::uint64_t k, const double p[3], double weight = 1.0) const
+  void DepositPoint(std::uint64_t k, const double p[3], double weight = 1.0,
+    const std::uint64_t* fractions = nullptr) const
   {
     std::int64_t pixel;
     FixedSum increment;
     if (this->Binner->Bin(p, pixel, increment, weight) &&
       (!this->DepthLimits || this->Binner->Depth(p) < this->DepthLimits[pixel]))
     {
-      this->Add(k, pixel, increment);
+      this->Add(k, pixel, increment, fractions);
       if (this->Controlled && this->Binner->Bin(p, pixel, increment))
       {
         this->Sums->Add(k < this->Split ? 2 : 3, pixel, increment);
@@ -64,11 +68,11 @@ public:
   }
 
   /// DepositPoint for the n samples k[i] at (x[i], y[i], z[i]), each of
-  /// weight 1, their projection done on SIMD lanes
-  /// (PixelBinner::LocatePoints: the arrays readable up to its padding): the
-  /// same sums, bit for bit.
-  void DepositPoints(
-    const std::uint64_t* k, const double* x, const double* y, const double* z, std::size_t n) const
+  /// weight 1 (and fractions[i] with channels), their projection done on
+  /// SIMD lanes (PixelBinner::LocatePoints: the arrays readable up to its
+  /// padding): the same sums, bit for bit.
+  void DepositPoints(const std::uint64_t* k, const double* x, const double* y, const double* z,
+    std::size_t n, const std::uint64_t* const* fractions = nullptr) const
   {
     constexpr std::size_t Most = PointBatch::Capacity;
     double fx[Most], fy[Most], f[Most];
@@ -91,7 +95,7 @@ public:
           continue;
         }
       }
-      this->Add(k[i], pixel, increment);
+      this->Add(k[i], pixel, increment, fractions ? fractions[i] : nullptr);
       if (this->Controlled)
       {
         this->Sums->Add(k[i] < this->Split ? 2 : 3, pixel, increment);
@@ -113,9 +117,10 @@ public:
     {
     }
 
-    void Add(std::uint64_t k, const double p[3])
+    void Add(std::uint64_t k, const double p[3], const std::uint64_t* fractions = nullptr)
     {
       this->K[this->Count] = k;
+      this->Fractions[this->Count] = fractions;
       this->X[this->Count] = p[0];
       this->Y[this->Count] = p[1];
       this->Z[this->Count] = p[2];
@@ -127,7 +132,8 @@ public:
 
     void Flush()
     {
-      this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count);
+      this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count,
+        this->Image.Channels > 0 ? this->Fractions : nullptr);
       this->Count = 0;
     }
 
@@ -135,6 +141,7 @@ public:
     const ThreadImage& Image;
     std::size_t Count = 0;
     std::uint64_t K[Capacity];
+    const std::uint64_t* Fractions[Capacity];
     double X[Capacity] = {};
     double Y[Capacity] = {};
     double Z[Capacity] = {};
@@ -143,10 +150,11 @@ public:
   /// The footprint of the voxel centred at p (its random part, if the
   /// plan has one, drawn from the footprint stream of sample k), scaled
   /// by `weight`.
-  void DepositFootprint(std::uint64_t k, const double centre[3], double weight = 1.0) const
+  void DepositFootprint(std::uint64_t k, const double centre[3], double weight = 1.0,
+    const std::uint64_t* fractions = nullptr) const
   {
     PreparedFootprint footprint;
-    if (this->PrepareFootprint(k, centre, footprint, weight))
+    if (this->PrepareFootprint(k, centre, footprint, weight, fractions))
     {
       this->AddFootprint(footprint);
     }
@@ -167,6 +175,7 @@ public:
     double Depth = 0.0;    // along the view, for the depth limits
     bool FirstHalf = false;
     bool Weighted = false; // a weight other than 1: the shares scaled by F in any view
+    const std::uint64_t* Fractions = nullptr; // the sample's channel fractions, if split
   };
 
   /// Whether AddFootprint scales the shares (by F) rather than adding the
@@ -179,9 +188,10 @@ public:
   /// Everything of DepositFootprint but the pixel updates: true when a
   /// footprint is left to add (AddFootprint); false when the sample misses
   /// the image or was deposited as a point (beyond the tabulated depths).
-  /// `weight` (finite, >= 0) scales the footprint.
+  /// `weight` (finite, >= 0) scales the footprint; `fractions` split it
+  /// into the channels.
   bool PrepareFootprint(std::uint64_t k, const double centre[3], PreparedFootprint& footprint,
-    double weight = 1.0) const
+    double weight = 1.0, const std::uint64_t* fractions = nullptr) const
   {
     CounterRandom random(this->FootprintKey, k);
     double fx, fy, f, w;
@@ -199,7 +209,7 @@ public:
       {
         coordinate += KernelOffsetFromUniform(this->Reconstruction, 1.0 - random.NextOpenClosed());
       }
-      this->DepositPoint(k, p, weight);
+      this->DepositPoint(k, p, weight, fractions);
       return false;
     }
     if (table->Plan().IsRandom())
@@ -217,6 +227,7 @@ public:
         return false;
       }
     }
+    footprint.Fractions = fractions;
     return this->PlaceFootprint(*table, k, p, fx, fy, f, weight, random, footprint);
   }
 
@@ -269,7 +280,14 @@ public:
   [[gnu::noinline]] void AddFootprint(const PreparedFootprint& footprint) const
   {
     const bool scales = this->ScalesShares(footprint);
-    if (footprint.F != 0.0 || !scales)
+    if (footprint.Fractions && this->Channels > 0)
+    {
+      if (footprint.F != 0.0 || !scales)
+      {
+        this->AddSharesToChannels(footprint, footprint.F, scales);
+      }
+    }
+    else if (footprint.F != 0.0 || !scales)
     {
       if (footprint.FirstHalf)
       {
@@ -451,12 +469,60 @@ private:
     }
   }
 
-  void Add(std::uint64_t k, std::int64_t pixel, FixedSum increment) const
+  void Add(std::uint64_t k, std::int64_t pixel, FixedSum increment,
+    const std::uint64_t* fractions = nullptr) const
   {
-    this->Sums->Add(k < this->Split ? 0 : 1, pixel, increment);
+    const int half = k < this->Split ? 0 : 1;
+    this->Sums->Add(half, pixel, increment);
+    if (fractions && this->Channels > 0)
+    {
+      this->AddToChannels(half, pixel, increment, fractions);
+    }
+  }
+
+  // The increment split by the fractions, the last channel taking the rest:
+  // the channels' increments add up to it exactly.
+  void AddToChannels(
+    int half, std::int64_t pixel, const FixedSum& increment, const std::uint64_t* fractions) const
+  {
+    FixedSum rest = increment;
+    for (int c = 0; c + 1 < this->Channels; ++c)
+    {
+      const FixedSum part = SplitSum(increment, fractions[c]);
+      this->Sums->Add(ThreadSums::ChannelImage(c, half), pixel, part);
+      rest = rest - part;
+    }
+    this->Sums->Add(ThreadSums::ChannelImage(this->Channels - 1, half), pixel, rest);
+  }
+
+  // AddShares with each pixel's increment also split into the channels
+  // (the footprint's half; the control is AddFootprint's).
+  void AddSharesToChannels(const PreparedFootprint& footprint, double F, bool scales) const
+  {
+    const int half = footprint.FirstHalf ? 0 : 1;
+    const std::int64_t width = this->Binner->GetWidth();
+    for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
+    {
+      const std::int64_t row = (y - footprint.Origin[1]) * footprint.Stride - footprint.Origin[0];
+      for (std::int64_t x = footprint.Columns[0]; x <= footprint.Columns[1]; ++x)
+      {
+        const std::int64_t pixel = y * width + x;
+        if (this->DepthLimits && !(footprint.Depth < this->DepthLimits[pixel]))
+        {
+          continue;
+        }
+        // The increment AddShares adds (scaling by 2^32 is exact, so
+        // round(2^32 F share) is the same whichever product comes first).
+        const FixedSum increment = scales ? FixedIncrement(F * footprint.Shares[row + x])
+                                          : FixedSum(footprint.Increments[row + x]);
+        this->Sums->Add(half, pixel, increment);
+        this->AddToChannels(half, pixel, increment, footprint.Fractions);
+      }
+    }
   }
 
   ThreadSums* Sums;
+  int Channels = 0;
   bool Controlled;
   const PixelBinner* Binner;
   const FootprintLadder* Ladder;

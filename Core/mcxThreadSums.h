@@ -17,7 +17,9 @@ namespace mcx
 /// One thread's image sums: two images, the samples below the split (the
 /// first Halton half) and the rest, so that a sample adds to one sum per
 /// pixel; a controlled accumulation (SampleAccumulator::SetControlled) keeps
-/// two more, the same samples each counted once (images 2 and 3). Each sum
+/// two more, the same samples each counted once (images 2 and 3); a
+/// deposit split into channels (mcxChannelSplit.h) two more per channel
+/// (ChannelImage). Each sum
 /// is a 64-bit low word per pixel; the high words are allocated at the
 /// first carry, which never comes in parallel views (a sample adds 2^32, so
 /// a pixel carries only after 2^32 samples of one thread in one round) and
@@ -27,13 +29,23 @@ namespace mcx
 class ThreadSums
 {
 public:
+  /// The image of channel c's half (0: below the split).
+  static int ChannelImage(int c, int half) { return 4 + 2 * c + half; }
+
   /// Makes room for `pixels` sums in each of `images` images (2, or 4 when
-  /// controlled), zeroed; keeps zeroed ones of that size.
-  void Allocate(std::size_t pixels, int images = 2)
+  /// controlled) and each channel's two, zeroed; keeps zeroed ones of that
+  /// size.
+  void Allocate(std::size_t pixels, int images = 2, int channels = 0)
   {
-    for (int half = 0; half < Images; ++half)
+    const int count = ChannelImage(channels, 0);
+    if (static_cast<int>(this->Low.size()) < count)
     {
-      const std::size_t wanted = half < images ? pixels : 0;
+      this->Low.resize(static_cast<std::size_t>(count));
+      this->High.resize(static_cast<std::size_t>(count));
+    }
+    for (int half = 0; half < static_cast<int>(this->Low.size()); ++half)
+    {
+      const std::size_t wanted = half < images || (half >= 4 && half < count) ? pixels : 0;
       if (this->Low[half].size() != wanted)
       {
         // Swapped, not assigned: an image no longer used gives its memory back.
@@ -71,20 +83,41 @@ public:
 
   /// Adds both halves to `all` and the first to `firstHalf` (`pixels` each),
   /// the control images likewise to controlAll and controlFirstHalf when
-  /// both are given and the sums hold them, and zeroes the sums for the
-  /// next round.
+  /// both are given and the sums hold them, channel c's to channels[c]
+  /// (2 x `pixels`: all, then the first half) for each of `channelCount`,
+  /// and zeroes the sums for the next round.
   void CollectInto(std::size_t pixels, FixedSum* all, FixedSum* firstHalf,
-    FixedSum* controlAll = nullptr, FixedSum* controlFirstHalf = nullptr)
+    FixedSum* controlAll = nullptr, FixedSum* controlFirstHalf = nullptr,
+    FixedSum* const* channels = nullptr, int channelCount = 0)
   {
-    if (this->Low[0].size() != pixels)
+    if (this->Low.empty() || this->Low[0].size() != pixels)
     {
       return;
     }
     const bool control = controlAll && controlFirstHalf && this->Low[2].size() == pixels;
-    for (int half = 0; half < (control ? 4 : 2); ++half)
+    for (int half = 0; half < static_cast<int>(this->Low.size()); ++half)
     {
-      FixedSum* whole = half < 2 ? all : controlAll;
-      FixedSum* first = half < 2 ? firstHalf : controlFirstHalf;
+      FixedSum* whole = nullptr;
+      FixedSum* first = nullptr;
+      if (half < 2)
+      {
+        whole = all;
+        first = firstHalf;
+      }
+      else if (half < 4)
+      {
+        whole = control ? controlAll : nullptr;
+        first = controlFirstHalf;
+      }
+      else if ((half - 4) / 2 < channelCount && this->Low[half].size() == pixels)
+      {
+        whole = channels[(half - 4) / 2];
+        first = whole + pixels;
+      }
+      if (!whole)
+      {
+        continue;
+      }
       const std::uint64_t* low = this->Low[half].data();
       const std::uint64_t* high = this->High[half].empty() ? nullptr : this->High[half].data();
       for (std::size_t p = 0; p < pixels; ++p)
@@ -108,9 +141,8 @@ private:
     this->High[half][static_cast<std::size_t>(pixel)] += carry;
   }
 
-  static constexpr int Images = 4;
-  std::vector<std::uint64_t> Low[Images];
-  std::vector<std::uint64_t> High[Images];
+  std::vector<std::vector<std::uint64_t>> Low{ 4 };
+  std::vector<std::vector<std::uint64_t>> High{ 4 };
 };
 
 } // namespace mcx

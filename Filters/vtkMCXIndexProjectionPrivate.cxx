@@ -2,6 +2,7 @@
 
 #include "mcxEveryVoxelSource.h"
 #include "vtkMCXBatchedForPrivate.h"
+#include "vtkMCXChannelFractionsPrivate.h"
 #include "vtkMCXDistributed.h"
 #include "vtkMCXIndexView.h"
 #include "vtkMCXMemoryCheck.h"
@@ -68,6 +69,25 @@ public:
 
   bool IsEmpty() const { return this->Table.IsEmpty(); }
 
+  /// Splits every deposit into the channels of `fractions` (per level of
+  /// the index, mcx::ChannelFractionTable); false (reported) when they do
+  /// not fit the index. Call it after Prepare.
+  bool SplitIntoChannels(vtkMCXProjector* self, vtkPiecewiseFunction* tf)
+  {
+    this->Channels = self->GetNumberOfChannels();
+    if (this->Channels == 0)
+    {
+      return true;
+    }
+    const std::string problem = mcx::ChannelFractionTable(self, this->View, tf, this->Fractions);
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(this->Self, "Cannot project into channels: " << problem);
+      return false;
+    }
+    return true;
+  }
+
   /// Voxels of non-zero weight in the whole volume (after Prepare, with
   /// EveryVoxel or ChoosesDeposit).
   std::int64_t KeptVoxels() const { return this->KeptVoxelCount; }
@@ -111,11 +131,10 @@ public:
     if (prefix && projection.Completed && prefix->Sums.size() == projection.Sums.size())
     {
       // The prefix's samples are all in the first Halton half of the longer run.
-      const std::size_t pixels = projection.Sums.size() / 2;
-      for (std::size_t p = 0; p < pixels; ++p)
+      AddAsFirstHalf(prefix->Sums, projection.Sums);
+      for (std::size_t c = 0; c < projection.ChannelSums.size(); ++c)
       {
-        projection.Sums[p] += prefix->Sums[p];
-        projection.Sums[pixels + p] += prefix->Sums[p];
+        AddAsFirstHalf(prefix->ChannelSums[c], projection.ChannelSums[c]);
       }
     }
     return projection;
@@ -161,6 +180,26 @@ public:
   double FootprintReach = 16.0;
 
 private:
+  // Adds a shorter run's sums (all of them) to a longer run's all and first half.
+  static void AddAsFirstHalf(
+    const std::vector<mcx::FixedSum>& prefix, std::vector<mcx::FixedSum>& sums)
+  {
+    const std::size_t pixels = sums.size() / 2;
+    for (std::size_t p = 0; p < pixels && prefix.size() == sums.size(); ++p)
+    {
+      sums[p] += prefix[p];
+      sums[pixels + p] += prefix[p];
+    }
+  }
+
+  // The channel fractions of a sample in `level` (null without channels).
+  const std::uint64_t* FractionsOf(std::int64_t level) const
+  {
+    return this->Channels > 0
+      ? this->Fractions.data() + static_cast<std::size_t>(level) * this->Channels
+      : nullptr;
+  }
+
   // Deposits into a new accumulator for the view, then collects the sums
   // into the projection (added over the processes when distributed).
   template <typename Deposit>
@@ -172,6 +211,7 @@ private:
     this->View.SourceToWorld(origin, matrix);
     const mcx::DepositSettings settings = this->Settings();
     accumulator.Reset(this->Geometry, origin, matrix, std::vector<double>(), settings);
+    accumulator.SetChannels(this->Channels);
     projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
     projection.RandomParts = RandomPartsOf(accumulator, settings, this->FootprintReach);
     projection.Deposit = static_cast<int>(this->DepositMode);
@@ -204,6 +244,10 @@ private:
         if (projection.Completed)
         {
           mcx::SumExactly(this->Controller, projection.Sums);
+          for (std::vector<mcx::FixedSum>& channel : projection.ChannelSums)
+          {
+            mcx::SumExactly(this->Controller, channel);
+          }
         }
       }
     }
@@ -268,7 +312,8 @@ private:
       {
         const Accumulator::ThreadImage image = accumulator.Local();
         source.Generate(b, e,
-          [&](std::uint64_t k, const double p[3], double weight) { image.Deposit(k, p, weight); });
+          [&](std::uint64_t k, const double p[3], double weight, std::int64_t level)
+          { image.Deposit(k, p, weight, this->FractionsOf(level)); });
       });
   }
 
@@ -332,12 +377,28 @@ private:
         // SIMD lanes: their division and square root pay for the batch's
         // stores and loads, a parallel view's few products do not. Each
         // deposit gets a loop of its own.
-        if (this->DepositMode == mcx::Deposit::Point && this->Geometry.Perspective)
+        // Split into channels, each sample's fractions are its level's.
+        const bool batched = this->DepositMode == mcx::Deposit::Point && this->Geometry.Perspective;
+        if (batched && this->Channels > 0)
+        {
+          Accumulator::ThreadImage::PointBatch points(image);
+          auto batch = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
+          { points.Add(k, p, this->FractionsOf(level)); };
+          generate(batch);
+          points.Flush();
+        }
+        else if (batched)
         {
           Accumulator::ThreadImage::PointBatch points(image);
           auto batch = [&](std::uint64_t k, const double p[3]) { points.Add(k, p); };
           generate(batch);
           points.Flush();
+        }
+        else if (this->Channels > 0)
+        {
+          auto deposit = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
+          { image.Deposit(k, p, 1.0, this->FractionsOf(level)); };
+          generate(deposit);
         }
         else
         {
@@ -357,6 +418,8 @@ private:
   double Integral = 0.0;
   std::vector<double> LevelWeights; // per level, with EveryVoxel
   std::int64_t KeptVoxelCount = 0;  // in the whole volume, with EveryVoxel
+  int Channels = 0;                 // the deposit's split (SplitIntoChannels)
+  std::vector<std::uint64_t> Fractions; // Channels per level
 };
 
 // The sample count a target asks for, measured on a projection whose
@@ -560,7 +623,8 @@ bool ProjectIndex(vtkMCXProjector* self, vtkImageData* index, const int wholeExt
   sampler.DepositMode = static_cast<mcx::Deposit>(self->GetDeposit());
   sampler.FootprintReach = self->GetFootprintReach();
   sampler.ChoosesDeposit = targeted && self->GetChooseDepositForTarget();
-  if (!sampler.Prepare(index, self->GetTransferFunction()))
+  if (!sampler.Prepare(index, self->GetTransferFunction()) ||
+    !sampler.SplitIntoChannels(self, self->GetTransferFunction()))
   {
     return false;
   }

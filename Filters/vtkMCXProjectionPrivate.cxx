@@ -25,13 +25,22 @@ void CollectSums(Accumulator& accumulator, Projection& projection)
 {
   const std::size_t pixels = accumulator.NumberOfPixels();
   projection.Sums.assign(2 * pixels, mcx::FixedSum(0));
+  projection.ChannelSums.assign(static_cast<std::size_t>(accumulator.GetChannels()),
+    std::vector<mcx::FixedSum>(2 * pixels, mcx::FixedSum(0)));
+  std::vector<mcx::FixedSum*> channels;
+  for (std::vector<mcx::FixedSum>& channel : projection.ChannelSums)
+  {
+    channels.push_back(channel.data());
+  }
+  mcx::FixedSum* const* channelSums = channels.empty() ? nullptr : channels.data();
   if (accumulator.IsControlled())
   {
     projection.OnceSums.assign(2 * pixels, mcx::FixedSum(0));
     accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels,
-      projection.OnceSums.data(), projection.OnceSums.data() + pixels);
+      projection.OnceSums.data(), projection.OnceSums.data() + pixels, channelSums);
     return;
   }
-  accumulator.Collect(projection.Sums.data(), projection.Sums.data() + pixels);
+  accumulator.Collect(
+    projection.Sums.data(), projection.Sums.data() + pixels, nullptr, nullptr, channelSums);
 }
 }

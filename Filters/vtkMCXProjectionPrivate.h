@@ -28,6 +28,9 @@ using Accumulator = mcx::SampleAccumulator<mcx::SMPExecutor>;
 struct Projection
 {
   std::vector<mcx::FixedSum> Sums;
+  // Per channel of a split deposit (vtkMCXProjector::SetNumberOfChannels),
+  // laid out as Sums: their sums add up to Sums exactly.
+  std::vector<std::vector<mcx::FixedSum>> ChannelSums;
   std::uint64_t Count = 0;
   double SampleWeight = 0.0;
   double Integral = 0.0;
@@ -65,6 +68,18 @@ struct Projection
     sums.Integral = this->Integral;
     sums.PixelArea = this->PixelArea;
     return sums;
+  }
+
+  /// Channel c's relative RMS error, estimated from its halves as the
+  /// image's is (a control image is the total's alone).
+  double ChannelEstimatedError(std::size_t c) const
+  {
+    if (this->EveryVoxel && this->Count > 0)
+    {
+      return std::nan("");
+    }
+    return (this->FallsAsInverseM ? mcx::FootprintErrorCalibration : 1.0) *
+      mcx::EstimateRelativeError(this->ChannelSums[c], this->Count);
   }
 
   double EstimatedError() const

@@ -5,6 +5,7 @@
 // vtkMCXProjectionPrivate.h), then written out as line integrals.
 #include "vtkMCXProjector.h"
 
+#include "mcxChannelSplit.h"
 #include "mcxSampleGenerator.h"
 #include "vtkMCXCloudProjectionPrivate.h"
 #include "vtkMCXDistributed.h"
@@ -19,7 +20,9 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
@@ -27,6 +30,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkMCXProjector);
 vtkCxxSetObjectMacro(vtkMCXProjector, Controller, vtkMultiProcessController);
@@ -74,6 +78,41 @@ void WriteImage(const Projection& projection, const mcx::ProjectionGeometry& geo
     mcx::AddFieldValue(
       fd, vtkMCXTypes::StrategyName(), static_cast<long long>(projection.Strategy));
   }
+}
+}
+
+namespace
+{
+// Stage 3 of a split deposit: the channels' line integrals, one component
+// each, and their estimated errors.
+void WriteChannels(
+  const Projection& projection, const mcx::ProjectionGeometry& geometry, vtkImageData* output)
+{
+  const vtkIdType pixels = output->GetNumberOfPoints();
+  const int channels = static_cast<int>(projection.ChannelSums.size());
+  if (channels == 0)
+  {
+    return;
+  }
+  vtkNew<vtkDoubleArray> lines;
+  lines->SetName(vtkMCXTypes::ChannelLineIntegralName());
+  lines->SetNumberOfComponents(channels);
+  lines->SetNumberOfTuples(pixels);
+  vtkNew<vtkDoubleArray> errors;
+  errors->SetName(vtkMCXTypes::ChannelEstimatedRelativeErrorName());
+  std::vector<double> one(static_cast<std::size_t>(pixels));
+  for (int c = 0; c < channels; ++c)
+  {
+    mcx::FixedSumsToValues(projection.ChannelSums[static_cast<std::size_t>(c)].data(), one.size(),
+      projection.SampleWeight, geometry.BeamCrossSection(), one.data());
+    for (vtkIdType p = 0; p < pixels; ++p)
+    {
+      lines->SetTypedComponent(p, c, one[static_cast<std::size_t>(p)]);
+    }
+    errors->InsertNextValue(projection.ChannelEstimatedError(static_cast<std::size_t>(c)));
+  }
+  output->GetFieldData()->AddArray(errors);
+  output->GetPointData()->AddArray(lines);
 }
 }
 
@@ -210,7 +249,59 @@ int vtkMCXProjector::RequestData(
          "FootprintReach avoids it).");
   }
   WriteImage(projection, geometry, this->AllocateLineIntegral(output), output->GetFieldData());
+  WriteChannels(projection, geometry, output);
   return 1;
+}
+
+void vtkMCXProjector::SetNumberOfChannels(int channels)
+{
+  const int clamped = std::min(std::max(channels, 0), static_cast<int>(mcx::MaximumChannels));
+  if (clamped != this->GetNumberOfChannels())
+  {
+    this->ChannelFractions.resize(static_cast<std::size_t>(clamped));
+    this->Modified();
+  }
+}
+
+int vtkMCXProjector::GetNumberOfChannels() const
+{
+  return static_cast<int>(this->ChannelFractions.size());
+}
+
+void vtkMCXProjector::SetChannelFraction(int c, vtkPiecewiseFunction* fraction)
+{
+  if (c < 0 || c >= this->GetNumberOfChannels())
+  {
+    vtkErrorMacro("SetChannelFraction: channel " << c << " is not one of the "
+                                                 << this->GetNumberOfChannels()
+                                                 << " channels (SetNumberOfChannels first).");
+    return;
+  }
+  if (this->ChannelFractions[static_cast<std::size_t>(c)] != fraction)
+  {
+    this->ChannelFractions[static_cast<std::size_t>(c)] = fraction;
+    this->Modified();
+  }
+}
+
+vtkPiecewiseFunction* vtkMCXProjector::GetChannelFraction(int c) const
+{
+  return c >= 0 && c < this->GetNumberOfChannels()
+    ? this->ChannelFractions[static_cast<std::size_t>(c)].Get()
+    : nullptr;
+}
+
+vtkMTimeType vtkMCXProjector::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  for (const auto& fraction : this->ChannelFractions)
+  {
+    if (fraction)
+    {
+      t = std::max(t, fraction->GetMTime());
+    }
+  }
+  return t;
 }
 
 void vtkMCXProjector::PrintSelf(ostream& os, vtkIndent indent)
@@ -226,4 +317,9 @@ void vtkMCXProjector::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TargetQuantizationLevels: " << this->TargetQuantizationLevels << "\n";
   os << indent << "MaximumSampleExponent: " << this->MaximumSampleExponent << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "NumberOfChannels: " << this->GetNumberOfChannels() << "\n";
+  for (std::size_t c = 0; c < this->ChannelFractions.size(); ++c)
+  {
+    os << indent << "ChannelFraction " << c << ": " << this->ChannelFractions[c].Get() << "\n";
+  }
 }

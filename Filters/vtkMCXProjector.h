@@ -28,7 +28,8 @@
  * the error falls about as M^-1 instead of M^-1/2. A kernel reaching more than FootprintReach
  * pixels along a projected voxel axis is split into a random coarse part and a deposited fine part,
  * which bounds a sample's cost and keeps the estimate unbiased. FOOTPRINT is the default; POINT is
- * the paper's estimator: one count where the sample's random offset lands. The estimand is the same.
+ * the paper's estimator: one count where the sample's random offset lands. The estimand is the
+ * same.
  *
  * Target-accuracy controls (index input): with TargetRelativeError or
  * TargetQuantizationLevels set, a pilot run (at least 2^16 - 1 samples, about
@@ -39,6 +40,18 @@
  * maximum of the image -- and checked again on the larger run (up to three
  * times), within 2^MaximumSampleExponent - 1 samples. SampleExponent is then
  * ignored, and "SampleCount" tells the count used.
+ *
+ * Channels (index input): with SetNumberOfChannels(K) and a fraction
+ * function per channel (SetChannelFraction), each sample drawn under the
+ * TF is also split into K line-integral channels by its level's fractions
+ * f_c(value) / sum over c of f_c(value): one sampling pass makes the total
+ * image and the K channel images (e.g. each material's g/cm^3 x mm for a
+ * polychromatic radiograph, vtkMCXPolychromaticRadiograph). The output
+ * then carries "ChannelLineIntegral" (K components) and field data
+ * "ChannelEstimatedRelativeError" (K values, estimated as the image's).
+ * The split is exact: the channels' fixed-point sums add up to the total's,
+ * bit for bit, for any number of threads and processes, every deposit and
+ * strategy and the target controls (which aim at the total's error).
  */
 #ifndef vtkMCXProjector_h
 #define vtkMCXProjector_h
@@ -46,6 +59,10 @@
 #include "MonteCarloXRayFiltersModule.h" // for export macro
 #include "vtkMCXPointSampler.h"          // for the sample-count limits
 #include "vtkMCXProjectorBase.h"
+#include "vtkPiecewiseFunction.h" // for the channel fractions
+#include "vtkSmartPointer.h"      // for the channel fractions
+
+#include <vector> // for the channel fractions
 
 class vtkMultiProcessController;
 
@@ -145,6 +162,23 @@ public:
   vtkGetMacro(MaximumSampleExponent, int);
   ///@}
 
+  ///@{
+  /**
+   * The channels the deposit is split into (0, the default: none; at most
+   * 64) and channel c's fraction function of the data value (>= 0; null:
+   * no image can be made while channels are asked for). At every level the
+   * TF weighs, the fractions must not all be 0. Setting fewer channels
+   * drops the functions beyond them.
+   */
+  void SetNumberOfChannels(int channels);
+  int GetNumberOfChannels() const;
+  void SetChannelFraction(int c, vtkPiecewiseFunction* fraction);
+  vtkPiecewiseFunction* GetChannelFraction(int c) const;
+  ///@}
+
+  /** Folds in the channel fraction functions' times. */
+  vtkMTimeType GetMTime() override;
+
 protected:
   vtkMCXProjector();
   ~vtkMCXProjector() override;
@@ -164,6 +198,7 @@ protected:
   bool ChooseDepositForTarget = false;
   int MaximumSampleExponent = 30;
   vtkMultiProcessController* Controller = nullptr;
+  std::vector<vtkSmartPointer<vtkPiecewiseFunction>> ChannelFractions;
 
 private:
   vtkMCXProjector(const vtkMCXProjector&) = delete;

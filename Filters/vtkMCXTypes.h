@@ -138,6 +138,11 @@ public:
   static const char* ProjectionMatrixName() { return "ProjectionMatrix"; }
   static const char* SampleCountName() { return "SampleCount"; }
   static const char* EstimatedRelativeErrorName() { return "EstimatedRelativeError"; }
+  /// A projector's output split into channels (vtkMCXProjector::
+  /// SetNumberOfChannels): their line integrals, one component each, and
+  /// field data of their estimated relative errors, one value each.
+  static const char* ChannelLineIntegralName() { return "ChannelLineIntegral"; }
+  static const char* ChannelEstimatedRelativeErrorName() { return "ChannelEstimatedRelativeError"; }
   static const char* IntensityName() { return "Intensity"; }
   static const char* AttenuationName() { return "Attenuation"; }
   ///@}

@@ -4,6 +4,7 @@
 // result on one thread and on several, a thread's 64-bit sums carrying
 // exactly, the footprint tables' supports and scale choice, and the view
 // order's sort and weights.
+#include "mcxChannelSplit.h"
 #include "mcxCountingSort.h"
 #include "mcxEveryVoxelOrder.h"
 #include "mcxEveryVoxelSource.h"
@@ -1275,6 +1276,131 @@ TEST(SampleAccumulator, WeightedPointsAddTheirWeightTimesTheirDeposit)
       }
       EXPECT_EQ(0u, outside) << what;
       EXPECT_GT(reached, entries / 4) << what;
+    }
+  }
+}
+
+TEST(ChannelSplit, SplitsAreFloorsOfTheProductAndFractionsSumToOne)
+{
+  std::mt19937_64 random(7);
+  for (int i = 0; i < 2000; ++i)
+  {
+    const std::uint64_t increment = random() >> (i % 40);
+    const std::uint64_t fraction = random() % (mcx::FractionOne + 1);
+    // floor(increment x fraction / 2^32), from the two 32-bit halves of the increment.
+    const std::uint64_t high = increment >> 32, low = increment & 0xFFFFFFFFu;
+    const std::uint64_t expected = high * fraction + ((low * fraction) >> 32);
+    ASSERT_EQ(expected, mcx::SplitWord(increment, fraction)) << increment << " " << fraction;
+    // A 128-bit increment 2^64 h + l splits into 2^32 h f + (l's split).
+    const std::uint64_t h = random() >> 40;
+    const mcx::FixedSum wide = (mcx::FixedSum(h) << 64) + mcx::FixedSum(increment);
+    const mcx::FixedSum part = mcx::SplitSum(wide, fraction);
+    EXPECT_TRUE(part == (mcx::FixedSum(h * fraction) << 32) + mcx::FixedSum(expected));
+  }
+  EXPECT_EQ(12345u, mcx::SplitWord(12345, mcx::FractionOne));
+  EXPECT_EQ(0u, mcx::SplitWord(~std::uint64_t(0), 0));
+
+  const double weights[4] = { 0.2, 0.0, 1.0 / 3.0, 0.7 };
+  std::uint64_t fractions[4];
+  ASSERT_TRUE(mcx::FixedFractions(weights, 4, fractions));
+  EXPECT_EQ(mcx::FractionOne, fractions[0] + fractions[1] + fractions[2] + fractions[3]);
+  EXPECT_EQ(0u, fractions[1]);
+  EXPECT_NEAR(0.2 / (0.2 + 1.0 / 3.0 + 0.7), fractions[0] / mcx::FixedOne, 1e-9);
+  const double none[2] = { 0.0, 0.0 }, negative[2] = { 1.0, -0.1 }, nan[2] = { 1.0, std::nan("") };
+  EXPECT_FALSE(mcx::FixedFractions(none, 2, fractions));
+  EXPECT_FALSE(mcx::FixedFractions(negative, 2, fractions));
+  EXPECT_FALSE(mcx::FixedFractions(nan, 2, fractions));
+}
+
+namespace
+{
+// The total's sums and each channel's (all, then the first half) of the
+// cloud's points deposited once each, point i split by fractions[i].
+template <typename Executor>
+std::vector<std::vector<mcx::FixedSum>> ChannelSums(const mcx::ProjectionGeometry& g,
+  const mcx::DepositSettings& settings, const std::vector<float>& cloud,
+  const std::vector<std::array<std::uint64_t, 3>>& fractions)
+{
+  const double origin[3] = { 0, 0, 0 };
+  const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  mcx::SampleAccumulator<Executor> accumulator;
+  accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
+  const std::uint64_t count = cloud.size() / 3;
+  accumulator.SetSplit(mcx::FirstHalfSize(count));
+  accumulator.SetChannels(3);
+  Executor().For(0, static_cast<std::int64_t>(count), 64,
+    [&](std::int64_t b, std::int64_t e)
+    {
+      const auto image = accumulator.Local();
+      for (std::int64_t i = b; i < e; ++i)
+      {
+        const double p[3] = { cloud[3 * i], cloud[3 * i + 1], cloud[3 * i + 2] };
+        image.Deposit(
+          static_cast<std::uint64_t>(i), p, 1.0, fractions[static_cast<std::size_t>(i)].data());
+      }
+    });
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  std::vector<std::vector<mcx::FixedSum>> sums(4, std::vector<mcx::FixedSum>(2 * pixels, 0));
+  mcx::FixedSum* channels[3] = { sums[1].data(), sums[2].data(), sums[3].data() };
+  accumulator.Collect(sums[0].data(), sums[0].data() + pixels, nullptr, nullptr, channels);
+  return sums;
+}
+}
+
+TEST(ChannelSplit, ChannelsAddUpToTheTotalAndAWholeChannelIsItsSamplesAlone)
+{
+  // One deposit split into three channels: the total is the unsplit
+  // deposit's, bit for bit; the channels add up to it exactly in every
+  // pixel and half; a sample given wholly to a channel adds there what it
+  // adds alone; any number of threads gives the same sums.
+  const std::uint64_t count = 1500;
+  const std::vector<float> cloud = RandomCloud(count);
+  std::vector<std::array<std::uint64_t, 3>> whole(count), mixed(count);
+  std::vector<float> ofChannel[3];
+  for (auto& weights : ofChannel)
+  {
+    weights.assign(count, 0.0f);
+  }
+  for (std::uint64_t i = 0; i < count; ++i)
+  {
+    whole[i] = { 0, 0, 0 };
+    whole[i][i % 3] = mcx::FractionOne;
+    ofChannel[i % 3][i] = 1.0f;
+    const double weights[3] = { 0.1 + (i % 5), 0.25 * (i % 2), 1.0 / (1 + i % 7) };
+    ASSERT_TRUE(mcx::FixedFractions(weights, 3, mixed[i].data()));
+  }
+  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
+  mcx::ProjectionGeometry parallel = perspective;
+  parallel.Perspective = false;
+  for (const bool footprint : { false, true })
+  {
+    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
+    {
+      const mcx::DepositSettings settings = RandomCloudDeposit(footprint);
+      const std::string what = std::string(footprint ? "footprint" : "point") +
+        (g.Perspective ? ", perspective" : ", parallel");
+      using Serial = mcx::SerialExecutor;
+      const auto unsplit = WeightedSums<Serial>(g, settings, cloud, 0, count, nullptr);
+      for (const auto* fractions : { &whole, &mixed })
+      {
+        const auto sums = ChannelSums<Serial>(g, settings, cloud, *fractions);
+        EXPECT_TRUE(sums[0] == unsplit) << what;
+        EXPECT_TRUE(sums == ChannelSums<ThreadExecutor>(g, settings, cloud, *fractions)) << what;
+        std::size_t reached = 0;
+        for (std::size_t e = 0; e < unsplit.size(); ++e)
+        {
+          ASSERT_TRUE(sums[1][e] + sums[2][e] + sums[3][e] == sums[0][e]) << what << " " << e;
+          reached += sums[3][e] != mcx::FixedSum(0) ? 1 : 0;
+        }
+        EXPECT_GT(reached, unsplit.size() / 4) << what;
+      }
+      const auto split = ChannelSums<Serial>(g, settings, cloud, whole);
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_TRUE(
+          split[1 + c] == WeightedSums<Serial>(g, settings, cloud, 0, count, ofChannel[c].data()))
+          << what << ", channel " << c;
+      }
     }
   }
 }

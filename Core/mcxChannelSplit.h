@@ -1,0 +1,82 @@
+// One deposit, several line-integral channels: each fixed-point increment
+// of a sample is split by its fractions (the shares of the sample's weight
+// that belong to each channel, e.g. the mass fractions of the materials at
+// its voxel's CT number), so that one pass of samples drawn under the total
+// weight makes the total's image and K channel images at once. The split is
+// exact: the channels' increments add up to the total's increment, so their
+// integer sums add up to its sums, bit for bit, in every view and deposit.
+#ifndef mcxChannelSplit_h
+#define mcxChannelSplit_h
+
+#include "mcxFixedPoint.h"
+#include "mcxWideInteger.h"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace mcx
+{
+
+/// The most channels a deposit splits into.
+constexpr int MaximumChannels = 64;
+
+/// The fractions' fixed point: 2^32 is the whole increment.
+constexpr std::uint64_t FractionOne = std::uint64_t(1) << 32;
+
+/// floor(increment * fraction / 2^32) for fraction <= 2^32: below 2^64.
+inline std::uint64_t SplitWord(std::uint64_t increment, std::uint64_t fraction)
+{
+  std::uint64_t high, low;
+  Multiply64(increment, fraction, high, low);
+  return (high << 32) | (low >> 32);
+}
+
+/// The same for a 128-bit increment (below 2^96, far beyond any pixel's).
+inline FixedSum SplitSum(const FixedSum& increment, std::uint64_t fraction)
+{
+  FixedSum part = SplitWord(LowHalf(increment), fraction);
+  if (const std::uint64_t high = HighHalf(increment))
+  {
+    std::uint64_t productHigh, productLow;
+    Multiply64(high, fraction, productHigh, productLow);
+    part += ((FixedSum(productHigh) << 64) + FixedSum(productLow)) << 32;
+  }
+  return part;
+}
+
+/// Channel fractions of `weights` (each >= 0, their sum > 0) in fixed
+/// point: round(2^32 w / sum) for all but the last channel, which takes the
+/// rest, so that they sum to exactly 2^32. False when no weight is positive
+/// (or one is not finite): then nothing is written.
+inline bool FixedFractions(const double* weights, int channels, std::uint64_t* fractions)
+{
+  double sum = 0.0;
+  for (int c = 0; c < channels; ++c)
+  {
+    if (!(weights[c] >= 0.0) || !std::isfinite(weights[c]))
+    {
+      return false;
+    }
+    sum += weights[c];
+  }
+  if (!(sum > 0.0) || !std::isfinite(sum))
+  {
+    return false;
+  }
+  std::uint64_t given = 0;
+  for (int c = 0; c + 1 < channels; ++c)
+  {
+    std::uint64_t share = static_cast<std::uint64_t>(
+      std::floor(weights[c] / sum * static_cast<double>(FractionOne) + 0.5));
+    share = share > FractionOne - given ? FractionOne - given : share;
+    fractions[c] = share;
+    given += share;
+  }
+  fractions[channels - 1] = FractionOne - given;
+  return true;
+}
+
+} // namespace mcx
+
+#endif
