@@ -77,6 +77,64 @@ inline bool FixedFractions(const double* weights, int channels, std::uint64_t* f
   return true;
 }
 
+/// A sample's parts of the channels it has a share in: Count pairs of a
+/// channel and its fraction (> 0), the fractions summing to 2^32. Each
+/// pair but the last takes the floor of its fraction of an increment, the
+/// last takes the rest, so that the parts add up to the increment exactly
+/// and a channel without a share is not touched (materials mixed linearly
+/// between neighbouring anchors: two parts, whatever the number of channels).
+struct ChannelShares
+{
+  int Count = 0;
+  const std::uint32_t* Channels = nullptr;
+  const std::uint64_t* Fractions = nullptr;
+};
+
+/// The shares of each level of an index, from its channel fractions
+/// (FixedFractions per level; a level of no positive fraction has no
+/// shares: its deposits reach no channel).
+class ChannelShareTable
+{
+public:
+  void Build(const std::vector<std::uint64_t>& fractions, int channels)
+  {
+    const std::size_t levels = channels > 0 ? fractions.size() / channels : 0;
+    this->Channels.clear();
+    this->Fractions.clear();
+    std::vector<std::size_t> begin(levels + 1, 0);
+    for (std::size_t l = 0; l < levels; ++l)
+    {
+      for (int c = 0; c < channels; ++c)
+      {
+        const std::uint64_t fraction = fractions[l * channels + c];
+        if (fraction > 0)
+        {
+          this->Channels.push_back(static_cast<std::uint32_t>(c));
+          this->Fractions.push_back(fraction);
+        }
+      }
+      begin[l + 1] = this->Channels.size();
+    }
+    this->Shares.assign(levels, ChannelShares());
+    for (std::size_t l = 0; l < levels; ++l)
+    {
+      this->Shares[l].Count = static_cast<int>(begin[l + 1] - begin[l]);
+      this->Shares[l].Channels = this->Channels.data() + begin[l];
+      this->Shares[l].Fractions = this->Fractions.data() + begin[l];
+    }
+  }
+
+  const ChannelShares* Of(std::int64_t level) const
+  {
+    return &this->Shares[static_cast<std::size_t>(level)];
+  }
+
+private:
+  std::vector<std::uint32_t> Channels;
+  std::vector<std::uint64_t> Fractions;
+  std::vector<ChannelShares> Shares;
+};
+
 } // namespace mcx
 
 #endif

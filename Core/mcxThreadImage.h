@@ -35,31 +35,31 @@ class ThreadImage
 public:
   /// Deposits sample k at p by the accumulator's deposit, counting
   /// `weight` times (finite, >= 0). With channels (SampleAccumulator::
-  /// SetChannels), `fractions` are the sample's (mcxChannelSplit.h).
+  /// SetChannels), `shares` are the sample's (mcxChannelSplit.h).
   void Deposit(std::uint64_t k, const double p[3], double weight = 1.0,
-    const std::uint64_t* fractions = nullptr) const
+    const ChannelShares* shares = nullptr) const
   {
     if (this->Ladder)
     {
-      this->DepositFootprint(k, p, weight, fractions);
+      this->DepositFootprint(k, p, weight, shares);
     }
     else
     {
-      this->DepositPoint(k, p, weight, fractions);
+      this->DepositPoint(k, p, weight, shares);
     }
   }
 
   /// One count (times the perspective weight and the point's `weight`)
   /// where p lands.
   void DepositPoint(std::uint64_t k, const double p[3], double weight = 1.0,
-    const std::uint64_t* fractions = nullptr) const
+    const ChannelShares* shares = nullptr) const
   {
     std::int64_t pixel;
     FixedSum increment;
     if (this->Binner->Bin(p, pixel, increment, weight) &&
       (!this->DepthLimits || this->Binner->Depth(p) < this->DepthLimits[pixel]))
     {
-      this->Add(k, pixel, increment, fractions);
+      this->Add(k, pixel, increment, shares);
       if (this->Controlled && this->Binner->Bin(p, pixel, increment))
       {
         this->Sums->Add(k < this->Split ? 2 : 3, pixel, increment);
@@ -68,11 +68,11 @@ public:
   }
 
   /// DepositPoint for the n samples k[i] at (x[i], y[i], z[i]), each of
-  /// weight 1 (and fractions[i] with channels), their projection done on
+  /// weight 1 (and shares[i] with channels), their projection done on
   /// SIMD lanes (PixelBinner::LocatePoints: the arrays readable up to its
   /// padding): the same sums, bit for bit.
   void DepositPoints(const std::uint64_t* k, const double* x, const double* y, const double* z,
-    std::size_t n, const std::uint64_t* const* fractions = nullptr) const
+    std::size_t n, const ChannelShares* const* shares = nullptr) const
   {
     constexpr std::size_t Most = PointBatch::Capacity;
     double fx[Most], fy[Most], f[Most];
@@ -95,7 +95,7 @@ public:
           continue;
         }
       }
-      this->Add(k[i], pixel, increment, fractions ? fractions[i] : nullptr);
+      this->Add(k[i], pixel, increment, shares ? shares[i] : nullptr);
       if (this->Controlled)
       {
         this->Sums->Add(k[i] < this->Split ? 2 : 3, pixel, increment);
@@ -117,10 +117,10 @@ public:
     {
     }
 
-    void Add(std::uint64_t k, const double p[3], const std::uint64_t* fractions = nullptr)
+    void Add(std::uint64_t k, const double p[3], const ChannelShares* shares = nullptr)
     {
       this->K[this->Count] = k;
-      this->Fractions[this->Count] = fractions;
+      this->Shares[this->Count] = shares;
       this->X[this->Count] = p[0];
       this->Y[this->Count] = p[1];
       this->Z[this->Count] = p[2];
@@ -133,7 +133,7 @@ public:
     void Flush()
     {
       this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count,
-        this->Image.Channels > 0 ? this->Fractions : nullptr);
+        this->Image.Channels > 0 ? this->Shares : nullptr);
       this->Count = 0;
     }
 
@@ -141,7 +141,7 @@ public:
     const ThreadImage& Image;
     std::size_t Count = 0;
     std::uint64_t K[Capacity];
-    const std::uint64_t* Fractions[Capacity];
+    const ChannelShares* Shares[Capacity];
     double X[Capacity] = {};
     double Y[Capacity] = {};
     double Z[Capacity] = {};
@@ -151,10 +151,10 @@ public:
   /// plan has one, drawn from the footprint stream of sample k), scaled
   /// by `weight`.
   void DepositFootprint(std::uint64_t k, const double centre[3], double weight = 1.0,
-    const std::uint64_t* fractions = nullptr) const
+    const ChannelShares* shares = nullptr) const
   {
     PreparedFootprint footprint;
-    if (this->PrepareFootprint(k, centre, footprint, weight, fractions))
+    if (this->PrepareFootprint(k, centre, footprint, weight, shares))
     {
       this->AddFootprint(footprint);
     }
@@ -175,7 +175,7 @@ public:
     double Depth = 0.0;    // along the view, for the depth limits
     bool FirstHalf = false;
     bool Weighted = false; // a weight other than 1: the shares scaled by F in any view
-    const std::uint64_t* Fractions = nullptr; // the sample's channel fractions, if split
+    const ChannelShares* Split = nullptr; // the sample's channel shares, if split
   };
 
   /// Whether AddFootprint scales the shares (by F) rather than adding the
@@ -188,10 +188,10 @@ public:
   /// Everything of DepositFootprint but the pixel updates: true when a
   /// footprint is left to add (AddFootprint); false when the sample misses
   /// the image or was deposited as a point (beyond the tabulated depths).
-  /// `weight` (finite, >= 0) scales the footprint; `fractions` split it
+  /// `weight` (finite, >= 0) scales the footprint; `shares` split it
   /// into the channels.
   bool PrepareFootprint(std::uint64_t k, const double centre[3], PreparedFootprint& footprint,
-    double weight = 1.0, const std::uint64_t* fractions = nullptr) const
+    double weight = 1.0, const ChannelShares* shares = nullptr) const
   {
     CounterRandom random(this->FootprintKey, k);
     double fx, fy, f, w;
@@ -209,7 +209,7 @@ public:
       {
         coordinate += KernelOffsetFromUniform(this->Reconstruction, 1.0 - random.NextOpenClosed());
       }
-      this->DepositPoint(k, p, weight, fractions);
+      this->DepositPoint(k, p, weight, shares);
       return false;
     }
     if (table->Plan().IsRandom())
@@ -227,7 +227,7 @@ public:
         return false;
       }
     }
-    footprint.Fractions = fractions;
+    footprint.Split = shares;
     return this->PlaceFootprint(*table, k, p, fx, fy, f, weight, random, footprint);
   }
 
@@ -280,7 +280,7 @@ public:
   [[gnu::noinline]] void AddFootprint(const PreparedFootprint& footprint) const
   {
     const bool scales = this->ScalesShares(footprint);
-    if (footprint.Fractions && this->Channels > 0)
+    if (footprint.Split && this->Channels > 0)
     {
       if (footprint.F != 0.0 || !scales)
       {
@@ -470,36 +470,55 @@ private:
   }
 
   void Add(std::uint64_t k, std::int64_t pixel, FixedSum increment,
-    const std::uint64_t* fractions = nullptr) const
+    const ChannelShares* shares = nullptr) const
   {
     const int half = k < this->Split ? 0 : 1;
     this->Sums->Add(half, pixel, increment);
-    if (fractions && this->Channels > 0)
+    if (shares && this->Channels > 0)
     {
-      this->AddToChannels(half, pixel, increment, fractions);
+      this->AddToChannels(half, pixel, increment, *shares);
     }
   }
 
-  // The increment split by the fractions, the last channel taking the rest:
-  // the channels' increments add up to it exactly.
+  // The increment split by the shares, the last taking the rest: the
+  // channels' increments add up to it exactly.
   void AddToChannels(
-    int half, std::int64_t pixel, const FixedSum& increment, const std::uint64_t* fractions) const
+    int half, std::int64_t pixel, const FixedSum& increment, const ChannelShares& shares) const
   {
     FixedSum rest = increment;
-    for (int c = 0; c + 1 < this->Channels; ++c)
+    for (int i = 0; i + 1 < shares.Count; ++i)
     {
-      const FixedSum part = SplitSum(increment, fractions[c]);
-      this->Sums->Add(ThreadSums::ChannelImage(c, half), pixel, part);
+      const FixedSum part = SplitSum(increment, shares.Fractions[i]);
+      this->Sums->Add(
+        ThreadSums::ChannelImage(static_cast<int>(shares.Channels[i]), half), pixel, part);
       rest = rest - part;
     }
-    this->Sums->Add(ThreadSums::ChannelImage(this->Channels - 1, half), pixel, rest);
+    if (shares.Count > 0)
+    {
+      this->Sums->Add(
+        ThreadSums::ChannelImage(static_cast<int>(shares.Channels[shares.Count - 1]), half), pixel,
+        rest);
+    }
   }
 
   // AddShares with each pixel's increment also split into the channels
-  // (the footprint's half; the control is AddFootprint's).
+  // (the footprint's half; the control is AddFootprint's): the words of
+  // the images it adds to fetched once, increments below 2^64 (all but
+  // the nearest voxels of a perspective view) split in 64-bit words.
   void AddSharesToChannels(const PreparedFootprint& footprint, double F, bool scales) const
   {
     const int half = footprint.FirstHalf ? 0 : 1;
+    const ChannelShares& shares = *footprint.Split;
+    const int parts = shares.Count;
+    ThreadSums& sums = *this->Sums;
+    std::uint64_t* total = sums.LowWords(half);
+    std::uint64_t* low[MaximumChannels];
+    int image[MaximumChannels];
+    for (int i = 0; i < parts; ++i)
+    {
+      image[i] = ThreadSums::ChannelImage(static_cast<int>(shares.Channels[i]), half);
+      low[i] = sums.LowWords(image[i]);
+    }
     const std::int64_t width = this->Binner->GetWidth();
     for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
     {
@@ -515,8 +534,25 @@ private:
         // round(2^32 F share) is the same whichever product comes first).
         const FixedSum increment = scales ? FixedIncrement(F * footprint.Shares[row + x])
                                           : FixedSum(footprint.Increments[row + x]);
-        this->Sums->Add(half, pixel, increment);
-        this->AddToChannels(half, pixel, increment, footprint.Fractions);
+        if (HighHalf(increment) != 0)
+        {
+          sums.Add(half, pixel, increment);
+          this->AddToChannels(half, pixel, increment, shares);
+          continue;
+        }
+        const std::uint64_t word = LowHalf(increment);
+        sums.AddWord(half, total, pixel, word);
+        std::uint64_t rest = word;
+        for (int i = 0; i + 1 < parts; ++i)
+        {
+          const std::uint64_t part = SplitWord(word, shares.Fractions[i]);
+          sums.AddWord(image[i], low[i], pixel, part);
+          rest -= part;
+        }
+        if (parts > 0)
+        {
+          sums.AddWord(image[parts - 1], low[parts - 1], pixel, rest);
+        }
       }
     }
   }

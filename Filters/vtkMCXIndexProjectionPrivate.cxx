@@ -1,5 +1,6 @@
 #include "vtkMCXIndexProjectionPrivate.h"
 
+#include "mcxChannelSplit.h"
 #include "mcxEveryVoxelSource.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXChannelFractionsPrivate.h"
@@ -69,9 +70,9 @@ public:
 
   bool IsEmpty() const { return this->Table.IsEmpty(); }
 
-  /// Splits every deposit into the channels of `fractions` (per level of
-  /// the index, mcx::ChannelFractionTable); false (reported) when they do
-  /// not fit the index. Call it after Prepare.
+  /// Splits every deposit into `self`'s channels by its level's fractions
+  /// (mcx::ChannelFractionTable); false (reported) when they do not fit the
+  /// index. Call it after Prepare.
   bool SplitIntoChannels(vtkMCXProjector* self, vtkPiecewiseFunction* tf)
   {
     this->Channels = self->GetNumberOfChannels();
@@ -79,12 +80,14 @@ public:
     {
       return true;
     }
-    const std::string problem = mcx::ChannelFractionTable(self, this->View, tf, this->Fractions);
+    std::vector<std::uint64_t> fractions;
+    const std::string problem = mcx::ChannelFractionTable(self, this->View, tf, fractions);
     if (!problem.empty())
     {
       vtkErrorWithObjectMacro(this->Self, "Cannot project into channels: " << problem);
       return false;
     }
+    this->Shares.Build(fractions, this->Channels);
     return true;
   }
 
@@ -192,12 +195,10 @@ private:
     }
   }
 
-  // The channel fractions of a sample in `level` (null without channels).
-  const std::uint64_t* FractionsOf(std::int64_t level) const
+  // The channel shares of a sample in `level` (null without channels).
+  const mcx::ChannelShares* SharesOf(std::int64_t level) const
   {
-    return this->Channels > 0
-      ? this->Fractions.data() + static_cast<std::size_t>(level) * this->Channels
-      : nullptr;
+    return this->Channels > 0 ? this->Shares.Of(level) : nullptr;
   }
 
   // Deposits into a new accumulator for the view, then collects the sums
@@ -313,7 +314,7 @@ private:
         const Accumulator::ThreadImage image = accumulator.Local();
         source.Generate(b, e,
           [&](std::uint64_t k, const double p[3], double weight, std::int64_t level)
-          { image.Deposit(k, p, weight, this->FractionsOf(level)); });
+          { image.Deposit(k, p, weight, this->SharesOf(level)); });
       });
   }
 
@@ -377,13 +378,13 @@ private:
         // SIMD lanes: their division and square root pay for the batch's
         // stores and loads, a parallel view's few products do not. Each
         // deposit gets a loop of its own.
-        // Split into channels, each sample's fractions are its level's.
+        // Split into channels, each sample's shares are its level's.
         const bool batched = this->DepositMode == mcx::Deposit::Point && this->Geometry.Perspective;
         if (batched && this->Channels > 0)
         {
           Accumulator::ThreadImage::PointBatch points(image);
           auto batch = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
-          { points.Add(k, p, this->FractionsOf(level)); };
+          { points.Add(k, p, this->SharesOf(level)); };
           generate(batch);
           points.Flush();
         }
@@ -397,7 +398,7 @@ private:
         else if (this->Channels > 0)
         {
           auto deposit = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
-          { image.Deposit(k, p, 1.0, this->FractionsOf(level)); };
+          { image.Deposit(k, p, 1.0, this->SharesOf(level)); };
           generate(deposit);
         }
         else
@@ -419,7 +420,7 @@ private:
   std::vector<double> LevelWeights; // per level, with EveryVoxel
   std::int64_t KeptVoxelCount = 0;  // in the whole volume, with EveryVoxel
   int Channels = 0;                 // the deposit's split (SplitIntoChannels)
-  std::vector<std::uint64_t> Fractions; // Channels per level
+  mcx::ChannelShareTable Shares;    // per level
 };
 
 // The sample count a target asks for, measured on a projection whose

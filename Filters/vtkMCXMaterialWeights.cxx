@@ -81,6 +81,23 @@ bool vtkMCXMaterialWeights::FillDensityFunction(vtkPiecewiseFunction* density)
   return true;
 }
 
+bool vtkMCXMaterialWeights::FillFractionFunction(int m, vtkPiecewiseFunction* fraction)
+{
+  const mcx::MaterialSet* set = this->Set();
+  if (!set || !fraction || m < 0 || m >= static_cast<int>(set->Size()))
+  {
+    return false;
+  }
+  const mcx::HUCurve& curve = set->Materials[static_cast<std::size_t>(m)].Fraction;
+  fraction->RemoveAllPoints();
+  fraction->ClampingOn(); // constant beyond the ends, as the curve
+  for (std::size_t i = 0; i < curve.HU.size(); ++i)
+  {
+    fraction->AddPoint(curve.HU[i], curve.Value[i]);
+  }
+  return true;
+}
+
 const char* vtkMCXMaterialWeights::GetMaterialName(int m)
 {
   const mcx::MaterialSet* set = this->Set();

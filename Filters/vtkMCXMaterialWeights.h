@@ -62,12 +62,15 @@ public:
   /**
    * The materials of Materials: their number (0 with an error when Materials
    * is not usable), the xraylib name of material m (null outside 0..number -
-   * 1), and the density curve (HU -> g/cm^3) as the sampler's transfer
-   * function (false with an error when Materials is not usable).
+   * 1), the density curve (HU -> g/cm^3) as the sampler's transfer
+   * function, and material m's mass fraction curve (HU -> [0, 1]), the
+   * channel fraction of vtkMCXProjector's split deposit (both false, with an
+   * error when Materials is not usable).
    */
   int GetNumberOfMaterials();
   const char* GetMaterialName(int m);
   bool FillDensityFunction(vtkPiecewiseFunction* density);
+  bool FillFractionFunction(int m, vtkPiecewiseFunction* fraction);
   ///@}
 
 protected:

@@ -84,46 +84,19 @@ int vtkMCXPolychromaticRadiograph::RequestData(
   {
     return 0;
   }
-  const int channels = inputVector[0]->GetNumberOfInformationObjects();
-  if (channels != static_cast<int>(model->Materials()))
+  std::vector<std::vector<double>> values;
+  std::vector<double> channelErrors;
+  if (!this->ReadChannels(
+        inputVector[0], static_cast<int>(model->Materials()), output, values, channelErrors))
   {
-    vtkErrorMacro("" << channels << " channel images for " << model->Materials()
-                     << " materials: connect one per material, in the materials' order.");
     return 0;
   }
-  std::vector<std::vector<double>> values(channels);
-  std::vector<double> channelErrors(channels, 0.0);
+  const int channels = static_cast<int>(values.size());
+  const vtkIdType pixels = static_cast<vtkIdType>(values[0].size());
   std::vector<const double*> pointers(channels);
-  vtkIdType pixels = -1;
   for (int m = 0; m < channels; ++m)
   {
-    vtkImageData* image = vtkImageData::GetData(inputVector[0], m);
-    vtkDataArray* line =
-      image ? image->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName()) : nullptr;
-    if (!line || line->GetNumberOfComponents() != 1 ||
-      (pixels >= 0 && line->GetNumberOfTuples() != pixels))
-    {
-      vtkErrorMacro(
-        "Channel " << m << " has no one-component LineIntegral array of the others' size.");
-      return 0;
-    }
-    pixels = line->GetNumberOfTuples();
-    vtkDataArray* estimate =
-      image->GetFieldData()->GetArray(vtkMCXTypes::EstimatedRelativeErrorName());
-    channelErrors[m] = estimate ? estimate->GetComponent(0, 0) : 0.0;
-    values[m].resize(pixels);
-    for (vtkIdType p = 0; p < pixels; ++p)
-    {
-      values[m][p] = line->GetComponent(p, 0);
-    }
     pointers[m] = values[m].data();
-    if (m == 0)
-    {
-      // The geometry and the projector's fields (its matrix, sample count)
-      // of the first channel: every channel has the same.
-      output->CopyStructure(image);
-      output->GetFieldData()->ShallowCopy(image->GetFieldData());
-    }
   }
   vtkNew<vtkDoubleArray> effective;
   effective->SetName("EffectiveLineIntegral");
@@ -165,6 +138,63 @@ int vtkMCXPolychromaticRadiograph::RequestData(
   output->GetPointData()->AddArray(result);
   output->GetPointData()->SetActiveScalars(result->GetName());
   return 1;
+}
+
+bool vtkMCXPolychromaticRadiograph::ReadChannels(vtkInformationVector* inputs, int materials,
+  vtkImageData* output, std::vector<std::vector<double>>& values,
+  std::vector<double>& channelErrors)
+{
+  const int connected = inputs->GetNumberOfInformationObjects();
+  vtkImageData* first = vtkImageData::GetData(inputs, 0);
+  vtkDataArray* split = first && connected == 1
+    ? first->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName())
+    : nullptr;
+  const int channels = split ? split->GetNumberOfComponents() : connected;
+  if (channels != materials)
+  {
+    vtkErrorMacro("" << channels << " channels for " << materials
+                     << " materials: connect one projection split into a channel per material "
+                        "(vtkMCXProjector::SetNumberOfChannels), or one image per material, in "
+                        "the materials' order.");
+    return false;
+  }
+  values.assign(static_cast<std::size_t>(channels), std::vector<double>());
+  channelErrors.assign(static_cast<std::size_t>(channels), 0.0);
+  vtkIdType pixels = -1;
+  for (int m = 0; m < channels; ++m)
+  {
+    vtkImageData* image = split ? first : vtkImageData::GetData(inputs, m);
+    vtkDataArray* line = split ? split
+      : image                  ? image->GetPointData()->GetArray(vtkMCXTypes::LineIntegralName())
+                               : nullptr;
+    if (!line || (!split && line->GetNumberOfComponents() != 1) ||
+      (pixels >= 0 && line->GetNumberOfTuples() != pixels))
+    {
+      vtkErrorMacro(
+        "Channel " << m << " has no one-component LineIntegral array of the others' size.");
+      return false;
+    }
+    pixels = line->GetNumberOfTuples();
+    vtkDataArray* estimate =
+      image->GetFieldData()->GetArray(split ? vtkMCXTypes::ChannelEstimatedRelativeErrorName()
+                                            : vtkMCXTypes::EstimatedRelativeErrorName());
+    channelErrors[m] = estimate && estimate->GetNumberOfTuples() > (split ? m : 0)
+      ? estimate->GetComponent(split ? m : 0, 0)
+      : 0.0;
+    const int component = split ? m : 0;
+    values[m].resize(static_cast<std::size_t>(pixels));
+    for (vtkIdType p = 0; p < pixels; ++p)
+    {
+      values[m][static_cast<std::size_t>(p)] = line->GetComponent(p, component);
+    }
+  }
+  // The geometry and the projector's fields (its matrix, sample count) of
+  // the first image: every channel has the same, and a split projection's
+  // are those of the one sampling pass.
+  output->CopyStructure(first);
+  output->GetFieldData()->ShallowCopy(first->GetFieldData());
+  output->GetFieldData()->RemoveArray(vtkMCXTypes::ChannelEstimatedRelativeErrorName());
+  return true;
 }
 
 void vtkMCXPolychromaticRadiograph::PrintSelf(ostream& os, vtkIndent indent)

@@ -3,9 +3,13 @@
  * @brief   A polychromatic radiograph from one line-integral image per
  *          material: a tube spectrum, xraylib's attenuation and a detector.
  *
- * Inputs (port 0, repeatable): the materials' channel images in the order of
- * Materials, each a projector's LineIntegral of density x fraction (g/cm^3 x
- * mm; vtkMCXMaterialWeights makes their clouds). Per pixel the detected
+ * Input (port 0): one projection split into a channel per material, in the
+ * order of Materials (vtkMCXProjector::SetNumberOfChannels with
+ * vtkMCXMaterialWeights::FillFractionFunction's fractions under its
+ * FillDensityFunction TF: its "ChannelLineIntegral" of density x fraction,
+ * g/cm^3 x mm, from one sampling pass), or, repeated, one image per
+ * material, each a LineIntegral (vtkMCXMaterialWeights weighs a stored
+ * cloud's points for them). Per pixel the detected
  * signal relative to the open beam is T = sum_E w(E) exp(-sum_m (mu/rho)_m(E)
  * L_m), w = spectrum x detector response normalised (mcxPolychromaticModel.h),
  * and the output is what vtkMCXRadiograph makes of the effective line
@@ -23,6 +27,8 @@
 #include "vtkMCXRadiograph.h" // for MaximumPhotonsPerPixel
 
 #include <memory> // for the model
+#include <string> // for the model's key
+#include <vector> // for the channels
 
 namespace mcx
 {
@@ -96,6 +102,12 @@ protected:
 private:
   vtkMCXPolychromaticRadiograph(const vtkMCXPolychromaticRadiograph&) = delete;
   void operator=(const vtkMCXPolychromaticRadiograph&) = delete;
+
+  // The channels' line integrals and estimated errors from the inputs
+  // (false, reported, when they do not fit `materials`), and the output's
+  // geometry and field data from the first.
+  bool ReadChannels(vtkInformationVector* inputs, int materials, vtkImageData* output,
+    std::vector<std::vector<double>>& values, std::vector<double>& channelErrors);
 
   // The model of Spectrum, Detector and Materials, rebuilt when they change.
   const mcx::PolychromaticModel* Model();

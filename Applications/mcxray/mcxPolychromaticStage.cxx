@@ -9,12 +9,12 @@
 #include "mcxSettings.h"
 #include "mcxTubeSpectrum.h"
 
-#include "vtkAlgorithmOutput.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMCXMaterialWeights.h"
 #include "vtkMCXPolychromaticRadiograph.h"
+#include "vtkMCXProjector.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 
@@ -37,18 +37,15 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   {
     Fail("--materials, --detector-material and --photon-counting need --spectrum");
   }
-  if (!IsCloudMethod(settings.Method) || settings.Method == "every-voxel")
+  if (!IsCloudMethod(settings.Method))
   {
-    Fail("--spectrum projects one drawn cloud once per material: use --method hybrid, mc or qmc");
+    Fail("--spectrum splits the samples' deposit into the materials' channels: use --method "
+         "hybrid, mc, qmc or every-voxel");
   }
-  if (settings.Deposit != "footprint")
+  if (settings.StoredPoints)
   {
-    Fail("--spectrum needs the footprint deposit (its points are voxel centres, each with its "
-         "voxel's materials)");
-  }
-  if (NumberOfProcesses() > 1)
-  {
-    Fail("--spectrum renders on one process (not under mpirun)");
+    Fail("--spectrum splits the deposit of the samples as they are drawn: leave out "
+         "--stored-points");
   }
   if (settings.TF != "raw")
   {
@@ -57,11 +54,6 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   if (settings.Radiograph.BeerLambert)
   {
     Fail("--spectrum makes a radiograph already: leave out --beer-lambert");
-  }
-  if (settings.TargetError > 0 || settings.QuantizationLevels > 0)
-  {
-    Fail("--spectrum projects a stored cloud of --samples points per material: leave out "
-         "--target-error and --quantization-levels");
   }
   std::string detector = settings.PhotonCounting ? "counting" : "integrating";
   if (!settings.DetectorMaterial.empty())
@@ -90,10 +82,6 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   this->Enabled = true;
   this->Weights->SetMaterials(settings.Materials.c_str());
   this->Count = this->Weights->GetNumberOfMaterials();
-  for (int m = 0; m < this->Count; ++m)
-  {
-    this->Names.emplace_back(this->Weights->GetMaterialName(m));
-  }
   this->Weights->FillDensityFunction(this->DensityFunction);
   this->Filter->SetSpectrum(settings.Spectrum.c_str());
   this->Filter->SetMaterials(settings.Materials.c_str());
@@ -107,41 +95,29 @@ vtkPiecewiseFunction* PolychromaticStage::Density() const
   return this->DensityFunction;
 }
 
-vtkAlgorithmOutput* PolychromaticStage::Connect(vtkAlgorithmOutput* cloud, vtkImageData* volume)
+void PolychromaticStage::SplitIntoChannels(vtkMCXProjector* projector)
 {
-  this->Weights->SetInputConnection(0, cloud);
-  this->Weights->SetInputData(1, volume);
-  return this->Weights->GetOutputPort();
+  projector->SetNumberOfChannels(this->Count);
+  for (int m = 0; m < this->Count; ++m)
+  {
+    vtkNew<vtkPiecewiseFunction> fraction;
+    this->Weights->FillFractionFunction(m, fraction);
+    projector->SetChannelFraction(m, fraction);
+  }
 }
 
-void PolychromaticStage::SetChannel(int m)
-{
-  this->Weights->SetChannel(m);
-}
-
-void PolychromaticStage::Keep(vtkImageData* projected)
-{
-  auto copy = vtkSmartPointer<vtkImageData>::New();
-  copy->DeepCopy(projected);
-  this->Kept.push_back(copy);
-}
-
-vtkImageData* PolychromaticStage::Radiograph(const Settings& settings, int k, std::string& line)
+vtkImageData* PolychromaticStage::Radiograph(
+  vtkImageData* channels, const Settings& settings, int k, std::string& line)
 {
   const RadiographSettings& physics = settings.Radiograph;
   vtkMCXPolychromaticRadiograph* filter = this->Filter;
-  filter->RemoveAllInputConnections(0);
-  for (vtkImageData* channel : this->Kept)
-  {
-    filter->AddInputData(channel);
-  }
+  filter->SetInputData(channels);
   filter->SetIncidentIntensity(physics.IncidentIntensity);
   filter->SetPhotonsPerPixel(physics.Photons);
   filter->SetNoiseSeed(physics.NoiseSeed + k);
   filter->SetNegativeLog(physics.NegativeLog);
   const auto start = std::chrono::steady_clock::now();
   filter->Update();
-  this->Kept.clear();
   vtkImageData* result = filter->GetOutput();
   vtkDataArray* values = result->GetPointData()->GetScalars();
   if (!values)

@@ -1,20 +1,20 @@
 // The polychromatic render of mcxray: --spectrum, --materials,
-// --detector-material and --photon-counting. One cloud is drawn under the
-// materials' total density; each material's channel is projected from it
-// (vtkMCXMaterialWeights), and vtkMCXPolychromaticRadiograph maps the
-// channels through the spectrum and the detector.
+// --detector-material and --photon-counting. The samples are drawn under
+// the materials' total density and each deposit is split into the
+// materials' channels by its level's mass fractions (vtkMCXProjector's
+// channels); vtkMCXPolychromaticRadiograph maps the channels through the
+// spectrum and the detector.
 #ifndef mcxPolychromaticStage_h
 #define mcxPolychromaticStage_h
 
 #include "vtkNew.h"
-#include "vtkSmartPointer.h"
 
 #include <string>
 #include <vector>
 
-class vtkAlgorithmOutput;
 class vtkImageData;
 class vtkMCXMaterialWeights;
+class vtkMCXProjector;
 class vtkMCXPolychromaticRadiograph;
 class vtkPiecewiseFunction;
 
@@ -30,29 +30,23 @@ public:
   ~PolychromaticStage();
 
   bool Active() const { return this->Enabled; }
-  int Channels() const { return this->Count; }
-  const std::string& Name(int m) const { return this->Names[m]; }
-  /// The sampler's transfer function: the density curve (g/cm^3 per HU).
+  /// The projector's transfer function: the density curve (g/cm^3 per HU).
   vtkPiecewiseFunction* Density() const;
-  /// The weights of `cloud`'s points for the channel SetChannel picks.
-  vtkAlgorithmOutput* Connect(vtkAlgorithmOutput* cloud, vtkImageData* volume);
-  void SetChannel(int m);
-  /// Keeps a copy of the projection of the current channel.
-  void Keep(vtkImageData* projected);
-  /// The radiograph of the kept channels (forgets them), pose k's noise seed.
-  vtkImageData* Radiograph(const Settings& settings, int k, std::string& line);
+  /// Splits the projector's deposit into the materials' channels.
+  void SplitIntoChannels(vtkMCXProjector* projector);
+  /// The radiograph of a projection split into channels, pose k's noise seed.
+  vtkImageData* Radiograph(
+    vtkImageData* channels, const Settings& settings, int k, std::string& line);
   /// A line for the log: the spectrum's mean energy and HVL, the materials.
   std::string Describe() const;
 
 private:
   bool Enabled = false;
   int Count = 0;
-  std::vector<std::string> Names;
   std::string Summary;
   vtkNew<vtkMCXMaterialWeights> Weights;
   vtkNew<vtkMCXPolychromaticRadiograph> Filter;
   vtkNew<vtkPiecewiseFunction> DensityFunction;
-  std::vector<vtkSmartPointer<vtkImageData>> Kept;
 };
 
 } // namespace mcxapp

@@ -181,8 +181,6 @@ public:
     , View(view)
     , Polychromatic(settings)
   {
-    // Channels are projected from one stored cloud.
-    this->Options.StoredPoints = this->Options.StoredPoints || this->Polychromatic.Active();
   }
 
   int Run(vtkImageData* volume)
@@ -193,7 +191,6 @@ public:
       poses = this->Options.Radiograph.Poses(volume);
     }
     this->BuildIndex(volume);
-    this->Volume = volume;
     std::string error;
     vtkSmartPointer<vtkPiecewiseFunction> tf = this->Polychromatic.Active()
       ? vtkSmartPointer<vtkPiecewiseFunction>(this->Polychromatic.Density())
@@ -218,17 +215,13 @@ public:
     for (int k = 0; k < count; ++k)
     {
       const Pose* pose = poses.empty() ? nullptr : &poses[k];
-      const bool polychromatic = this->Polychromatic.Active();
-      vtkImageData* image =
-        polychromatic ? this->ProjectChannels(pose, k, count) : this->Project(pose, k, count);
+      vtkImageData* image = this->Project(pose, k, count);
       if (!IsFirstProcess())
       {
         continue; // the image is the first process's: it logs, applies the physics and writes
       }
-      if (!polychromatic)
-      {
-        image = this->ApplyRadiograph(image, k);
-      }
+      image = this->Polychromatic.Active() ? this->PolychromaticRadiograph(image, k)
+                                           : this->ApplyRadiograph(image, k);
       records.push_back(RecordOf(image));
       if (stack)
       {
@@ -395,9 +388,12 @@ private:
     projector->SetInputConnection(this->Index->GetOutputPort());
     if (this->Options.StoredPoints)
     {
-      vtkAlgorithmOutput* cloud = this->SampleStoredPoints(tf);
-      projector->SetInputConnection(
-        this->Polychromatic.Active() ? this->Polychromatic.Connect(cloud, this->Volume) : cloud);
+      projector->SetInputConnection(this->SampleStoredPoints(tf));
+    }
+    if (this->Polychromatic.Active())
+    {
+      this->Log(this->Polychromatic.Describe());
+      this->Polychromatic.SplitIntoChannels(vtkMCXProjector::SafeDownCast(projector));
     }
     projector->SetTransferFunction(tf);
     projector->SetKernel(KernelOf(this->Options.Kernel));
@@ -410,19 +406,12 @@ private:
     this->Watch(projector);
   }
 
-  // The polychromatic radiograph of pose k: one projection per material
-  // channel of the one stored cloud, then the spectrum's model per pixel.
-  vtkImageData* ProjectChannels(const Pose* pose, int k, int count)
+  // The polychromatic radiograph of pose k's projection, split into the
+  // materials' channels: the spectrum's model per pixel.
+  vtkImageData* PolychromaticRadiograph(vtkImageData* channels, int k)
   {
-    this->Log(this->Polychromatic.Describe());
-    for (int m = 0; m < this->Polychromatic.Channels(); ++m)
-    {
-      this->Log("channel:     " + this->Polychromatic.Name(m));
-      this->Polychromatic.SetChannel(m);
-      this->Polychromatic.Keep(this->Project(pose, k, count));
-    }
     std::string line;
-    vtkImageData* image = this->Polychromatic.Radiograph(this->Options, k, line);
+    vtkImageData* image = this->Polychromatic.Radiograph(channels, this->Options, k, line);
     this->Log(line);
     return image;
   }
@@ -610,7 +599,6 @@ private:
   vtkSmartPointer<vtkMCXProjectorBase> Projector;
   vtkSmartPointer<vtkMCXRadiograph> Radiograph;
   PolychromaticStage Polychromatic;
-  vtkImageData* Volume = nullptr; // the run's, for the materials of the cloud's voxels
 };
 }
 

@@ -631,6 +631,9 @@ TEST(CommandLine, UnderMpirunTheOutputFileIsTheSingleProcessOne)
     "--samples 262143 --size 96x80 --deposit point --view -y --tf bone",
     "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --gantry 30 --tf mu",
     "--method every-voxel --sad 700 --sid 1100 --detector 90x70 --tf mu",
+    // A polychromatic radiograph: the deposit split into the materials' channels.
+    "--samples 131071 --sad 700 --sid 1100 --detector 90x70 --pitch 3 --spectrum 70kVp,2.5mmAl",
+    "--samples 131071 --size 96x80 --deposit point --spectrum 120kVp --negative-log",
     // A sweep: each pose as alone, on any number of processes.
     "--samples 131071 --sad 700 --sid 1100 --detector 60x50 --pitch 3 --gantry 0:90:3 --tf mu" };
   for (const std::string& arguments : runs)

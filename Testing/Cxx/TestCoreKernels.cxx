@@ -1315,7 +1315,8 @@ TEST(ChannelSplit, SplitsAreFloorsOfTheProductAndFractionsSumToOne)
 namespace
 {
 // The total's sums and each channel's (all, then the first half) of the
-// cloud's points deposited once each, point i split by fractions[i].
+// cloud's points deposited once each, point i split by fractions[i] (of
+// FixedFractions).
 template <typename Executor>
 std::vector<std::vector<mcx::FixedSum>> ChannelSums(const mcx::ProjectionGeometry& g,
   const mcx::DepositSettings& settings, const std::vector<float>& cloud,
@@ -1328,6 +1329,13 @@ std::vector<std::vector<mcx::FixedSum>> ChannelSums(const mcx::ProjectionGeometr
   const std::uint64_t count = cloud.size() / 3;
   accumulator.SetSplit(mcx::FirstHalfSize(count));
   accumulator.SetChannels(3);
+  mcx::ChannelShareTable table; // a level per point
+  std::vector<std::uint64_t> flat;
+  for (const auto& point : fractions)
+  {
+    flat.insert(flat.end(), point.begin(), point.end());
+  }
+  table.Build(flat, 3);
   Executor().For(0, static_cast<std::int64_t>(count), 64,
     [&](std::int64_t b, std::int64_t e)
     {
@@ -1335,8 +1343,7 @@ std::vector<std::vector<mcx::FixedSum>> ChannelSums(const mcx::ProjectionGeometr
       for (std::int64_t i = b; i < e; ++i)
       {
         const double p[3] = { cloud[3 * i], cloud[3 * i + 1], cloud[3 * i + 2] };
-        image.Deposit(
-          static_cast<std::uint64_t>(i), p, 1.0, fractions[static_cast<std::size_t>(i)].data());
+        image.Deposit(static_cast<std::uint64_t>(i), p, 1.0, table.Of(i));
       }
     });
   const std::size_t pixels = accumulator.NumberOfPixels();

@@ -95,6 +95,32 @@ struct Pipeline
     this->Sampler->SetDepositToFootprint();
   }
 
+  // One projection of samples drawn under the density, each deposit split
+  // into the materials' channels (ChannelLineIntegral).
+  vtkSmartPointer<vtkImageData> Split(int sampleExponent = SampleExponent)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputConnection(this->Index->GetOutputPort());
+    projector->SetTransferFunction(this->Density);
+    vtkNew<vtkMCXMaterialWeights> describe;
+    describe->SetMaterials(this->Materials.c_str());
+    projector->SetNumberOfChannels(describe->GetNumberOfMaterials());
+    for (int m = 0; m < describe->GetNumberOfMaterials(); ++m)
+    {
+      vtkNew<vtkPiecewiseFunction> fraction;
+      EXPECT_TRUE(describe->FillFractionFunction(m, fraction));
+      projector->SetChannelFraction(m, fraction);
+    }
+    projector->SetSampleExponent(sampleExponent);
+    projector->SetKernel(vtkMCXTypes::BOX);
+    projector->SetImageSize(N, N);
+    projector->SetPixelSpacing(1.0);
+    projector->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(projector->GetOutput());
+    return image;
+  }
+
   // The projection of channel (-1: every weight 1) of the one cloud.
   vtkSmartPointer<vtkImageData> Channel(int channel)
   {
@@ -140,9 +166,9 @@ double TotalMass()
   return mass;
 }
 
-double Pixel(vtkImageData* image, const char* array, int i, int j)
+double Pixel(vtkImageData* image, const char* array, int i, int j, int component = 0)
 {
-  return image->GetPointData()->GetArray(array)->GetComponent(i + N * j, 0);
+  return image->GetPointData()->GetArray(array)->GetComponent(i + N * j, component);
 }
 
 // -ln of the detected fraction behind water and aluminium line integrals
@@ -189,6 +215,43 @@ TEST(PolychromaticRadiograph, ChannelsSumToTheTotalImage)
   // Each channel holds its material alone: no water under the wedge.
   EXPECT_EQ(Pixel(water, name, 30, 10), 0.0);
   EXPECT_EQ(Pixel(al, name, 23, 35), 0.0);
+
+  // The same of one projection split into channels, whose total is the
+  // image of the density without channels, bit for bit.
+  auto split = pipeline.Split();
+  const char* channels = vtkMCXTypes::ChannelLineIntegralName();
+  ASSERT_NE(split->GetPointData()->GetArray(channels), nullptr);
+  ASSERT_EQ(split->GetPointData()->GetArray(channels)->GetNumberOfComponents(), 2);
+  vtkNew<vtkMCXProjector> plain;
+  plain->SetInputConnection(pipeline.Index->GetOutputPort());
+  plain->SetTransferFunction(pipeline.Density);
+  plain->SetSampleExponent(SampleExponent);
+  plain->SetKernel(vtkMCXTypes::BOX);
+  plain->SetImageSize(N, N);
+  plain->SetPixelSpacing(1.0);
+  plain->Update();
+  worst = 0.0;
+  for (int j = 0; j < N; ++j)
+  {
+    for (int i = 0; i < N; ++i)
+    {
+      const double t = Pixel(split, name, i, j);
+      ASSERT_EQ(t, Pixel(plain->GetOutput(), name, i, j)) << i << " " << j;
+      worst = std::max(
+        worst, std::abs(Pixel(split, channels, i, j, 0) + Pixel(split, channels, i, j, 1) - t));
+    }
+  }
+  EXPECT_LE(worst, 1e-12 * largest);
+  EXPECT_EQ(Pixel(split, channels, 30, 10, 0), 0.0);
+  EXPECT_EQ(Pixel(split, channels, 23, 35, 1), 0.0);
+  EXPECT_GT(Pixel(split, channels, 30, 10, 1), 0.0);
+  EXPECT_GT(Pixel(split, channels, 23, 35, 0), 0.0);
+  vtkDataArray* estimates =
+    split->GetFieldData()->GetArray(vtkMCXTypes::ChannelEstimatedRelativeErrorName());
+  ASSERT_NE(estimates, nullptr);
+  ASSERT_EQ(estimates->GetNumberOfTuples(), 2);
+  EXPECT_GT(estimates->GetComponent(0, 0), 0.0);
+  EXPECT_LT(estimates->GetComponent(1, 0), 0.05);
 }
 
 // The product's effective line integral of each wedge step and cylinder
@@ -199,69 +262,79 @@ TEST(PolychromaticRadiograph, ChannelsSumToTheTotalImage)
 TEST(PolychromaticRadiograph, StepWedgeAndWaterCylinderAgreeWithSpectrumSums)
 {
   Pipeline pipeline;
-  vtkNew<vtkMCXPolychromaticRadiograph> radiograph;
-  radiograph->SetMaterials(pipeline.Materials.c_str());
-  radiograph->SetSpectrum("80kVp,2.5mmAl");
-  radiograph->SetDetector("integrating,CsI:0.6:4.51");
-  auto water = pipeline.Channel(0);
-  auto al = pipeline.Channel(1);
-  radiograph->AddInputData(water);
-  radiograph->AddInputData(al);
-  radiograph->Update();
-  vtkImageData* image = radiograph->GetOutput();
-  mcx::TubeSettings tube = mcx::ParseTubeSettings("80kVp,2.5mmAl");
-  const mcx::Spectrum spectrum = mcx::TungstenSpectrum(tube);
-  std::vector<double> response; // E x CsI's absorbed fraction, from xraylib here
-  for (double energy : spectrum.Energies)
+  // One projection split into channels, and one image per channel of a stored cloud.
+  for (const bool split : { true, false })
   {
-    response.push_back(
-      energy * (1.0 - std::exp(-CS_Total_CP("CsI", energy, nullptr) * 4.51 * 0.06)));
-  }
-  const double samples = std::ldexp(1.0, SampleExponent) - 1.0;
-  const double mass = TotalMass();
-  double previousMu = HUGE_VAL;
-  for (int band = 0; band < 4; ++band)
-  {
-    double sum = 0.0, regionMass = 0.0;
-    int count = 0;
-    for (int j = 6; j < 18; ++j)
+    SCOPED_TRACE(split ? "split" : "a stored cloud's channels");
+    vtkNew<vtkMCXPolychromaticRadiograph> radiograph;
+    radiograph->SetMaterials(pipeline.Materials.c_str());
+    radiograph->SetSpectrum("80kVp,2.5mmAl");
+    radiograph->SetDetector("integrating,CsI:0.6:4.51");
+    if (split)
     {
-      for (int i = 4 + 10 * band + 2; i < 4 + 10 * band + 8; ++i)
+      radiograph->SetInputData(pipeline.Split());
+    }
+    else
+    {
+      radiograph->AddInputData(pipeline.Channel(0));
+      radiograph->AddInputData(pipeline.Channel(1));
+    }
+    radiograph->Update();
+    vtkImageData* image = radiograph->GetOutput();
+    mcx::TubeSettings tube = mcx::ParseTubeSettings("80kVp,2.5mmAl");
+    const mcx::Spectrum spectrum = mcx::TungstenSpectrum(tube);
+    std::vector<double> response; // E x CsI's absorbed fraction, from xraylib here
+    for (double energy : spectrum.Energies)
+    {
+      response.push_back(
+        energy * (1.0 - std::exp(-CS_Total_CP("CsI", energy, nullptr) * 4.51 * 0.06)));
+    }
+    const double samples = std::ldexp(1.0, SampleExponent) - 1.0;
+    const double mass = TotalMass();
+    double previousMu = HUGE_VAL;
+    for (int band = 0; band < 4; ++band)
+    {
+      double sum = 0.0, regionMass = 0.0;
+      int count = 0;
+      for (int j = 6; j < 18; ++j)
+      {
+        for (int i = 4 + 10 * band + 2; i < 4 + 10 * band + 8; ++i)
+        {
+          sum += Pixel(image, "EffectiveLineIntegral", i, j);
+          regionMass += ColumnIntegral(1, i, j);
+          ++count;
+        }
+      }
+      const double thickness = 6.0 * (band + 1); // mm
+      const double reference =
+        DirectEffectiveLineIntegral(spectrum, response, 0.0, AlDensity * thickness * 0.1);
+      const double bound = 5.0 / std::sqrt(samples * regionMass / mass) * reference;
+      EXPECT_NEAR(sum / count, reference, bound) << thickness << " mm Al";
+      // Beam hardening: the effective attenuation per mm falls with thickness.
+      const double mu = sum / count / thickness;
+      EXPECT_LT(mu, previousMu) << thickness << " mm Al";
+      previousMu = mu;
+    }
+    for (int i = 12; i < 36; ++i)
+    {
+      const double chord = ColumnIntegral(0, i, 30);
+      double sum = 0.0;
+      int count = 0;
+      for (int j = 28; j < 42; ++j)
       {
         sum += Pixel(image, "EffectiveLineIntegral", i, j);
-        regionMass += ColumnIntegral(1, i, j);
         ++count;
       }
+      const double reference = DirectEffectiveLineIntegral(spectrum, response, chord * 0.1, 0.0);
+      const double bound = 5.0 / std::sqrt(samples * chord * count / mass) * reference;
+      EXPECT_NEAR(sum / count, reference, bound) << "column " << i;
     }
-    const double thickness = 6.0 * (band + 1); // mm
-    const double reference =
-      DirectEffectiveLineIntegral(spectrum, response, 0.0, AlDensity * thickness * 0.1);
-    const double bound = 5.0 / std::sqrt(samples * regionMass / mass) * reference;
-    EXPECT_NEAR(sum / count, reference, bound) << thickness << " mm Al";
-    // Beam hardening: the effective attenuation per mm falls with thickness.
-    const double mu = sum / count / thickness;
-    EXPECT_LT(mu, previousMu) << thickness << " mm Al";
-    previousMu = mu;
+    // A spectrum change re-maps the same channels: harder beam, less attenuation.
+    const double at80 = Pixel(image, "EffectiveLineIntegral", 40, 10);
+    radiograph->SetSpectrum("120kVp,2.5mmAl");
+    radiograph->Update();
+    EXPECT_LT(Pixel(radiograph->GetOutput(), "EffectiveLineIntegral", 40, 10), at80);
   }
-  for (int i = 12; i < 36; ++i)
-  {
-    const double chord = ColumnIntegral(0, i, 30);
-    double sum = 0.0;
-    int count = 0;
-    for (int j = 28; j < 42; ++j)
-    {
-      sum += Pixel(image, "EffectiveLineIntegral", i, j);
-      ++count;
-    }
-    const double reference = DirectEffectiveLineIntegral(spectrum, response, chord * 0.1, 0.0);
-    const double bound = 5.0 / std::sqrt(samples * chord * count / mass) * reference;
-    EXPECT_NEAR(sum / count, reference, bound) << "column " << i;
-  }
-  // A spectrum change re-maps the same channels: harder beam, less attenuation.
-  const double at80 = Pixel(image, "EffectiveLineIntegral", 40, 10);
-  radiograph->SetSpectrum("120kVp,2.5mmAl");
-  radiograph->Update();
-  EXPECT_LT(Pixel(radiograph->GetOutput(), "EffectiveLineIntegral", 40, 10), at80);
 }
 
 // One energy: the polychromatic image is the monochromatic Beer-Lambert image
@@ -394,8 +467,8 @@ TEST(PolychromaticRadiograph, ExactChannelsGiveTheSpectrumSumInEveryPixel)
   }
 }
 
-// Channels, radiograph, noise and error estimate: bit for bit the same on
-// one thread and on two.
+// Channels of one split projection, radiograph, noise and error estimate:
+// bit for bit the same on one thread and on two.
 TEST(PolychromaticRadiograph, BitIdenticalForOneAndTwoThreads)
 {
   std::vector<vtkSmartPointer<vtkImageData>> images;
@@ -405,14 +478,12 @@ TEST(PolychromaticRadiograph, BitIdenticalForOneAndTwoThreads)
       [&]()
       {
         Pipeline pipeline;
-        pipeline.Sampler->SetSampleExponent(18);
         vtkNew<vtkMCXPolychromaticRadiograph> radiograph;
         radiograph->SetMaterials(pipeline.Materials.c_str());
         radiograph->SetSpectrum("90kVp,3mmAl");
         radiograph->SetPhotonsPerPixel(1e4);
         radiograph->SetNoiseSeed(7);
-        radiograph->AddInputData(pipeline.Channel(0));
-        radiograph->AddInputData(pipeline.Channel(1));
+        radiograph->SetInputData(pipeline.Split(18));
         radiograph->Update();
         auto image = vtkSmartPointer<vtkImageData>::New();
         image->DeepCopy(radiograph->GetOutput());
@@ -440,7 +511,7 @@ TEST(PolychromaticRadiograph, BadSettingsAreOneLineErrors)
   {
     mcxtest::FirstError error(radiograph);
     radiograph->Update(); // one channel for two materials
-    EXPECT_NE(error.Text.find("1 channel images for 2 materials"), std::string::npos) << error.Text;
+    EXPECT_NE(error.Text.find("1 channels for 2 materials"), std::string::npos) << error.Text;
   }
   radiograph->AddInputData(pipeline.Channel(1));
   radiograph->SetSpectrum("300kVp");
@@ -462,4 +533,50 @@ TEST(PolychromaticRadiograph, BadSettingsAreOneLineErrors)
   mcxtest::FirstError between(offsets);
   offsets->Update();
   EXPECT_NE(between.Text.find("is not at a voxel centre"), std::string::npos) << between.Text;
+}
+
+TEST(PolychromaticRadiograph, UnusableChannelFractionsAreOneLineErrors)
+{
+  Pipeline pipeline;
+  vtkNew<vtkMCXProjector> projector;
+  projector->SetInputConnection(pipeline.Index->GetOutputPort());
+  projector->SetTransferFunction(pipeline.Density);
+  projector->SetSampleExponent(12);
+  projector->SetImageSize(8, 8);
+  projector->SetNumberOfChannels(2);
+  vtkNew<vtkPiecewiseFunction> one, negative, zero;
+  one->AddPoint(-1000, 1);
+  negative->AddPoint(-1000, -0.5);
+  zero->AddPoint(-1000, 0);
+  projector->SetChannelFraction(0, one);
+  {
+    mcxtest::FirstError error(projector);
+    projector->Update();
+    EXPECT_NE(error.Text.find("channel 1 has no fraction function"), std::string::npos)
+      << error.Text;
+  }
+  projector->SetChannelFraction(1, negative);
+  {
+    mcxtest::FirstError error(projector);
+    projector->Update();
+    EXPECT_NE(error.Text.find("the channel fractions are 1 -0.5"), std::string::npos) << error.Text;
+  }
+  projector->SetChannelFraction(0, zero);
+  projector->SetChannelFraction(1, zero);
+  {
+    mcxtest::FirstError error(projector);
+    projector->Update();
+    EXPECT_NE(error.Text.find("one > 0"), std::string::npos) << error.Text;
+  }
+  {
+    mcxtest::FirstError error(projector);
+    projector->SetChannelFraction(2, one);
+    EXPECT_NE(error.Text.find("channel 2 is not one of the 2 channels"), std::string::npos)
+      << error.Text;
+  }
+  projector->SetChannelFraction(1, one);
+  projector->Update();
+  EXPECT_NE(
+    projector->GetOutput()->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName()),
+    nullptr);
 }
