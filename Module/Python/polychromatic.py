@@ -4,9 +4,9 @@
     result.image                 # (rows, columns) -ln(I / I0), row 0 at the top
     result.channels, result.names  # (materials, rows, columns) in g/cm^2
 
-One cloud is drawn under the materials' total density (vtkMCXPointSampler);
-each material's channel is the projection of that cloud weighted by the
-material's fraction at each sample's voxel (vtkMCXMaterialWeights), and the
+The samples are drawn once under the materials' total density and each
+deposit is split into the materials' channels by the mass fractions at its
+CT number (vtkMCXProjector's channels, vtkMCXMaterialWeights' curves); the
 channels become a radiograph through the tube spectrum, xraylib's attenuation
 and the detector (vtkMCXPolychromaticRadiograph). ``result.remap`` gives the
 image of another spectrum or detector from the same channels, without
@@ -24,15 +24,16 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 
 from .drr import _Messages
-from .MonteCarloXRayFilters import (vtkMCXDensityIndex, vtkMCXMaterialWeights, vtkMCXPointSampler,
+from .MonteCarloXRayFilters import (vtkMCXDensityIndex, vtkMCXMaterialWeights,
                                     vtkMCXPolychromaticRadiograph, vtkMCXProjector)
 from .MonteCarloXRayIO import vtkMCXVolumeReader
 
 
 def _top_down(image, name):
     dims = image.GetDimensions()
-    values = vtk_to_numpy(image.GetPointData().GetArray(name)).reshape(dims[1], dims[0])
-    return np.flipud(values).copy()
+    values = vtk_to_numpy(image.GetPointData().GetArray(name)).reshape(dims[1], dims[0], -1)
+    return np.flipud(values).squeeze(axis=2).copy() if values.shape[2] == 1 \
+        else np.flipud(values).transpose(2, 0, 1).copy()
 
 
 @dataclass
@@ -106,17 +107,17 @@ def polychromatic_drr(volume, spectrum: str = "70kVp,2.5mmAl", *, materials: str
     index = vtkMCXDensityIndex()
     messages.watch(index)
     index.SetInputData(volume)
-    sampler = vtkMCXPointSampler()
-    messages.watch(sampler)
-    sampler.SetInputConnection(index.GetOutputPort())
-    sampler.SetTransferFunction(density)
-    sampler.SetNumberOfSamples(int(samples))
-    sampler.SetSeed(int(seed))
-    weights.SetInputConnection(0, sampler.GetOutputPort())
-    weights.SetInputData(1, volume)
     projector = vtkMCXProjector()
     messages.watch(projector)
-    projector.SetInputConnection(weights.GetOutputPort())
+    projector.SetInputConnection(index.GetOutputPort())
+    projector.SetTransferFunction(density)
+    projector.SetNumberOfSamples(int(samples))
+    projector.SetSeed(int(seed))
+    projector.SetNumberOfChannels(count)
+    fractions = [vtkPiecewiseFunction() for _ in range(count)]
+    for m, fraction in enumerate(fractions):
+        weights.FillFractionFunction(m, fraction)
+        projector.SetChannelFraction(m, fraction)
     projector.SetImageSize(int(size[0]), int(size[1]))
     projector.SetPixelSpacing(float(pixel_spacing))
     projector.SetDetectorAxisU(*[float(x) for x in axes[0]])
@@ -129,17 +130,15 @@ def polychromatic_drr(volume, spectrum: str = "70kVp,2.5mmAl", *, materials: str
     radiograph.SetNegativeLog(bool(negative_log))
     radiograph.SetPhotonsPerPixel(float(photons))
     radiograph.SetNoiseSeed(int(noise_seed))
-    channels = []
-    for m in range(count):
-        weights.SetChannel(m)
-        projector.Update()
-        messages.raise_if_any("cannot project", stacklevel=3)
-        image = vtkImageData()
-        image.DeepCopy(projector.GetOutput())
-        radiograph.AddInputData(image)
-        channels.append(_top_down(image, "LineIntegral") * 0.1)  # g/cm^3 x mm -> g/cm^2
+    projector.Update()
+    messages.raise_if_any("cannot project", stacklevel=3)
+    image = vtkImageData()
+    image.DeepCopy(projector.GetOutput())
+    radiograph.SetInputData(image)
+    channels = _top_down(image, "ChannelLineIntegral").reshape(count, *image.GetDimensions()[1::-1])
+    channels = channels * 0.1  # g/cm^3 x mm -> g/cm^2
     radiograph.Update()
     messages.raise_if_any("cannot make the radiograph", stacklevel=3)
     name = "Attenuation" if negative_log else "Intensity"
-    return PolychromaticResult(_top_down(radiograph.GetOutput(), name), np.array(channels),
+    return PolychromaticResult(_top_down(radiograph.GetOutput(), name), channels,
                                names, radiograph.GetMeanEnergy(), radiograph, messages)
