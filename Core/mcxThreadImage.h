@@ -280,7 +280,7 @@ public:
   [[gnu::noinline]] void AddFootprint(const PreparedFootprint& footprint) const
   {
     const bool scales = this->ScalesShares(footprint);
-    if (footprint.Split && this->Channels > 0)
+    if (footprint.Split && footprint.Split->Count > 0 && this->Channels > 0)
     {
       if (footprint.F != 0.0 || !scales)
       {
@@ -383,16 +383,32 @@ private:
   template <int Half>
   void AddShares(const PreparedFootprint& footprint, double F, bool scales) const
   {
-    const std::int64_t x0 = footprint.Columns[0], x1 = footprint.Columns[1];
-    const std::int64_t width = this->Binner->GetWidth();
-    const double depth = footprint.Depth;
     // Locals, not members: the rare carry calls out of the loop, after
     // which members would be read again for every pixel.
     ThreadSums& sums = *this->Sums;
     std::uint64_t* low = sums.LowWords(Half);
+    this->VisitIncrements(
+      footprint, F, scales,
+      [&](std::int64_t pixel, std::uint64_t increment)
+      { sums.AddWord(Half, low, pixel, increment); },
+      [&](std::int64_t pixel, const FixedSum& increment) { sums.Add(Half, pixel, increment); });
+  }
+
+  // Calls add(pixel, increment) for every pixel of the footprint's support
+  // in front of its depth limit, increment the fixed-point value AddShares
+  // adds there (the shares scaled by F when `scales`, else the parallel
+  // view's exact integer increments); addWide(pixel, increment) for one of
+  // 2^63 or more.
+  template <typename Add, typename AddWide>
+  void VisitIncrements(
+    const PreparedFootprint& footprint, double F, bool scales, Add&& add, AddWide&& addWide) const
+  {
+    const std::int64_t x0 = footprint.Columns[0], x1 = footprint.Columns[1];
+    const std::int64_t width = this->Binner->GetWidth();
+    const double depth = footprint.Depth;
     const double* limits = this->DepthLimits;
     // The pixels of the support, the depth test hoisted out of the loop.
-    auto visit = [&](auto add)
+    auto visit = [&](auto entryAdd)
     {
       for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
       {
@@ -404,7 +420,7 @@ private:
           {
             if (depth < limits[first + x])
             {
-              add(first + x, row + x);
+              entryAdd(first + x, row + x);
             }
           }
         }
@@ -412,7 +428,7 @@ private:
         {
           for (std::int64_t x = x0; x <= x1; ++x)
           {
-            add(first + x, row + x);
+            entryAdd(first + x, row + x);
           }
         }
       }
@@ -430,7 +446,7 @@ private:
         visit(
           [&](std::int64_t pixel, std::int64_t entry)
           {
-            sums.AddWord(Half, low, pixel,
+            add(pixel,
               static_cast<std::uint64_t>(static_cast<std::int64_t>(scale * shares[entry] + 0.5)));
           });
         return;
@@ -443,19 +459,17 @@ private:
           {
             // Through a signed cast: one instruction where an unsigned
             // one branches on 2^63 (the same truncation in this range).
-            sums.AddWord(
-              Half, low, pixel, static_cast<std::uint64_t>(static_cast<std::int64_t>(scaled)));
+            add(pixel, static_cast<std::uint64_t>(static_cast<std::int64_t>(scaled)));
           }
           else
           {
-            sums.Add(Half, pixel, UInt128FromDouble(scaled));
+            addWide(pixel, UInt128FromDouble(scaled));
           }
         });
       return;
     }
     const std::uint64_t* increments = footprint.Increments;
-    visit([&](std::int64_t pixel, std::int64_t entry)
-      { sums.AddWord(Half, low, pixel, increments[entry]); });
+    visit([&](std::int64_t pixel, std::int64_t entry) { add(pixel, increments[entry]); });
   }
 
   // p += the voxel matrix times an offset in voxels (the source frame is
@@ -473,15 +487,19 @@ private:
     const ChannelShares* shares = nullptr) const
   {
     const int half = k < this->Split ? 0 : 1;
-    this->Sums->Add(half, pixel, increment);
-    if (shares && this->Channels > 0)
+    if (shares && shares->Count > 0 && this->Channels > 0)
     {
-      this->AddToChannels(half, pixel, increment, *shares);
+      this->AddToChannels(half, pixel, increment, *shares); // the total is their sum
+    }
+    else
+    {
+      this->Sums->Add(half, pixel, increment);
     }
   }
 
   // The increment split by the shares, the last taking the rest: the
-  // channels' increments add up to it exactly.
+  // channels' increments add up to it exactly, so the total's sums are
+  // theirs, added when collected (ThreadSums::CollectInto).
   void AddToChannels(
     int half, std::int64_t pixel, const FixedSum& increment, const ChannelShares& shares) const
   {
@@ -493,25 +511,22 @@ private:
         ThreadSums::ChannelImage(static_cast<int>(shares.Channels[i]), half), pixel, part);
       rest = rest - part;
     }
-    if (shares.Count > 0)
-    {
-      this->Sums->Add(
-        ThreadSums::ChannelImage(static_cast<int>(shares.Channels[shares.Count - 1]), half), pixel,
-        rest);
-    }
+    this->Sums->Add(
+      ThreadSums::ChannelImage(static_cast<int>(shares.Channels[shares.Count - 1]), half), pixel,
+      rest);
   }
 
-  // AddShares with each pixel's increment also split into the channels
-  // (the footprint's half; the control is AddFootprint's): the words of
-  // the images it adds to fetched once, increments below 2^64 (all but
-  // the nearest voxels of a perspective view) split in 64-bit words.
+  // AddShares with each pixel's increment split into the channels instead
+  // (the footprint's half, of shares of at least one channel; the control
+  // is AddFootprint's): the words of the images it adds to fetched once.
+  // One or two parts (a level of one material, or mixed between two
+  // neighbouring ones) have loops of their own.
   void AddSharesToChannels(const PreparedFootprint& footprint, double F, bool scales) const
   {
     const int half = footprint.FirstHalf ? 0 : 1;
     const ChannelShares& shares = *footprint.Split;
     const int parts = shares.Count;
     ThreadSums& sums = *this->Sums;
-    std::uint64_t* total = sums.LowWords(half);
     std::uint64_t* low[MaximumChannels];
     int image[MaximumChannels];
     for (int i = 0; i < parts; ++i)
@@ -519,42 +534,45 @@ private:
       image[i] = ThreadSums::ChannelImage(static_cast<int>(shares.Channels[i]), half);
       low[i] = sums.LowWords(image[i]);
     }
-    const std::int64_t width = this->Binner->GetWidth();
-    for (std::int64_t y = footprint.Rows[0]; y <= footprint.Rows[1]; ++y)
+    auto wide = [&](std::int64_t pixel, const FixedSum& increment)
+    { this->AddToChannels(half, pixel, increment, shares); };
+    if (parts == 1)
     {
-      const std::int64_t row = (y - footprint.Origin[1]) * footprint.Stride - footprint.Origin[0];
-      for (std::int64_t x = footprint.Columns[0]; x <= footprint.Columns[1]; ++x)
+      this->VisitIncrements(
+        footprint, F, scales,
+        [&](std::int64_t pixel, std::uint64_t increment)
+        { sums.AddWord(image[0], low[0], pixel, increment); },
+        wide);
+      return;
+    }
+    if (parts == 2)
+    {
+      const std::uint64_t fraction = shares.Fractions[0];
+      this->VisitIncrements(
+        footprint, F, scales,
+        [&](std::int64_t pixel, std::uint64_t increment)
+        {
+          const std::uint64_t part = SplitWord(increment, fraction);
+          sums.AddWord(image[0], low[0], pixel, part);
+          sums.AddWord(image[1], low[1], pixel, increment - part);
+        },
+        wide);
+      return;
+    }
+    this->VisitIncrements(
+      footprint, F, scales,
+      [&](std::int64_t pixel, std::uint64_t increment)
       {
-        const std::int64_t pixel = y * width + x;
-        if (this->DepthLimits && !(footprint.Depth < this->DepthLimits[pixel]))
-        {
-          continue;
-        }
-        // The increment AddShares adds (scaling by 2^32 is exact, so
-        // round(2^32 F share) is the same whichever product comes first).
-        const FixedSum increment = scales ? FixedIncrement(F * footprint.Shares[row + x])
-                                          : FixedSum(footprint.Increments[row + x]);
-        if (HighHalf(increment) != 0)
-        {
-          sums.Add(half, pixel, increment);
-          this->AddToChannels(half, pixel, increment, shares);
-          continue;
-        }
-        const std::uint64_t word = LowHalf(increment);
-        sums.AddWord(half, total, pixel, word);
-        std::uint64_t rest = word;
+        std::uint64_t rest = increment;
         for (int i = 0; i + 1 < parts; ++i)
         {
-          const std::uint64_t part = SplitWord(word, shares.Fractions[i]);
+          const std::uint64_t part = SplitWord(increment, shares.Fractions[i]);
           sums.AddWord(image[i], low[i], pixel, part);
           rest -= part;
         }
-        if (parts > 0)
-        {
-          sums.AddWord(image[parts - 1], low[parts - 1], pixel, rest);
-        }
-      }
-    }
+        sums.AddWord(image[parts - 1], low[parts - 1], pixel, rest);
+      },
+      wide);
   }
 
   ThreadSums* Sums;

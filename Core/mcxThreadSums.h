@@ -83,9 +83,10 @@ public:
 
   /// Adds both halves to `all` and the first to `firstHalf` (`pixels` each),
   /// the control images likewise to controlAll and controlFirstHalf when
-  /// both are given and the sums hold them, channel c's to channels[c]
-  /// (2 x `pixels`: all, then the first half) for each of `channelCount`,
-  /// and zeroes the sums for the next round.
+  /// both are given and the sums hold them, each channel's to `all` and
+  /// `firstHalf` as well (a split deposit adds its parts there only) and
+  /// channel c's to channels[c] (2 x `pixels`: all, then the first half)
+  /// for each of `channelCount`, and zeroes the sums for the next round.
   void CollectInto(std::size_t pixels, FixedSum* all, FixedSum* firstHalf,
     FixedSum* controlAll = nullptr, FixedSum* controlFirstHalf = nullptr,
     FixedSum* const* channels = nullptr, int channelCount = 0)
@@ -97,34 +98,22 @@ public:
     const bool control = controlAll && controlFirstHalf && this->Low[2].size() == pixels;
     for (int half = 0; half < static_cast<int>(this->Low.size()); ++half)
     {
-      FixedSum* whole = nullptr;
-      FixedSum* first = nullptr;
-      if (half < 2)
-      {
-        whole = all;
-        first = firstHalf;
-      }
-      else if (half < 4)
-      {
-        whole = control ? controlAll : nullptr;
-        first = controlFirstHalf;
-      }
-      else if ((half - 4) / 2 < channelCount && this->Low[half].size() == pixels)
-      {
-        whole = channels[(half - 4) / 2];
-        first = whole + pixels;
-      }
-      if (!whole)
+      if (this->Low[half].size() != pixels || (half >= 2 && half < 4 && !control))
       {
         continue;
       }
-      const std::uint64_t* low = this->Low[half].data();
-      const std::uint64_t* high = this->High[half].empty() ? nullptr : this->High[half].data();
-      for (std::size_t p = 0; p < pixels; ++p)
+      if (half < 2 || half >= 4)
       {
-        const FixedSum sum = high ? (FixedSum(high[p]) << 64) + FixedSum(low[p]) : FixedSum(low[p]);
-        whole[p] += sum;
-        first[p] += half % 2 == 0 ? sum : FixedSum(0);
+        this->AddInto(half, pixels, all, firstHalf);
+      }
+      if (half >= 2 && half < 4)
+      {
+        this->AddInto(half, pixels, controlAll, controlFirstHalf);
+      }
+      else if (half >= 4 && (half - 4) / 2 < channelCount)
+      {
+        FixedSum* channel = channels[(half - 4) / 2];
+        this->AddInto(half, pixels, channel, channel + pixels);
       }
       std::fill(this->Low[half].begin(), this->Low[half].end(), 0);
       this->High[half].clear();
@@ -132,6 +121,19 @@ public:
   }
 
 private:
+  // Adds image `half` to `whole`, and to `first` when it is a first half's.
+  void AddInto(int half, std::size_t pixels, FixedSum* whole, FixedSum* first) const
+  {
+    const std::uint64_t* low = this->Low[half].data();
+    const std::uint64_t* high = this->High[half].empty() ? nullptr : this->High[half].data();
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      const FixedSum sum = high ? (FixedSum(high[p]) << 64) + FixedSum(low[p]) : FixedSum(low[p]);
+      whole[p] += sum;
+      first[p] += half % 2 == 0 ? sum : FixedSum(0);
+    }
+  }
+
   void AddHigh(int half, std::int64_t pixel, std::uint64_t carry)
   {
     if (this->High[half].empty())
