@@ -150,8 +150,8 @@ options:
                         a tungsten tube "70kVp,2.5mmAl[,0.1mmCu][,12deg][,1keV]"
                         (filters: mm of an element) or a file of
                         "energy_keV photons" lines; the volume is in HU (no
-                        --tf); one cloud under the materials' density,
-                        one projection of it per material
+                        --tf); samples drawn under the materials' density,
+                        each deposit split into a channel per material
   --materials M         default (air, adipose, soft tissue, cortical bone;
                         add ",iodine=HU" and/or ",titanium=HU" thresholds) or
                         a materials file
