@@ -580,3 +580,51 @@ TEST(PolychromaticRadiograph, UnusableChannelFractionsAreOneLineErrors)
     projector->GetOutput()->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName()),
     nullptr);
 }
+
+TEST(PolychromaticRadiograph, ATargetsChannelsAreTheFixedRunOfItsSampleCountBitForBit)
+{
+  // A target error refines from its pilot, keeping the pilot's sums
+  // (prefixes): its channels are those of a fixed run of the sample count it
+  // chose, bit for bit, as its total is.
+  Pipeline pipeline;
+  auto run = [&](double target, int exponent)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputConnection(pipeline.Index->GetOutputPort());
+    projector->SetTransferFunction(pipeline.Density);
+    vtkNew<vtkMCXMaterialWeights> describe;
+    describe->SetMaterials(pipeline.Materials.c_str());
+    projector->SetNumberOfChannels(2);
+    for (int m = 0; m < 2; ++m)
+    {
+      vtkNew<vtkPiecewiseFunction> fraction;
+      describe->FillFractionFunction(m, fraction);
+      projector->SetChannelFraction(m, fraction);
+    }
+    projector->SetDeposit(vtkMCXTypes::POINT);
+    projector->SetTargetRelativeError(target);
+    projector->SetSampleExponent(exponent);
+    projector->SetImageSize(N, N);
+    projector->SetPixelSpacing(1.0);
+    projector->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(projector->GetOutput());
+    return image;
+  };
+  auto targeted = run(0.02, 0);
+  const double count = mcxtest::FieldValue(targeted, vtkMCXTypes::SampleCountName());
+  ASSERT_GT(count, 65535.0); // refined beyond the pilot
+  auto fixed = run(0.0, static_cast<int>(std::log2(count + 1.0)));
+  ASSERT_EQ(count, mcxtest::FieldValue(fixed, vtkMCXTypes::SampleCountName()));
+  for (const char* name :
+    { vtkMCXTypes::LineIntegralName(), vtkMCXTypes::ChannelLineIntegralName() })
+  {
+    for (int p = 0; p < N * N; ++p)
+    {
+      for (int c = 0; c < (name == vtkMCXTypes::LineIntegralName() ? 1 : 2); ++c)
+      {
+        ASSERT_EQ(Pixel(targeted, name, p, 0, c), Pixel(fixed, name, p, 0, c)) << name << " " << p;
+      }
+    }
+  }
+}
