@@ -737,6 +737,33 @@ mcx::DepositSettings RandomCloudDeposit(bool footprint)
   return settings;
 }
 
+// The point and the footprint deposit (RandomCloudDeposit), each in a
+// parallel view and in SmallPerspectiveView, and their names.
+struct DepositCase
+{
+  mcx::ProjectionGeometry View;
+  mcx::DepositSettings Settings;
+  std::string What;
+};
+
+std::vector<DepositCase> DepositCases()
+{
+  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
+  mcx::ProjectionGeometry parallel = perspective;
+  parallel.Perspective = false;
+  std::vector<DepositCase> cases;
+  for (const bool footprint : { false, true })
+  {
+    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
+    {
+      cases.push_back({ g, RandomCloudDeposit(footprint),
+        std::string(footprint ? "footprint" : "point") +
+          (g.Perspective ? ", perspective" : ", parallel") });
+    }
+  }
+  return cases;
+}
+
 std::vector<float> RandomCloud(std::size_t points)
 {
   std::mt19937 random(99);
@@ -1226,57 +1253,50 @@ TEST(SampleAccumulator, WeightedPointsAddTheirWeightTimesTheirDeposit)
   {
     weights[i] = 0.75f * static_cast<float>(i % 4) + (i % 7 == 0 ? 1e-3f : 0.0f);
   }
-  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
-  mcx::ProjectionGeometry parallel = perspective;
-  parallel.Perspective = false;
-  for (const bool footprint : { false, true })
+  for (const DepositCase& deposit : DepositCases())
   {
-    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
-    {
-      ASSERT_EQ("", g.Validate());
-      const mcx::DepositSettings settings = RandomCloudDeposit(footprint);
-      const std::string what = std::string(footprint ? "footprint" : "point") +
-        (g.Perspective ? ", perspective" : ", parallel");
-      using Serial = mcx::SerialExecutor;
-      const auto plain = WeightedSums<Serial>(g, settings, cloud, 0, count, nullptr);
-      EXPECT_TRUE(plain == WeightedSums<Serial>(g, settings, cloud, 0, count, ones.data())) << what;
-      const auto none = WeightedSums<Serial>(g, settings, cloud, 0, count, zeros.data());
-      EXPECT_TRUE(std::all_of(
-        none.begin(), none.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }))
-        << what;
+    const mcx::ProjectionGeometry& g = deposit.View;
+    ASSERT_EQ("", g.Validate());
+    const mcx::DepositSettings& settings = deposit.Settings;
+    const std::string& what = deposit.What;
+    using Serial = mcx::SerialExecutor;
+    const auto plain = WeightedSums<Serial>(g, settings, cloud, 0, count, nullptr);
+    EXPECT_TRUE(plain == WeightedSums<Serial>(g, settings, cloud, 0, count, ones.data())) << what;
+    const auto none = WeightedSums<Serial>(g, settings, cloud, 0, count, zeros.data());
+    EXPECT_TRUE(std::all_of(
+      none.begin(), none.end(), [](const mcx::FixedSum& v) { return v == mcx::FixedSum(0); }))
+      << what;
 
-      const auto weighted = WeightedSums<Serial>(g, settings, cloud, 0, count, weights.data());
-      EXPECT_TRUE(
-        weighted == WeightedSums<ThreadExecutor>(g, settings, cloud, 0, count, weights.data()))
-        << what;
-      const std::size_t entries = weighted.size(); // both halves
-      std::vector<double> expected(entries, 0.0), slack(entries, 0.0);
-      double mass = 0.0;
-      for (std::uint64_t i = 0; i < count; ++i)
-      {
-        const auto alone = WeightedSums<Serial>(g, settings, cloud, i, i + 1, nullptr);
-        for (std::size_t e = 0; e < entries; ++e)
-        {
-          if (alone[e] != mcx::FixedSum(0))
-          {
-            expected[e] += weights[i] * mcx::ToDouble(alone[e]);
-            slack[e] += 0.5 * weights[i] + 0.5; // w round(x) against round(w x)
-          }
-        }
-        mass += weights[i] > 0 ? 1.0 : 0.0;
-      }
-      ASSERT_GT(mass, count / 2.0);
-      std::size_t outside = 0, reached = 0;
+    const auto weighted = WeightedSums<Serial>(g, settings, cloud, 0, count, weights.data());
+    EXPECT_TRUE(
+      weighted == WeightedSums<ThreadExecutor>(g, settings, cloud, 0, count, weights.data()))
+      << what;
+    const std::size_t entries = weighted.size(); // both halves
+    std::vector<double> expected(entries, 0.0), slack(entries, 0.0);
+    double mass = 0.0;
+    for (std::uint64_t i = 0; i < count; ++i)
+    {
+      const auto alone = WeightedSums<Serial>(g, settings, cloud, i, i + 1, nullptr);
       for (std::size_t e = 0; e < entries; ++e)
       {
-        outside +=
-          std::fabs(mcx::ToDouble(weighted[e]) - expected[e]) > slack[e] + 1e-6 * expected[e] ? 1
-                                                                                              : 0;
-        reached += expected[e] > 0 ? 1 : 0;
+        if (alone[e] != mcx::FixedSum(0))
+        {
+          expected[e] += weights[i] * mcx::ToDouble(alone[e]);
+          slack[e] += 0.5 * weights[i] + 0.5; // w round(x) against round(w x)
+        }
       }
-      EXPECT_EQ(0u, outside) << what;
-      EXPECT_GT(reached, entries / 4) << what;
+      mass += weights[i] > 0 ? 1.0 : 0.0;
     }
+    ASSERT_GT(mass, count / 2.0);
+    std::size_t outside = 0, reached = 0;
+    for (std::size_t e = 0; e < entries; ++e)
+    {
+      outside +=
+        std::fabs(mcx::ToDouble(weighted[e]) - expected[e]) > slack[e] + 1e-6 * expected[e] ? 1 : 0;
+      reached += expected[e] > 0 ? 1 : 0;
+    }
+    EXPECT_EQ(0u, outside) << what;
+    EXPECT_GT(reached, entries / 4) << what;
   }
 }
 
@@ -1376,38 +1396,32 @@ TEST(ChannelSplit, ChannelsAddUpToTheTotalAndAWholeChannelIsItsSamplesAlone)
     const double weights[3] = { 0.1 + (i % 5), 0.25 * (i % 2), 1.0 / (1 + i % 7) };
     ASSERT_TRUE(mcx::FixedFractions(weights, 3, mixed[i].data()));
   }
-  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
-  mcx::ProjectionGeometry parallel = perspective;
-  parallel.Perspective = false;
-  for (const bool footprint : { false, true })
+  for (const DepositCase& deposit : DepositCases())
   {
-    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
+    const mcx::ProjectionGeometry& g = deposit.View;
+    const mcx::DepositSettings& settings = deposit.Settings;
+    const std::string& what = deposit.What;
+    using Serial = mcx::SerialExecutor;
+    const auto unsplit = WeightedSums<Serial>(g, settings, cloud, 0, count, nullptr);
+    for (const auto* fractions : { &whole, &mixed })
     {
-      const mcx::DepositSettings settings = RandomCloudDeposit(footprint);
-      const std::string what = std::string(footprint ? "footprint" : "point") +
-        (g.Perspective ? ", perspective" : ", parallel");
-      using Serial = mcx::SerialExecutor;
-      const auto unsplit = WeightedSums<Serial>(g, settings, cloud, 0, count, nullptr);
-      for (const auto* fractions : { &whole, &mixed })
+      const auto sums = ChannelSums<Serial>(g, settings, cloud, *fractions);
+      EXPECT_TRUE(sums[0] == unsplit) << what;
+      EXPECT_TRUE(sums == ChannelSums<ThreadExecutor>(g, settings, cloud, *fractions)) << what;
+      std::size_t reached = 0;
+      for (std::size_t e = 0; e < unsplit.size(); ++e)
       {
-        const auto sums = ChannelSums<Serial>(g, settings, cloud, *fractions);
-        EXPECT_TRUE(sums[0] == unsplit) << what;
-        EXPECT_TRUE(sums == ChannelSums<ThreadExecutor>(g, settings, cloud, *fractions)) << what;
-        std::size_t reached = 0;
-        for (std::size_t e = 0; e < unsplit.size(); ++e)
-        {
-          ASSERT_TRUE(sums[1][e] + sums[2][e] + sums[3][e] == sums[0][e]) << what << " " << e;
-          reached += sums[3][e] != mcx::FixedSum(0) ? 1 : 0;
-        }
-        EXPECT_GT(reached, unsplit.size() / 4) << what;
+        ASSERT_TRUE(sums[1][e] + sums[2][e] + sums[3][e] == sums[0][e]) << what << " " << e;
+        reached += sums[3][e] != mcx::FixedSum(0) ? 1 : 0;
       }
-      const auto split = ChannelSums<Serial>(g, settings, cloud, whole);
-      for (int c = 0; c < 3; ++c)
-      {
-        EXPECT_TRUE(
-          split[1 + c] == WeightedSums<Serial>(g, settings, cloud, 0, count, ofChannel[c].data()))
-          << what << ", channel " << c;
-      }
+      EXPECT_GT(reached, unsplit.size() / 4) << what;
+    }
+    const auto split = ChannelSums<Serial>(g, settings, cloud, whole);
+    for (int c = 0; c < 3; ++c)
+    {
+      EXPECT_TRUE(
+        split[1 + c] == WeightedSums<Serial>(g, settings, cloud, 0, count, ofChannel[c].data()))
+        << what << ", channel " << c;
     }
   }
 }
@@ -1535,59 +1549,53 @@ TEST(ProgressiveImage, ControlledImageIsTheWeightedMinusTheOnceCountedPlusTheCon
   {
     weights[i] = 0.5f * static_cast<float>(i % 5);
   }
-  mcx::ProjectionGeometry perspective = SmallPerspectiveView();
-  mcx::ProjectionGeometry parallel = perspective;
-  parallel.Perspective = false;
-  for (const bool footprint : { false, true })
+  for (const DepositCase& deposit : DepositCases())
   {
-    for (const mcx::ProjectionGeometry& g : { parallel, perspective })
+    const mcx::ProjectionGeometry& g = deposit.View;
+    const mcx::DepositSettings& settings = deposit.Settings;
+    const std::string& what = deposit.What;
+    auto image = [&](const float* pointWeights, const std::vector<double>& control)
     {
-      const mcx::DepositSettings settings = RandomCloudDeposit(footprint);
-      const std::string what = std::string(footprint ? "footprint" : "point") +
-        (g.Perspective ? ", perspective" : ", parallel");
-      auto image = [&](const float* pointWeights, const std::vector<double>& control)
+      mcx::ProgressiveImage<ThreadExecutor> progressive;
+      progressive.Reset(g, origin, identity, std::vector<double>(), settings);
+      if (!control.empty())
       {
-        mcx::ProgressiveImage<ThreadExecutor> progressive;
-        progressive.Reset(g, origin, identity, std::vector<double>(), settings);
-        if (!control.empty())
-        {
-          progressive.SetControl(control, integral);
-        }
-        for (std::uint64_t target = 1; target <= count; target = 2 * target + 1)
-        {
-          progressive.Advance(ThreadExecutor(), cloud.data(), target, pointWeights);
-        }
-        EXPECT_EQ(!control.empty(), progressive.IsControlled()) << what;
-        std::vector<double> values(progressive.NumberOfPixels());
-        progressive.ToValues(integral / progressive.CountedWeight(), values.data());
-        return std::make_pair(values, progressive.EstimateRelativeError());
-      };
-      const std::vector<double> once = image(nullptr, {}).first;
-      const std::size_t pixels = once.size();
-      std::vector<double> control(pixels);
-      for (std::size_t p = 0; p < pixels; ++p)
-      {
-        control[p] = 0.01 * static_cast<double>(p % 37);
+        progressive.SetControl(control, integral);
       }
-      const auto equal = image(ones.data(), control);
-      EXPECT_EQ(control, equal.first) << what;
-      EXPECT_LT(equal.second, 1e-12) << what; // 0 but for the rounding of W / W_A against n / a
-
-      const auto controlled = image(weights.data(), control);
-      const std::vector<double> weighted = image(weights.data(), {}).first;
-      double peak = 0.0;
-      for (double v : weighted)
+      for (std::uint64_t target = 1; target <= count; target = 2 * target + 1)
       {
-        peak = std::max(peak, std::fabs(v));
+        progressive.Advance(ThreadExecutor(), cloud.data(), target, pointWeights);
       }
-      ASSERT_GT(peak, 0.0) << what;
-      for (std::size_t p = 0; p < pixels; ++p)
-      {
-        ASSERT_NEAR(weighted[p] + control[p] - once[p], controlled.first[p], 1e-12 * peak)
-          << what << ", pixel " << p;
-      }
-      EXPECT_GT(controlled.second, 0.0) << what;
+      EXPECT_EQ(!control.empty(), progressive.IsControlled()) << what;
+      std::vector<double> values(progressive.NumberOfPixels());
+      progressive.ToValues(integral / progressive.CountedWeight(), values.data());
+      return std::make_pair(values, progressive.EstimateRelativeError());
+    };
+    const std::vector<double> once = image(nullptr, {}).first;
+    const std::size_t pixels = once.size();
+    std::vector<double> control(pixels);
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      control[p] = 0.01 * static_cast<double>(p % 37);
     }
+    const auto equal = image(ones.data(), control);
+    EXPECT_EQ(control, equal.first) << what;
+    EXPECT_LT(equal.second, 1e-12) << what; // 0 but for the rounding of W / W_A against n / a
+
+    const auto controlled = image(weights.data(), control);
+    const std::vector<double> weighted = image(weights.data(), {}).first;
+    double peak = 0.0;
+    for (double v : weighted)
+    {
+      peak = std::max(peak, std::fabs(v));
+    }
+    ASSERT_GT(peak, 0.0) << what;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      ASSERT_NEAR(weighted[p] + control[p] - once[p], controlled.first[p], 1e-12 * peak)
+        << what << ", pixel " << p;
+    }
+    EXPECT_GT(controlled.second, 0.0) << what;
   }
 }
 

@@ -95,30 +95,44 @@ struct Pipeline
     this->Sampler->SetDepositToFootprint();
   }
 
-  // One projection of samples drawn under the density, each deposit split
-  // into the materials' channels (ChannelLineIntegral).
-  vtkSmartPointer<vtkImageData> Split(int sampleExponent = SampleExponent)
+  // A projector of samples drawn from the index under the density, each
+  // deposit split into the materials' channels (ChannelLineIntegral) when
+  // `split`.
+  vtkSmartPointer<vtkMCXProjector> IndexProjector(bool split = true)
   {
-    vtkNew<vtkMCXProjector> projector;
+    auto projector = vtkSmartPointer<vtkMCXProjector>::New();
     projector->SetInputConnection(this->Index->GetOutputPort());
     projector->SetTransferFunction(this->Density);
     vtkNew<vtkMCXMaterialWeights> describe;
     describe->SetMaterials(this->Materials.c_str());
-    projector->SetNumberOfChannels(describe->GetNumberOfMaterials());
-    for (int m = 0; m < describe->GetNumberOfMaterials(); ++m)
+    projector->SetNumberOfChannels(split ? describe->GetNumberOfMaterials() : 0);
+    for (int m = 0; m < projector->GetNumberOfChannels(); ++m)
     {
       vtkNew<vtkPiecewiseFunction> fraction;
       EXPECT_TRUE(describe->FillFractionFunction(m, fraction));
       projector->SetChannelFraction(m, fraction);
     }
-    projector->SetSampleExponent(sampleExponent);
     projector->SetKernel(vtkMCXTypes::BOX);
+    return projector;
+  }
+
+  // The N x N image of 1 mm pixels of `projector`, a copy.
+  static vtkSmartPointer<vtkImageData> Image(vtkMCXProjector* projector)
+  {
     projector->SetImageSize(N, N);
     projector->SetPixelSpacing(1.0);
     projector->Update();
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->DeepCopy(projector->GetOutput());
     return image;
+  }
+
+  // One projection split into the materials' channels.
+  vtkSmartPointer<vtkImageData> Split(int sampleExponent = SampleExponent)
+  {
+    auto projector = this->IndexProjector();
+    projector->SetSampleExponent(sampleExponent);
+    return Image(projector);
   }
 
   // The projection of channel (-1: every weight 1) of the one cloud.
@@ -132,12 +146,7 @@ struct Pipeline
     vtkNew<vtkMCXProjector> projector;
     projector->SetInputConnection(weights->GetOutputPort());
     projector->SetKernel(vtkMCXTypes::BOX);
-    projector->SetImageSize(N, N);
-    projector->SetPixelSpacing(1.0);
-    projector->Update();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(projector->GetOutput());
-    return image;
+    return Image(projector);
   }
 };
 
@@ -222,21 +231,16 @@ TEST(PolychromaticRadiograph, ChannelsSumToTheTotalImage)
   const char* channels = vtkMCXTypes::ChannelLineIntegralName();
   ASSERT_NE(split->GetPointData()->GetArray(channels), nullptr);
   ASSERT_EQ(split->GetPointData()->GetArray(channels)->GetNumberOfComponents(), 2);
-  vtkNew<vtkMCXProjector> plain;
-  plain->SetInputConnection(pipeline.Index->GetOutputPort());
-  plain->SetTransferFunction(pipeline.Density);
-  plain->SetSampleExponent(SampleExponent);
-  plain->SetKernel(vtkMCXTypes::BOX);
-  plain->SetImageSize(N, N);
-  plain->SetPixelSpacing(1.0);
-  plain->Update();
+  auto unsplit = pipeline.IndexProjector(false);
+  unsplit->SetSampleExponent(SampleExponent);
+  auto plain = Pipeline::Image(unsplit);
   worst = 0.0;
   for (int j = 0; j < N; ++j)
   {
     for (int i = 0; i < N; ++i)
     {
       const double t = Pixel(split, name, i, j);
-      ASSERT_EQ(t, Pixel(plain->GetOutput(), name, i, j)) << i << " " << j;
+      ASSERT_EQ(t, Pixel(plain, name, i, j)) << i << " " << j;
       worst = std::max(
         worst, std::abs(Pixel(split, channels, i, j, 0) + Pixel(split, channels, i, j, 1) - t));
     }
@@ -538,9 +542,7 @@ TEST(PolychromaticRadiograph, BadSettingsAreOneLineErrors)
 TEST(PolychromaticRadiograph, UnusableChannelFractionsAreOneLineErrors)
 {
   Pipeline pipeline;
-  vtkNew<vtkMCXProjector> projector;
-  projector->SetInputConnection(pipeline.Index->GetOutputPort());
-  projector->SetTransferFunction(pipeline.Density);
+  auto projector = pipeline.IndexProjector(false);
   projector->SetSampleExponent(12);
   projector->SetImageSize(8, 8);
   projector->SetNumberOfChannels(2);
@@ -589,27 +591,12 @@ TEST(PolychromaticRadiograph, ATargetsChannelsAreTheFixedRunOfItsSampleCountBitF
   Pipeline pipeline;
   auto run = [&](double target, int exponent)
   {
-    vtkNew<vtkMCXProjector> projector;
-    projector->SetInputConnection(pipeline.Index->GetOutputPort());
-    projector->SetTransferFunction(pipeline.Density);
-    vtkNew<vtkMCXMaterialWeights> describe;
-    describe->SetMaterials(pipeline.Materials.c_str());
-    projector->SetNumberOfChannels(2);
-    for (int m = 0; m < 2; ++m)
-    {
-      vtkNew<vtkPiecewiseFunction> fraction;
-      describe->FillFractionFunction(m, fraction);
-      projector->SetChannelFraction(m, fraction);
-    }
+    auto projector = pipeline.IndexProjector();
+    projector->SetKernel(vtkMCXTypes::TENT);
     projector->SetDeposit(vtkMCXTypes::POINT);
     projector->SetTargetRelativeError(target);
     projector->SetSampleExponent(exponent);
-    projector->SetImageSize(N, N);
-    projector->SetPixelSpacing(1.0);
-    projector->Update();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(projector->GetOutput());
-    return image;
+    return Pipeline::Image(projector);
   };
   auto targeted = run(0.02, 0);
   const double count = mcxtest::FieldValue(targeted, vtkMCXTypes::SampleCountName());
