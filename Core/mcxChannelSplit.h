@@ -45,35 +45,49 @@ inline FixedSum SplitSum(const FixedSum& increment, std::uint64_t fraction)
   return part;
 }
 
-/// Channel fractions of `weights` (each >= 0, their sum > 0) in fixed
-/// point: round(2^32 w / sum) for all but the last channel, which takes the
-/// rest, so that they sum to exactly 2^32. False when no weight is positive
-/// (or one is not finite): then nothing is written.
+/// Channel fractions of `weights` (each >= 0, one > 0) in fixed point:
+/// round(2^32 w / sum) for each positive weight but the last positive one,
+/// which takes the rest, and 0 for a weight of 0, so that they sum to
+/// exactly 2^32 and a channel of no weight gets nothing. False (nothing
+/// written) when no weight is positive, one is negative or not finite, or
+/// there are no channels.
 inline bool FixedFractions(const double* weights, int channels, std::uint64_t* fractions)
 {
-  double sum = 0.0;
+  double largest = 0.0;
+  int last = -1;
   for (int c = 0; c < channels; ++c)
   {
     if (!(weights[c] >= 0.0) || !std::isfinite(weights[c]))
     {
       return false;
     }
-    sum += weights[c];
+    largest = weights[c] > largest ? weights[c] : largest;
+    last = weights[c] > 0.0 ? c : last;
   }
-  if (!(sum > 0.0) || !std::isfinite(sum))
+  if (last < 0)
   {
     return false;
   }
-  std::uint64_t given = 0;
-  for (int c = 0; c + 1 < channels; ++c)
+  // Relative to the largest, so that the sum cannot overflow.
+  double sum = 0.0;
+  for (int c = 0; c < channels; ++c)
   {
+    sum += weights[c] / largest;
+  }
+  std::uint64_t given = 0;
+  for (int c = 0; c < channels; ++c)
+  {
+    if (c == last)
+    {
+      continue;
+    }
     std::uint64_t share = static_cast<std::uint64_t>(
-      std::floor(weights[c] / sum * static_cast<double>(FractionOne) + 0.5));
+      std::floor(weights[c] / largest / sum * static_cast<double>(FractionOne) + 0.5));
     share = share > FractionOne - given ? FractionOne - given : share;
     fractions[c] = share;
     given += share;
   }
-  fractions[channels - 1] = FractionOne - given;
+  fractions[last] = FractionOne - given;
   return true;
 }
 
@@ -96,6 +110,13 @@ struct ChannelShares
 class ChannelShareTable
 {
 public:
+  // Its shares point into its own vectors: moved, they stay valid; copied, they would not.
+  ChannelShareTable() = default;
+  ChannelShareTable(const ChannelShareTable&) = delete;
+  ChannelShareTable& operator=(const ChannelShareTable&) = delete;
+  ChannelShareTable(ChannelShareTable&&) = default;
+  ChannelShareTable& operator=(ChannelShareTable&&) = default;
+
   void Build(const std::vector<std::uint64_t>& fractions, int channels)
   {
     const std::size_t levels = channels > 0 ? fractions.size() / channels : 0;

@@ -24,6 +24,7 @@
 #ifndef mcxSampleAccumulator_h
 #define mcxSampleAccumulator_h
 
+#include "mcxChannelSplit.h"
 #include "mcxDepositSettings.h"
 #include "mcxFixedPoint.h"
 #include "mcxFootprintLadder.h"
@@ -34,6 +35,7 @@
 #include "mcxThreadImage.h"
 #include "mcxThreadSums.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -100,7 +102,10 @@ public:
   /// Deposits given fractions (ThreadImage::Deposit) are split into
   /// `channels` images as well (mcxChannelSplit.h; 0 to MaximumChannels),
   /// which Collect's `channels` receive. Reset() sets none.
-  void SetChannels(int channels) { this->Channels = channels; }
+  void SetChannels(int channels)
+  {
+    this->Channels = std::min(std::max(channels, 0), MaximumChannels);
+  }
   int GetChannels() const { return this->Channels; }
 
   /// Samples with k < split count in the first half's sums as well.

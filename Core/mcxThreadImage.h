@@ -518,25 +518,32 @@ private:
 
   // AddShares with each pixel's increment split into the channels instead
   // (the footprint's half, of shares of at least one channel; the control
-  // is AddFootprint's): the words of the images it adds to fetched once.
-  // One or two parts (a level of one material, or mixed between two
-  // neighbouring ones) have loops of their own.
+  // is AddFootprint's). One or two parts (a level of one material, or mixed
+  // between two neighbouring ones) have loops of their own, the words of
+  // their images fetched once; more parts are rare.
   void AddSharesToChannels(const PreparedFootprint& footprint, double F, bool scales) const
   {
     const int half = footprint.FirstHalf ? 0 : 1;
     const ChannelShares& shares = *footprint.Split;
-    const int parts = shares.Count;
+    auto wide = [&](std::int64_t pixel, const FixedSum& increment)
+    { this->AddToChannels(half, pixel, increment, shares); };
+    if (shares.Count > 2)
+    {
+      this->VisitIncrements(
+        footprint, F, scales,
+        [&](std::int64_t pixel, std::uint64_t increment) { wide(pixel, FixedSum(increment)); },
+        wide);
+      return;
+    }
     ThreadSums& sums = *this->Sums;
-    std::uint64_t* low[MaximumChannels];
-    int image[MaximumChannels];
-    for (int i = 0; i < parts; ++i)
+    int image[2] = { 0, 0 };
+    std::uint64_t* low[2] = { nullptr, nullptr };
+    for (int i = 0; i < shares.Count; ++i)
     {
       image[i] = ThreadSums::ChannelImage(static_cast<int>(shares.Channels[i]), half);
       low[i] = sums.LowWords(image[i]);
     }
-    auto wide = [&](std::int64_t pixel, const FixedSum& increment)
-    { this->AddToChannels(half, pixel, increment, shares); };
-    if (parts == 1)
+    if (shares.Count == 1)
     {
       this->VisitIncrements(
         footprint, F, scales,
@@ -545,32 +552,14 @@ private:
         wide);
       return;
     }
-    if (parts == 2)
-    {
-      const std::uint64_t fraction = shares.Fractions[0];
-      this->VisitIncrements(
-        footprint, F, scales,
-        [&](std::int64_t pixel, std::uint64_t increment)
-        {
-          const std::uint64_t part = SplitWord(increment, fraction);
-          sums.AddWord(image[0], low[0], pixel, part);
-          sums.AddWord(image[1], low[1], pixel, increment - part);
-        },
-        wide);
-      return;
-    }
+    const std::uint64_t fraction = shares.Fractions[0];
     this->VisitIncrements(
       footprint, F, scales,
       [&](std::int64_t pixel, std::uint64_t increment)
       {
-        std::uint64_t rest = increment;
-        for (int i = 0; i + 1 < parts; ++i)
-        {
-          const std::uint64_t part = SplitWord(increment, shares.Fractions[i]);
-          sums.AddWord(image[i], low[i], pixel, part);
-          rest -= part;
-        }
-        sums.AddWord(image[parts - 1], low[parts - 1], pixel, rest);
+        const std::uint64_t part = SplitWord(increment, fraction);
+        sums.AddWord(image[0], low[0], pixel, part);
+        sums.AddWord(image[1], low[1], pixel, increment - part);
       },
       wide);
   }

@@ -81,10 +81,15 @@ public:
       return true;
     }
     std::vector<std::uint64_t> fractions;
-    const std::string problem = mcx::ChannelFractionTable(self, this->View, tf, fractions);
+    std::string problem = mcx::ChannelFractionTable(self, this->View, tf, fractions);
+    if (this->Controller)
+    {
+      // Every process stops together, as when preparing.
+      problem = mcx::FirstErrorOfAll(this->Controller, problem);
+    }
     if (!problem.empty())
     {
-      vtkErrorWithObjectMacro(this->Self, "Cannot project into channels: " << problem);
+      vtkErrorWithObjectMacro(this->Self, "Cannot project into channels: " << problem << ".");
       return false;
     }
     this->Shares.Build(fractions, this->Channels);
@@ -229,7 +234,8 @@ private:
     catch (const std::bad_alloc&)
     {
       error = "out of memory projecting into " + std::to_string(this->Geometry.Size[0]) + " x " +
-        std::to_string(this->Geometry.Size[1]) + " pixels";
+        std::to_string(this->Geometry.Size[1]) + " pixels" +
+        (this->Channels > 0 ? " and " + std::to_string(this->Channels) + " channels" : "");
     }
     if (this->Controller)
     {

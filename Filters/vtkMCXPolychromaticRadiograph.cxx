@@ -58,6 +58,7 @@ const mcx::PolychromaticModel* vtkMCXPolychromaticRadiograph::Model()
       const mcx::Detector detector = mcx::ParseDetector(text(this->Detector));
       const mcx::MaterialSet set = mcx::MaterialsFromText(text(this->Materials));
       this->Cached.reset(new mcx::PolychromaticModel(spectrum, detector, set.Names()));
+      this->CachedNames = set.Names();
       this->CachedKey = key;
       this->CachedMeanEnergy = spectrum.MeanEnergy();
     }
@@ -135,6 +136,7 @@ int vtkMCXPolychromaticRadiograph::RequestData(
   output->GetFieldData()->RemoveArray(vtkMCXTypes::EstimatedRelativeErrorName());
   output->GetFieldData()->AddArray(estimate);
   output->GetPointData()->AddArray(effective);
+  output->GetPointData()->AddArray(this->ChannelArray(values));
   output->GetPointData()->AddArray(result);
   output->GetPointData()->SetActiveScalars(result->GetName());
   return 1;
@@ -146,13 +148,27 @@ bool vtkMCXPolychromaticRadiograph::ReadChannels(vtkInformationVector* inputs, i
 {
   const int connected = inputs->GetNumberOfInformationObjects();
   vtkImageData* first = vtkImageData::GetData(inputs, 0);
-  vtkDataArray* split = first && connected == 1
-    ? first->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName())
-    : nullptr;
+  auto splitOf = [](vtkImageData* image)
+  {
+    return image ? image->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName())
+                 : nullptr;
+  };
+  vtkDataArray* split = connected == 1 ? splitOf(first) : nullptr;
+  for (int m = 0; m < connected && connected > 1; ++m)
+  {
+    if (splitOf(vtkImageData::GetData(inputs, m)))
+    {
+      vtkErrorMacro("Input " << m
+                             << " is a projection split into channels: connect it alone, "
+                                "not with other images.");
+      return false;
+    }
+  }
   const int channels = split ? split->GetNumberOfComponents() : connected;
   if (channels != materials)
   {
-    vtkErrorMacro("" << channels << " channels for " << materials
+    vtkErrorMacro("" << (split ? "A projection split into " : "") << channels
+                     << (split ? " channels" : " channel images") << " for " << materials
                      << " materials: connect one projection split into a channel per material "
                         "(vtkMCXProjector::SetNumberOfChannels), or one image per material, in "
                         "the materials' order.");
@@ -170,8 +186,9 @@ bool vtkMCXPolychromaticRadiograph::ReadChannels(vtkInformationVector* inputs, i
     if (!line || (!split && line->GetNumberOfComponents() != 1) ||
       (pixels >= 0 && line->GetNumberOfTuples() != pixels))
     {
-      vtkErrorMacro(
-        "Channel " << m << " has no one-component LineIntegral array of the others' size.");
+      vtkErrorMacro("Channel image " << m
+                                     << " has no one-component LineIntegral array of the "
+                                        "others' size.");
       return false;
     }
     pixels = line->GetNumberOfTuples();
@@ -197,6 +214,27 @@ bool vtkMCXPolychromaticRadiograph::ReadChannels(vtkInformationVector* inputs, i
   return true;
 }
 
+vtkSmartPointer<vtkDoubleArray> vtkMCXPolychromaticRadiograph::ChannelArray(
+  const std::vector<std::vector<double>>& values) const
+{
+  auto channels = vtkSmartPointer<vtkDoubleArray>::New();
+  channels->SetName(vtkMCXTypes::ChannelLineIntegralName());
+  channels->SetNumberOfComponents(static_cast<int>(values.size()));
+  channels->SetNumberOfTuples(static_cast<vtkIdType>(values[0].size()));
+  for (std::size_t m = 0; m < values.size(); ++m)
+  {
+    if (m < this->CachedNames.size())
+    {
+      channels->SetComponentName(static_cast<vtkIdType>(m), this->CachedNames[m].c_str());
+    }
+    for (std::size_t p = 0; p < values[m].size(); ++p)
+    {
+      channels->SetTypedComponent(static_cast<vtkIdType>(p), static_cast<int>(m), values[m][p]);
+    }
+  }
+  return channels;
+}
+
 void vtkMCXPolychromaticRadiograph::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -210,4 +248,10 @@ void vtkMCXPolychromaticRadiograph::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cached: " << (this->Cached ? "a model" : "none") << "\n";
   os << indent << "CachedKey: " << this->CachedKey << "\n";
   os << indent << "CachedMeanEnergy: " << this->CachedMeanEnergy << "\n";
+  os << indent << "CachedNames:";
+  for (const std::string& name : this->CachedNames)
+  {
+    os << " '" << name << "'";
+  }
+  os << "\n";
 }

@@ -16,7 +16,8 @@
  * integral -ln T: "Intensity" = I0 T, with Poisson noise of PhotonsPerPixel
  * photons (the spectrum's photons reaching an open pixel), or with
  * NegativeLog "Attenuation" = -ln(I / I0). "EffectiveLineIntegral" (-ln T)
- * is kept. A Spectrum, Detector or effect change re-executes this filter
+ * is kept, and "ChannelLineIntegral", the channels (one component each,
+ * named by its material). A Spectrum, Detector or effect change re-executes this filter
  * alone: the channels are not sampled again.
  */
 #ifndef vtkMCXPolychromaticRadiograph_h
@@ -26,10 +27,13 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkMCXRadiograph.h" // for MaximumPhotonsPerPixel
 
+#include "vtkSmartPointer.h" // for the channel array
+
 #include <memory> // for the model
 #include <string> // for the model's key
 #include <vector> // for the channels
 
+class vtkDoubleArray;
 namespace mcx
 {
 class PolychromaticModel;
@@ -109,6 +113,11 @@ private:
   bool ReadChannels(vtkInformationVector* inputs, int materials, vtkImageData* output,
     std::vector<std::vector<double>>& values, std::vector<double>& channelErrors);
 
+  // The channels' line integrals as one array, each component named by its
+  // material (the output's "ChannelLineIntegral").
+  vtkSmartPointer<vtkDoubleArray> ChannelArray(
+    const std::vector<std::vector<double>>& values) const;
+
   // The model of Spectrum, Detector and Materials, rebuilt when they change.
   const mcx::PolychromaticModel* Model();
 
@@ -121,6 +130,7 @@ private:
   bool NegativeLog = false;
   std::unique_ptr<mcx::PolychromaticModel> Cached;
   std::string CachedKey;
+  std::vector<std::string> CachedNames; // the materials' xraylib names
   double CachedMeanEnergy = 0.0;
 };
 

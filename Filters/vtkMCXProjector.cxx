@@ -46,6 +46,14 @@ bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeEx
 {
   if (auto* cloud = vtkPolyData::SafeDownCast(input))
   {
+    if (self->GetNumberOfChannels() > 0)
+    {
+      vtkErrorWithObjectMacro(self,
+        "Cannot project into channels: the channels split the deposit of samples drawn from a "
+        "density index, and the input is a stored point cloud (weigh its points per channel "
+        "with vtkMCXMaterialWeights instead, or set NumberOfChannels to 0).");
+      return false;
+    }
     return mcx::ProjectCloud(self, cloud, geometry, self->GetFootprintReach(), projection);
   }
   return mcx::ProjectIndex(

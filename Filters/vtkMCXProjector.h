@@ -51,7 +51,8 @@
  * "ChannelEstimatedRelativeError" (K values, estimated as the image's).
  * The split is exact: the channels' fixed-point sums add up to the total's,
  * bit for bit, for any number of threads and processes, every deposit and
- * strategy and the target controls (which aim at the total's error).
+ * strategy of an index input and the target controls (which aim at the
+ * total's error). A point-cloud input is not split (an error).
  */
 #ifndef vtkMCXProjector_h
 #define vtkMCXProjector_h

@@ -19,6 +19,7 @@
 #include "vtkPointData.h"
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -134,7 +135,9 @@ vtkImageData* PolychromaticStage::Radiograph(
               ? ", Poisson noise of " + std::to_string(physics.Photons) + " photons per pixel"
               : "")
        << "), range " << range[0] << " .. " << range[1];
-  if (vtkDataArray* estimate = result->GetFieldData()->GetArray("EstimatedRelativeError"))
+  // Every voxel once has no sampling error to estimate (NaN): nothing said, as for one energy.
+  vtkDataArray* estimate = result->GetFieldData()->GetArray("EstimatedRelativeError");
+  if (estimate && std::isfinite(estimate->GetComponent(0, 0)))
   {
     text << ", -ln(I/I0) estimated relative RMS error " << estimate->GetComponent(0, 0);
   }

@@ -1326,6 +1326,17 @@ TEST(ChannelSplit, SplitsAreFloorsOfTheProductAndFractionsSumToOne)
   EXPECT_EQ(mcx::FractionOne, fractions[0] + fractions[1] + fractions[2] + fractions[3]);
   EXPECT_EQ(0u, fractions[1]);
   EXPECT_NEAR(0.2 / (0.2 + 1.0 / 3.0 + 0.7), fractions[0] / mcx::FixedOne, 1e-9);
+  // A channel of no weight gets nothing, the last one included (the rest
+  // goes to the last positive weight); weights near the largest double
+  // do not overflow their sum.
+  const double lastZero[3] = { 1.0, 1.0 / 3.0, 0.0 };
+  ASSERT_TRUE(mcx::FixedFractions(lastZero, 3, fractions));
+  EXPECT_EQ(0u, fractions[2]);
+  EXPECT_EQ(mcx::FractionOne, fractions[0] + fractions[1]);
+  const double huge[2] = { 1e308, 1e308 };
+  ASSERT_TRUE(mcx::FixedFractions(huge, 2, fractions));
+  EXPECT_EQ(mcx::FractionOne / 2, fractions[0]);
+  EXPECT_FALSE(mcx::FixedFractions(huge, 0, fractions));
   const double none[2] = { 0.0, 0.0 }, negative[2] = { 1.0, -0.1 }, nan[2] = { 1.0, std::nan("") };
   EXPECT_FALSE(mcx::FixedFractions(none, 2, fractions));
   EXPECT_FALSE(mcx::FixedFractions(negative, 2, fractions));

@@ -285,6 +285,13 @@ TEST(PolychromaticRadiograph, StepWedgeAndWaterCylinderAgreeWithSpectrumSums)
     }
     radiograph->Update();
     vtkImageData* image = radiograph->GetOutput();
+    // The channels come out with the image, named by their materials.
+    vtkDataArray* channels =
+      image->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName());
+    ASSERT_NE(channels, nullptr);
+    EXPECT_STREQ(channels->GetComponentName(1), "Al");
+    EXPECT_GT(Pixel(image, vtkMCXTypes::ChannelLineIntegralName(), 40, 10, 1), 20.0); // 24 mm Al
+    EXPECT_EQ(Pixel(image, vtkMCXTypes::ChannelLineIntegralName(), 40, 10, 0), 0.0);
     mcx::TubeSettings tube = mcx::ParseTubeSettings("80kVp,2.5mmAl");
     const mcx::Spectrum spectrum = mcx::TungstenSpectrum(tube);
     std::vector<double> response; // E x CsI's absorbed fraction, from xraylib here
@@ -515,7 +522,7 @@ TEST(PolychromaticRadiograph, BadSettingsAreOneLineErrors)
   {
     mcxtest::FirstError error(radiograph);
     radiograph->Update(); // one channel for two materials
-    EXPECT_NE(error.Text.find("1 channels for 2 materials"), std::string::npos) << error.Text;
+    EXPECT_NE(error.Text.find("1 channel images for 2 materials"), std::string::npos) << error.Text;
   }
   radiograph->AddInputData(pipeline.Channel(1));
   radiograph->SetSpectrum("300kVp");
@@ -581,6 +588,24 @@ TEST(PolychromaticRadiograph, UnusableChannelFractionsAreOneLineErrors)
   EXPECT_NE(
     projector->GetOutput()->GetPointData()->GetArray(vtkMCXTypes::ChannelLineIntegralName()),
     nullptr);
+  // A stored cloud is not split: said, not ignored.
+  projector->SetInputConnection(pipeline.Sampler->GetOutputPort());
+  {
+    mcxtest::FirstError error(projector);
+    projector->Update();
+    EXPECT_NE(error.Text.find("the input is a stored point cloud"), std::string::npos)
+      << error.Text;
+  }
+  // Split projections go into the radiograph alone.
+  vtkNew<vtkMCXPolychromaticRadiograph> radiograph;
+  radiograph->SetMaterials(pipeline.Materials.c_str());
+  radiograph->SetSpectrum("70kVp");
+  radiograph->AddInputData(pipeline.Split(12));
+  radiograph->AddInputData(pipeline.Split(12));
+  mcxtest::FirstError error(radiograph);
+  radiograph->Update();
+  EXPECT_NE(error.Text.find("Input 0 is a projection split into channels"), std::string::npos)
+    << error.Text;
 }
 
 TEST(PolychromaticRadiograph, ATargetsChannelsAreTheFixedRunOfItsSampleCountBitForBit)
