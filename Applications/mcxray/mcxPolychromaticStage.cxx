@@ -25,6 +25,16 @@
 namespace mcxapp
 {
 
+std::string PolychromaticDetector(const Settings& settings)
+{
+  std::string detector = settings.PhotonCounting ? "counting" : "integrating";
+  if (!settings.DetectorMaterial.empty())
+  {
+    detector += "," + settings.DetectorMaterial;
+  }
+  return detector;
+}
+
 PolychromaticStage::PolychromaticStage(const Settings& settings)
 {
   const bool asked = !settings.Spectrum.empty() || settings.MaterialsGiven ||
@@ -63,11 +73,7 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
     Fail("--spectrum projects a stored cloud of --samples points per material: leave out "
          "--target-error and --quantization-levels");
   }
-  std::string detector = settings.PhotonCounting ? "counting" : "integrating";
-  if (!settings.DetectorMaterial.empty())
-  {
-    detector += "," + settings.DetectorMaterial;
-  }
+  const std::string detector = PolychromaticDetector(settings);
   try
   {
     const mcx::Spectrum spectrum = mcx::SpectrumFromText(settings.Spectrum);

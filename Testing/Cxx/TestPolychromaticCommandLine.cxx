@@ -1,5 +1,6 @@
 // mcxray render --spectrum: a cube of soft tissue against the sum over the
-// spectrum done here with xraylib, and the options' one-line errors.
+// spectrum done here with xraylib, and the options' one-line errors (also
+// those of mcxray view, checked before it opens a window).
 #include "mcxCommandLineRunner.h"
 #include "mcxTestHelpers.h"
 #include "mcxTubeSpectrum.h"
@@ -89,4 +90,18 @@ TEST(PolychromaticCommandLine, BadOptionsAreOneLineErrors)
   // A stored cloud per material has no target control (it crashed before it was refused).
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --target-error 0.05" + quiet, output);
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --quantization-levels 64" + quiet, output);
+}
+
+TEST(PolychromaticCommandLine, ViewRefusesWhatCannotBePolychromatic)
+{
+  const std::string output = mcxtest::Temporary("polychromatic-view-error.png");
+  const std::string quiet = " --samples 1000 --screenshot " + output;
+  mcxtest::ExpectOneLineError("view --spectrum 300kVp" + quiet, output);
+  mcxtest::ExpectOneLineError("view --materials default" + quiet, output);
+  mcxtest::ExpectOneLineError("view --photon-counting" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --materials default,gold=3" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --method every-voxel" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --deposit point" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --detector-material CsI:0.6" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --tf bone" + quiet, output);
 }
