@@ -142,6 +142,10 @@ double vtkMCXXRayMapper::GetEstimatedRelativeError()
   const vtkInternals& in = *this->Internals;
   if (in.HasImage && in.ImagePolychromatic)
   {
+    if (in.MappedErrorCount == in.Image->Count() && in.MappedVersion == in.Channels.ModelVersion())
+    {
+      return in.MappedError; // what the image on screen was uploaded with
+    }
     std::vector<double> effective;
     double error = std::nan("");
     in.Channels.EffectiveValues(effective, &error);

@@ -377,6 +377,7 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
     cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0);
   this->ScaledIntegral = integral * std::fabs(vtkMatrix4x4::Determinant(m));
   this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
+  this->MappedErrorCount = std::numeric_limits<std::uint64_t>::max(); // another image
   this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
   // A new input needs a new source; so does a new view while the last
   // source showed nothing (the camera had not reached the volume yet).
@@ -556,7 +557,8 @@ void vtkMCXXRayMapper::vtkInternals::ImageValues(float* values)
     return;
   }
   std::vector<double> effective;
-  this->Channels.EffectiveValues(effective);
+  this->Channels.EffectiveValues(effective, &this->MappedError);
   std::copy(effective.begin(), effective.end(), values);
   this->MappedVersion = this->Channels.ModelVersion();
+  this->MappedErrorCount = this->Image->Count();
 }

@@ -88,6 +88,10 @@ struct vtkMCXXRayMapper::vtkInternals
   bool Polychromatic = false;      // this render's input is drawn through the channels
   bool ImagePolychromatic = false; // the image on screen has channels
   std::uint64_t MappedVersion = 0; // the model the uploaded values went through
+  // -ln T's error estimate, propagated at the last upload (an overlay asks
+  // for it every frame), and the sample count it is for.
+  double MappedError = 0.0;
+  std::uint64_t MappedErrorCount = 0;
   std::string Refused;             // the last problem reported (once per problem)
 
   // Whether the mapper's Spectrum asks for the polychromatic mode and the

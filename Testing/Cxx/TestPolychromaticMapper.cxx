@@ -256,6 +256,31 @@ TEST(PolychromaticMapper, ASpectrumOrDetectorChangeMapsTheSameChannelsAgain)
   EXPECT_EQ(mapper->GetNumberOfChannels(), 5);
 }
 
+TEST(PolychromaticMapper, ProgressiveRefinementEndsAtTheImageOfAllPoints)
+{
+  // Frames of a small time budget add prefixes to every channel; the sums are
+  // exact, so the last frame is the image of all points drawn at once.
+  Scene all;
+  all.Window->Render();
+  Scene progressive;
+  vtkMCXXRayMapper* mapper = progressive.Mapper;
+  mapper->ProgressiveRefinementOn();
+  mapper->SetInitialSampleExponent(10);
+  mapper->SetMaximumRenderTime(1e-6);
+  int frames = 0;
+  while (!mapper->IsRefinementComplete() && frames < 100)
+  {
+    progressive.Window->Render();
+    ++frames;
+    EXPECT_EQ(mapper->GetNumberOfChannels(), 4);
+  }
+  EXPECT_GT(mapper->GetNumberOfRefinements(), 2);
+  EXPECT_EQ(mapper->GetNumberOfRestarts(), 1);
+  EXPECT_TRUE(Channels(mapper) == Channels(all.Mapper));
+  EXPECT_TRUE(LineIntegrals(mapper) == LineIntegrals(all.Mapper));
+  EXPECT_EQ(mapper->GetEstimatedRelativeError(), all.Mapper->GetEstimatedRelativeError());
+}
+
 TEST(PolychromaticMapper, ADensityIndexInputGivesTheVolumesChannels)
 {
   // ParaView's representation hands the mapper the volume's density index:
