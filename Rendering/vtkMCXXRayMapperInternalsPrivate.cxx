@@ -121,6 +121,10 @@ vtkPolyData* vtkMCXXRayMapper::vtkInternals::UpdateInput(
   vtkDataObject* input = self->GetInputDataObject(0, 0);
   vtkPolyData* cloud = vtkPolyData::SafeDownCast(input);
   this->Polychromatic = false;
+  if (!self->GetSpectrum() || !*self->GetSpectrum())
+  {
+    this->Refused.clear(); // monochromatic: a later refusal is said again
+  }
   if (auto* image = vtkImageData::SafeDownCast(input))
   {
     bool refused = false;
@@ -517,12 +521,13 @@ void vtkMCXXRayMapper::vtkInternals::Advance(vtkPoints* points, std::uint64_t ta
           static_cast<const double*>(points->GetVoidPointer(0)), target, weights);
       }
     });
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (this->Polychromatic)
   {
-    this->Channels.Advance(points, target); // the same points, each channel's weights
+    // The same points, each channel's weights: counted in the cost per point.
+    this->Channels.Advance(points, target);
   }
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::uint64_t added = target - current;
   if (added >= 4096 && seconds > 0)
   {
