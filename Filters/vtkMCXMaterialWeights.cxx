@@ -4,6 +4,7 @@
 #include "mcxMaterialDecomposition.h"
 #include "mcxPointWeights.h"
 #include "vtkMCXIndexView.h"
+#include "vtkMCXMaterialFractions.h"
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXSMPExecutor.h"
 #include "vtkMCXTypes.h"
@@ -14,7 +15,6 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -22,7 +22,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
-#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -153,69 +152,15 @@ int vtkMCXMaterialWeights::RequestData(
     return 0;
   }
   const vtkIdType count = cloud->GetNumberOfPoints();
-  int dims[3];
-  volume->GetDimensions(dims);
   vtkNew<vtkDoubleArray> weights;
   weights->SetName(vtkMCXTypes::PointWeightName());
   weights->SetNumberOfValues(count);
   double* w = weights->GetPointer(0);
-  // The world-to-voxel map once, then every point in parallel: a point's
-  // weight depends on it alone, so any split of the work gives the same.
-  vtkMatrix4x4* toIndex = volume->GetPhysicalToIndexMatrix();
-  double m[12];
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      m[4 * r + c] = toIndex->GetElement(r, c);
-    }
-  }
-  vtkDataArray* points = cloud->GetPoints() ? cloud->GetPoints()->GetData() : nullptr;
-  std::atomic<vtkIdType> outside(-1);
-  const int channel = this->Channel;
-  mcx::SMPExecutor().For(0, count, 4096,
-    [&](std::int64_t begin, std::int64_t end)
-    {
-      std::vector<double> fractions(set->Size());
-      for (std::int64_t i = begin; i < end; ++i)
-      {
-        double x[3];
-        points->GetTuple(i, x);
-        int index[3];
-        bool centre = true;
-        for (int a = 0; a < 3; ++a)
-        {
-          const double ijk =
-            m[4 * a] * x[0] + m[4 * a + 1] * x[1] + m[4 * a + 2] * x[2] + m[4 * a + 3];
-          index[a] = static_cast<int>(std::lround(ijk));
-          // Voxel centres only: a point between voxels has no material of its own.
-          centre =
-            centre && std::abs(ijk - index[a]) <= 1e-3 && index[a] >= 0 && index[a] < dims[a];
-        }
-        if (!centre)
-        {
-          // The first such point, whichever thread finds it: the message is the same on every run.
-          vtkIdType seen = outside.load();
-          while ((seen < 0 || i < seen) && !outside.compare_exchange_weak(seen, i))
-          {
-          }
-          w[i] = 0.0;
-          continue;
-        }
-        if (channel < 0)
-        {
-          w[i] = 1.0;
-          continue;
-        }
-        const vtkIdType voxel =
-          index[0] + dims[0] * (index[1] + static_cast<vtkIdType>(dims[1]) * index[2]);
-        set->FixedFractionsAt(scalars->GetComponent(voxel, 0), fractions.data());
-        w[i] = fractions[channel];
-      }
-    });
+  const vtkIdType outside =
+    mcx::FillMaterialFractions(*set, cloud, volume, scalars, { this->Channel }, { w });
   if (outside >= 0)
   {
-    vtkErrorMacro("Point " << outside.load()
+    vtkErrorMacro("Point " << outside
                            << " is not at a voxel centre of the volume: sample it with the "
                               "footprint deposit (vtkMCXPointSampler's default).");
     return 0;

@@ -61,10 +61,15 @@ vtkMCXVolumeSampling::Settings SamplingSettingsOf(vtkMCXXRayMapper* self)
 vtkMCXXRayMapper::vtkMCXXRayMapper()
   : Internals(new vtkInternals)
 {
+  this->SetMaterials("default");
+  this->SetDetector("integrating");
 }
 
 vtkMCXXRayMapper::~vtkMCXXRayMapper()
 {
+  this->SetSpectrum(nullptr);
+  this->SetMaterials(nullptr);
+  this->SetDetector(nullptr);
   delete this->Internals;
 }
 
@@ -135,6 +140,17 @@ bool vtkMCXXRayMapper::IsRefinementComplete()
 double vtkMCXXRayMapper::GetEstimatedRelativeError()
 {
   const vtkInternals& in = *this->Internals;
+  if (in.HasImage && in.ImagePolychromatic)
+  {
+    if (in.MappedErrorCount == in.Image->Count() && in.MappedVersion == in.Channels.ModelVersion())
+    {
+      return in.MappedError; // what the image on screen was uploaded with
+    }
+    std::vector<double> effective;
+    double error = std::nan("");
+    in.Channels.EffectiveValues(effective, &error);
+    return error;
+  }
   // Every voxel once: nothing to estimate, unless nothing was drawn (0).
   return in.HasImage && !(in.EveryVoxel && in.Image->Count() > 0)
     ? in.Image->EstimateRelativeError()
@@ -162,12 +178,50 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   values->SetName(vtkMCXTypes::LineIntegralName());
   values->SetNumberOfValues(static_cast<vtkIdType>(in.Image->NumberOfPixels()));
   const std::uint64_t count = in.Image->Count();
-  in.Image->ToValues(in.SampleWeight(), values->GetPointer(0));
+  if (in.ImagePolychromatic)
+  {
+    std::vector<double> effective;
+    in.Channels.EffectiveValues(effective);
+    std::copy(effective.begin(), effective.end(), values->GetPointer(0));
+  }
+  else
+  {
+    in.Image->ToValues(in.SampleWeight(), values->GetPointer(0));
+  }
   output->GetPointData()->SetScalars(values);
   mcx::AddFieldValue(
     output->GetFieldData(), vtkMCXTypes::SampleCountName(), static_cast<long long>(count));
   mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::EstimatedRelativeErrorName(),
     this->GetEstimatedRelativeError());
+}
+
+int vtkMCXXRayMapper::GetNumberOfChannels()
+{
+  const vtkInternals& in = *this->Internals;
+  return in.HasImage && in.ImagePolychromatic ? in.Channels.Size() : 0;
+}
+
+void vtkMCXXRayMapper::GetChannelImage(int m, vtkImageData* output)
+{
+  output->Initialize();
+  vtkInternals& in = *this->Internals;
+  if (m < 0 || m >= this->GetNumberOfChannels())
+  {
+    return;
+  }
+  const mcx::ProjectionGeometry& g = in.Image->GetGeometry();
+  output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
+  output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
+  output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName(vtkMCXTypes::LineIntegralName());
+  values->SetNumberOfValues(static_cast<vtkIdType>(in.Image->NumberOfPixels()));
+  in.Channels.ChannelValues(m, values->GetPointer(0));
+  output->GetPointData()->SetScalars(values);
+  mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::SampleCountName(),
+    static_cast<long long>(in.Channels.Count()));
+  mcx::AddFieldValue(
+    output->GetFieldData(), vtkMCXTypes::EstimatedRelativeErrorName(), in.Channels.ChannelError(m));
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)
@@ -432,6 +486,10 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InitialSampleExponent: " << this->InitialSampleExponent << "\n";
   os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
   os << indent << "FootprintReach: " << this->FootprintReach << "\n";
+  os << indent << "Spectrum: " << (this->Spectrum ? this->Spectrum : "(none)") << "\n";
+  os << indent << "Materials: " << (this->Materials ? this->Materials : "(none)") << "\n";
+  os << indent << "Detector: " << (this->Detector ? this->Detector : "(none)") << "\n";
+  os << indent << "NumberOfChannels: " << this->GetNumberOfChannels() << "\n";
   os << indent << "NumberOfAccumulatedSamples: " << this->GetNumberOfAccumulatedSamples() << "\n";
   os << indent << "NumberOfRestarts: " << this->NumberOfRestarts << "\n";
   os << indent << "NumberOfRefinements: " << this->NumberOfRefinements << "\n";

@@ -75,6 +75,21 @@
  * X-rays), and every X-ray over opaque geometry or in a renderer that holds
  * translucent props (which film would cover), blend additively.
  *
+ * Polychromatic mode (Spectrum set, an image input in HU;
+ * Documentation/polychromatic.md): the volume is sampled under the
+ * materials' total density curve (Materials; vtkMCXMaterialWeights's
+ * FillDensityFunction) instead of the property's TF, the same points are
+ * accumulated once more per material, each weighted by that material's
+ * fraction at its voxel (vtkMCXMaterialWeights's weights, all materials in
+ * one pass over the points), and the image shown is the effective line
+ * integral -ln T of the channels through the spectrum and the detector
+ * (mcx::PolychromaticModel, as vtkMCXPolychromaticRadiograph; world units
+ * taken as mm). The radiograph physics above then applies to -ln T. A
+ * Spectrum or Detector change maps the accumulated channels again without
+ * projecting or sampling again; a Materials change samples again. It needs
+ * the footprint deposit and a strategy other than EVERY_VOXEL, and does not
+ * keep another view's image aside.
+ *
  * The accumulation runs on the CPU with vtkSMPTools; images are the same for
  * any number of threads.
  */
@@ -223,6 +238,37 @@ public:
 
   ///@{
   /**
+   * The polychromatic mode (see the class description). Spectrum: the tube,
+   * "<kV>kVp[,<mm>mm<element>...][,<deg>deg][,<keV>keV]" or a spectrum file
+   * (vtkMCXPolychromaticRadiograph's syntax); null or empty (the default):
+   * monochromatic, the property's TF. Materials: "default",
+   * "default,iodine=<HU>,titanium=<HU>" or a materials file (default
+   * "default"). Detector: "integrating" (default) or "counting", optionally
+   * ",<material>:<mm>[:<g/cm3>]". A text that does not parse is an error
+   * once, and nothing is drawn until it is fixed.
+   */
+  vtkSetStringMacro(Spectrum);
+  vtkGetStringMacro(Spectrum);
+  vtkSetStringMacro(Materials);
+  vtkGetStringMacro(Materials);
+  vtkSetStringMacro(Detector);
+  vtkGetStringMacro(Detector);
+  ///@}
+
+  /** The channels of the image on screen: its materials, 0 when monochromatic. */
+  int GetNumberOfChannels();
+
+  /**
+   * Channel m of the image on screen, laid out as GetLineIntegralImage's:
+   * "LineIntegral" of material m's density x fraction (g/cm^3 x world
+   * length), what vtkMCXProjector makes of vtkMCXMaterialWeights's cloud of
+   * channel m; field data SampleCount and the channel's
+   * EstimatedRelativeError. Empty outside 0 .. GetNumberOfChannels() - 1.
+   */
+  void GetChannelImage(int m, vtkImageData* output);
+
+  ///@{
+  /**
    * Refine over several renders (default on). Off: every render that needs a
    * new image projects all points at once.
    */
@@ -305,7 +351,10 @@ public:
    * vtkMCXProjector's output (point data "LineIntegral", float64; pixel (0, 0)
    * at the viewport's lower left), with field data SampleCount and
    * EstimatedRelativeError; radiograph physics, when on, is not applied to
-   * it (pass it through vtkMCXRadiograph). Empty before the first render.
+   * it (pass it through vtkMCXRadiograph). In the polychromatic mode the
+   * values are the effective line integral -ln T, and the error is the one
+   * propagated from the channels' (as vtkMCXPolychromaticRadiograph's).
+   * Empty before the first render.
    */
   void GetLineIntegralImage(vtkImageData* output);
 
@@ -373,6 +422,9 @@ protected:
   int InitialSampleExponent = 14;
   double MaximumRenderTime = 0.0;
   double FootprintReach = 16.0;
+  char* Spectrum = nullptr;
+  char* Materials = nullptr;
+  char* Detector = nullptr;
   vtkTypeInt64 NumberOfRestarts = 0;
   vtkTypeInt64 NumberOfRefinements = 0;
   vtkTypeInt64 NumberOfUploads = 0;

@@ -120,13 +120,35 @@ vtkPolyData* vtkMCXXRayMapper::vtkInternals::UpdateInput(
   producer->Update(outputPort);
   vtkDataObject* input = self->GetInputDataObject(0, 0);
   vtkPolyData* cloud = vtkPolyData::SafeDownCast(input);
+  this->Polychromatic = false;
+  if (!self->GetSpectrum() || !*self->GetSpectrum())
+  {
+    this->Refused.clear(); // monochromatic: a later refusal is said again
+  }
   if (auto* image = vtkImageData::SafeDownCast(input))
   {
+    bool refused = false;
+    this->Polychromatic = this->ConfigurePolychromatic(self, image, refused);
+    if (refused)
+    {
+      return nullptr;
+    }
     cloud = this->SampleVolume(self, image, volume, view);
     if (!cloud || !cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName()))
     {
       return nullptr; // the index or the sampler said why
     }
+    if (this->Polychromatic && !this->WeighChannels(self, image, cloud))
+    {
+      return nullptr;
+    }
+  }
+  else if (self->GetSpectrum() && *self->GetSpectrum())
+  {
+    this->Refuse(self,
+      "Cannot draw a polychromatic X-ray of a point cloud: a Spectrum needs the volume in HU as "
+      "input (its voxels' materials).");
+    return nullptr;
   }
   vtkDataArray* integral =
     cloud ? cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName()) : nullptr;
@@ -151,7 +173,72 @@ vtkPolyData* vtkMCXXRayMapper::vtkInternals::SampleVolume(
   {
     return nullptr;
   }
-  return this->Sampling.Sample(volume->GetProperty()->GetScalarOpacity(), view.Camera, view.Size);
+  // Polychromatic: the materials' total density, whatever the property's TF.
+  vtkPiecewiseFunction* tf =
+    this->Polychromatic ? this->Channels.Density() : volume->GetProperty()->GetScalarOpacity();
+  return this->Sampling.Sample(tf, view.Camera, view.Size);
+}
+
+bool vtkMCXXRayMapper::vtkInternals::ConfigurePolychromatic(
+  vtkMCXXRayMapper* self, vtkImageData* image, bool& refused)
+{
+  refused = false;
+  const char* spectrum = self->GetSpectrum();
+  if (!spectrum || !*spectrum)
+  {
+    return false;
+  }
+  std::string problem;
+  if (self->GetDeposit() != vtkMCXTypes::FOOTPRINT ||
+    self->GetStrategy() == vtkMCXTypes::EVERY_VOXEL)
+  {
+    problem = "a Spectrum needs the footprint deposit and a sampling strategy other than every "
+              "voxel (its points are voxel centres, each with its voxel's materials)";
+  }
+  else if (!vtkMCXVolumeSampling::IsDensityIndex(image) &&
+    !self->SelectDensityArray(image, problem))
+  {
+    problem = "the volume " + problem;
+  }
+  else
+  {
+    problem = this->Channels.Configure(spectrum, self->GetDetector() ? self->GetDetector() : "",
+      self->GetMaterials() ? self->GetMaterials() : "");
+  }
+  if (!problem.empty())
+  {
+    this->Refuse(self, "Cannot draw a polychromatic X-ray: " + problem + ".");
+    refused = true;
+    return false;
+  }
+  this->Refused.clear();
+  return true;
+}
+
+bool vtkMCXXRayMapper::vtkInternals::WeighChannels(
+  vtkMCXXRayMapper* self, vtkImageData* image, vtkPolyData* cloud)
+{
+  std::string problem;
+  vtkDataArray* values = vtkMCXVolumeSampling::IsDensityIndex(image)
+    ? this->Channels.IndexValues(image)
+    : self->SelectDensityArray(image, problem);
+  problem = values ? this->Channels.UpdateWeights(cloud, image, values)
+                   : "the density index cannot be read";
+  if (!problem.empty())
+  {
+    this->Refuse(self, "Cannot draw a polychromatic X-ray: " + problem + ".");
+    return false;
+  }
+  return true;
+}
+
+void vtkMCXXRayMapper::vtkInternals::Refuse(vtkMCXXRayMapper* self, const std::string& problem)
+{
+  if (problem != this->Refused)
+  {
+    vtkErrorWithObjectMacro(self, << problem);
+    this->Refused = problem;
+  }
 }
 
 bool vtkMCXXRayMapper::vtkInternals::UpdateWeights(vtkMCXXRayMapper* self, vtkPolyData* cloud)
@@ -209,7 +296,11 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
   vtkMCXXRayMapper* self, vtkPolyData* cloud, View& view)
 {
   const double reach = self->GetFootprintReach();
-  const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime;
+  // Polychromatic: a mode switch, or channels that no longer follow the
+  // image (other materials), draw again.
+  const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime ||
+    this->Polychromatic != this->ImagePolychromatic ||
+    (this->Polychromatic && this->Channels.Count() != this->Image->Count());
   if (this->HasImage && !newInput && mcx::SameGeometry(view.Geometry, this->Geometry) &&
     std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth &&
     reach == this->FootprintReach)
@@ -221,21 +312,22 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
   // a restored image may hold more.
   const bool sourceStays =
     !self->GetAutomaticWindowLevel() || (this->WindowSourceKept && !this->AutomaticWindowPending);
-  const bool shelfFits = this->HasImage && sourceStays && shelf.Held && cloud == shelf.Cloud &&
-    cloud->GetMTime() == shelf.CloudTime && reach == shelf.FootprintReach &&
+  // The shelf holds no channels: the polychromatic mode does not use it.
+  const bool shelfFits = this->HasImage && sourceStays && !this->Polychromatic && shelf.Held &&
+    cloud == shelf.Cloud && cloud->GetMTime() == shelf.CloudTime && reach == shelf.FootprintReach &&
     mcx::SameGeometry(view.Geometry, shelf.Geometry) &&
     std::equal(view.Matrix, view.Matrix + 16, shelf.Matrix) && view.Depth == shelf.Depth;
   // The image on screen is set aside when it holds more points than the
   // shelf's (interactive frames do not push a refined image out).
   const bool onScreenKept = this->HasImage && !newInput;
-  const bool shelve =
-    onScreenKept && (shelfFits || !shelf.Held || this->Image->Count() > shelf.Image->Count());
+  const bool shelve = onScreenKept && !this->Polychromatic &&
+    (shelfFits || !shelf.Held || this->Image->Count() > shelf.Image->Count());
   if (shelfFits || shelve)
   {
     this->SwapWithShelf();
     this->Shelved.Held = shelve;
   }
-  else if (newInput)
+  else if (newInput || this->Polychromatic)
   {
     this->Shelved.Held = false; // another input's image
   }
@@ -253,8 +345,15 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
     const bool hidesNothing = HidesNothing(limits, cloud, view.Geometry);
     const double origin[3] = { m[3], m[7], m[11] };
     const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
-    this->Image->Reset(view.Geometry, origin, linear, std::move(limits),
-      mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear, reach));
+    const mcx::DepositSettings settings =
+      mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear, reach);
+    if (this->Polychromatic)
+    {
+      this->Channels.Reset(
+        view.Geometry, origin, linear, limits, settings, std::fabs(vtkMatrix4x4::Determinant(m)));
+    }
+    this->ImagePolychromatic = this->Polychromatic;
+    this->Image->Reset(view.Geometry, origin, linear, std::move(limits), settings);
     this->Cloud = cloud;
     this->CloudTime = cloud->GetMTime();
     this->FootprintReach = reach;
@@ -282,6 +381,7 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
     cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0);
   this->ScaledIntegral = integral * std::fabs(vtkMatrix4x4::Determinant(m));
   this->UploadedCount = std::numeric_limits<std::uint64_t>::max();
+  this->MappedErrorCount = std::numeric_limits<std::uint64_t>::max(); // another image
   this->AutomaticWindowPending = this->AutomaticWindowPending || newInput;
   // A new input needs a new source; so does a new view while the last
   // source showed nothing (the camera had not reached the volume yet).
@@ -327,7 +427,14 @@ void vtkMCXXRayMapper::vtkInternals::KeepWindowSource(vtkPoints* points, const i
     this->Advance(points, prefix);
   }
   this->WindowSource.resize(this->Image->NumberOfPixels());
-  this->Image->ToValues(this->SampleWeight(), this->WindowSource.data());
+  if (this->Polychromatic)
+  {
+    this->Channels.KeepWindowSource();
+  }
+  else
+  {
+    this->Image->ToValues(this->SampleWeight(), this->WindowSource.data());
+  }
   this->WindowSourceSize[0] = size[0];
   this->WindowSourceSize[1] = size[1];
   this->WindowSourceKept = true;
@@ -336,6 +443,14 @@ void vtkMCXXRayMapper::vtkInternals::KeepWindowSource(vtkPoints* points, const i
 bool vtkMCXXRayMapper::vtkInternals::ChooseWindowFromSource()
 {
   std::vector<float> values = this->WindowSource;
+  if (this->ImagePolychromatic)
+  {
+    // The kept channels under the current model: a spectrum change chooses
+    // its window from the same points.
+    std::vector<double> effective;
+    this->Channels.WindowSourceValues(effective);
+    std::copy(effective.begin(), effective.end(), values.begin());
+  }
   if (this->Effects.Any())
   {
     float* v = values.data();
@@ -350,13 +465,15 @@ bool vtkMCXXRayMapper::vtkInternals::ChooseWindowFromSource()
 bool vtkMCXXRayMapper::vtkInternals::UploadIfChanged(
   vtkOpenGLRenderWindow* window, const mcx::RadiographEffects& effects, const int size[2])
 {
+  const bool newModel =
+    this->ImagePolychromatic && this->Channels.ModelVersion() != this->MappedVersion;
   const bool newEffects = effects != this->Effects;
-  if (newEffects)
+  if (newEffects || newModel)
   {
     this->Effects = effects;
     this->AutomaticWindowPending = true; // other quantity, other scale
   }
-  if (!newEffects && this->Image->Count() == this->UploadedCount &&
+  if (!newEffects && !newModel && this->Image->Count() == this->UploadedCount &&
     this->Display.HasImageIn(window))
   {
     return false;
@@ -404,6 +521,11 @@ void vtkMCXXRayMapper::vtkInternals::Advance(vtkPoints* points, std::uint64_t ta
           static_cast<const double*>(points->GetVoidPointer(0)), target, weights);
       }
     });
+  if (this->Polychromatic)
+  {
+    // The same points, each channel's weights: counted in the cost per point.
+    this->Channels.Advance(points, target);
+  }
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::uint64_t added = target - current;
@@ -416,7 +538,7 @@ void vtkMCXXRayMapper::vtkInternals::Advance(vtkPoints* points, std::uint64_t ta
 void vtkMCXXRayMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* window, int width, int height)
 {
   this->Values.resize(this->Image->NumberOfPixels());
-  this->Image->ToValues(this->SampleWeight(), this->Values.data());
+  this->ImageValues(this->Values.data());
   if (this->Effects.Any())
   {
     float* values = this->Values.data();
@@ -430,4 +552,18 @@ void vtkMCXXRayMapper::vtkInternals::Upload(vtkOpenGLRenderWindow* window, int w
   }
   this->Display.Upload(window, width, height, this->Values.data());
   this->UploadedCount = this->Image->Count();
+}
+
+void vtkMCXXRayMapper::vtkInternals::ImageValues(float* values)
+{
+  if (!this->ImagePolychromatic)
+  {
+    this->Image->ToValues(this->SampleWeight(), values);
+    return;
+  }
+  std::vector<double> effective;
+  this->Channels.EffectiveValues(effective, &this->MappedError);
+  std::copy(effective.begin(), effective.end(), values);
+  this->MappedVersion = this->Channels.ModelVersion();
+  this->MappedErrorCount = this->Image->Count();
 }

@@ -9,6 +9,7 @@
 
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
+#include "vtkMCXPolychromaticChannelsPrivate.h"
 #include "vtkMCXSMPExecutor.h"
 #include "vtkMCXVolumeSamplingPrivate.h"
 #include "vtkMCXXRayDisplayPrivate.h"
@@ -16,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 class vtkCamera;
@@ -79,6 +81,31 @@ struct vtkMCXXRayMapper::vtkInternals
 
   vtkMCXVolumeSampling Sampling; // for an image input: its index and sampler
 
+  // The polychromatic mode (a Spectrum set, an image input): the image
+  // above is the total density's, the channels follow it point for point
+  // and the display shows their effective line integral.
+  vtkMCXPolychromaticChannels Channels;
+  bool Polychromatic = false;      // this render's input is drawn through the channels
+  bool ImagePolychromatic = false; // the image on screen has channels
+  std::uint64_t MappedVersion = 0; // the model the uploaded values went through
+  // -ln T's error estimate, propagated at the last upload (an overlay asks
+  // for it every frame), and the sample count it is for.
+  double MappedError = 0.0;
+  std::uint64_t MappedErrorCount = 0;
+  std::string Refused;             // the last problem reported (once per problem)
+
+  // Whether the mapper's Spectrum asks for the polychromatic mode and the
+  // input and settings allow it; reports why not (once) and returns false
+  // with `refused` set.
+  bool ConfigurePolychromatic(vtkMCXXRayMapper* self, vtkImageData* image, bool& refused);
+
+  // The channels' weights for the cloud of an image input; false, reported,
+  // when its points are no voxel centres of the image.
+  bool WeighChannels(vtkMCXXRayMapper* self, vtkImageData* image, vtkPolyData* cloud);
+
+  // Reports a problem unless it was the last one reported.
+  void Refuse(vtkMCXXRayMapper* self, const std::string& problem);
+
   // What a render sees: the camera's geometry for the viewport, the prop's
   // matrix and, when opaque props can hide samples, the depth buffer.
   struct View
@@ -134,6 +161,10 @@ struct vtkMCXXRayMapper::vtkInternals
   // context); true when it uploaded. A display change only redraws.
   bool UploadIfChanged(
     vtkOpenGLRenderWindow* window, const mcx::RadiographEffects& effects, const int size[2]);
+
+  // The values on screen before the display's effects: the line integrals,
+  // or in the polychromatic mode the effective line integral -ln T.
+  void ImageValues(float* values);
 
   // What one point of weight 1 carries: the integral over the points so far
   // (counted with their weights, PointWeight).

@@ -189,16 +189,16 @@ const Option Options[] = {
   { "--negative-log", Both, false,
     [](Settings& s, const Argument&) { s.Radiograph.NegativeLog = true; } },
   { "--tf", Both, true, [](Settings& s, const Argument& a) { s.TF = a.Value; } },
-  { "--spectrum", Render, true, [](Settings& s, const Argument& a) { s.Spectrum = a.Value; } },
-  { "--materials", Render, true,
+  { "--spectrum", Both, true, [](Settings& s, const Argument& a) { s.Spectrum = a.Value; } },
+  { "--materials", Both, true,
     [](Settings& s, const Argument& a)
     {
       s.Materials = a.Value;
       s.MaterialsGiven = true;
     } },
-  { "--detector-material", Render, true,
+  { "--detector-material", Both, true,
     [](Settings& s, const Argument& a) { s.DetectorMaterial = a.Value; } },
-  { "--photon-counting", Render, false,
+  { "--photon-counting", Both, false,
     [](Settings& s, const Argument&) { s.PhotonCounting = true; } },
   { "--samples", Both, true,
     [](Settings& s, const Argument& a)

@@ -26,6 +26,16 @@
 namespace mcxapp
 {
 
+std::string PolychromaticDetector(const Settings& settings)
+{
+  std::string detector = settings.PhotonCounting ? "counting" : "integrating";
+  if (!settings.DetectorMaterial.empty())
+  {
+    detector += "," + settings.DetectorMaterial;
+  }
+  return detector;
+}
+
 PolychromaticStage::PolychromaticStage(const Settings& settings)
 {
   const bool asked = !settings.Spectrum.empty() || settings.MaterialsGiven ||
@@ -56,11 +66,7 @@ PolychromaticStage::PolychromaticStage(const Settings& settings)
   {
     Fail("--spectrum makes a radiograph already: leave out --beer-lambert");
   }
-  std::string detector = settings.PhotonCounting ? "counting" : "integrating";
-  if (!settings.DetectorMaterial.empty())
-  {
-    detector += "," + settings.DetectorMaterial;
-  }
+  const std::string detector = PolychromaticDetector(settings);
   try
   {
     const mcx::Spectrum spectrum = mcx::SpectrumFromText(settings.Spectrum);

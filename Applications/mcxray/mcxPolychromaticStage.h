@@ -22,6 +22,10 @@ namespace mcxapp
 {
 struct Settings;
 
+/// The detector text of vtkMCXPolychromaticRadiograph and vtkMCXXRayMapper
+/// for --photon-counting and --detector-material.
+std::string PolychromaticDetector(const Settings& settings);
+
 class PolychromaticStage
 {
 public:

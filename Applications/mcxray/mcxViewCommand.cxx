@@ -6,11 +6,15 @@
 #include "mcxFail.h"
 #include "mcxHalton.h"
 #include "mcxImageOutput.h"
+#include "mcxMaterialDecomposition.h"
 #include "mcxOptionTable.h"
+#include "mcxPolychromaticModel.h"
+#include "mcxPolychromaticStage.h"
 #include "mcxPreflight.h"
 #include "mcxProgressBar.h"
 #include "mcxSamplingMethod.h"
 #include "mcxSettings.h"
+#include "mcxTubeSpectrum.h"
 #include "mcxXRayViewer.h"
 #include "vtkMCXMemoryCheck.h"
 
@@ -68,6 +72,15 @@ options:
   --beer-lambert, --i0 I, --photons N, --noise-seed N, --negative-log
                      radiograph physics as for mcxray render; the TF then
                      selects tissue of mu, as with key b
+  --spectrum S       a polychromatic radiograph of CT in HU, as for mcxray
+                     render (70kVp,2.5mmAl or a spectrum file): the volume is
+                     sampled under the materials' density, each material
+                     accumulated from the same points, and the view shows the
+                     effective line integral -ln T (key b: the intensity
+                     I0 T; the radiograph physics above apply to -ln T); no TF
+                     and no TF controls
+  --materials M, --detector-material M:MM[:G/CM3], --photon-counting
+                     with --spectrum, as for mcxray render
   --screenshot FILE  no window: render off screen until all points count,
                      save the window as FILE (.png) and exit
   --help             this text
@@ -116,6 +129,46 @@ void CheckCombinations(const Settings& settings)
       radiograph.Detector[1] > 8192))
   {
     Fail("the viewer's --detector must lie between 16x16 and 8192x8192 pixels");
+  }
+}
+
+// --spectrum and its options: the render command's refusals that apply to a
+// view (which has no stored cloud, no processes and no target error).
+void CheckPolychromatic(const Settings& settings)
+{
+  const bool asked = !settings.Spectrum.empty() || settings.MaterialsGiven ||
+    !settings.DetectorMaterial.empty() || settings.PhotonCounting;
+  if (!asked)
+  {
+    return;
+  }
+  if (settings.Spectrum.empty())
+  {
+    Fail("--materials, --detector-material and --photon-counting need --spectrum");
+  }
+  if (settings.Method == "every-voxel")
+  {
+    Fail("--spectrum weighs each drawn point by its voxel's materials: use --method hybrid, mc, "
+         "qmc or view-ordered");
+  }
+  if (settings.Deposit != "footprint")
+  {
+    Fail("--spectrum needs the footprint deposit (its points are voxel centres, each with its "
+         "voxel's materials)");
+  }
+  if (settings.TF != "raw")
+  {
+    Fail("--spectrum samples the materials' density (--materials): leave out --tf");
+  }
+  try
+  {
+    (void)mcx::PolychromaticModel(mcx::SpectrumFromText(settings.Spectrum),
+      mcx::ParseDetector(PolychromaticDetector(settings)),
+      mcx::MaterialsFromText(settings.Materials).Names());
+  }
+  catch (const std::exception& error)
+  {
+    Fail(error.what());
   }
 }
 
@@ -213,6 +266,7 @@ int RunView(int argc, char* argv[])
     return 0;
   }
   CheckCombinations(settings);
+  CheckPolychromatic(settings);
   if (!settings.Screenshot.empty())
   {
     CheckScreenshot(settings.Screenshot);
@@ -248,6 +302,10 @@ int RunView(int argc, char* argv[])
     Fail(view.Error());
   }
   ConfigureRadiograph(view, volume, settings.Radiograph);
+  if (!settings.Spectrum.empty())
+  {
+    view.SetPolychromatic(settings.Spectrum, settings.Materials, PolychromaticDetector(settings));
+  }
   capture.Watch(view.GetIndex());
   capture.Watch(view.GetSampler());
   ProgressBar progress; // lives while the view runs: its index reports to it

@@ -47,6 +47,8 @@ constexpr int MaximumViewerExponent = 28;
 const char* const KeyHelp =
   "keys: 1 raw (all), 2 bone, 3 soft tissue, +/- points, i invert, "
   "b radiograph (Beer-Lambert of mu(HU) x TF), p projection, r reset camera, q quit";
+const char* const PolychromaticKeyHelp =
+  "keys: +/- points, i invert, b intensity I0 T / -ln T, p projection, r reset camera, q quit";
 
 // The controls' ink on dark film; on light film each colour is inverted, as
 // the film is, and drawn on a light backing instead of a dark one.
@@ -88,8 +90,11 @@ const char* DisplayedQuantity(vtkMCXXRayMapper* mapper)
   {
     return "-ln I/I0";
   }
-  return mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 ? "intensity I"
-                                                                      : "TF x length";
+  if (mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0)
+  {
+    return "intensity I";
+  }
+  return mapper->GetSpectrum() && *mapper->GetSpectrum() ? "-ln T" : "TF x length";
 }
 
 bool IsIntegerType(int type)
@@ -429,15 +434,23 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
   {
     text << "est. error -";
   }
-  double range[2];
-  this->Weight->GetRange(range);
-  char lowest[32], highest[32];
-  std::snprintf(lowest, sizeof(lowest), this->LabelFormat.c_str(), range[0]);
-  std::snprintf(highest, sizeof(highest), this->LabelFormat.c_str(), range[1]);
-  const bool attenuation = this->AttenuationAsked || this->HasRadiographPhysics();
-  text << "\nTF " << (attenuation ? "mu(HU) x " : "") << lowest << " .. " << highest
-       << " (data units)   window "
-       << mapper->GetDisplayedLevel() - 0.5 * mapper->GetDisplayedWindow() << " .. "
+  if (this->Polychromatic)
+  {
+    text << "\nspectrum " << mapper->GetSpectrum() << ", materials " << mapper->GetMaterials()
+         << ", detector " << mapper->GetDetector() << "   window ";
+  }
+  else
+  {
+    double range[2];
+    this->Weight->GetRange(range);
+    char lowest[32], highest[32];
+    std::snprintf(lowest, sizeof(lowest), this->LabelFormat.c_str(), range[0]);
+    std::snprintf(highest, sizeof(highest), this->LabelFormat.c_str(), range[1]);
+    const bool attenuation = this->AttenuationAsked || this->HasRadiographPhysics();
+    text << "\nTF " << (attenuation ? "mu(HU) x " : "") << lowest << " .. " << highest
+         << " (data units)   window ";
+  }
+  text << mapper->GetDisplayedLevel() - 0.5 * mapper->GetDisplayedWindow() << " .. "
        << mapper->GetDisplayedLevel() + 0.5 * mapper->GetDisplayedWindow() << " ("
        << DisplayedQuantity(mapper) << ")   "
        << (this->Renderer->GetActiveCamera()->GetParallelProjection() ? "parallel" : "perspective")
@@ -445,7 +458,7 @@ std::string XRayViewer::OverlayText(bool withFrameTime) const
        << (mapper->GetBeerLambert() || mapper->GetPhotonsPerPixel() > 0 ? ", Beer-Lambert" : "")
        << (mapper->GetPhotonsPerPixel() > 0 ? ", Poisson noise" : "")
        << (mapper->GetNegativeLog() ? ", -ln" : "") << "\n"
-       << KeyHelp;
+       << (this->Polychromatic ? PolychromaticKeyHelp : KeyHelp);
   return text.str();
 }
 
@@ -512,23 +525,33 @@ void XRayViewer::OnChar(vtkObject*, unsigned long, void* self, void*)
   auto* viewer = static_cast<XRayViewer*>(self);
   const char key = viewer->Interactor->GetKeyCode();
   bool handled = true;
+  // Polychromatic: no TF to choose, and b is the intensity alone.
+  const bool presets = !viewer->Polychromatic;
   switch (key)
   {
     case '1':
-      viewer->ApplyPreset("raw");
-      break;
     case '2':
-      viewer->ApplyPreset("bone");
-      break;
     case '3':
-      viewer->ApplyPreset("soft-tissue");
+      handled = presets;
+      if (handled)
+      {
+        viewer->ApplyPreset(key == '1' ? "raw" : key == '2' ? "bone" : "soft-tissue");
+      }
+      break;
+    case 'b':
+      if (presets)
+      {
+        viewer->SetRadiograph(!viewer->Mapper->GetBeerLambert());
+      }
+      else
+      {
+        viewer->Mapper->SetBeerLambert(!viewer->Mapper->GetBeerLambert());
+        viewer->MatchControlsToFilm();
+      }
       break;
     case 'i':
       viewer->Mapper->SetInvertDisplay(!viewer->Mapper->GetInvertDisplay());
       viewer->MatchControlsToFilm();
-      break;
-    case 'b':
-      viewer->SetRadiograph(!viewer->Mapper->GetBeerLambert());
       break;
     case 'p':
     {
@@ -569,9 +592,20 @@ void XRayViewer::Start()
 void XRayViewer::ShowControls(bool show)
 {
   this->Overlay->SetVisibility(show);
-  this->SliderBacking->SetVisibility(show);
-  this->CentreSlider->SetEnabled(show);
-  this->WidthSlider->SetEnabled(show);
+  const bool sliders = show && !this->Polychromatic;
+  this->SliderBacking->SetVisibility(sliders);
+  this->CentreSlider->SetEnabled(sliders);
+  this->WidthSlider->SetEnabled(sliders);
+}
+
+void XRayViewer::SetPolychromatic(
+  const std::string& spectrum, const std::string& materials, const std::string& detector)
+{
+  this->Polychromatic = !spectrum.empty();
+  this->Mapper->SetSpectrum(spectrum.c_str());
+  this->Mapper->SetMaterials(materials.c_str());
+  this->Mapper->SetDetector(detector.c_str());
+  this->ShowControls(this->Overlay->GetVisibility() != 0);
 }
 
 int XRayViewer::RefineUntilComplete()

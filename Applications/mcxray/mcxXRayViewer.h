@@ -9,6 +9,11 @@
 // the mapper samples an attenuation instead: mu of the HU (water 0.02 per mm,
 // or --tf mu=MU_WATER) times the weight clamped to [0, 1], the raw preset
 // selecting all tissue; --tf mu selects all tissue with physics off too.
+//
+// Polychromatic (SetPolychromatic, mcxray view --spectrum): the mapper samples
+// the materials' density instead of any TF, so the TF sliders and presets are
+// off; the image is the effective line integral -ln T, and key b shows the
+// intensity I0 T instead.
 #ifndef mcxXRayViewer_h
 #define mcxXRayViewer_h
 
@@ -81,6 +86,12 @@ public:
   /// Switches the radiograph (key b): Beer-Lambert of the attenuation.
   void SetRadiograph(bool on);
 
+  /// The polychromatic mode: the mapper's Spectrum, Materials and Detector
+  /// (vtkMCXXRayMapper's texts); the TF controls are hidden.
+  void SetPolychromatic(
+    const std::string& spectrum, const std::string& materials, const std::string& detector);
+  bool IsPolychromatic() const { return this->Polychromatic; }
+
   /// Brings the TF and the controls in line with the mapper's radiograph
   /// physics, after a change made on the mapper itself.
   void FollowRadiographPhysics();
@@ -142,6 +153,7 @@ private:
   bool AttenuationAsked = false;
   bool WeightSelectsAll = false;
   bool NotHounsfieldWarned = false;
+  bool Polychromatic = false;
   int Frames = 0;
   bool OverlayCurrent = false;
   std::string OverlayState;

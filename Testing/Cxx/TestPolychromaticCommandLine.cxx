@@ -1,6 +1,7 @@
 // mcxray render --spectrum: a cube of soft tissue against the sum over the
 // spectrum done here with xraylib, by every sampling, and the options'
-// one-line errors.
+// one-line errors (also those of mcxray view, checked before it opens a
+// window).
 #include "mcxCommandLineRunner.h"
 #include "mcxTestHelpers.h"
 #include "mcxTubeSpectrum.h"
@@ -112,4 +113,18 @@ TEST(PolychromaticCommandLine, BadOptionsAreOneLineErrors)
     "render --spectrum 70kVp --detector-material CsI:0.6" + quiet, output);
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --beer-lambert" + quiet, output);
   mcxtest::ExpectOneLineError("render --spectrum 70kVp --tf mu" + quiet, output);
+}
+
+TEST(PolychromaticCommandLine, ViewRefusesWhatCannotBePolychromatic)
+{
+  const std::string output = mcxtest::Temporary("polychromatic-view-error.png");
+  const std::string quiet = " --samples 1000 --screenshot " + output;
+  mcxtest::ExpectOneLineError("view --spectrum 300kVp" + quiet, output);
+  mcxtest::ExpectOneLineError("view --materials default" + quiet, output);
+  mcxtest::ExpectOneLineError("view --photon-counting" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --materials default,gold=3" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --method every-voxel" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --deposit point" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --detector-material CsI:0.6" + quiet, output);
+  mcxtest::ExpectOneLineError("view --spectrum 70kVp --tf bone" + quiet, output);
 }

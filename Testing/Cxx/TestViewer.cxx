@@ -581,3 +581,54 @@ TEST(Viewer, BeerLambertOnDataNotInHounsfieldUnitsWarnsOnce)
   EXPECT_NE(std::string::npos, warnings.find("not CT in HU")) << warnings;
   EXPECT_NEAR(0.02, viewer.GetTransferFunction()->GetValue(1000), 1e-9) << "1000 above air: water";
 }
+
+TEST(Viewer, PolychromaticSessionMapsTheSameChannelsOnASpectrumChange)
+{
+  // mcxray view --spectrum: the phantom's channels drawn once; the image is
+  // -ln T, harder at 120 kVp than at 60 kVp without drawing again; the TF
+  // controls are off and b shows the intensity.
+  mcxapp::XRayViewer viewer(HounsfieldPhantom(), SmallWindowOptions(18));
+  ASSERT_EQ("", viewer.Error());
+  vtkRenderWindowInteractor* interactor = viewer.GetInteractor();
+  interactor->Initialize();
+  viewer.SetPolychromatic("60kVp,2.5mmAl", "default", "integrating");
+  EXPECT_TRUE(viewer.IsPolychromatic());
+  EXPECT_FALSE(viewer.GetCentreSlider()->GetEnabled());
+  EXPECT_FALSE(viewer.GetWidthSlider()->GetEnabled());
+  vtkMCXXRayMapper* mapper = viewer.GetMapper();
+  viewer.RefineUntilComplete();
+  ASSERT_TRUE(mapper->IsRefinementComplete());
+  EXPECT_EQ(mapper->GetNumberOfChannels(), 4);
+  const std::string overlay = viewer.OverlayText();
+  EXPECT_NE(overlay.find("spectrum 60kVp,2.5mmAl, materials default"), std::string::npos)
+    << overlay;
+  EXPECT_NE(overlay.find("(-ln T)"), std::string::npos) << overlay;
+  const auto centre = [mapper]()
+  {
+    vtkNew<vtkImageData> image;
+    mapper->GetLineIntegralImage(image);
+    return image->GetPointData()->GetScalars()->GetTuple1(Size / 2 + Size * (Size / 2));
+  };
+  const double at60 = centre();
+  EXPECT_GT(at60, 1.0); // 44 mm of water and 16 mm of bone
+  const vtkTypeInt64 restarts = mapper->GetNumberOfRestarts();
+  const vtkTypeInt64 count = mapper->GetNumberOfAccumulatedSamples();
+
+  Press(interactor, '2'); // no TF to choose: nothing is drawn again
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(mapper->GetNumberOfRestarts(), restarts);
+
+  viewer.SetPolychromatic("120kVp,2.5mmAl", "default", "integrating");
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(mapper->GetNumberOfRestarts(), restarts);
+  EXPECT_EQ(mapper->GetNumberOfAccumulatedSamples(), count);
+  const double at120 = centre();
+  EXPECT_LT(at120, 0.9 * at60);
+  EXPECT_GT(at120, 0.0);
+
+  Press(interactor, 'b');
+  viewer.RefineUntilComplete();
+  EXPECT_TRUE(mapper->GetBeerLambert());
+  EXPECT_EQ(mapper->GetNumberOfRestarts(), restarts);
+  EXPECT_NE(viewer.OverlayText().find("(intensity I)"), std::string::npos);
+}

@@ -50,11 +50,14 @@ def screenshot_array(view):
 
 
 def xml_property(proxy_name, property_name):
-    for proxy in ET.parse(XML).getroot().iter():
-        if proxy.get("name") == proxy_name and proxy.tag.endswith("Proxy"):
-            for prop in proxy:
-                if prop.get("name") == property_name:
-                    return prop
+    # The plugin's XML files (the representation has one of its own).
+    folder = os.path.dirname(XML)
+    for name in sorted(n for n in os.listdir(folder) if n.endswith(".xml")):
+        for proxy in ET.parse(os.path.join(folder, name)).getroot().iter():
+            if proxy.get("name") == proxy_name and proxy.tag.endswith("Proxy"):
+                for prop in proxy:
+                    if prop.get("name") == property_name:
+                        return prop
     raise KeyError(property_name)
 
 

@@ -4,6 +4,7 @@
 #include "vtkMCXAgreeingExecutive.h"
 #include "vtkMCXAttenuationModePrivate.h"
 #include "vtkMCXCostPrivate.h"
+#include "vtkMCXDensityArrayPrivate.h"
 #include "vtkMCXDensityIndex.h"
 #include "vtkMCXDistributed.h"
 #include "vtkMCXXRayMapper.h"
@@ -39,54 +40,6 @@ vtkStandardNewMacro(vtkMCXXRayRepresentation);
 
 namespace
 {
-// The density array, as ParaView's Volume representation picks it: the
-// coloured array when it is a one-component point array, else the active
-// point scalars, else the first one-component point array; null when the
-// image has none (problem says why).
-vtkDataArray* ChooseDensityArray(
-  vtkImageData* image, const char* coloured, int association, std::string& problem)
-{
-  vtkPointData* pd = image->GetPointData();
-  if (coloured && *coloured && association == vtkDataObject::FIELD_ASSOCIATION_CELLS)
-  {
-    problem = std::string("the coloured array '") + coloured +
-      "' is cell data; the X-ray needs densities at the points (apply Cell Data to Point Data)";
-    return nullptr;
-  }
-  if (coloured && *coloured)
-  {
-    if (vtkDataArray* array = pd->GetArray(coloured))
-    {
-      if (array->GetNumberOfComponents() == 1)
-      {
-        return array;
-      }
-      problem = std::string("the coloured array '") + coloured + "' has " +
-        std::to_string(array->GetNumberOfComponents()) +
-        " components; colour by a one-component density array";
-      return nullptr;
-    }
-  }
-  if (vtkDataArray* scalars = pd->GetScalars())
-  {
-    if (scalars->GetNumberOfComponents() == 1)
-    {
-      return scalars;
-    }
-  }
-  for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* array = pd->GetArray(a);
-    if (array && array->GetNumberOfComponents() == 1)
-    {
-      return array;
-    }
-  }
-  problem =
-    "the image has no one-component point array to show as an X-ray (a density such as CT values)";
-  return nullptr;
-}
-
 // The processes of the data server, the same number on every process of the
 // session (the client asks the server; a server process counts its peers).
 int DataServerProcesses()
@@ -221,7 +174,7 @@ int vtkMCXXRayRepresentation::RequestData(
       const int association = chosen && chosen->Has(vtkDataObject::FIELD_ASSOCIATION())
         ? chosen->Get(vtkDataObject::FIELD_ASSOCIATION())
         : vtkDataObject::FIELD_ASSOCIATION_POINTS;
-      density = ChooseDensityArray(input, coloured, association, problem);
+      density = mcx::ChooseDensityArray(input, coloured, association, problem);
     }
     // On a parallel server every process indexes its slab together: one
     // that cannot fails all of them (none waits for it).
@@ -491,8 +444,10 @@ void vtkMCXXRayRepresentation::UseSampledFunction(vtkImageData* index)
     // Radiograph physics of a TF that is not an attenuation per world unit:
     // line integrals of a 0-1 weight through a body are about 100.
     const double largest = mcx::LargestValue(weight);
+    // (A polychromatic X-ray samples the materials' density, not the TF.)
+    const char* spectrum = this->Mapper->GetSpectrum();
     if ((this->Mapper->GetBeerLambert() || this->Mapper->GetPhotonsPerPixel() > 0) &&
-      largest > mcx::LargestAttenuation && !this->ToldNotAttenuation)
+      largest > mcx::LargestAttenuation && !this->ToldNotAttenuation && !(spectrum && *spectrum))
     {
       vtkWarningMacro(<< mcx::NotAttenuationWarning(largest));
       this->ToldNotAttenuation = true;
@@ -545,6 +500,21 @@ void vtkMCXXRayRepresentation::SetPhotonsPerPixel(double photons)
 void vtkMCXXRayRepresentation::SetNegativeLog(bool on)
 {
   this->Mapper->SetNegativeLog(on);
+}
+
+void vtkMCXXRayRepresentation::SetSpectrum(const char* spectrum)
+{
+  this->Mapper->SetSpectrum(spectrum);
+}
+
+void vtkMCXXRayRepresentation::SetMaterials(const char* materials)
+{
+  this->Mapper->SetMaterials(materials);
+}
+
+void vtkMCXXRayRepresentation::SetDetector(const char* detector)
+{
+  this->Mapper->SetDetector(detector);
 }
 
 void vtkMCXXRayRepresentation::SetSampleExponent(int exponent)

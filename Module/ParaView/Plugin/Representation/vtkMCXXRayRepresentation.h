@@ -142,6 +142,18 @@ public:
 
   ///@{
   /**
+   * The polychromatic X-ray, forwarded to the mapper (vtkMCXXRayMapper's
+   * Spectrum, Materials and Detector): an empty spectrum (the default) is
+   * monochromatic; set, the mapper samples the materials' density of the
+   * delivered index (the TF and Attenuation do not apply) and shows -ln T.
+   */
+  void SetSpectrum(const char* spectrum);
+  void SetMaterials(const char* materials);
+  void SetDetector(const char* detector);
+  ///@}
+
+  ///@{
+  /**
    * Seconds a frame may spend projecting points while the camera moves
    * (default 0.05: 20 frames a second, 0.001 to 10); the still render draws
    * them all. Camera motion counts as interactive when ParaView uses its
