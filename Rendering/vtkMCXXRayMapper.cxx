@@ -56,6 +56,21 @@ vtkMCXVolumeSampling::Settings SamplingSettingsOf(vtkMCXXRayMapper* self)
   return { self->GetSampleExponent(), self->GetStrategy(), self->GetKernel(), self->GetDeposit(),
     self->GetSeed() };
 }
+
+// `output` framed as the image of `g`, with its LineIntegral scalars of
+// `pixels` values to fill.
+vtkDoubleArray* FrameLineIntegral(
+  const mcx::ProjectionGeometry& g, std::size_t pixels, vtkImageData* output)
+{
+  output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
+  output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
+  output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
+  vtkNew<vtkDoubleArray> values;
+  values->SetName(vtkMCXTypes::LineIntegralName());
+  values->SetNumberOfValues(static_cast<vtkIdType>(pixels));
+  output->GetPointData()->SetScalars(values);
+  return values;
+}
 }
 
 vtkMCXXRayMapper::vtkMCXXRayMapper()
@@ -170,13 +185,8 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   {
     return;
   }
-  const mcx::ProjectionGeometry& g = in.Image->GetGeometry();
-  output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
-  output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
-  output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
-  vtkNew<vtkDoubleArray> values;
-  values->SetName(vtkMCXTypes::LineIntegralName());
-  values->SetNumberOfValues(static_cast<vtkIdType>(in.Image->NumberOfPixels()));
+  vtkDoubleArray* values =
+    FrameLineIntegral(in.Image->GetGeometry(), in.Image->NumberOfPixels(), output);
   const std::uint64_t count = in.Image->Count();
   if (in.ImagePolychromatic)
   {
@@ -188,7 +198,6 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   {
     in.Image->ToValues(in.SampleWeight(), values->GetPointer(0));
   }
-  output->GetPointData()->SetScalars(values);
   mcx::AddFieldValue(
     output->GetFieldData(), vtkMCXTypes::SampleCountName(), static_cast<long long>(count));
   mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::EstimatedRelativeErrorName(),
@@ -209,15 +218,9 @@ void vtkMCXXRayMapper::GetChannelImage(int m, vtkImageData* output)
   {
     return;
   }
-  const mcx::ProjectionGeometry& g = in.Image->GetGeometry();
-  output->SetExtent(0, g.Size[0] - 1, 0, g.Size[1] - 1, 0, 0);
-  output->SetOrigin(g.Origin[0], g.Origin[1], 0.0);
-  output->SetSpacing(g.Spacing[0], g.Spacing[1], 1.0);
-  vtkNew<vtkDoubleArray> values;
-  values->SetName(vtkMCXTypes::LineIntegralName());
-  values->SetNumberOfValues(static_cast<vtkIdType>(in.Image->NumberOfPixels()));
+  vtkDoubleArray* values =
+    FrameLineIntegral(in.Image->GetGeometry(), in.Image->NumberOfPixels(), output);
   in.Channels.ChannelValues(m, values->GetPointer(0));
-  output->GetPointData()->SetScalars(values);
   mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::SampleCountName(),
     static_cast<long long>(in.Channels.Count()));
   mcx::AddFieldValue(

@@ -36,17 +36,22 @@ std::string PolychromaticDetector(const Settings& settings)
   return detector;
 }
 
-PolychromaticStage::PolychromaticStage(const Settings& settings)
+bool PolychromaticAsked(const Settings& settings)
 {
   const bool asked = !settings.Spectrum.empty() || settings.MaterialsGiven ||
     !settings.DetectorMaterial.empty() || settings.PhotonCounting;
-  if (!asked)
-  {
-    return;
-  }
-  if (settings.Spectrum.empty())
+  if (asked && settings.Spectrum.empty())
   {
     Fail("--materials, --detector-material and --photon-counting need --spectrum");
+  }
+  return asked;
+}
+
+PolychromaticStage::PolychromaticStage(const Settings& settings)
+{
+  if (!PolychromaticAsked(settings))
+  {
+    return;
   }
   if (!IsCloudMethod(settings.Method))
   {

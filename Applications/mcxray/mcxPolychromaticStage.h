@@ -26,6 +26,11 @@ struct Settings;
 /// for --photon-counting and --detector-material.
 std::string PolychromaticDetector(const Settings& settings);
 
+/// Whether any polychromatic option was given (one line and exit when
+/// --materials, --detector-material or --photon-counting come without
+/// --spectrum).
+bool PolychromaticAsked(const Settings& settings);
+
 class PolychromaticStage
 {
 public:

@@ -136,15 +136,9 @@ void CheckCombinations(const Settings& settings)
 // view (which has no stored cloud, no processes and no target error).
 void CheckPolychromatic(const Settings& settings)
 {
-  const bool asked = !settings.Spectrum.empty() || settings.MaterialsGiven ||
-    !settings.DetectorMaterial.empty() || settings.PhotonCounting;
-  if (!asked)
+  if (!PolychromaticAsked(settings))
   {
     return;
-  }
-  if (settings.Spectrum.empty())
-  {
-    Fail("--materials, --detector-material and --photon-counting need --spectrum");
   }
   if (settings.Method == "every-voxel")
   {
