@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 class vtkDataArray;
@@ -63,6 +64,15 @@ public:
   void Reset(const mcx::ProjectionGeometry& geometry, const double origin[3],
     const double matrix[9], const std::vector<double>& depthLimits,
     const mcx::DepositSettings& settings, double determinant);
+
+  /// Swaps the channels' images, and the prop's |det| they were made
+  /// with, with `shelved` and `determinant` (the mapper's image of another
+  /// view, set aside with its total's).
+  void SwapImages(std::vector<std::unique_ptr<ProgressiveImage>>& shelved, double& determinant)
+  {
+    this->Channels.swap(shelved);
+    std::swap(this->Determinant, determinant);
+  }
 
   /// Adds points [Count(), target) to every channel.
   void Advance(vtkPoints* points, std::uint64_t target);

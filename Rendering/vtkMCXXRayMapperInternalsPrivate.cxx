@@ -312,22 +312,24 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
   // a restored image may hold more.
   const bool sourceStays =
     !self->GetAutomaticWindowLevel() || (this->WindowSourceKept && !this->AutomaticWindowPending);
-  // The shelf holds no channels: the polychromatic mode does not use it.
-  const bool shelfFits = this->HasImage && sourceStays && !this->Polychromatic && shelf.Held &&
-    cloud == shelf.Cloud && cloud->GetMTime() == shelf.CloudTime && reach == shelf.FootprintReach &&
+  // A polychromatic image comes back with its channels (the materials,
+  // part of the cloud's weights, are the cloud's time).
+  const bool shelfFits = this->HasImage && sourceStays && shelf.Held &&
+    shelf.Polychromatic == this->Polychromatic && cloud == shelf.Cloud &&
+    cloud->GetMTime() == shelf.CloudTime && reach == shelf.FootprintReach &&
     mcx::SameGeometry(view.Geometry, shelf.Geometry) &&
     std::equal(view.Matrix, view.Matrix + 16, shelf.Matrix) && view.Depth == shelf.Depth;
   // The image on screen is set aside when it holds more points than the
   // shelf's (interactive frames do not push a refined image out).
   const bool onScreenKept = this->HasImage && !newInput;
-  const bool shelve = onScreenKept && !this->Polychromatic &&
-    (shelfFits || !shelf.Held || this->Image->Count() > shelf.Image->Count());
+  const bool shelve =
+    onScreenKept && (shelfFits || !shelf.Held || this->Image->Count() > shelf.Image->Count());
   if (shelfFits || shelve)
   {
     this->SwapWithShelf();
     this->Shelved.Held = shelve;
   }
-  else if (newInput || this->Polychromatic)
+  else if (newInput)
   {
     this->Shelved.Held = false; // another input's image
   }
@@ -393,6 +395,8 @@ void vtkMCXXRayMapper::vtkInternals::SwapWithShelf()
 {
   Shelf& shelf = this->Shelved;
   std::swap(this->Image, shelf.Image);
+  this->Channels.SwapImages(shelf.Channels, shelf.Determinant);
+  std::swap(this->ImagePolychromatic, shelf.Polychromatic);
   std::swap(this->Cloud, shelf.Cloud);
   std::swap(this->CloudTime, shelf.CloudTime);
   std::swap(this->FootprintReach, shelf.FootprintReach);

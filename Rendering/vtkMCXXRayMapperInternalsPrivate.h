@@ -38,6 +38,9 @@ struct vtkMCXXRayMapper::vtkInternals
   struct Shelf
   {
     std::unique_ptr<ProgressiveImage> Image{ new ProgressiveImage };
+    std::vector<std::unique_ptr<ProgressiveImage>> Channels; // polychromatic: the materials'
+    double Determinant = 1.0;                                // the prop's |det| they hold
+    bool Polychromatic = false;
     bool Held = false;
     vtkPolyData* Cloud = nullptr; // compared only, never dereferenced
     vtkMTimeType CloudTime = 0;

@@ -281,6 +281,45 @@ TEST(PolychromaticMapper, ProgressiveRefinementEndsAtTheImageOfAllPoints)
   EXPECT_EQ(mapper->GetEstimatedRelativeError(), all.Mapper->GetEstimatedRelativeError());
 }
 
+TEST(PolychromaticMapper, AViewThatComesBackTakesBackItsRefinedChannels)
+{
+  // ParaView's screenshot dialog lays the view out at another size and
+  // back: the refined image comes back with its channels, not restarted.
+  Scene scene;
+  vtkMCXXRayMapper* mapper = scene.Mapper;
+  mapper->AutomaticWindowLevelOff();
+  mapper->ProgressiveRefinementOn();
+  mapper->SetInitialSampleExponent(10);
+  scene.Window->SetDesiredUpdateRate(0.0001); // a still render: every point
+  scene.Window->Render();
+  ASSERT_TRUE(mapper->IsRefinementComplete());
+  const std::vector<std::vector<double>> channels = Channels(mapper);
+  const std::vector<double> refined = LineIntegrals(mapper);
+  scene.Window->SetDesiredUpdateRate(1e6); // interactive: the first prefix
+  scene.Window->SetSize(Size - 8, Size - 4);
+  scene.Window->Render();
+  EXPECT_EQ((1 << 10) - 1, mapper->GetNumberOfAccumulatedSamples());
+  EXPECT_EQ(mapper->GetNumberOfChannels(), 4);
+  scene.Window->SetSize(Size, Size);
+  scene.Window->Render();
+  EXPECT_TRUE(mapper->IsRefinementComplete());
+  EXPECT_EQ(2, mapper->GetNumberOfRestarts()) << "the view's own size restarted";
+  EXPECT_TRUE(Channels(mapper) == channels);
+  EXPECT_TRUE(LineIntegrals(mapper) == refined);
+  // A spectrum change while another size is shown (whose prefix came back
+  // from the shelf in turn) maps the kept channels too.
+  scene.Window->SetSize(Size - 8, Size - 4);
+  scene.Window->Render();
+  mapper->SetSpectrum("120kVp,2.5mmAl");
+  scene.Window->SetSize(Size, Size);
+  scene.Window->Render();
+  EXPECT_EQ(2, mapper->GetNumberOfRestarts());
+  EXPECT_TRUE(Channels(mapper) == channels);
+  EXPECT_LT(
+    RelativeDifference(LineIntegrals(mapper), Model(channels, "120kVp,2.5mmAl", "integrating")),
+    1e-12);
+}
+
 TEST(PolychromaticMapper, ADensityIndexInputGivesTheVolumesChannels)
 {
   // ParaView's representation hands the mapper the volume's density index:
