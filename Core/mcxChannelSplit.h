@@ -156,6 +156,16 @@ private:
   std::vector<ChannelShares> Shares;
 };
 
+/// The shares of each point of a stored cloud: point i's are row Index[i]
+/// of Table (the points of one CT number share a row).
+struct PointShares
+{
+  const std::uint32_t* Index = nullptr;
+  const ChannelShareTable* Table = nullptr;
+
+  const ChannelShares* Of(std::uint64_t i) const { return this->Table->Of(this->Index[i]); }
+};
+
 } // namespace mcx
 
 #endif

@@ -55,10 +55,20 @@ std::vector<std::string> MaterialSet::Names() const
 void MaterialSet::FixedFractionsAt(double hu, double* fractions) const
 {
   constexpr double scale = 4294967296.0; // 2^32
-  std::uint64_t used = 0;
-  const std::size_t last = this->Size() - 1;
-  for (std::size_t m = 0; m < last; ++m)
+  // The rest goes to the last material present at this HU, so that one
+  // absent gets exactly 0 (a split deposit then leaves its channel alone).
+  std::size_t last = this->Size() - 1;
+  while (last > 0 && !(this->Materials[last].Fraction.At(hu) > 0.0))
   {
+    --last;
+  }
+  std::uint64_t used = 0;
+  for (std::size_t m = 0; m < this->Size(); ++m)
+  {
+    if (m == last)
+    {
+      continue;
+    }
     const double f = std::min(std::max(this->Materials[m].Fraction.At(hu), 0.0), 1.0);
     std::uint64_t q = static_cast<std::uint64_t>(std::floor(f * scale));
     q = std::min(q, (std::uint64_t(1) << 32) - used);

@@ -34,8 +34,9 @@ struct MaterialSet
   std::size_t Size() const { return this->Materials.size(); }
   std::vector<std::string> Names() const;
   /// Each material's fraction at `hu`, as multiples of 2^-32 that sum to
-  /// exactly 1 (the last takes what the others leave), so that channel sums
-  /// in fixed point add up to the total's exactly.
+  /// exactly 1 (the last material present takes what the others leave; one
+  /// absent gets exactly 0), so that channel sums in fixed point add up to
+  /// the total's exactly.
   void FixedFractionsAt(double hu, double* fractions) const;
 };
 

@@ -10,7 +10,8 @@
 // threads and equals vtkMCXProjector's for the same camera and points: both
 // deposit through SampleAccumulator. With a control image (SetControl) it
 // also counts each point once and shows the controlled estimate of
-// mcxControlImage.h.
+// mcxControlImage.h. With channels (SetChannels) each point's deposit is
+// also split into them by its shares (mcxChannelSplit.h), in the same pass.
 #ifndef mcxProgressiveImage_h
 #define mcxProgressiveImage_h
 
@@ -20,6 +21,7 @@
 #include "mcxProjectionGeometry.h"
 #include "mcxSampleAccumulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -49,7 +51,24 @@ public:
     this->Control.clear();
     this->OnceTotal.clear();
     this->OnceFirstHalf.clear();
+    this->ChannelSums.clear();
   }
+
+  /// Splits the points to come into `channels` images as well (each
+  /// Advance then needs the points' shares). Call after Reset(), before the
+  /// first Advance().
+  void SetChannels(int channels)
+  {
+    if (this->Counted > 0)
+    {
+      return;
+    }
+    this->Accumulator.SetChannels(channels);
+    this->ChannelSums.assign(static_cast<std::size_t>(this->Accumulator.GetChannels()),
+      std::vector<FixedSum>(2 * this->Total.size(), 0));
+  }
+
+  int Channels() const { return static_cast<int>(this->ChannelSums.size()); }
 
   /// Shows the controlled estimate (mcxControlImage.h) of the points to
   /// come: `control` is the control image H of this view, NumberOfPixels()
@@ -71,10 +90,11 @@ public:
   bool IsControlled() const { return !this->Control.empty(); }
 
   /// Adds points [Count(), target) of `points` (x, y, z each) to the image,
-  /// each `weights[i]` times (null: once; see SampleAccumulator::DepositRange).
+  /// each `weights[i]` times (null: once; see SampleAccumulator::DepositRange),
+  /// split into the channels by `shares` when there are channels.
   template <typename Real, typename Weight = float>
   void Advance(const Executor& executor, const Real* points, std::uint64_t target,
-    const Weight* weights = nullptr)
+    const Weight* weights = nullptr, const PointShares* shares = nullptr)
   {
     if (target <= this->Counted)
     {
@@ -88,10 +108,16 @@ public:
     {
       this->FirstHalf = this->Total;
       this->OnceFirstHalf = this->OnceTotal;
+      for (std::vector<FixedSum>& channel : this->ChannelSums)
+      {
+        std::copy(channel.begin(), channel.begin() + this->Total.size(),
+          channel.begin() + this->Total.size());
+      }
       this->FirstHalfCount = half;
     }
     this->Accumulator.SetSplit(splitsHere ? half : 0);
-    this->Accumulator.DepositPoints(executor, points, this->Counted, target, weights);
+    this->Accumulator.DepositPoints(
+      executor, points, this->Counted, target, weights, this->Channels() > 0 ? shares : nullptr);
     if (weights)
     {
       // Fixed-point sums of consecutive ranges add up exactly: the first
@@ -105,9 +131,15 @@ public:
       this->Weights += PointWeightSum(executor, weights, middle, target);
       this->Weighted = true;
     }
+    std::vector<FixedSum*> channels;
+    for (std::vector<FixedSum>& channel : this->ChannelSums)
+    {
+      channels.push_back(channel.data());
+    }
     this->Accumulator.Collect(this->Total.data(), this->FirstHalf.data(),
       this->IsControlled() ? this->OnceTotal.data() : nullptr,
-      this->IsControlled() ? this->OnceFirstHalf.data() : nullptr);
+      this->IsControlled() ? this->OnceFirstHalf.data() : nullptr,
+      channels.empty() ? nullptr : channels.data());
     this->Counted = target;
   }
 
@@ -162,6 +194,35 @@ public:
       this->Geometry.BeamCrossSection(), values);
   }
 
+  /// Channel c's pixel values, each point carrying `sampleWeight` as in
+  /// ToValues (without the control: a channel has none).
+  template <typename Value>
+  void ChannelToValues(int c, double sampleWeight, Value* values) const
+  {
+    FixedSumsToValues(this->ChannelSums[static_cast<std::size_t>(c)].data(), this->Total.size(),
+      sampleWeight, this->Geometry.BeamCrossSection(), values);
+  }
+
+  /// Channel c's relative RMS error from its halves (as the image's without a control).
+  double ChannelRelativeError(int c) const
+  {
+    if (this->FirstHalfCount != FirstHalfSize(this->Counted))
+    {
+      return std::nan("");
+    }
+    const std::vector<FixedSum>& sums = this->ChannelSums[static_cast<std::size_t>(c)];
+    return (this->Accumulator.ErrorFallsAsInverseM() ? FootprintErrorCalibration : 1.0) *
+      mcx::EstimateRelativeError(
+        sums.data(), sums.data() + this->Total.size(), this->Total.size(), this->Counted);
+  }
+
+  /// Channel c's fixed-point sums of all Count() points.
+  std::vector<FixedSum> ChannelSumsOf(int c) const
+  {
+    const std::vector<FixedSum>& sums = this->ChannelSums[static_cast<std::size_t>(c)];
+    return std::vector<FixedSum>(sums.begin(), sums.begin() + this->Total.size());
+  }
+
 private:
   ControlledSums Controlled() const
   {
@@ -192,6 +253,8 @@ private:
   double ControlIntegral = 0.0;
   std::vector<FixedSum> OnceTotal;
   std::vector<FixedSum> OnceFirstHalf;
+  // Per channel (SetChannels): all points' sums, then the first half's.
+  std::vector<std::vector<FixedSum>> ChannelSums;
 };
 
 } // namespace mcx

@@ -138,14 +138,15 @@ public:
   /// Deposits points [begin, end) of a stored cloud (x, y, z each), point i
   /// being sample i, in the calling thread; point i counts weights[i] times
   /// (finite, >= 0: see PointWeightProblem; null: once each; weight 0 is
-  /// skipped, unless controlled). Footprints are prepared Lookahead samples before they are
+  /// skipped, unless controlled), split into the channels by `shares` when
+  /// given (SetChannels). Footprints are prepared Lookahead samples before they are
   /// added, their cache lines asked for in between: in Halton order
   /// successive samples reach the image at random (3 to 5 % of a TF edit on
   /// the CT body). The sums are integers: the order of the additions leaves
   /// them unchanged.
   template <typename Real, typename Weight = float>
-  void DepositRange(
-    const Real* points, std::uint64_t begin, std::uint64_t end, const Weight* weights = nullptr)
+  void DepositRange(const Real* points, std::uint64_t begin, std::uint64_t end,
+    const Weight* weights = nullptr, const PointShares* shares = nullptr)
   {
     const ThreadImage image = this->Local();
     auto point = [points](std::uint64_t i, double p[3])
@@ -157,6 +158,7 @@ public:
     };
     auto weightOf = [weights](std::uint64_t i)
     { return weights ? static_cast<double>(weights[i]) : 1.0; };
+    auto sharesOf = [shares](std::uint64_t i) { return shares ? shares->Of(i) : nullptr; };
     if (!this->Ladder)
     {
       for (std::uint64_t i = begin; i < end; ++i)
@@ -166,7 +168,7 @@ public:
         {
           double p[3];
           point(i, p);
-          image.DepositPoint(i, p, weight);
+          image.DepositPoint(i, p, weight, sharesOf(i));
         }
       }
       return;
@@ -191,7 +193,7 @@ public:
         }
         double p[3];
         point(i, p);
-        pending[slot] = image.PrepareFootprint(i, p, ring[slot], weight);
+        pending[slot] = image.PrepareFootprint(i, p, ring[slot], weight, sharesOf(i));
         if (pending[slot])
         {
           image.Prefetch(ring[slot]);
@@ -203,14 +205,14 @@ public:
   /// The same, in parallel on `executor`.
   template <typename Real, typename Weight = float>
   void DepositPoints(const Executor& executor, const Real* points, std::uint64_t begin,
-    std::uint64_t end, const Weight* weights = nullptr)
+    std::uint64_t end, const Weight* weights = nullptr, const PointShares* shares = nullptr)
   {
     executor.For(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end),
       std::int64_t(1) << 15,
       [&](std::int64_t b, std::int64_t e)
       {
         this->DepositRange(
-          points, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e), weights);
+          points, static_cast<std::uint64_t>(b), static_cast<std::uint64_t>(e), weights, shares);
       });
   }
 

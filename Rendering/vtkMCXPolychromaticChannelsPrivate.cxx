@@ -1,7 +1,6 @@
 #include "vtkMCXPolychromaticChannelsPrivate.h"
 
 #include "mcxFixedPoint.h"
-#include "mcxPointWeights.h"
 #include "mcxTubeSpectrum.h"
 #include "vtkMCXMaterialFractions.h"
 #include "vtkMCXTypes.h"
@@ -14,9 +13,11 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_map>
 
 vtkMCXPolychromaticChannels::vtkMCXPolychromaticChannels() = default;
 
@@ -46,8 +47,6 @@ std::string vtkMCXPolychromaticChannels::Configure(
       {
         this->DensityFunction->AddPoint(this->Set.Density.HU[i], this->Set.Density.Value[i]);
       }
-      this->Channels.clear();
-      this->Weights.clear();
       this->WindowSource.clear();
       this->WeightedCloud = nullptr;
     }
@@ -80,7 +79,7 @@ vtkDataArray* vtkMCXPolychromaticChannels::IndexValues(vtkImageData* index)
   return this->IndexVoxels;
 }
 
-std::string vtkMCXPolychromaticChannels::UpdateWeights(
+std::string vtkMCXPolychromaticChannels::UpdateShares(
   vtkPolyData* cloud, vtkImageData* grid, vtkDataArray* values)
 {
   if (cloud == this->WeightedCloud && cloud->GetMTime() == this->WeightedTime &&
@@ -90,78 +89,60 @@ std::string vtkMCXPolychromaticChannels::UpdateWeights(
   }
   this->WeightedCloud = nullptr;
   const std::size_t k = this->Set.Size();
-  const vtkIdType count = cloud->GetNumberOfPoints();
-  this->Weights.assign(k, std::vector<double>(static_cast<std::size_t>(count)));
+  const std::size_t count = static_cast<std::size_t>(cloud->GetNumberOfPoints());
+  std::vector<std::vector<double>> fractions(k, std::vector<double>(count));
   std::vector<int> channels(k);
   std::iota(channels.begin(), channels.end(), 0);
-  std::vector<double*> weights(k);
+  std::vector<double*> pointers(k);
   for (std::size_t m = 0; m < k; ++m)
   {
-    weights[m] = this->Weights[m].data();
+    pointers[m] = fractions[m].data();
   }
   const vtkIdType outside =
-    mcx::FillMaterialFractions(this->Set, cloud, grid, values, channels, weights);
+    mcx::FillMaterialFractions(this->Set, cloud, grid, values, channels, pointers);
   if (outside >= 0)
   {
     return "point " + std::to_string(outside) +
       " is not at a voxel centre: the polychromatic mode needs the footprint deposit";
   }
-  // Each channel's integral as vtkMCXMaterialWeights scales it: the cloud's
-  // times the channel's weight sum over M.
-  vtkDataArray* integral = cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName());
-  const double total = integral ? integral->GetComponent(0, 0) : 0.0;
-  this->Integrals.assign(k, 0.0);
-  for (std::size_t m = 0; m < k && count > 0; ++m)
+  // One row per distinct set of fractions (multiples of 2^-32 summing to
+  // 1, MaterialSet::FixedFractionsAt: exact in fixed point), found by a
+  // hash of the set and compared in full.
+  std::vector<std::uint64_t> rows, tuple(k);
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> byHash;
+  this->ShareIndex.resize(count);
+  for (std::size_t i = 0; i < count; ++i)
   {
-    const mcx::FixedSum sum =
-      mcx::PointWeightSum(mcx::SMPExecutor(), weights[m], 0, static_cast<std::uint64_t>(count));
-    this->Integrals[m] = total * (mcx::ToDouble(sum) / mcx::FixedOne) / static_cast<double>(count);
+    std::uint64_t hash = 14695981039346656037ull; // FNV-1a
+    for (std::size_t m = 0; m < k; ++m)
+    {
+      tuple[m] = static_cast<std::uint64_t>(fractions[m][i] * mcx::FixedOne);
+      hash = (hash ^ tuple[m]) * 1099511628211ull;
+    }
+    std::vector<std::uint32_t>& candidates = byHash[hash];
+    std::uint32_t row = static_cast<std::uint32_t>(rows.size() / std::max<std::size_t>(1, k));
+    for (std::uint32_t candidate : candidates)
+    {
+      if (std::equal(tuple.begin(), tuple.end(), rows.begin() + candidate * k))
+      {
+        row = candidate;
+        break;
+      }
+    }
+    if (row * k == rows.size())
+    {
+      rows.insert(rows.end(), tuple.begin(), tuple.end());
+      candidates.push_back(row);
+    }
+    this->ShareIndex[i] = row;
   }
+  this->ShareRows.Build(rows, static_cast<int>(k));
+  this->PointShares.Index = this->ShareIndex.data();
+  this->PointShares.Table = &this->ShareRows;
   this->WeightedCloud = cloud;
   this->WeightedTime = cloud->GetMTime();
   this->WeightedMaterials = this->MaterialsText;
   return "";
-}
-
-void vtkMCXPolychromaticChannels::Reset(const mcx::ProjectionGeometry& geometry,
-  const double origin[3], const double matrix[9], const std::vector<double>& depthLimits,
-  const mcx::DepositSettings& settings, double determinant)
-{
-  this->Channels.resize(this->Set.Size());
-  for (auto& channel : this->Channels)
-  {
-    if (!channel)
-    {
-      channel.reset(new ProgressiveImage);
-    }
-    channel->Reset(geometry, origin, matrix, depthLimits, settings);
-  }
-  this->Determinant = determinant;
-}
-
-void vtkMCXPolychromaticChannels::Advance(vtkPoints* points, std::uint64_t target)
-{
-  for (std::size_t m = 0; m < this->Channels.size(); ++m)
-  {
-    const double* weights = this->Weights[m].data();
-    if (points->GetDataType() == VTK_FLOAT)
-    {
-      this->Channels[m]->Advance(
-        mcx::SMPExecutor(), static_cast<const float*>(points->GetVoidPointer(0)), target, weights);
-    }
-    else
-    {
-      this->Channels[m]->Advance(
-        mcx::SMPExecutor(), static_cast<const double*>(points->GetVoidPointer(0)), target, weights);
-    }
-  }
-}
-
-void vtkMCXPolychromaticChannels::ChannelValues(int m, double* values) const
-{
-  const ProgressiveImage& channel = *this->Channels[m];
-  const double carried = channel.CountedWeight();
-  channel.ToValues(carried > 0 ? this->Integrals[m] * this->Determinant / carried : 0.0, values);
 }
 
 void vtkMCXPolychromaticChannels::Map(const std::vector<std::vector<double>>& channels,
@@ -196,27 +177,37 @@ void vtkMCXPolychromaticChannels::Map(const std::vector<std::vector<double>>& ch
   *error = squaredValues > 0.0 ? std::sqrt(squaredErrors / squaredValues) : 0.0;
 }
 
-void vtkMCXPolychromaticChannels::EffectiveValues(std::vector<double>& out, double* error) const
+namespace
 {
-  std::vector<std::vector<double>> channels(this->Channels.size());
-  std::vector<double> channelErrors(this->Channels.size());
-  for (std::size_t m = 0; m < this->Channels.size(); ++m)
+// Each channel's line integrals of `image`.
+std::vector<std::vector<double>> ChannelLines(
+  const vtkMCXPolychromaticChannels::ProgressiveImage& image, double sampleWeight)
+{
+  std::vector<std::vector<double>> channels(static_cast<std::size_t>(image.Channels()));
+  for (int m = 0; m < image.Channels(); ++m)
   {
-    channels[m].resize(this->Channels[m]->NumberOfPixels());
-    this->ChannelValues(static_cast<int>(m), channels[m].data());
-    channelErrors[m] = this->ChannelError(static_cast<int>(m));
+    channels[m].resize(image.NumberOfPixels());
+    image.ChannelToValues(m, sampleWeight, channels[m].data());
   }
-  this->Map(channels, out, error, channelErrors.data());
+  return channels;
+}
 }
 
-void vtkMCXPolychromaticChannels::KeepWindowSource()
+void vtkMCXPolychromaticChannels::EffectiveValues(
+  const ProgressiveImage& image, double sampleWeight, std::vector<double>& out, double* error) const
 {
-  this->WindowSource.resize(this->Channels.size());
-  for (std::size_t m = 0; m < this->Channels.size(); ++m)
+  std::vector<double> channelErrors(static_cast<std::size_t>(image.Channels()));
+  for (int m = 0; m < image.Channels(); ++m)
   {
-    this->WindowSource[m].resize(this->Channels[m]->NumberOfPixels());
-    this->ChannelValues(static_cast<int>(m), this->WindowSource[m].data());
+    channelErrors[m] = image.ChannelRelativeError(m);
   }
+  this->Map(ChannelLines(image, sampleWeight), out, error, channelErrors.data());
+}
+
+void vtkMCXPolychromaticChannels::KeepWindowSource(
+  const ProgressiveImage& image, double sampleWeight)
+{
+  this->WindowSource = ChannelLines(image, sampleWeight);
 }
 
 void vtkMCXPolychromaticChannels::WindowSourceValues(std::vector<double>& out) const

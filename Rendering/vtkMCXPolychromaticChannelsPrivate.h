@@ -1,13 +1,15 @@
 // The polychromatic mode of vtkMCXXRayMapper: the materials' density curve
-// the cloud is sampled under, one progressive image per material (the
-// cloud's points weighted by that material's fraction at their voxel), and
-// the spectrum's model that turns the channels into the effective line
-// integral -ln T per pixel. A spectrum or detector change builds another
+// the cloud is sampled under, each point's shares of the materials (its
+// voxel's mass fractions), by which the mapper's one progressive image
+// splits every deposit into a channel per material, and the spectrum's
+// model that turns the channels into the effective line integral -ln T per
+// pixel. A spectrum or detector change builds another
 // model and maps the same channels again; only a materials change (another
 // density curve) makes the mapper sample again.
 #ifndef vtkMCXPolychromaticChannelsPrivate_h
 #define vtkMCXPolychromaticChannelsPrivate_h
 
+#include "mcxChannelSplit.h"
 #include "mcxMaterialDecomposition.h"
 #include "mcxPolychromaticModel.h"
 #include "mcxProgressiveImage.h"
@@ -25,7 +27,6 @@ class vtkDataArray;
 class vtkDoubleArray;
 class vtkImageData;
 class vtkPiecewiseFunction;
-class vtkPoints;
 class vtkPolyData;
 
 class vtkMCXPolychromaticChannels
@@ -46,53 +47,35 @@ public:
   /// Counts the models built: a change re-maps the channels.
   std::uint64_t ModelVersion() const { return this->Version; }
   const mcx::PolychromaticModel& Model() const { return *this->Built; }
-  int Size() const { return static_cast<int>(this->Channels.size()); }
+  /// The materials' number: the channels.
+  int Size() const { return static_cast<int>(this->Set.Size()); }
 
   /// The sampler's transfer function: the materials' density (g/cm^3 per
   /// value); refilled (a new time) only when the materials change.
   vtkPiecewiseFunction* Density() { return this->DensityFunction; }
 
-  /// Each point's material fractions, computed again when the cloud, its
-  /// time or the materials changed: `values` holds one value (HU) per voxel
-  /// of `grid`. "" or why the cloud has no materials.
-  std::string UpdateWeights(vtkPolyData* cloud, vtkImageData* grid, vtkDataArray* values);
+  /// Each point's shares of the materials (mcxChannelSplit.h: its mass
+  /// fractions, one row per distinct set of them), computed again when the
+  /// cloud, its time or the materials changed: `values` holds one value (HU)
+  /// per voxel of `grid`. "" or why the cloud has no materials.
+  std::string UpdateShares(vtkPolyData* cloud, vtkImageData* grid, vtkDataArray* values);
+
+  /// The points' shares for ProgressiveImage::Advance (after UpdateShares).
+  const mcx::PointShares* Shares() const { return &this->PointShares; }
 
   /// The values of a density index's voxels, rebuilt when the index changed.
   vtkDataArray* IndexValues(vtkImageData* index);
 
-  /// Starts every channel over as the total image was (same arguments).
-  void Reset(const mcx::ProjectionGeometry& geometry, const double origin[3],
-    const double matrix[9], const std::vector<double>& depthLimits,
-    const mcx::DepositSettings& settings, double determinant);
+  /// The effective line integral -ln T of `image`'s channels (each point
+  /// carrying `sampleWeight`), NumberOfPixels() values; with `error`, the
+  /// relative RMS error propagated from the channels' estimates as
+  /// vtkMCXPolychromaticRadiograph states it.
+  void EffectiveValues(const ProgressiveImage& image, double sampleWeight, std::vector<double>& out,
+    double* error = nullptr) const;
 
-  /// Swaps the channels' images, and the prop's |det| they were made
-  /// with, with `shelved` and `determinant` (the mapper's image of another
-  /// view, set aside with its total's).
-  void SwapImages(std::vector<std::unique_ptr<ProgressiveImage>>& shelved, double& determinant)
-  {
-    this->Channels.swap(shelved);
-    std::swap(this->Determinant, determinant);
-  }
-
-  /// Adds points [Count(), target) to every channel.
-  void Advance(vtkPoints* points, std::uint64_t target);
-
-  std::uint64_t Count() const { return this->Channels.empty() ? 0 : this->Channels[0]->Count(); }
-
-  /// Channel m's line integral (g/cm^3 x world length) per pixel.
-  void ChannelValues(int m, double* values) const;
-
-  /// Channel m's relative error estimate (ProgressiveImage's).
-  double ChannelError(int m) const { return this->Channels[m]->EstimateRelativeError(); }
-
-  /// The effective line integral -ln T of the channels, NumberOfPixels()
-  /// values; with `error`, the relative RMS error propagated from the
-  /// channels' estimates as vtkMCXPolychromaticRadiograph states it.
-  void EffectiveValues(std::vector<double>& out, double* error = nullptr) const;
-
-  /// Keeps the channels' line integrals now (the automatic window's source)
-  /// and maps the kept ones with the current model.
-  void KeepWindowSource();
+  /// Keeps `image`'s channel line integrals now (the automatic window's
+  /// source) and maps the kept ones with the current model.
+  void KeepWindowSource(const ProgressiveImage& image, double sampleWeight);
   void WindowSourceValues(std::vector<double>& out) const;
 
 private:
@@ -109,11 +92,10 @@ private:
   mcx::MaterialSet Set;
   vtkNew<vtkPiecewiseFunction> DensityFunction;
 
-  std::vector<std::unique_ptr<ProgressiveImage>> Channels;
-  std::vector<std::vector<double>> Weights; // per channel, per point
-  std::vector<double> Integrals;            // per channel: the cloud's x (weight sum) / M
-  double Determinant = 1.0;                 // |det| of the prop's matrix
-  vtkPolyData* WeightedCloud = nullptr;     // compared only, never dereferenced
+  mcx::ChannelShareTable ShareRows;      // one row per distinct set of fractions
+  std::vector<std::uint32_t> ShareIndex; // per point, its row
+  mcx::PointShares PointShares;
+  vtkPolyData* WeightedCloud = nullptr; // compared only, never dereferenced
   vtkMTimeType WeightedTime = 0;
   std::string WeightedMaterials;
   vtkImageData* Index = nullptr; // compared only, never dereferenced

@@ -163,7 +163,7 @@ double vtkMCXXRayMapper::GetEstimatedRelativeError()
     }
     std::vector<double> effective;
     double error = std::nan("");
-    in.Channels.EffectiveValues(effective, &error);
+    in.Channels.EffectiveValues(*in.Image, in.SampleWeight(), effective, &error);
     return error;
   }
   // Every voxel once: nothing to estimate, unless nothing was drawn (0).
@@ -191,7 +191,7 @@ void vtkMCXXRayMapper::GetLineIntegralImage(vtkImageData* output)
   if (in.ImagePolychromatic)
   {
     std::vector<double> effective;
-    in.Channels.EffectiveValues(effective);
+    in.Channels.EffectiveValues(*in.Image, in.SampleWeight(), effective);
     std::copy(effective.begin(), effective.end(), values->GetPointer(0));
   }
   else
@@ -220,11 +220,11 @@ void vtkMCXXRayMapper::GetChannelImage(int m, vtkImageData* output)
   }
   vtkDoubleArray* values =
     FrameLineIntegral(in.Image->GetGeometry(), in.Image->NumberOfPixels(), output);
-  in.Channels.ChannelValues(m, values->GetPointer(0));
+  in.Image->ChannelToValues(m, in.SampleWeight(), values->GetPointer(0));
   mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::SampleCountName(),
-    static_cast<long long>(in.Channels.Count()));
-  mcx::AddFieldValue(
-    output->GetFieldData(), vtkMCXTypes::EstimatedRelativeErrorName(), in.Channels.ChannelError(m));
+    static_cast<long long>(in.Image->Count()));
+  mcx::AddFieldValue(output->GetFieldData(), vtkMCXTypes::EstimatedRelativeErrorName(),
+    in.Image->ChannelRelativeError(m));
 }
 
 void vtkMCXXRayMapper::Render(vtkRenderer* renderer, vtkVolume* volume)

@@ -78,17 +78,18 @@
  * Polychromatic mode (Spectrum set, an image input in HU;
  * Documentation/polychromatic.md): the volume is sampled under the
  * materials' total density curve (Materials; vtkMCXMaterialWeights's
- * FillDensityFunction) instead of the property's TF, the same points are
- * accumulated once more per material, each weighted by that material's
- * fraction at its voxel (vtkMCXMaterialWeights's weights, all materials in
- * one pass over the points), and the image shown is the effective line
+ * FillDensityFunction) instead of the property's TF, each point's deposit
+ * is split into a channel per material by the mass fractions at its voxel
+ * (Core/mcxChannelSplit.h, as vtkMCXProjector's channels: the channels add
+ * up to the image of the points exactly, in the same pass), and the image
+ * shown is the effective line
  * integral -ln T of the channels through the spectrum and the detector
  * (mcx::PolychromaticModel, as vtkMCXPolychromaticRadiograph; world units
  * taken as mm). The radiograph physics above then applies to -ln T. A
  * Spectrum or Detector change maps the accumulated channels again without
  * projecting or sampling again; a Materials change samples again. It needs
- * the footprint deposit and a strategy other than EVERY_VOXEL, and does not
- * keep another view's image aside.
+ * the footprint deposit and a strategy other than EVERY_VOXEL; another
+ * view's image is kept aside with its channels.
  *
  * The accumulation runs on the CPU with vtkSMPTools; images are the same for
  * any number of threads.
@@ -262,7 +263,7 @@ public:
    * Channel m of the image on screen, laid out as GetLineIntegralImage's:
    * "LineIntegral" of material m's density x fraction (g/cm^3 x world
    * length), what vtkMCXProjector makes of vtkMCXMaterialWeights's cloud of
-   * channel m; field data SampleCount and the channel's
+   * channel m but for the rounding of the split; field data SampleCount and the channel's
    * EstimatedRelativeError. Empty outside 0 .. GetNumberOfChannels() - 1.
    */
   void GetChannelImage(int m, vtkImageData* output);

@@ -138,7 +138,7 @@ vtkPolyData* vtkMCXXRayMapper::vtkInternals::UpdateInput(
     {
       return nullptr; // the index or the sampler said why
     }
-    if (this->Polychromatic && !this->WeighChannels(self, image, cloud))
+    if (this->Polychromatic && !this->ShareChannels(self, image, cloud))
     {
       return nullptr;
     }
@@ -215,15 +215,15 @@ bool vtkMCXXRayMapper::vtkInternals::ConfigurePolychromatic(
   return true;
 }
 
-bool vtkMCXXRayMapper::vtkInternals::WeighChannels(
+bool vtkMCXXRayMapper::vtkInternals::ShareChannels(
   vtkMCXXRayMapper* self, vtkImageData* image, vtkPolyData* cloud)
 {
   std::string problem;
   vtkDataArray* values = vtkMCXVolumeSampling::IsDensityIndex(image)
     ? this->Channels.IndexValues(image)
     : self->SelectDensityArray(image, problem);
-  problem = values ? this->Channels.UpdateWeights(cloud, image, values)
-                   : "the density index cannot be read";
+  problem =
+    values ? this->Channels.UpdateShares(cloud, image, values) : "the density index cannot be read";
   if (!problem.empty())
   {
     this->Refuse(self, "Cannot draw a polychromatic X-ray: " + problem + ".");
@@ -300,7 +300,7 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
   // image (other materials), draw again.
   const bool newInput = cloud != this->Cloud || cloud->GetMTime() != this->CloudTime ||
     this->Polychromatic != this->ImagePolychromatic ||
-    (this->Polychromatic && this->Channels.Count() != this->Image->Count());
+    (this->Polychromatic && this->Image->Channels() != this->Channels.Size());
   if (this->HasImage && !newInput && mcx::SameGeometry(view.Geometry, this->Geometry) &&
     std::equal(view.Matrix, view.Matrix + 16, this->Matrix) && view.Depth == this->Depth &&
     reach == this->FootprintReach)
@@ -349,13 +349,10 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
     const double linear[9] = { m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10] };
     const mcx::DepositSettings settings =
       mcx::CloudDepositSettings(cloud, view.Geometry, origin, linear, reach);
-    if (this->Polychromatic)
-    {
-      this->Channels.Reset(
-        view.Geometry, origin, linear, limits, settings, std::fabs(vtkMatrix4x4::Determinant(m)));
-    }
     this->ImagePolychromatic = this->Polychromatic;
     this->Image->Reset(view.Geometry, origin, linear, std::move(limits), settings);
+    // Polychromatic: every deposit split into the materials' channels.
+    this->Image->SetChannels(this->Polychromatic ? this->Channels.Size() : 0);
     this->Cloud = cloud;
     this->CloudTime = cloud->GetMTime();
     this->FootprintReach = reach;
@@ -395,7 +392,6 @@ void vtkMCXXRayMapper::vtkInternals::SwapWithShelf()
 {
   Shelf& shelf = this->Shelved;
   std::swap(this->Image, shelf.Image);
-  this->Channels.SwapImages(shelf.Channels, shelf.Determinant);
   std::swap(this->ImagePolychromatic, shelf.Polychromatic);
   std::swap(this->Cloud, shelf.Cloud);
   std::swap(this->CloudTime, shelf.CloudTime);
@@ -433,7 +429,7 @@ void vtkMCXXRayMapper::vtkInternals::KeepWindowSource(vtkPoints* points, const i
   this->WindowSource.resize(this->Image->NumberOfPixels());
   if (this->Polychromatic)
   {
-    this->Channels.KeepWindowSource();
+    this->Channels.KeepWindowSource(*this->Image, this->SampleWeight());
   }
   else
   {
@@ -511,25 +507,22 @@ void vtkMCXXRayMapper::vtkInternals::Advance(vtkPoints* points, std::uint64_t ta
 {
   const std::uint64_t current = this->Image->Count();
   const auto start = std::chrono::steady_clock::now();
+  // Polychromatic: each point's deposit split by its shares, in the same pass.
+  const mcx::PointShares* shares = this->ImagePolychromatic ? this->Channels.Shares() : nullptr;
   mcx::WithPointWeights(this->Weights,
     [&](const auto* weights)
     {
       if (points->GetDataType() == VTK_FLOAT)
       {
         this->Image->Advance(mcx::SMPExecutor(),
-          static_cast<const float*>(points->GetVoidPointer(0)), target, weights);
+          static_cast<const float*>(points->GetVoidPointer(0)), target, weights, shares);
       }
       else
       {
         this->Image->Advance(mcx::SMPExecutor(),
-          static_cast<const double*>(points->GetVoidPointer(0)), target, weights);
+          static_cast<const double*>(points->GetVoidPointer(0)), target, weights, shares);
       }
     });
-  if (this->Polychromatic)
-  {
-    // The same points, each channel's weights: counted in the cost per point.
-    this->Channels.Advance(points, target);
-  }
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::uint64_t added = target - current;
@@ -566,7 +559,7 @@ void vtkMCXXRayMapper::vtkInternals::ImageValues(float* values)
     return;
   }
   std::vector<double> effective;
-  this->Channels.EffectiveValues(effective, &this->MappedError);
+  this->Channels.EffectiveValues(*this->Image, this->SampleWeight(), effective, &this->MappedError);
   std::copy(effective.begin(), effective.end(), values);
   this->MappedVersion = this->Channels.ModelVersion();
   this->MappedErrorCount = this->Image->Count();

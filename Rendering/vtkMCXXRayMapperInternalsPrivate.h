@@ -38,9 +38,7 @@ struct vtkMCXXRayMapper::vtkInternals
   struct Shelf
   {
     std::unique_ptr<ProgressiveImage> Image{ new ProgressiveImage };
-    std::vector<std::unique_ptr<ProgressiveImage>> Channels; // polychromatic: the materials'
-    double Determinant = 1.0;                                // the prop's |det| they hold
-    bool Polychromatic = false;
+    bool Polychromatic = false; // split into the materials' channels
     bool Held = false;
     vtkPolyData* Cloud = nullptr; // compared only, never dereferenced
     vtkMTimeType CloudTime = 0;
@@ -102,9 +100,9 @@ struct vtkMCXXRayMapper::vtkInternals
   // with `refused` set.
   bool ConfigurePolychromatic(vtkMCXXRayMapper* self, vtkImageData* image, bool& refused);
 
-  // The channels' weights for the cloud of an image input; false, reported,
-  // when its points are no voxel centres of the image.
-  bool WeighChannels(vtkMCXXRayMapper* self, vtkImageData* image, vtkPolyData* cloud);
+  // The points' shares of the channels for the cloud of an image input;
+  // false, reported, when its points are no voxel centres of the image.
+  bool ShareChannels(vtkMCXXRayMapper* self, vtkImageData* image, vtkPolyData* cloud);
 
   // Reports a problem unless it was the last one reported.
   void Refuse(vtkMCXXRayMapper* self, const std::string& problem);

@@ -172,6 +172,9 @@ TEST(PolychromaticPhysics, DefaultMaterialsMixLinearlyAndSumToOneExactly)
   set.FixedFractionsAt(-30.0, f); // half way between adipose (-100) and soft tissue (40)
   EXPECT_NEAR(f[1], 0.5, 1e-9);
   EXPECT_NEAR(f[2], 0.5, 1e-9);
+  // Materials absent there get exactly nothing (the rest goes to one present).
+  EXPECT_EQ(f[0], 0.0);
+  EXPECT_EQ(f[3], 0.0);
   for (double hu = -1200.0; hu < 3200.0; hu += 0.37)
   {
     set.FixedFractionsAt(hu, f);
@@ -185,6 +188,9 @@ TEST(PolychromaticPhysics, DefaultMaterialsMixLinearlyAndSumToOneExactly)
   }
   const mcx::MaterialSet extra = mcx::MaterialsFromText("default,iodine=200,titanium=2500");
   ASSERT_EQ(extra.Size(), 6u);
+  extra.FixedFractionsAt(500.0, f); // soft tissue, bone and iodine; no titanium below 2500
+  EXPECT_EQ(f[5], 0.0);
+  EXPECT_EQ(f[0] + f[1] + f[2] + f[3] + f[4], 1.0);
   EXPECT_EQ(extra.Materials[5].Name, "Ti");
   EXPECT_DOUBLE_EQ(extra.Density.At(3000.0), mcx::MaterialDensity("Ti"));
   // 1 mg/ml of iodine per 25 HU above the threshold at the curve's anchor,
