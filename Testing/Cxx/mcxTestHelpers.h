@@ -18,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -334,6 +335,10 @@ struct FirstError
 {
   std::string Text;
   vtkNew<vtkCallbackCommand> Command;
+  // Observed until this goes out of scope: a later error of the object
+  // must not reach a Text that no longer exists.
+  vtkWeakPointer<vtkObject> Observed;
+  unsigned long Tag = 0;
 
   explicit FirstError(vtkObject* object)
   {
@@ -347,8 +352,18 @@ struct FirstError
           text = static_cast<const char*>(message);
         }
       });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+    this->Tag = object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+    this->Observed = object;
   }
+  ~FirstError()
+  {
+    if (this->Observed)
+    {
+      this->Observed->RemoveObserver(this->Tag);
+    }
+  }
+  FirstError(const FirstError&) = delete;
+  FirstError& operator=(const FirstError&) = delete;
 };
 
 inline double FieldValue(vtkDataObject* data, const char* name)
