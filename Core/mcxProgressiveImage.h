@@ -216,13 +216,6 @@ public:
         sums.data(), sums.data() + this->Total.size(), this->Total.size(), this->Counted);
   }
 
-  /// Channel c's fixed-point sums of all Count() points.
-  std::vector<FixedSum> ChannelSumsOf(int c) const
-  {
-    const std::vector<FixedSum>& sums = this->ChannelSums[static_cast<std::size_t>(c)];
-    return std::vector<FixedSum>(sums.begin(), sums.begin() + this->Total.size());
-  }
-
 private:
   ControlledSums Controlled() const
   {
