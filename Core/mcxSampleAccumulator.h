@@ -159,6 +159,23 @@ public:
     auto weightOf = [weights](std::uint64_t i)
     { return weights ? static_cast<double>(weights[i]) : 1.0; };
     auto sharesOf = [shares](std::uint64_t i) { return shares ? shares->Of(i) : nullptr; };
+    if (!this->Ladder && this->Binner->IsPerspective())
+    {
+      // A perspective view's division and square root on SIMD lanes.
+      typename ThreadImage::PointBatch batch(image);
+      for (std::uint64_t i = begin; i < end; ++i)
+      {
+        const double weight = weightOf(i);
+        if (weight != 0.0 || image.Controlled) // the control counts every sample
+        {
+          double p[3];
+          point(i, p);
+          batch.AddWeighted(i, p, weight, sharesOf(i));
+        }
+      }
+      batch.Flush();
+      return;
+    }
     if (!this->Ladder)
     {
       for (std::uint64_t i = begin; i < end; ++i)

@@ -68,11 +68,12 @@ public:
   }
 
   /// DepositPoint for the n samples k[i] at (x[i], y[i], z[i]), each of
-  /// weight 1 (and shares[i] with channels), their projection done on
-  /// SIMD lanes (PixelBinner::LocatePoints: the arrays readable up to its
-  /// padding): the same sums, bit for bit.
+  /// weight weights[i] (null: 1) and shares[i] with channels, their
+  /// projection done on SIMD lanes (PixelBinner::LocatePoints: the arrays
+  /// readable up to its padding): the same sums, bit for bit.
   void DepositPoints(const std::uint64_t* k, const double* x, const double* y, const double* z,
-    std::size_t n, const ChannelShares* const* shares = nullptr) const
+    std::size_t n, const ChannelShares* const* shares = nullptr,
+    const double* weights = nullptr) const
   {
     constexpr std::size_t Most = PointBatch::Capacity;
     double fx[Most], fy[Most], f[Most];
@@ -83,7 +84,8 @@ public:
     {
       std::int64_t pixel;
       FixedSum increment;
-      if (!located[i] || !binner.PixelOf(fx[i], fy[i], f[i], pixel, increment))
+      if (!located[i] ||
+        !binner.PixelOf(fx[i], fy[i], f[i], pixel, increment, weights ? weights[i] : 1.0))
       {
         continue;
       }
@@ -98,14 +100,19 @@ public:
       this->Add(k[i], pixel, increment, shares ? shares[i] : nullptr);
       if (this->Controlled)
       {
+        if (weights) // the control counts the sample once, unweighted
+        {
+          binner.PixelOf(fx[i], fy[i], f[i], pixel, increment);
+        }
         this->Sums->Add(k[i] < this->Split ? 2 : 3, pixel, increment);
       }
     }
   }
 
-  /// Samples of weight 1 gathered for DepositPoints, Capacity at a time:
-  /// the point deposit of a sample source's sink (Add), Flush()ed at the
-  /// end of each chunk of work.
+  /// Samples gathered for DepositPoints, Capacity at a time: the point
+  /// deposit of a sample source's sink (Add, weight 1) and of a stored
+  /// cloud in a perspective view (AddWeighted), Flush()ed at the end of
+  /// each chunk of work.
   class PointBatch
   {
   public:
@@ -119,25 +126,39 @@ public:
 
     void Add(std::uint64_t k, const double p[3], const ChannelShares* shares = nullptr)
     {
+      this->Push(k, p, 1.0, shares);
+    }
+
+    void AddWeighted(
+      std::uint64_t k, const double p[3], double weight, const ChannelShares* shares = nullptr)
+    {
+      this->Weighted = true;
+      this->Push(k, p, weight, shares);
+    }
+
+    void Flush()
+    {
+      this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count,
+        this->Image.Channels > 0 ? this->Shares : nullptr,
+        this->Weighted ? this->Weights : nullptr);
+      this->Count = 0;
+    }
+
+  private:
+    void Push(std::uint64_t k, const double p[3], double weight, const ChannelShares* shares)
+    {
       this->K[this->Count] = k;
       this->Shares[this->Count] = shares;
       this->X[this->Count] = p[0];
       this->Y[this->Count] = p[1];
       this->Z[this->Count] = p[2];
+      this->Weights[this->Count] = weight;
       if (++this->Count == Capacity)
       {
         this->Flush();
       }
     }
 
-    void Flush()
-    {
-      this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count,
-        this->Image.Channels > 0 ? this->Shares : nullptr);
-      this->Count = 0;
-    }
-
-  private:
     const ThreadImage& Image;
     std::size_t Count = 0;
     std::uint64_t K[Capacity];
@@ -145,6 +166,8 @@ public:
     double X[Capacity] = {};
     double Y[Capacity] = {};
     double Z[Capacity] = {};
+    double Weights[Capacity];
+    bool Weighted = false; // once AddWeighted was called: Flush passes the weights
   };
 
   /// The footprint of the voxel centred at p (its random part, if the

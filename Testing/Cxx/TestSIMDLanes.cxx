@@ -167,64 +167,72 @@ TEST(SIMDLanes, LocatePointsIsLocateBitForBitOnEveryInstructionSet)
 TEST(SIMDLanes, DepositPointsAddsWhatDepositPointAdds)
 {
   // The batch's scalar half (image bounds, depth limits, the first Halton
-  // half's split, the control images) against one DepositPoint per sample,
-  // on every instruction set: the collected sums must be equal.
+  // half's split, the control images, a stored cloud's weights, 0 among
+  // them) against one DepositPoint per sample, on every instruction set:
+  // the collected sums must be equal.
   ResetTargets reset;
   const std::size_t n = 5000;
   const std::vector<double> xyz = Points(n);
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  auto weightOf = [](std::size_t i) { return i % 5 == 0 ? 0.0 : 0.25 + 0.375 * (i % 11); };
   for (bool perspective : { false, true })
-  {
-    const mcx::ProjectionGeometry g = Geometry(perspective);
-    const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
-    std::vector<double> limits(pixels);
-    for (std::size_t p = 0; p < pixels; ++p)
+    for (bool weighted : { false, true })
     {
-      limits[p] = 40.0 + 50.0 * static_cast<double>(p % 7) / 7.0; // hides some samples
-    }
-    for (std::int64_t target : Targets())
-    {
-      hwy::SetSupportedTargetsForTest(target);
-      std::vector<mcx::FixedSum> sums[2][4];
-      for (int batched = 0; batched < 2; ++batched)
+      const mcx::ProjectionGeometry g = Geometry(perspective);
+      const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
+      std::vector<double> limits(pixels);
+      for (std::size_t p = 0; p < pixels; ++p)
       {
-        mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
-        accumulator.Reset(g, origin, identity, limits);
-        accumulator.SetControlled(true);
-        accumulator.SetSplit(n / 3);
-        const auto image = accumulator.Local();
-        mcx::ThreadImage::PointBatch batch(image);
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          if (batched)
-          {
-            batch.Add(i, &xyz[3 * i]);
-          }
-          else
-          {
-            image.DepositPoint(i, &xyz[3 * i]);
-          }
-        }
-        batch.Flush();
-        for (auto& s : sums[batched])
-        {
-          s.assign(pixels, 0);
-        }
-        accumulator.Collect(sums[batched][0].data(), sums[batched][1].data(),
-          sums[batched][2].data(), sums[batched][3].data());
+        limits[p] = 40.0 + 50.0 * static_cast<double>(p % 7) / 7.0; // hides some samples
       }
-      mcx::FixedSum total = 0;
-      for (int s = 0; s < 4; ++s)
+      for (std::int64_t target : Targets())
       {
-        for (std::size_t p = 0; p < pixels; ++p)
+        hwy::SetSupportedTargetsForTest(target);
+        std::vector<mcx::FixedSum> sums[2][4];
+        for (int batched = 0; batched < 2; ++batched)
         {
-          ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
-            << hwy::TargetName(target) << " image " << s << " pixel " << p;
-          total += sums[0][s][p];
+          mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
+          accumulator.Reset(g, origin, identity, limits);
+          accumulator.SetControlled(true);
+          accumulator.SetSplit(n / 3);
+          const auto image = accumulator.Local();
+          mcx::ThreadImage::PointBatch batch(image);
+          for (std::size_t i = 0; i < n; ++i)
+          {
+            if (batched && weighted)
+            {
+              batch.AddWeighted(i, &xyz[3 * i], weightOf(i));
+            }
+            else if (batched)
+            {
+              batch.Add(i, &xyz[3 * i]);
+            }
+            else
+            {
+              image.DepositPoint(i, &xyz[3 * i], weighted ? weightOf(i) : 1.0);
+            }
+          }
+          batch.Flush();
+          for (auto& s : sums[batched])
+          {
+            s.assign(pixels, 0);
+          }
+          accumulator.Collect(sums[batched][0].data(), sums[batched][1].data(),
+            sums[batched][2].data(), sums[batched][3].data());
         }
+        mcx::FixedSum total = 0;
+        for (int s = 0; s < 4; ++s)
+        {
+          for (std::size_t p = 0; p < pixels; ++p)
+          {
+            ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
+              << hwy::TargetName(target) << (weighted ? " weighted" : "") << " image " << s
+              << " pixel " << p;
+            total += sums[0][s][p];
+          }
+        }
+        EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
       }
-      EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
-    }
   }
 }
