@@ -154,6 +154,30 @@ public:
     return std::isfinite(fx) && std::isfinite(fy);
   }
 
+  /// Locate's fx and fy alone, the same bits, and its result: without the
+  /// perspective weight's square root, for a pass that only bins.
+  bool PixelPosition(const double p[3], double& fx, double& fy) const
+  {
+    const double* m = this->Lanes.Rows;
+    if (!this->Lanes.Perspective)
+    {
+      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.PixelOffset[0];
+      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.PixelOffset[1];
+      return std::isfinite(fx) && std::isfinite(fy);
+    }
+    const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.Offset[0];
+    const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.Offset[1];
+    const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Lanes.Offset[2];
+    if (!(z >= this->Lanes.Near))
+    {
+      return false;
+    }
+    const double inverseDepth = 1.0 / z;
+    fx = u * inverseDepth * this->Lanes.PixelScale[0] + this->Lanes.PixelOffset[0];
+    fy = v * inverseDepth * this->Lanes.PixelScale[1] + this->Lanes.PixelOffset[1];
+    return std::isfinite(fx) && std::isfinite(fy);
+  }
+
   /// Locate for n points (x, y, z readable up to n rounded up to a
   /// multiple of LanePadding) on the CPU's widest SIMD lanes, bit for bit
   /// the same: fx, fy, f of point i, and located[i] = Locate's result

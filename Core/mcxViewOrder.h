@@ -22,8 +22,9 @@
 // points: 2.8 and 2.5 % error without, 1.7 and 2.0 % with; a level order
 // first, or the level folded into the Morton key, did no better).
 //
-// The sort is three passes over every voxel, like the index build, so it pays
-// where one view takes many TF edits. The order depends on the index, the
+// The sort is two passes over every voxel, like the index build, and one
+// over each cache-sized run of them, so it pays where one view takes many TF
+// edits. The order depends on the index, the
 // cells and the bins alone, never on the thread count.
 #ifndef mcxViewOrder_h
 #define mcxViewOrder_h
@@ -92,33 +93,50 @@ inline std::uint8_t PositionInPixel(double fx, double fy)
 {
   auto step = [](double f)
   {
-    const double fraction = f - std::floor(f);
-    return static_cast<unsigned>(std::min(15.0, std::max(0.0, std::floor(fraction * 16.0))));
+    // Truncation is the floor of the pixel coordinates of the image, which
+    // are non-negative, and far cheaper without SSE 4.1's rounding.
+    const double whole =
+      f >= 0 && f < 0x1p52 ? static_cast<double>(static_cast<std::int64_t>(f)) : std::floor(f);
+    const double fraction = f - whole;
+    const double sixteenths = fraction * 16.0; // in [0, 16], or not a number
+    return sixteenths >= 15.0 ? 15u : sixteenths > 0.0 ? static_cast<unsigned>(sixteenths) : 0u;
   };
-  const unsigned column = step(fx), row = step(fy);
-  unsigned rank = 0;
-  for (int bit = 3; bit >= 0; --bit)
-  {
-    rank = (rank << 2) | (((column >> bit) & 1u) << 1) | ((row >> bit) & 1u);
-  }
-  return static_cast<std::uint8_t>(rank);
+  // Each 4-bit step's bits spread to the even bits of a byte.
+  static constexpr std::uint8_t Spread[16] = { 0x00, 0x01, 0x04, 0x05, 0x10, 0x11, 0x14, 0x15, 0x40,
+    0x41, 0x44, 0x45, 0x50, 0x51, 0x54, 0x55 };
+  return static_cast<std::uint8_t>(Spread[step(fx)] << 1 | Spread[step(fy)]);
 }
 
-/// The chunks of ViewOrder::Build: as the index's counting sort, but no
-/// more chunks than voxels / (2 keys), so that zeroing and summing the
-/// (chunk, key) counters (a pixel grid's worth per bin) never outweighs
-/// the voxels.
-inline CountingSortLayout MakeViewOrderLayout(std::int64_t voxels, std::int64_t keys)
+/// How ViewOrder::Build splits a (bin, cell) key into two digits: the high
+/// digit takes at most 2^11 values, so that a chunk's 2^11 write cursors,
+/// and the cache lines they write, stay in cache while voxels are scattered
+/// by it; the low digit (LowBits bits, 0 when the keys are that few) orders
+/// each high digit's run, which fits in cache, in a second pass.
+struct ViewOrderDigits
 {
-  CountingSortLayout layout = MakeCountingSortLayout(voxels, keys);
-  const std::int64_t most = std::max<std::int64_t>(1, voxels / std::max<std::int64_t>(2 * keys, 1));
-  if (layout.NumberOfChunks > most)
+  static constexpr int HighBits = 11;
+  /// The most keys a view order sorts: the low digit and the position (8
+  /// bits) share 32 bits.
+  static constexpr std::int64_t MaximumKeys = std::int64_t(1) << (HighBits + 24);
+  int LowBits = 0;
+  std::int64_t HighDigits = 1;
+
+  explicit ViewOrderDigits(std::int64_t keys)
   {
-    layout.NumberOfChunks = most;
-    layout.ChunkSize = voxels == 0 ? 1 : (voxels + most - 1) / most;
+    int bits = 0;
+    while (bits < 63 && (std::int64_t(1) << bits) < keys)
+    {
+      ++bits;
+    }
+    this->LowBits = std::max(0, bits - HighBits);
+    this->HighDigits = keys <= 0 ? 1 : ((keys - 1) >> this->LowBits) + 1;
   }
-  return layout;
-}
+  std::int64_t High(std::int64_t key) const { return key >> this->LowBits; }
+  std::uint32_t Low(std::int64_t key) const
+  {
+    return static_cast<std::uint32_t>(key & ((std::int64_t(1) << this->LowBits) - 1));
+  }
+};
 
 template <typename IdType>
 struct ViewOrder
@@ -130,20 +148,37 @@ struct ViewOrder
   std::vector<std::uint16_t, HugePageAllocator<std::uint16_t>> LevelInBin;
   std::vector<std::int64_t> BinOffsets;
   std::vector<std::int64_t> BinFirstLevel;
+  /// Build's scratch, each entry's low digit and position (what its run
+  /// is sorted by): kept for the next Build, whose pages it then finds
+  /// touched already (4 bytes a voxel).
+  std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> Rest;
 
   std::int64_t NumberOfBins() const
   {
     return static_cast<std::int64_t>(this->BinFirstLevel.size()) - 1;
   }
 
+  /// Takes the arrays of an order no longer needed, so that the next Build
+  /// of as many voxels writes into pages already touched: the first touch
+  /// of a page, which the kernel zeroes, cost a third of a sort.
+  void Recycle(ViewOrder&& old)
+  {
+    this->Ids = std::move(old.Ids);
+    this->LevelInBin = std::move(old.LevelInBin);
+    this->Rest = std::move(old.Rest);
+  }
+
   /// Reorders the index's ids (sorted by level, levelOffsets with
   /// numberOfLevels + 1 entries) by bin (binFirstLevel, from
   /// GroupLevelsIntoBins), then by cellOf(id), a ViewCell: its Cell in [0,
   /// cells) (the view's pixel, one more cell for voxels off the image), then
-  /// its Position, then as the index lists them. Runs on `executor` in
-  /// chunks of a layout fixed by the voxel and key counts. After each of its
-  /// three passes it calls progress(fraction), which returns false to stop:
-  /// then it returns false and leaves no order.
+  /// its Position, then as the index lists them. Stable counting sorts: by
+  /// the (bin, cell) key's high digit in chunks of a layout fixed by the
+  /// voxel and digit counts, then each digit's run by the low digit, then
+  /// each cell by position, on `executor`. After each of three passes it
+  /// calls progress(fraction), which returns false to stop: then it returns
+  /// false and leaves no order. Bins x cells is at most
+  /// ViewOrderDigits::MaximumKeys.
   template <typename Executor, typename CellFunction, typename Progress>
   bool Build(const Executor& executor, const IdType* sortedIds, const std::int64_t* levelOffsets,
     std::int64_t numberOfLevels, std::vector<std::int64_t> binFirstLevel, std::int64_t cells,
@@ -152,15 +187,16 @@ struct ViewOrder
     this->BinFirstLevel = std::move(binFirstLevel);
     const std::int64_t bins = this->NumberOfBins();
     const std::int64_t voxels = levelOffsets[numberOfLevels];
+    const std::int64_t keys = bins * cells;
+    const ViewOrderDigits digits(keys);
     std::vector<std::int64_t> binOfLevel(static_cast<std::size_t>(numberOfLevels));
     for (std::int64_t b = 0; b < bins; ++b)
     {
       std::fill(binOfLevel.begin() + this->BinFirstLevel[static_cast<std::size_t>(b)],
         binOfLevel.begin() + this->BinFirstLevel[static_cast<std::size_t>(b + 1)], b);
     }
-    const std::int64_t keys = bins * cells;
-    const CountingSortLayout layout = MakeViewOrderLayout(voxels, keys);
-    // Visits the slots of chunk c with their level: visit(slot, level).
+    const CountingSortLayout layout = MakeCountingSortLayout(voxels, digits.HighDigits);
+    // Visits the slots of chunk c: visit(slot, level, key, position).
     auto forEachSlot = [&](std::int64_t c, const auto& visit)
     {
       const std::int64_t begin = c * layout.ChunkSize;
@@ -173,23 +209,24 @@ struct ViewOrder
         {
           ++level;
         }
-        visit(slot, level);
+        const ViewCell where = cellOf(sortedIds[slot]);
+        visit(slot, level, binOfLevel[static_cast<std::size_t>(level)] * cells + where.Cell,
+          where.Position);
       }
     };
-    auto keyOf = [&](std::int64_t level, std::int64_t cell)
-    { return binOfLevel[static_cast<std::size_t>(level)] * cells + cell; };
 
-    std::vector<std::int64_t, HugePageAllocator<std::int64_t>> counters(
-      static_cast<std::size_t>(layout.NumberOfChunks * keys), 0);
+    // Each chunk's count of every high digit.
+    std::vector<std::int64_t> counters(
+      static_cast<std::size_t>(layout.NumberOfChunks * digits.HighDigits), 0);
     executor.For(0, layout.NumberOfChunks, 1,
       [&](std::int64_t c0, std::int64_t c1)
       {
         for (std::int64_t c = c0; c < c1; ++c)
         {
-          std::int64_t* count = counters.data() + c * keys;
+          std::int64_t* count = counters.data() + c * digits.HighDigits;
           forEachSlot(c,
-            [&](std::int64_t slot, std::int64_t level)
-            { ++count[keyOf(level, cellOf(sortedIds[slot]).Cell)]; });
+            [&](std::int64_t, std::int64_t, std::int64_t key, std::uint8_t)
+            { ++count[digits.High(key)]; });
         }
       });
     if (!progress(1.0 / 3.0))
@@ -198,69 +235,72 @@ struct ViewOrder
       return false;
     }
 
-    // Exclusive prefix sum in (key, chunk) order: the write cursors, and
-    // where each key's run starts.
-    this->BinOffsets.assign(static_cast<std::size_t>(bins + 1), 0);
-    std::vector<std::int64_t> keyStarts(static_cast<std::size_t>(keys + 1), voxels);
+    // Exclusive prefix sum in (digit, chunk) order: the write cursors, and
+    // where each digit's run starts.
+    std::vector<std::int64_t> runStarts(static_cast<std::size_t>(digits.HighDigits + 1), voxels);
     std::int64_t running = 0;
-    for (std::int64_t key = 0; key < keys; ++key)
+    for (std::int64_t d = 0; d < digits.HighDigits; ++d)
     {
-      if (key % cells == 0)
-      {
-        this->BinOffsets[static_cast<std::size_t>(key / cells)] = running;
-      }
-      keyStarts[static_cast<std::size_t>(key)] = running;
+      runStarts[static_cast<std::size_t>(d)] = running;
       for (std::int64_t c = 0; c < layout.NumberOfChunks; ++c)
       {
-        std::int64_t& slot = counters[static_cast<std::size_t>(c * keys + key)];
+        std::int64_t& slot = counters[static_cast<std::size_t>(c * digits.HighDigits + d)];
         const std::int64_t n = slot;
         slot = running;
         running += n;
       }
     }
-    this->BinOffsets[static_cast<std::size_t>(bins)] = running;
 
-    this->Ids.resize(static_cast<std::size_t>(voxels));
-    this->LevelInBin.resize(static_cast<std::size_t>(voxels));
-    std::vector<std::uint8_t, HugePageAllocator<std::uint8_t>> positions(
-      static_cast<std::size_t>(voxels));
+    Resize(this->Ids, voxels);
+    Resize(this->LevelInBin, voxels);
+    Resize(this->Rest, voxels);
+    std::uint32_t* rest = this->Rest.data();
     executor.For(0, layout.NumberOfChunks, 1,
       [&](std::int64_t c0, std::int64_t c1)
       {
         for (std::int64_t c = c0; c < c1; ++c)
         {
-          std::int64_t* cursor = counters.data() + c * keys;
+          std::int64_t* cursor = counters.data() + c * digits.HighDigits;
           forEachSlot(c,
-            [&](std::int64_t slot, std::int64_t level)
+            [&](std::int64_t slot, std::int64_t level, std::int64_t key, std::uint8_t position)
             {
-              const ViewCell where = cellOf(sortedIds[slot]);
-              const std::int64_t to = cursor[keyOf(level, where.Cell)]++;
-              this->Ids[static_cast<std::size_t>(to)] = sortedIds[slot];
-              this->LevelInBin[static_cast<std::size_t>(to)] = static_cast<std::uint16_t>(level -
+              const std::size_t to = static_cast<std::size_t>(cursor[digits.High(key)]++);
+              this->Ids[to] = sortedIds[slot];
+              this->LevelInBin[to] = static_cast<std::uint16_t>(level -
                 this->BinFirstLevel[static_cast<std::size_t>(
                   binOfLevel[static_cast<std::size_t>(level)])]);
-              positions[static_cast<std::size_t>(to)] = where.Position;
+              rest[to] = digits.Low(key) << 8 | position;
             });
         }
       });
-    counters = decltype(counters)(); // the third pass needs no cursors
+    counters = std::vector<std::int64_t>(); // the runs need no cursors
     if (!progress(2.0 / 3.0))
     {
       this->BinOffsets.clear();
       return false;
     }
 
-    executor.For(0, keys, std::max<std::int64_t>(1, keys / 256),
-      [&](std::int64_t k0, std::int64_t k1)
+    // Each run by its low digit and position, which also gives where each
+    // key starts.
+    std::vector<std::int64_t> keyStarts(static_cast<std::size_t>(keys + 1), voxels);
+    typename Executor::template ThreadLocal<RunSorter> sorters;
+    executor.For(0, digits.HighDigits, 1,
+      [&](std::int64_t d0, std::int64_t d1)
       {
-        CellSorter sorter;
-        for (std::int64_t key = k0; key < k1; ++key)
+        RunSorter& sorter = sorters.Local();
+        for (std::int64_t d = d0; d < d1; ++d)
         {
-          sorter.Sort(keyStarts[static_cast<std::size_t>(key)],
-            keyStarts[static_cast<std::size_t>(key + 1)], positions.data(), this->Ids.data(),
-            this->LevelInBin.data());
+          sorter.Sort(runStarts[static_cast<std::size_t>(d)],
+            runStarts[static_cast<std::size_t>(d + 1)], d, digits, keys, rest, this->Ids.data(),
+            this->LevelInBin.data(), keyStarts.data());
         }
       });
+    this->BinOffsets.assign(static_cast<std::size_t>(bins + 1), voxels);
+    for (std::int64_t b = 0; b < bins; ++b)
+    {
+      this->BinOffsets[static_cast<std::size_t>(b)] =
+        keyStarts[static_cast<std::size_t>(b * cells)];
+    }
     return progress(1.0);
   }
 
@@ -295,43 +335,63 @@ struct ViewOrder
   }
 
 private:
-  /// Sorts the entries [begin, end) of one cell by position, stably (the
-  /// level and id order kept within a position), reusing its buffers from
-  /// cell to cell.
-  class CellSorter
+  /// Makes `array` hold n entries, its contents left undefined: a
+  /// recycled array of another size is let go rather than copied.
+  template <typename Array>
+  static void Resize(Array& array, std::int64_t n)
+  {
+    if (array.size() != static_cast<std::size_t>(n))
+    {
+      array = Array();
+      array.resize(static_cast<std::size_t>(n));
+    }
+  }
+
+  /// Sorts the run [begin, end) of high digit `digit` by the rest of its
+  /// entries' keys (low digit, then position), stably, and writes where
+  /// each of its keys starts (keyStarts), reusing its buffers from run to
+  /// run.
+  class RunSorter
   {
   public:
-    void Sort(std::int64_t begin, std::int64_t end, const std::uint8_t* positions, IdType* ids,
-      std::uint16_t* levels)
+    void Sort(std::int64_t begin, std::int64_t end, std::int64_t digit,
+      const ViewOrderDigits& digits, std::int64_t keys, const std::uint32_t* rest, IdType* ids,
+      std::uint16_t* levels, std::int64_t* keyStarts)
     {
+      const std::int64_t firstKey = digit << digits.LowBits;
+      const std::int64_t lastKey = std::min(keys, (digit + 1) << digits.LowBits);
       const std::size_t n = static_cast<std::size_t>(end - begin);
-      const std::uint8_t* position = positions + begin;
-      if (n < 2 || std::is_sorted(position, position + n))
-      {
-        return; // the off-image cell among them: its voxels all have position 0
-      }
-      std::size_t starts[257] = {};
+      const std::size_t width = static_cast<std::size_t>(lastKey - firstKey) << 8;
+      this->Starts.assign(width + 1, 0);
+      const std::uint32_t* r = rest + begin;
       for (std::size_t i = 0; i < n; ++i)
       {
-        ++starts[position[i] + 1];
+        ++this->Starts[r[i] + 1];
       }
-      for (int p = 0; p < 256; ++p)
+      for (std::size_t k = 0; k < width; ++k)
       {
-        starts[p + 1] += starts[p];
+        if (k % 256 == 0)
+        {
+          keyStarts[firstKey + static_cast<std::int64_t>(k >> 8)] =
+            begin + static_cast<std::int64_t>(this->Starts[k]);
+        }
+        this->Starts[k + 1] += this->Starts[k];
       }
       this->Ids.resize(n);
       this->Levels.resize(n);
       for (std::size_t i = 0; i < n; ++i)
       {
-        const std::size_t to = starts[position[i]]++;
-        this->Ids[to] = ids[begin + static_cast<std::int64_t>(i)];
-        this->Levels[to] = levels[begin + static_cast<std::int64_t>(i)];
+        const std::size_t to = this->Starts[r[i]]++;
+        const std::size_t from = static_cast<std::size_t>(begin) + i;
+        this->Ids[to] = ids[from];
+        this->Levels[to] = levels[from];
       }
       std::copy(this->Ids.begin(), this->Ids.end(), ids + begin);
       std::copy(this->Levels.begin(), this->Levels.end(), levels + begin);
     }
 
   private:
+    std::vector<std::size_t> Starts;
     std::vector<IdType> Ids;
     std::vector<std::uint16_t> Levels;
   };

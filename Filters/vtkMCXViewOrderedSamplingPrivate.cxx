@@ -193,6 +193,18 @@ struct vtkMCXViewOrderedSampling::SortedView
   std::vector<double> BinImages;
   int BinKernel = -1;
 
+  // What the arrays recycled from the previous order hold already for an
+  // order of `voxels` (ViewOrder::Recycle).
+  double RecycledBytes(std::int64_t voxels) const
+  {
+    const std::size_t n = static_cast<std::size_t>(voxels);
+    const double v = static_cast<double>(voxels);
+    return (this->Narrow.Ids.size() == n ? 4.0 * v : 0.0) +
+      (this->Wide.Ids.size() == n ? 8.0 * v : 0.0) +
+      (this->Narrow.LevelInBin.size() == n || this->Wide.LevelInBin.size() == n ? 2.0 * v : 0.0) +
+      (this->Narrow.Rest.size() == n || this->Wide.Rest.size() == n ? 4.0 * v : 0.0);
+  }
+
   std::int64_t BinsOf(bool wideIds) const
   {
     return wideIds ? this->Wide.NumberOfBins() : this->Narrow.NumberOfBins();
@@ -407,7 +419,13 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   {
     return this->KeptViewOrder.get();
   }
-  this->KeptViewOrder.reset(); // not held while a new one is sorted
+  std::unique_ptr<SortedView> sorted(new SortedView);
+  if (this->KeptViewOrder) // not held while a new one is sorted; its arrays are reused
+  {
+    sorted->Narrow.Recycle(std::move(this->KeptViewOrder->Narrow));
+    sorted->Wide.Recycle(std::move(this->KeptViewOrder->Wide));
+    this->KeptViewOrder.reset();
+  }
   const std::int64_t voxels = view.LevelOffsets[view.NumberOfLevels];
   const std::int64_t pixels = static_cast<std::int64_t>(geometry.Size[0]) * geometry.Size[1];
   const std::int64_t cells = pixels + 1; // the last: voxels off the image
@@ -422,15 +440,28 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
     return nullptr;
   }
   const std::int64_t keys = (static_cast<std::int64_t>(binFirstLevel.size()) - 1) * cells;
-  const mcx::CountingSortLayout layout = mcx::MakeViewOrderLayout(voxels, keys);
+  if (keys > mcx::ViewOrderDigits::MaximumKeys)
+  {
+    vtkErrorWithObjectMacro(sampler,
+      "The view order of " << voxels << " voxels sorts at most "
+                           << mcx::ViewOrderDigits::MaximumKeys << " (bin, pixel) cells, not "
+                           << keys << ": use fewer ordering bins or a smaller ordering view.");
+    return nullptr;
+  }
+  const mcx::ViewOrderDigits digits(keys);
+  const mcx::CountingSortLayout layout = mcx::MakeCountingSortLayout(voxels, digits.HighDigits);
+  // The order (id, level), each entry's low digit and position, the
+  // cursors and the keys' starts.
   if (!mcx::CheckMemory(sampler,
-        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 1.0) +
-          8.0 * static_cast<double>(layout.NumberOfChunks + 1) * static_cast<double>(keys),
+        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 4.0) -
+          sorted->RecycledBytes(voxels) +
+          8.0 * static_cast<double>(layout.NumberOfChunks + 1) *
+            static_cast<double>(digits.HighDigits) +
+          8.0 * static_cast<double>(keys + 1),
         "The view order of " + std::to_string(voxels) + " voxels"))
   {
     return nullptr;
   }
-  std::unique_ptr<SortedView> sorted(new SortedView);
   sorted->Describe(view, geometry, sampler->GetNumberOfOrderingBins());
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
@@ -451,9 +482,9 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
       decoder.Decode(id, voxel[0], voxel[1], voxel[2]);
       const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
         static_cast<double>(voxel[2]) };
-      double fx, fy, f, inverseDepth;
+      double fx, fy;
       mcx::ViewCell where;
-      if (!binner.Locate(p, fx, fy, f, inverseDepth) || !(fx >= 0 && fx < geometry.Size[0]) ||
+      if (!binner.PixelPosition(p, fx, fy) || !(fx >= 0 && fx < geometry.Size[0]) ||
         !(fy >= 0 && fy < geometry.Size[1]))
       {
         where.Cell = pixels;

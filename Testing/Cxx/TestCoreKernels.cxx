@@ -360,75 +360,78 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
 {
   // Voxels of random levels in a random cell and position each: the order
   // holds each indexed voxel once, with its level, sorted by (bin, cell,
-  // position, level, id), whatever the executor.
-  for (const std::int64_t n : { std::int64_t(0), std::int64_t(1), std::int64_t(200003) })
-  {
-    const std::int64_t levels = 9, cells = 37;
-    std::mt19937 random(static_cast<unsigned>(n) + 11);
-    std::vector<int> level(static_cast<std::size_t>(n)), cell(static_cast<std::size_t>(n)),
-      position(static_cast<std::size_t>(n));
-    for (std::size_t id = 0; id < level.size(); ++id)
+  // position, level, id), whatever the executor. 37 cells: one counting
+  // pass by (bin, cell); 3001: by the key's high digit, then its low digit.
+  for (const std::int64_t cells : { std::int64_t(37), std::int64_t(3001) })
+    for (const std::int64_t n : { std::int64_t(0), std::int64_t(1), std::int64_t(200003) })
     {
-      level[id] = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
-      cell[id] = static_cast<int>(random() % cells);
-      // Few positions in the last cell (the off-image cell: 0), all in others.
-      position[id] = cell[id] == cells - 1 ? 0 : static_cast<int>(random() % 256);
-    }
-    std::vector<std::int64_t> offsets;
-    const std::vector<std::uint32_t> sorted = SortByLevel(level, levels, offsets);
-    const std::vector<std::int64_t> bins = { 0, 2, 3, 7, 9 };
-    auto cellOf = [&](std::uint32_t id)
-    {
-      mcx::ViewCell where;
-      where.Cell = cell[id];
-      where.Position = static_cast<std::uint8_t>(position[id]);
-      return where;
-    };
-    auto keepGoing = [](double) { return true; };
-    mcx::ViewOrder<std::uint32_t> serial, threaded;
-    ASSERT_TRUE(serial.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
-      cells, cellOf, keepGoing));
-    ASSERT_TRUE(threaded.Build(
-      ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
-    EXPECT_EQ(serial.Ids, threaded.Ids) << n;
-    EXPECT_EQ(serial.LevelInBin, threaded.LevelInBin) << n;
-    EXPECT_EQ(serial.BinOffsets, threaded.BinOffsets) << n;
-    ASSERT_EQ(4, serial.NumberOfBins());
-    ASSERT_EQ(static_cast<std::size_t>(offsets[levels]), serial.Ids.size());
-
-    std::vector<int> seen(static_cast<std::size_t>(n), 0);
-    std::array<std::int64_t, 5> key{}, previous{ -1, -1, -1, -1, -1 };
-    for (std::int64_t b = 0; b < 4; ++b)
-    {
-      EXPECT_EQ(
-        offsets[bins[static_cast<std::size_t>(b)]], serial.BinOffsets[static_cast<std::size_t>(b)]);
-      for (std::int64_t k = serial.BinOffsets[static_cast<std::size_t>(b)];
-           k < serial.BinOffsets[static_cast<std::size_t>(b + 1)]; ++k)
+      const std::int64_t levels = 9;
+      ASSERT_EQ(cells == 37 ? 0 : 3, mcx::ViewOrderDigits(4 * cells).LowBits);
+      std::mt19937 random(static_cast<unsigned>(n) + 11);
+      std::vector<int> level(static_cast<std::size_t>(n)), cell(static_cast<std::size_t>(n)),
+        position(static_cast<std::size_t>(n));
+      for (std::size_t id = 0; id < level.size(); ++id)
       {
-        const std::uint32_t id = serial.Ids[static_cast<std::size_t>(k)];
-        ++seen[id];
-        const std::int64_t l =
-          bins[static_cast<std::size_t>(b)] + serial.LevelInBin[static_cast<std::size_t>(k)];
-        ASSERT_EQ(level[id], l) << "entry " << k;
-        key = { b, cell[id], position[id], l, id };
-        ASSERT_LT(previous, key) << "entry " << k;
-        previous = key;
+        level[id] = static_cast<int>(random() % (levels + 1)) - 1; // -1: not indexed
+        cell[id] = static_cast<int>(random() % cells);
+        // Few positions in the last cell (the off-image cell: 0), all in others.
+        position[id] = cell[id] == cells - 1 ? 0 : static_cast<int>(random() % 256);
+      }
+      std::vector<std::int64_t> offsets;
+      const std::vector<std::uint32_t> sorted = SortByLevel(level, levels, offsets);
+      const std::vector<std::int64_t> bins = { 0, 2, 3, 7, 9 };
+      auto cellOf = [&](std::uint32_t id)
+      {
+        mcx::ViewCell where;
+        where.Cell = cell[id];
+        where.Position = static_cast<std::uint8_t>(position[id]);
+        return where;
+      };
+      auto keepGoing = [](double) { return true; };
+      mcx::ViewOrder<std::uint32_t> serial, threaded;
+      ASSERT_TRUE(serial.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
+        cells, cellOf, keepGoing));
+      ASSERT_TRUE(threaded.Build(
+        ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
+      EXPECT_EQ(serial.Ids, threaded.Ids) << n;
+      EXPECT_EQ(serial.LevelInBin, threaded.LevelInBin) << n;
+      EXPECT_EQ(serial.BinOffsets, threaded.BinOffsets) << n;
+      ASSERT_EQ(4, serial.NumberOfBins());
+      ASSERT_EQ(static_cast<std::size_t>(offsets[levels]), serial.Ids.size());
+
+      std::vector<int> seen(static_cast<std::size_t>(n), 0);
+      std::array<std::int64_t, 5> key{}, previous{ -1, -1, -1, -1, -1 };
+      for (std::int64_t b = 0; b < 4; ++b)
+      {
+        EXPECT_EQ(offsets[bins[static_cast<std::size_t>(b)]],
+          serial.BinOffsets[static_cast<std::size_t>(b)]);
+        for (std::int64_t k = serial.BinOffsets[static_cast<std::size_t>(b)];
+             k < serial.BinOffsets[static_cast<std::size_t>(b + 1)]; ++k)
+        {
+          const std::uint32_t id = serial.Ids[static_cast<std::size_t>(k)];
+          ++seen[id];
+          const std::int64_t l =
+            bins[static_cast<std::size_t>(b)] + serial.LevelInBin[static_cast<std::size_t>(k)];
+          ASSERT_EQ(level[id], l) << "entry " << k;
+          key = { b, cell[id], position[id], l, id };
+          ASSERT_LT(previous, key) << "entry " << k;
+          previous = key;
+        }
+      }
+      for (std::int64_t id = 0; id < n; ++id)
+      {
+        ASSERT_EQ(
+          level[static_cast<std::size_t>(id)] >= 0 ? 1 : 0, seen[static_cast<std::size_t>(id)]);
+      }
+      // Stopped after the first or the second pass: no order.
+      for (const double last : { 0.3, 0.6 })
+      {
+        mcx::ViewOrder<std::uint32_t> stopped;
+        EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels,
+          bins, cells, cellOf, [last](double fraction) { return fraction < last; }));
+        EXPECT_TRUE(stopped.BinOffsets.empty());
       }
     }
-    for (std::int64_t id = 0; id < n; ++id)
-    {
-      ASSERT_EQ(
-        level[static_cast<std::size_t>(id)] >= 0 ? 1 : 0, seen[static_cast<std::size_t>(id)]);
-    }
-    // Stopped after the first or the second pass: no order.
-    for (const double last : { 0.3, 0.6 })
-    {
-      mcx::ViewOrder<std::uint32_t> stopped;
-      EXPECT_FALSE(stopped.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), levels, bins,
-        cells, cellOf, [last](double fraction) { return fraction < last; }));
-      EXPECT_TRUE(stopped.BinOffsets.empty());
-    }
-  }
 }
 
 namespace
