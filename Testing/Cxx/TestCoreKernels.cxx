@@ -396,6 +396,32 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
       EXPECT_EQ(serial.Ids, threaded.Ids) << n;
       EXPECT_EQ(serial.LevelInBin, threaded.LevelInBin) << n;
       EXPECT_EQ(serial.BinOffsets, threaded.BinOffsets) << n;
+      // Built into the arrays of an order of other cells (Recycle), or of
+      // fewer voxels: the same order.
+      for (const std::int64_t first : { n, n / 2 })
+      {
+        mcx::ViewOrder<std::uint32_t> previous, recycled;
+        std::vector<std::int64_t> fewer(offsets);
+        for (std::int64_t& o : fewer)
+        {
+          o = std::min(o, first);
+        }
+        auto shifted = [&](std::uint32_t id)
+        {
+          mcx::ViewCell where = cellOf(id);
+          where.Cell = (where.Cell + 5) % cells;
+          where.Position = static_cast<std::uint8_t>(where.Position ^ 0x5a);
+          return where;
+        };
+        ASSERT_TRUE(previous.Build(
+          ThreadExecutor(), sorted.data(), fewer.data(), levels, bins, cells, shifted, keepGoing));
+        recycled.Recycle(std::move(previous));
+        ASSERT_TRUE(recycled.Build(
+          ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
+        EXPECT_EQ(serial.Ids, recycled.Ids) << n << " after " << first;
+        EXPECT_EQ(serial.LevelInBin, recycled.LevelInBin) << n << " after " << first;
+        EXPECT_EQ(serial.BinOffsets, recycled.BinOffsets) << n << " after " << first;
+      }
       ASSERT_EQ(4, serial.NumberOfBins());
       ASSERT_EQ(static_cast<std::size_t>(offsets[levels]), serial.Ids.size());
 
