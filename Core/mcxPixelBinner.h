@@ -180,10 +180,10 @@ public:
 
   /// Locate for n points (x, y, z readable up to n rounded up to a
   /// multiple of LanePadding) on the CPU's widest SIMD lanes, bit for bit
-  /// the same: fx, fy, f of point i, and located[i] = Locate's result
-  /// (mcxPixelBinnerLanes.cxx).
+  /// the same: fx, fy, f of point i, located[i] = Locate's result, and
+  /// its inverse depth when inverseDepth is given (mcxPixelBinnerLanes.cxx).
   void LocatePoints(const double* x, const double* y, const double* z, std::size_t n, double* fx,
-    double* fy, double* f, std::uint8_t* located) const;
+    double* fy, double* f, std::uint8_t* located, double* inverseDepth = nullptr) const;
 
   /// The instruction set LocatePoints runs on (Highway's name: AVX3, AVX2, SSE4, EMU128...).
   static const char* LanesInstructionSet();

@@ -8,6 +8,8 @@
 // the other lacks).
 #include "mcxPixelBinner.h"
 
+#include <algorithm>
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "mcxPixelBinnerLanes.cxx"
 #include <hwy/foreach_target.h> // IWYU pragma: keep
@@ -30,7 +32,7 @@ HWY_INLINE V Affine(D d, const double* row, double offset, V x, V y, V z)
 }
 
 void LocateLanes(const PixelBinner::Map& map, const double* x, const double* y, const double* z,
-  std::size_t n, double* fx, double* fy, double* f, std::uint8_t* located)
+  std::size_t n, double* fx, double* fy, double* f, std::uint8_t* located, double* inverseDepth)
 {
   const hn::ScalableTag<double> d;
   const std::size_t lanes = hn::Lanes(d);
@@ -43,7 +45,7 @@ void LocateLanes(const PixelBinner::Map& map, const double* x, const double* y, 
     const auto px = hn::LoadU(d, x + i);
     const auto py = hn::LoadU(d, y + i);
     const auto pz = hn::LoadU(d, z + i);
-    decltype(hn::Zero(d)) u, v, weight;
+    decltype(hn::Zero(d)) u, v, weight, inverse = hn::Zero(d);
     auto inFront = hn::Eq(hn::Zero(d), hn::Zero(d)); // all true
     if (!map.Perspective)
     {
@@ -57,7 +59,7 @@ void LocateLanes(const PixelBinner::Map& map, const double* x, const double* y, 
       const auto b = Affine(d, map.Rows + 3, map.Offset[1], px, py, pz);
       const auto depth = Affine(d, map.Rows + 6, map.Offset[2], px, py, pz);
       inFront = hn::Ge(depth, hn::Set(d, map.Near)); // false for NaN, as !(z >= Near)
-      const auto inverse = hn::Div(hn::Set(d, 1.0), depth);
+      inverse = hn::Div(hn::Set(d, 1.0), depth);
       u = hn::Add(hn::Mul(hn::Mul(a, inverse), hn::Set(d, map.PixelScale[0])),
         hn::Set(d, map.PixelOffset[0]));
       v = hn::Add(hn::Mul(hn::Mul(b, inverse), hn::Set(d, map.PixelScale[1])),
@@ -72,16 +74,22 @@ void LocateLanes(const PixelBinner::Map& map, const double* x, const double* y, 
     const auto infinity = hn::Set(d, HUGE_VAL);
     const auto finite = hn::And(hn::Lt(hn::Abs(u), infinity), hn::Lt(hn::Abs(v), infinity));
     hn::Store(hn::IfThenElseZero(hn::And(inFront, finite), hn::Set(d, 1.0)), d, flags);
-    HWY_ALIGN double us[hn::MaxLanes(d)], vs[hn::MaxLanes(d)], ws[hn::MaxLanes(d)];
+    HWY_ALIGN double us[hn::MaxLanes(d)], vs[hn::MaxLanes(d)], ws[hn::MaxLanes(d)],
+      inverses[hn::MaxLanes(d)];
     hn::Store(u, d, us);
     hn::Store(v, d, vs);
     hn::Store(weight, d, ws);
+    hn::Store(inverse, d, inverses);
     for (std::size_t l = 0; l < count; ++l)
     {
       fx[i + l] = us[l];
       fy[i + l] = vs[l];
       f[i + l] = ws[l];
       located[i + l] = flags[l] != 0.0 ? 1 : 0;
+    }
+    if (inverseDepth)
+    {
+      std::copy(inverses, inverses + count, inverseDepth + i);
     }
   }
 }
@@ -95,9 +103,9 @@ namespace mcx
 HWY_EXPORT(LocateLanes);
 
 void PixelBinner::LocatePoints(const double* x, const double* y, const double* z, std::size_t n,
-  double* fx, double* fy, double* f, std::uint8_t* located) const
+  double* fx, double* fy, double* f, std::uint8_t* located, double* inverseDepth) const
 {
-  HWY_DYNAMIC_DISPATCH(LocateLanes)(this->Lanes, x, y, z, n, fx, fy, f, located);
+  HWY_DYNAMIC_DISPATCH(LocateLanes)(this->Lanes, x, y, z, n, fx, fy, f, located, inverseDepth);
 }
 
 const char* PixelBinner::LanesInstructionSet()

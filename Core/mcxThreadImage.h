@@ -216,12 +216,19 @@ public:
   bool PrepareFootprint(std::uint64_t k, const double centre[3], PreparedFootprint& footprint,
     double weight = 1.0, const ChannelShares* shares = nullptr) const
   {
-    CounterRandom random(this->FootprintKey, k);
     double fx, fy, f, w;
-    if (!this->Binner->Locate(centre, fx, fy, f, w))
-    {
-      return false;
-    }
+    return this->Binner->Locate(centre, fx, fy, f, w) &&
+      this->PrepareLocatedFootprint(k, centre, fx, fy, f, w, footprint, weight, shares);
+  }
+
+  /// PrepareFootprint of a centre already located (PixelBinner::Locate or
+  /// LocatePoints: its pixel coordinates, perspective weight and inverse
+  /// depth).
+  bool PrepareLocatedFootprint(std::uint64_t k, const double centre[3], double fx, double fy,
+    double f, double w, PreparedFootprint& footprint, double weight = 1.0,
+    const ChannelShares* shares = nullptr) const
+  {
+    CounterRandom random(this->FootprintKey, k);
     const FootprintTable* table = this->Ladder->Select(w, 1.0 - random.NextOpenClosed());
     double p[3] = { centre[0], centre[1], centre[2] };
     if (!table)

@@ -89,6 +89,7 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   }
   mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
   accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
+  const mcx::PixelBinner binner(geometry, origin, matrix); // the accumulator's
   const std::size_t pixels = accumulator.NumberOfPixels();
   const std::int64_t bins = order.NumberOfBins();
   const mcx::VoxelDecoder<IdType> decoder(
@@ -107,14 +108,37 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
       [&](std::uint64_t begin, std::uint64_t end)
       {
         const auto image = accumulator.Local();
-        for (std::uint64_t i = begin; i < end; ++i)
+        // Located Batch voxels at a time on SIMD lanes (the same bits as
+        // one at a time), then deposited one by one.
+        constexpr std::uint64_t Batch = 64;
+        static_assert(
+          Batch % mcx::PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
+        double x[Batch] = {}, y[Batch] = {}, z[Batch] = {};
+        double fx[Batch], fy[Batch], f[Batch], w[Batch];
+        std::uint8_t located[Batch];
+        for (std::uint64_t b0 = begin; b0 < end; b0 += Batch)
         {
-          const std::uint64_t k = static_cast<std::uint64_t>(first) + i;
-          std::uint64_t voxel[3];
-          decoder.Decode(order.Ids[k], voxel[0], voxel[1], voxel[2]);
-          const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
-            static_cast<double>(voxel[2]) };
-          image.Deposit(k, p);
+          const std::uint64_t n = std::min(Batch, end - b0);
+          const std::uint64_t k0 = static_cast<std::uint64_t>(first) + b0;
+          for (std::uint64_t j = 0; j < n; ++j)
+          {
+            std::uint64_t voxel[3];
+            decoder.Decode(order.Ids[k0 + j], voxel[0], voxel[1], voxel[2]);
+            x[j] = static_cast<double>(voxel[0]);
+            y[j] = static_cast<double>(voxel[1]);
+            z[j] = static_cast<double>(voxel[2]);
+          }
+          binner.LocatePoints(x, y, z, n, fx, fy, f, located, w);
+          for (std::uint64_t j = 0; j < n; ++j)
+          {
+            const double p[3] = { x[j], y[j], z[j] };
+            mcx::ThreadImage::PreparedFootprint footprint;
+            if (located[j] &&
+              image.PrepareLocatedFootprint(k0 + j, p, fx[j], fy[j], f[j], w[j], footprint))
+            {
+              image.AddFootprint(footprint);
+            }
+          }
         }
       });
     if (!completed)

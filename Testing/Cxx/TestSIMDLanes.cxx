@@ -126,10 +126,10 @@ TEST(SIMDLanes, LocatePointsIsLocateBitForBitOnEveryInstructionSet)
     {
       hwy::SetSupportedTargetsForTest(target);
       names.push_back(hwy::TargetName(target));
-      std::vector<double> fx(n), fy(n), f(n);
+      std::vector<double> fx(n), fy(n), f(n), inverseDepth(n);
       std::vector<std::uint8_t> located(n);
-      binner.LocatePoints(
-        x.data(), y.data(), z.data(), n, fx.data(), fy.data(), f.data(), located.data());
+      binner.LocatePoints(x.data(), y.data(), z.data(), n, fx.data(), fy.data(), f.data(),
+        located.data(), inverseDepth.data());
       int inImage = 0, refused = 0;
       for (std::size_t i = 0; i < n; ++i)
       {
@@ -140,7 +140,8 @@ TEST(SIMDLanes, LocatePointsIsLocateBitForBitOnEveryInstructionSet)
           << hwy::TargetName(target) << " point " << i << (perspective ? " perspective" : "");
         if (expected)
         {
-          EXPECT_TRUE(SameBits(ex, fx[i]) && SameBits(ey, fy[i]) && SameBits(ef, f[i]))
+          EXPECT_TRUE(SameBits(ex, fx[i]) && SameBits(ey, fy[i]) && SameBits(ef, f[i]) &&
+            SameBits(depth, inverseDepth[i]))
             << hwy::TargetName(target) << " point " << i << ": " << ex << " " << ey << " " << ef
             << " against " << fx[i] << " " << fy[i] << " " << f[i];
           inImage += ex >= 0 && ex < 37 && ey >= 0 && ey < 29 ? 1 : 0;
