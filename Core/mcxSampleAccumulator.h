@@ -193,6 +193,8 @@ public:
     constexpr std::uint64_t Lookahead = 8;
     typename ThreadImage::PreparedFootprint ring[Lookahead];
     bool pending[Lookahead] = {};
+    const bool lanes = this->Binner->IsPerspective(); // the division and square root
+    LocatedBlock block;
     for (std::uint64_t i = begin; i < end + Lookahead; ++i)
     {
       const std::uint64_t slot = i % Lookahead;
@@ -208,9 +210,20 @@ public:
         {
           continue;
         }
-        double p[3];
-        point(i, p);
-        pending[slot] = image.PrepareFootprint(i, p, ring[slot], weight, sharesOf(i));
+        if (lanes)
+        {
+          const std::uint64_t j = block.Locate(*this->Binner, i, end, point);
+          const double p[3] = { block.X[j], block.Y[j], block.Z[j] };
+          pending[slot] = block.Located[j] &&
+            image.PrepareLocatedFootprint(i, p, block.Fx[j], block.Fy[j], block.F[j], block.W[j],
+              ring[slot], weight, sharesOf(i));
+        }
+        else
+        {
+          double p[3];
+          point(i, p);
+          pending[slot] = image.PrepareFootprint(i, p, ring[slot], weight, sharesOf(i));
+        }
         if (pending[slot])
         {
           image.Prefetch(ring[slot]);
@@ -249,6 +262,47 @@ public:
   }
 
 private:
+  /// A stored cloud's points located a block at a time on SIMD lanes
+  /// (PixelBinner::LocatePoints, the same bits as one at a time), for the
+  /// footprints of a perspective view.
+  struct LocatedBlock
+  {
+    static constexpr std::uint64_t Size = 64;
+    static_assert(Size % PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
+    std::uint64_t Begin = 0;
+    std::uint64_t End = 0;
+    double X[Size] = {};
+    double Y[Size] = {};
+    double Z[Size] = {};
+    double Fx[Size], Fy[Size], F[Size], W[Size];
+    std::uint8_t Located[Size];
+
+    /// Point i's entry (i ascending from call to call, below end): the
+    /// block from i on is read by point(i, p) and located when i is past
+    /// the last one.
+    template <typename PointFunction>
+    std::uint64_t Locate(
+      const PixelBinner& binner, std::uint64_t i, std::uint64_t end, const PointFunction& point)
+    {
+      if (i >= this->End)
+      {
+        this->Begin = i;
+        this->End = std::min(i + Size, end);
+        for (std::uint64_t j = 0; j < this->End - this->Begin; ++j)
+        {
+          double p[3];
+          point(this->Begin + j, p);
+          this->X[j] = p[0];
+          this->Y[j] = p[1];
+          this->Z[j] = p[2];
+        }
+        binner.LocatePoints(this->X, this->Y, this->Z, this->End - this->Begin, this->Fx, this->Fy,
+          this->F, this->Located, this->W);
+      }
+      return i - this->Begin;
+    }
+  };
+
   std::unique_ptr<PixelBinner> Binner;
   std::unique_ptr<FootprintLadder> Ladder;
   DepositSettings Settings;
