@@ -126,56 +126,32 @@ public:
   /// Continuous pixel coordinates (pixel i covers [i, i + 1)) of a point,
   /// its perspective weight f (1 in parallel views) and its inverse depth
   /// 1 / z (0 in parallel views), whether or not it falls in the image;
-  /// false when it lies nearer than the near plane (perspective).
+  /// false when it lies nearer than the near plane (perspective) or its
+  /// pixel coordinates are not finite.
   bool Locate(const double p[3], double& fx, double& fy, double& f, double& inverseDepth) const
   {
-    const double* m = this->Lanes.Rows;
-    if (!this->Lanes.Perspective)
-    {
-      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.PixelOffset[0];
-      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.PixelOffset[1];
-      f = 1.0;
-      inverseDepth = 0.0;
-      return std::isfinite(fx) && std::isfinite(fy);
-    }
-    const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.Offset[0];
-    const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.Offset[1];
-    const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Lanes.Offset[2];
-    if (!(z >= this->Lanes.Near))
+    double eye[3];
+    if (!this->Project(p, fx, fy, eye, inverseDepth))
     {
       return false;
     }
-    inverseDepth = 1.0 / z;
-    fx = u * inverseDepth * this->Lanes.PixelScale[0] + this->Lanes.PixelOffset[0];
-    fy = v * inverseDepth * this->Lanes.PixelScale[1] + this->Lanes.PixelOffset[1];
+    if (!this->Lanes.Perspective)
+    {
+      f = 1.0;
+      return true;
+    }
     // U, V, W are orthonormal, so the distance from the eye is |(u, v, z)|.
-    const double s = std::sqrt(u * u + v * v + z * z);
+    const double s = std::sqrt(eye[0] * eye[0] + eye[1] * eye[1] + eye[2] * eye[2]);
     f = this->Lanes.FocalSquared * s * inverseDepth * inverseDepth * inverseDepth;
-    return std::isfinite(fx) && std::isfinite(fy);
+    return true;
   }
 
   /// Locate's fx and fy alone, the same bits, and its result: without the
   /// perspective weight's square root, for a pass that only bins.
   bool PixelPosition(const double p[3], double& fx, double& fy) const
   {
-    const double* m = this->Lanes.Rows;
-    if (!this->Lanes.Perspective)
-    {
-      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.PixelOffset[0];
-      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.PixelOffset[1];
-      return std::isfinite(fx) && std::isfinite(fy);
-    }
-    const double u = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.Offset[0];
-    const double v = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.Offset[1];
-    const double z = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Lanes.Offset[2];
-    if (!(z >= this->Lanes.Near))
-    {
-      return false;
-    }
-    const double inverseDepth = 1.0 / z;
-    fx = u * inverseDepth * this->Lanes.PixelScale[0] + this->Lanes.PixelOffset[0];
-    fy = v * inverseDepth * this->Lanes.PixelScale[1] + this->Lanes.PixelOffset[1];
-    return std::isfinite(fx) && std::isfinite(fy);
+    double eye[3], inverseDepth;
+    return this->Project(p, fx, fy, eye, inverseDepth);
   }
 
   /// Locate for n points (x, y, z readable up to n rounded up to a
@@ -217,6 +193,33 @@ public:
   }
 
 private:
+  // Locate's first part: the pixel coordinates (finite, else false) and,
+  // in perspective views, the point in the eye's frame (u, v, depth) and
+  // its inverse depth (0 in parallel views); false nearer than the near
+  // plane.
+  bool Project(const double p[3], double& fx, double& fy, double eye[3], double& inverseDepth) const
+  {
+    const double* m = this->Lanes.Rows;
+    if (!this->Lanes.Perspective)
+    {
+      fx = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.PixelOffset[0];
+      fy = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.PixelOffset[1];
+      inverseDepth = 0.0;
+      return std::isfinite(fx) && std::isfinite(fy);
+    }
+    eye[0] = m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + this->Lanes.Offset[0];
+    eye[1] = m[3] * p[0] + m[4] * p[1] + m[5] * p[2] + this->Lanes.Offset[1];
+    eye[2] = m[6] * p[0] + m[7] * p[1] + m[8] * p[2] + this->Lanes.Offset[2];
+    if (!(eye[2] >= this->Lanes.Near))
+    {
+      return false;
+    }
+    inverseDepth = 1.0 / eye[2];
+    fx = eye[0] * inverseDepth * this->Lanes.PixelScale[0] + this->Lanes.PixelOffset[0];
+    fy = eye[1] * inverseDepth * this->Lanes.PixelScale[1] + this->Lanes.PixelOffset[1];
+    return std::isfinite(fx) && std::isfinite(fy);
+  }
+
   Map Lanes; // what Locate computes with, also on SIMD lanes
   int Width;
   int Height;

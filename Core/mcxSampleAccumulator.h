@@ -159,9 +159,11 @@ public:
     auto weightOf = [weights](std::uint64_t i)
     { return weights ? static_cast<double>(weights[i]) : 1.0; };
     auto sharesOf = [shares](std::uint64_t i) { return shares ? shares->Of(i) : nullptr; };
-    if (!this->Ladder && this->Binner->IsPerspective())
+    // A perspective view's division and square root on SIMD lanes; a
+    // parallel view's three products are cheaper one point at a time.
+    const bool lanes = this->Binner->IsPerspective();
+    if (!this->Ladder)
     {
-      // A perspective view's division and square root on SIMD lanes.
       typename ThreadImage::PointBatch batch(image);
       for (std::uint64_t i = begin; i < end; ++i)
       {
@@ -170,30 +172,22 @@ public:
         {
           double p[3];
           point(i, p);
-          batch.AddWeighted(i, p, weight, sharesOf(i));
+          if (lanes)
+          {
+            batch.AddWeighted(i, p, weight, sharesOf(i));
+          }
+          else
+          {
+            image.DepositPoint(i, p, weight, sharesOf(i));
+          }
         }
       }
       batch.Flush();
       return;
     }
-    if (!this->Ladder)
-    {
-      for (std::uint64_t i = begin; i < end; ++i)
-      {
-        const double weight = weightOf(i);
-        if (weight != 0.0 || image.Controlled) // the control counts every sample
-        {
-          double p[3];
-          point(i, p);
-          image.DepositPoint(i, p, weight, sharesOf(i));
-        }
-      }
-      return;
-    }
     constexpr std::uint64_t Lookahead = 8;
     typename ThreadImage::PreparedFootprint ring[Lookahead];
     bool pending[Lookahead] = {};
-    const bool lanes = this->Binner->IsPerspective(); // the division and square root
     LocatedBlock block;
     for (std::uint64_t i = begin; i < end + Lookahead; ++i)
     {
