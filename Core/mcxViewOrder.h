@@ -23,9 +23,9 @@
 // first, or the level folded into the Morton key, did no better).
 //
 // The sort is two passes over every voxel, like the index build, and one
-// over each cache-sized run of them, so it pays where one view takes many TF
-// edits. The order depends on the index, the
-// cells and the bins alone, never on the thread count.
+// over each run of a few cells, so it pays where one view takes many TF
+// edits. The order depends on the index, the cells and the bins alone,
+// never on the thread count.
 #ifndef mcxViewOrder_h
 #define mcxViewOrder_h
 
@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace mcx
@@ -107,34 +108,63 @@ inline std::uint8_t PositionInPixel(double fx, double fy)
   return static_cast<std::uint8_t>(Spread[step(fx)] << 1 | Spread[step(fy)]);
 }
 
-/// How ViewOrder::Build splits a (bin, cell) key into two digits: the high
-/// digit takes at most 2^11 values, so that a chunk's 2^11 write cursors,
-/// and the cache lines they write, stay in cache while voxels are scattered
-/// by it; the low digit (LowBits bits, 0 when the keys are that few) orders
-/// each high digit's run, which fits in cache, in a second pass.
+/// How ViewOrder::Build splits a (bin, cell) key into two digits. The high
+/// digit, the bin and the cell's top bits, takes about 2^11 values, so
+/// that a chunk's write cursors, and the cache lines they write, stay in
+/// cache while voxels are scattered by it; the last cell (off the image)
+/// has a digit of its own in each bin, so that its voxels, all at position
+/// 0 and often the most of them, are never sorted again. The low digit
+/// (LowBits bits, 0 when the cells are few) orders each other digit's run
+/// of at most 2^LowBits cells in a second pass.
 struct ViewOrderDigits
 {
   static constexpr int HighBits = 11;
-  /// The most keys a view order sorts: the low digit and the position (8
-  /// bits) share 32 bits.
-  static constexpr std::int64_t MaximumKeys = std::int64_t(1) << (HighBits + 24);
+  /// The low digit and the position (8 bits) share 32 bits.
+  static constexpr int MaximumLowBits = 24;
+  std::int64_t Cells = 1;
   int LowBits = 0;
+  std::int64_t DigitsPerBin = 1;
   std::int64_t HighDigits = 1;
 
-  explicit ViewOrderDigits(std::int64_t keys)
+  ViewOrderDigits(std::int64_t bins, std::int64_t cells)
+    : Cells(std::max<std::int64_t>(cells, 1))
   {
-    int bits = 0;
-    while (bits < 63 && (std::int64_t(1) << bits) < keys)
+    const std::int64_t inImage = this->Cells - 1;
+    const std::int64_t budget = std::max<std::int64_t>(
+      1, (std::int64_t(1) << HighBits) / std::max<std::int64_t>(bins, 1) - 1);
+    while (this->LowBits < 62 && ((inImage - 1) >> this->LowBits) + 1 > budget)
     {
-      ++bits;
+      ++this->LowBits;
     }
-    this->LowBits = std::max(0, bits - HighBits);
-    this->HighDigits = keys <= 0 ? 1 : ((keys - 1) >> this->LowBits) + 1;
+    this->DigitsPerBin = (inImage > 0 ? ((inImage - 1) >> this->LowBits) + 1 : 0) + 1;
+    this->HighDigits = std::max<std::int64_t>(bins, 0) * this->DigitsPerBin;
   }
-  std::int64_t High(std::int64_t key) const { return key >> this->LowBits; }
-  std::uint32_t Low(std::int64_t key) const
+  /// Whether the low digit and the position fit their 32 bits.
+  bool Fit() const { return this->LowBits <= MaximumLowBits; }
+  std::int64_t High(std::int64_t bin, std::int64_t cell) const
   {
-    return static_cast<std::uint32_t>(key & ((std::int64_t(1) << this->LowBits) - 1));
+    return bin * this->DigitsPerBin +
+      (cell == this->Cells - 1 ? this->DigitsPerBin - 1 : cell >> this->LowBits);
+  }
+  std::uint32_t Low(std::int64_t cell) const
+  {
+    return cell == this->Cells - 1
+      ? 0u
+      : static_cast<std::uint32_t>(cell & ((std::int64_t(1) << this->LowBits) - 1));
+  }
+  /// The cells of high digit d's run: [first, first + count) of its bin.
+  void CellsOf(std::int64_t d, std::int64_t& bin, std::int64_t& first, std::int64_t& count) const
+  {
+    bin = d / this->DigitsPerBin;
+    const std::int64_t top = d % this->DigitsPerBin;
+    if (top == this->DigitsPerBin - 1)
+    {
+      first = this->Cells - 1;
+      count = 1;
+      return;
+    }
+    first = top << this->LowBits;
+    count = std::min(this->Cells - 1, (top + 1) << this->LowBits) - first;
   }
 };
 
@@ -172,13 +202,14 @@ struct ViewOrder
   /// numberOfLevels + 1 entries) by bin (binFirstLevel, from
   /// GroupLevelsIntoBins), then by cellOf(id), a ViewCell: its Cell in [0,
   /// cells) (the view's pixel, one more cell for voxels off the image), then
-  /// its Position, then as the index lists them. Stable counting sorts: by
-  /// the (bin, cell) key's high digit in chunks of a layout fixed by the
-  /// voxel and digit counts, then each digit's run by the low digit, then
-  /// each cell by position, on `executor`. After each of three passes it
-  /// calls progress(fraction), which returns false to stop: then it returns
-  /// false and leaves no order. Bins x cells is at most
-  /// ViewOrderDigits::MaximumKeys.
+  /// its Position, then as the index lists them; the last cell is the one
+  /// off the image. Stable counting sorts: by the (bin, cell) key's high
+  /// digit (ViewOrderDigits) in chunks of a layout fixed by the voxel and
+  /// digit counts, then each digit's run by the low digit, then each cell
+  /// by position, on `executor`. After each of three passes it calls
+  /// progress(fraction), which returns false to stop: then it returns false
+  /// and leaves no order. Throws std::length_error where the digits do not
+  /// fit (ViewOrderDigits::Fit).
   template <typename Executor, typename CellFunction, typename Progress>
   bool Build(const Executor& executor, const IdType* sortedIds, const std::int64_t* levelOffsets,
     std::int64_t numberOfLevels, std::vector<std::int64_t> binFirstLevel, std::int64_t cells,
@@ -188,7 +219,11 @@ struct ViewOrder
     const std::int64_t bins = this->NumberOfBins();
     const std::int64_t voxels = levelOffsets[numberOfLevels];
     const std::int64_t keys = bins * cells;
-    const ViewOrderDigits digits(keys);
+    const ViewOrderDigits digits(bins, cells);
+    if (!digits.Fit())
+    {
+      throw std::length_error("a view order of more (bin, cell) keys than its digits hold");
+    }
     std::vector<std::int64_t> binOfLevel(static_cast<std::size_t>(numberOfLevels));
     for (std::int64_t b = 0; b < bins; ++b)
     {
@@ -196,7 +231,7 @@ struct ViewOrder
         binOfLevel.begin() + this->BinFirstLevel[static_cast<std::size_t>(b + 1)], b);
     }
     const CountingSortLayout layout = MakeCountingSortLayout(voxels, digits.HighDigits);
-    // Visits the slots of chunk c: visit(slot, level, key, position).
+    // Visits the slots of chunk c: visit(slot, level, bin, cell, position).
     auto forEachSlot = [&](std::int64_t c, const auto& visit)
     {
       const std::int64_t begin = c * layout.ChunkSize;
@@ -210,8 +245,7 @@ struct ViewOrder
           ++level;
         }
         const ViewCell where = cellOf(sortedIds[slot]);
-        visit(slot, level, binOfLevel[static_cast<std::size_t>(level)] * cells + where.Cell,
-          where.Position);
+        visit(slot, level, binOfLevel[static_cast<std::size_t>(level)], where.Cell, where.Position);
       }
     };
 
@@ -225,8 +259,8 @@ struct ViewOrder
         {
           std::int64_t* count = counters.data() + c * digits.HighDigits;
           forEachSlot(c,
-            [&](std::int64_t, std::int64_t, std::int64_t key, std::uint8_t)
-            { ++count[digits.High(key)]; });
+            [&](std::int64_t, std::int64_t, std::int64_t bin, std::int64_t cell, std::uint8_t)
+            { ++count[digits.High(bin, cell)]; });
         }
       });
     if (!progress(1.0 / 3.0))
@@ -262,14 +296,15 @@ struct ViewOrder
         {
           std::int64_t* cursor = counters.data() + c * digits.HighDigits;
           forEachSlot(c,
-            [&](std::int64_t slot, std::int64_t level, std::int64_t key, std::uint8_t position)
+            [&](std::int64_t slot, std::int64_t level, std::int64_t bin, std::int64_t cell,
+              std::uint8_t position)
             {
-              const std::size_t to = static_cast<std::size_t>(cursor[digits.High(key)]++);
+              const std::size_t to = static_cast<std::size_t>(cursor[digits.High(bin, cell)]++);
               this->Ids[to] = sortedIds[slot];
               this->LevelInBin[to] = static_cast<std::uint16_t>(level -
                 this->BinFirstLevel[static_cast<std::size_t>(
                   binOfLevel[static_cast<std::size_t>(level)])]);
-              rest[to] = digits.Low(key) << 8 | position;
+              rest[to] = digits.Low(cell) << 8 | position;
             });
         }
       });
@@ -280,8 +315,8 @@ struct ViewOrder
       return false;
     }
 
-    // Each run by its low digit and position, which also gives where each
-    // key starts.
+    // Each run by its low digit, which also gives where each key starts,
+    // then each key by position.
     std::vector<std::int64_t> keyStarts(static_cast<std::size_t>(keys + 1), voxels);
     typename Executor::template ThreadLocal<RunSorter> sorters;
     executor.For(0, digits.HighDigits, 1,
@@ -290,9 +325,11 @@ struct ViewOrder
         RunSorter& sorter = sorters.Local();
         for (std::int64_t d = d0; d < d1; ++d)
         {
+          std::int64_t bin, first, count;
+          digits.CellsOf(d, bin, first, count);
           sorter.Sort(runStarts[static_cast<std::size_t>(d)],
-            runStarts[static_cast<std::size_t>(d + 1)], d, digits, keys, rest, this->Ids.data(),
-            this->LevelInBin.data(), keyStarts.data());
+            runStarts[static_cast<std::size_t>(d + 1)], count, rest, this->Ids.data(),
+            this->LevelInBin.data(), keyStarts.data() + bin * cells + first);
         }
       });
     this->BinOffsets.assign(static_cast<std::size_t>(bins + 1), voxels);
@@ -347,53 +384,101 @@ private:
     }
   }
 
-  /// Sorts the run [begin, end) of high digit `digit` by the rest of its
-  /// entries' keys (low digit, then position), stably, and writes where
-  /// each of its keys starts (keyStarts), reusing its buffers from run to
-  /// run.
+  /// Sorts a high digit's run [begin, end) of `count` keys (its entries'
+  /// rest: the key's low digit, then the position in 8 bits) by key, then
+  /// each key by position, both stably, skipping what is in order already;
+  /// writes where each of its keys starts (keyStarts[0, count)). Reuses its
+  /// buffers from run to run.
   class RunSorter
   {
   public:
-    void Sort(std::int64_t begin, std::int64_t end, std::int64_t digit,
-      const ViewOrderDigits& digits, std::int64_t keys, const std::uint32_t* rest, IdType* ids,
-      std::uint16_t* levels, std::int64_t* keyStarts)
+    void Sort(std::int64_t begin, std::int64_t end, std::int64_t count, std::uint32_t* rest,
+      IdType* ids, std::uint16_t* levels, std::int64_t* keyStarts)
     {
-      const std::int64_t firstKey = digit << digits.LowBits;
-      const std::int64_t lastKey = std::min(keys, (digit + 1) << digits.LowBits);
       const std::size_t n = static_cast<std::size_t>(end - begin);
-      const std::size_t width = static_cast<std::size_t>(lastKey - firstKey) << 8;
-      this->Starts.assign(width + 1, 0);
-      const std::uint32_t* r = rest + begin;
+      const std::size_t keys = static_cast<std::size_t>(count);
+      std::uint32_t* r = rest + begin;
+      this->Starts.assign(keys + 1, 0);
+      bool ordered = true;
       for (std::size_t i = 0; i < n; ++i)
       {
-        ++this->Starts[r[i] + 1];
+        ordered = ordered && (i == 0 || (r[i - 1] >> 8) <= (r[i] >> 8));
+        ++this->Starts[(r[i] >> 8) + 1];
       }
-      for (std::size_t k = 0; k < width; ++k)
+      for (std::size_t k = 0; k < keys; ++k)
       {
-        if (k % 256 == 0)
-        {
-          keyStarts[firstKey + static_cast<std::int64_t>(k >> 8)] =
-            begin + static_cast<std::int64_t>(this->Starts[k]);
-        }
         this->Starts[k + 1] += this->Starts[k];
+        keyStarts[k] = begin + static_cast<std::int64_t>(this->Starts[k]);
       }
-      this->Ids.resize(n);
-      this->Levels.resize(n);
-      for (std::size_t i = 0; i < n; ++i)
+      if (!ordered)
       {
-        const std::size_t to = this->Starts[r[i]]++;
-        const std::size_t from = static_cast<std::size_t>(begin) + i;
-        this->Ids[to] = ids[from];
-        this->Levels[to] = levels[from];
+        this->Cursors.assign(this->Starts.begin(), this->Starts.end() - 1);
+        this->Permute(begin, n, r, ids, levels,
+          [this](std::uint32_t value) { return this->Cursors[value >> 8]++; });
       }
-      std::copy(this->Ids.begin(), this->Ids.end(), ids + begin);
-      std::copy(this->Levels.begin(), this->Levels.end(), levels + begin);
+      for (std::size_t k = 0; k < keys; ++k)
+      {
+        this->SortByPosition(begin + static_cast<std::int64_t>(this->Starts[k]),
+          static_cast<std::size_t>(this->Starts[k + 1] - this->Starts[k]), rest, ids, levels);
+      }
     }
 
   private:
+    // One key's entries [begin, begin + n) by position.
+    void SortByPosition(
+      std::int64_t begin, std::size_t n, std::uint32_t* rest, IdType* ids, std::uint16_t* levels)
+    {
+      std::uint32_t* r = rest + begin;
+      auto position = [](std::uint32_t value) { return value & 0xffu; };
+      bool ordered = true;
+      for (std::size_t i = 1; i < n && ordered; ++i)
+      {
+        ordered = position(r[i - 1]) <= position(r[i]);
+      }
+      if (ordered)
+      {
+        return; // the off-image cell among them: its voxels all have position 0
+      }
+      std::size_t starts[257] = {};
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        ++starts[position(r[i]) + 1];
+      }
+      for (int p = 0; p < 256; ++p)
+      {
+        starts[p + 1] += starts[p];
+      }
+      this->Permute(begin, n, r, ids, levels,
+        [&starts, &position](std::uint32_t value) { return starts[position(value)]++; });
+    }
+
+    // Moves entry i of [begin, begin + n) to slot to(rest[i]), through the
+    // buffers.
+    template <typename Destination>
+    void Permute(std::int64_t begin, std::size_t n, std::uint32_t* r, IdType* ids,
+      std::uint16_t* levels, const Destination& to)
+    {
+      this->Ids.resize(n);
+      this->Levels.resize(n);
+      this->Rests.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const std::size_t slot = to(r[i]);
+        const std::size_t from = static_cast<std::size_t>(begin) + i;
+        this->Ids[slot] = ids[from];
+        this->Levels[slot] = levels[from];
+        this->Rests[slot] = r[i];
+      }
+      std::copy(this->Ids.begin(), this->Ids.end(), ids + begin);
+      std::copy(this->Levels.begin(), this->Levels.end(), levels + begin);
+      std::copy(this->Rests.begin(), this->Rests.end(), r);
+    }
+
     std::vector<std::size_t> Starts;
+    std::vector<std::size_t> Cursors;
     std::vector<IdType> Ids;
     std::vector<std::uint16_t> Levels;
+    std::vector<std::uint32_t> Rests;
   };
 };
 

@@ -217,16 +217,19 @@ struct vtkMCXViewOrderedSampling::SortedView
   std::vector<double> BinImages;
   int BinKernel = -1;
 
-  // What the arrays recycled from the previous order hold already for an
-  // order of `voxels` (ViewOrder::Recycle).
+  // What the arrays recycled from the previous order (ViewOrder::Recycle,
+  // of one width) hold already for an order of `voxels`: those of the same
+  // size are written again, the others let go.
   double RecycledBytes(std::int64_t voxels) const
   {
     const std::size_t n = static_cast<std::size_t>(voxels);
-    const double v = static_cast<double>(voxels);
-    return (this->Narrow.Ids.size() == n ? 4.0 * v : 0.0) +
-      (this->Wide.Ids.size() == n ? 8.0 * v : 0.0) +
-      (this->Narrow.LevelInBin.size() == n || this->Wide.LevelInBin.size() == n ? 2.0 * v : 0.0) +
-      (this->Narrow.Rest.size() == n || this->Wide.Rest.size() == n ? 4.0 * v : 0.0);
+    auto reused = [n](const auto& array)
+    {
+      using Value = typename std::decay_t<decltype(array)>::value_type;
+      return array.size() == n ? static_cast<double>(sizeof(Value)) * static_cast<double>(n) : 0.0;
+    };
+    return reused(this->Narrow.Ids) + reused(this->Narrow.LevelInBin) + reused(this->Narrow.Rest) +
+      reused(this->Wide.Ids) + reused(this->Wide.LevelInBin) + reused(this->Wide.Rest);
   }
 
   std::int64_t BinsOf(bool wideIds) const
@@ -444,10 +447,17 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
     return this->KeptViewOrder.get();
   }
   std::unique_ptr<SortedView> sorted(new SortedView);
-  if (this->KeptViewOrder) // not held while a new one is sorted; its arrays are reused
+  if (this->KeptViewOrder) // not held while a new one is sorted; its arrays of the width sorted now
+                           // are reused
   {
-    sorted->Narrow.Recycle(std::move(this->KeptViewOrder->Narrow));
-    sorted->Wide.Recycle(std::move(this->KeptViewOrder->Wide));
+    if (view.WideIds)
+    {
+      sorted->Wide.Recycle(std::move(this->KeptViewOrder->Wide));
+    }
+    else
+    {
+      sorted->Narrow.Recycle(std::move(this->KeptViewOrder->Narrow));
+    }
     this->KeptViewOrder.reset();
   }
   const std::int64_t voxels = view.LevelOffsets[view.NumberOfLevels];
@@ -463,16 +473,16 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   {
     return nullptr;
   }
-  const std::int64_t keys = (static_cast<std::int64_t>(binFirstLevel.size()) - 1) * cells;
-  if (keys > mcx::ViewOrderDigits::MaximumKeys)
+  const std::int64_t bins = static_cast<std::int64_t>(binFirstLevel.size()) - 1;
+  const std::int64_t keys = bins * cells;
+  const mcx::ViewOrderDigits digits(bins, cells);
+  if (!digits.Fit())
   {
     vtkErrorWithObjectMacro(sampler,
-      "The view order of " << voxels << " voxels sorts at most "
-                           << mcx::ViewOrderDigits::MaximumKeys << " (bin, pixel) cells, not "
-                           << keys << ": use fewer ordering bins or a smaller ordering view.");
+      "The view order of " << voxels << " voxels cannot sort " << bins << " bins of " << cells
+                           << " cells: use fewer ordering bins or a smaller ordering view.");
     return nullptr;
   }
-  const mcx::ViewOrderDigits digits(keys);
   const mcx::CountingSortLayout layout = mcx::MakeCountingSortLayout(voxels, digits.HighDigits);
   // The order (id, level), each entry's low digit and position, the
   // cursors and the keys' starts.

@@ -363,10 +363,11 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
   // position, level, id), whatever the executor. 37 cells: one counting
   // pass by (bin, cell); 3001: by the key's high digit, then its low digit.
   for (const std::int64_t cells : { std::int64_t(37), std::int64_t(3001) })
+  {
     for (const std::int64_t n : { std::int64_t(0), std::int64_t(1), std::int64_t(200003) })
     {
       const std::int64_t levels = 9;
-      ASSERT_EQ(cells == 37 ? 0 : 3, mcx::ViewOrderDigits(4 * cells).LowBits);
+      ASSERT_EQ(cells == 37 ? 0 : 3, mcx::ViewOrderDigits(4, cells).LowBits);
       std::mt19937 random(static_cast<unsigned>(n) + 11);
       std::vector<int> level(static_cast<std::size_t>(n)), cell(static_cast<std::size_t>(n)),
         position(static_cast<std::size_t>(n));
@@ -458,6 +459,7 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
         EXPECT_TRUE(stopped.BinOffsets.empty());
       }
     }
+  }
 }
 
 namespace

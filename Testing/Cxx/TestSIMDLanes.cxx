@@ -178,6 +178,7 @@ TEST(SIMDLanes, DepositPointsAddsWhatDepositPointAdds)
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   auto weightOf = [](std::size_t i) { return i % 5 == 0 ? 0.0 : 0.25 + 0.375 * (i % 11); };
   for (bool perspective : { false, true })
+  {
     for (bool weighted : { false, true })
     {
       const mcx::ProjectionGeometry g = Geometry(perspective);
@@ -236,14 +237,16 @@ TEST(SIMDLanes, DepositPointsAddsWhatDepositPointAdds)
         EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
       }
   }
+  }
 }
 
-TEST(SIMDLanes, AStoredCloudsFootprintsLocatedOnLanesAddWhatOneAtATimeAdds)
+TEST(SIMDLanes, AStoredCloudLocatedOnLanesAddsWhatOneAtATimeAdds)
 {
-  // A weighted, controlled stored cloud in a perspective view: its
-  // footprints prepared from blocks located on lanes (DepositRange) against
-  // DepositFootprint's one Locate per point, on every instruction set; the
-  // points nearer than the tables' depths go as points either way.
+  // A weighted, controlled stored cloud in a perspective view, through
+  // DepositRange: its points batched on lanes, its footprints prepared from
+  // blocks located on lanes, against Deposit's one Locate per point, on
+  // every instruction set; the points nearer than the tables' depths go as
+  // points either way.
   ResetTargets reset;
   const std::size_t n = 3000;
   const std::vector<double> xyz = Points(n);
@@ -257,48 +260,52 @@ TEST(SIMDLanes, AStoredCloudsFootprintsLocatedOnLanesAddWhatOneAtATimeAdds)
   const mcx::ProjectionGeometry g = Geometry(true);
   const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
   mcx::DepositSettings settings;
-  settings.Mode = mcx::Deposit::Footprint;
   settings.Depths[0] = 30.0;
   settings.Depths[1] = 110.0;
-  for (std::int64_t target : Targets())
+  for (const mcx::Deposit mode : { mcx::Deposit::Point, mcx::Deposit::Footprint })
   {
-    hwy::SetSupportedTargetsForTest(target);
-    std::vector<mcx::FixedSum> sums[2][4];
-    for (int blocks = 0; blocks < 2; ++blocks)
+    for (std::int64_t target : Targets())
     {
-      mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
-      accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
-      accumulator.SetControlled(true);
-      accumulator.SetSplit(n / 3);
-      if (blocks)
+      settings.Mode = mode;
+      hwy::SetSupportedTargetsForTest(target);
+      std::vector<mcx::FixedSum> sums[2][4];
+      for (int blocks = 0; blocks < 2; ++blocks)
       {
-        accumulator.DepositRange(xyz.data(), 0, n, weights.data());
-      }
-      else
-      {
-        const auto image = accumulator.Local();
-        for (std::size_t i = 0; i < n; ++i)
+        mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
+        accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
+        accumulator.SetControlled(true);
+        accumulator.SetSplit(n / 3);
+        if (blocks)
         {
-          image.Deposit(i, &xyz[3 * i], weights[i]);
+          accumulator.DepositRange(xyz.data(), 0, n, weights.data());
+        }
+        else
+        {
+          const auto image = accumulator.Local();
+          for (std::size_t i = 0; i < n; ++i)
+          {
+            image.Deposit(i, &xyz[3 * i], weights[i]);
+          }
+        }
+        for (auto& s : sums[blocks])
+        {
+          s.assign(pixels, 0);
+        }
+        accumulator.Collect(sums[blocks][0].data(), sums[blocks][1].data(), sums[blocks][2].data(),
+          sums[blocks][3].data());
+      }
+      mcx::FixedSum total = 0;
+      for (int s = 0; s < 4; ++s)
+      {
+        for (std::size_t p = 0; p < pixels; ++p)
+        {
+          ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
+            << hwy::TargetName(target) << (mode == mcx::Deposit::Point ? " points" : " footprints")
+            << " image " << s << " pixel " << p;
+          total += sums[0][s][p];
         }
       }
-      for (auto& s : sums[blocks])
-      {
-        s.assign(pixels, 0);
-      }
-      accumulator.Collect(sums[blocks][0].data(), sums[blocks][1].data(), sums[blocks][2].data(),
-        sums[blocks][3].data());
+      EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
     }
-    mcx::FixedSum total = 0;
-    for (int s = 0; s < 4; ++s)
-    {
-      for (std::size_t p = 0; p < pixels; ++p)
-      {
-        ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
-          << hwy::TargetName(target) << " image " << s << " pixel " << p;
-        total += sums[0][s][p];
-      }
-    }
-    EXPECT_TRUE(mcx::FixedSum(0) < total) << "no footprint reached the image";
   }
 }
