@@ -108,8 +108,8 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
       [&](std::uint64_t begin, std::uint64_t end)
       {
         const auto image = accumulator.Local();
-        // Located Batch voxels at a time on SIMD lanes (the same bits as
-        // one at a time), then deposited one by one.
+        // Batch voxels at a time are located on SIMD lanes (the same bits
+        // as one at a time), then deposited one by one.
         constexpr std::uint64_t Batch = 64;
         static_assert(
           Batch % mcx::PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
@@ -447,8 +447,9 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
     return this->KeptViewOrder.get();
   }
   std::unique_ptr<SortedView> sorted(new SortedView);
-  if (this->KeptViewOrder) // not held while a new one is sorted; its arrays of the width sorted now
-                           // are reused
+  // The kept order is not held while a new one is sorted; its arrays of
+  // the id width sorted now are written again (ViewOrder::Recycle).
+  if (this->KeptViewOrder)
   {
     if (view.WideIds)
     {
