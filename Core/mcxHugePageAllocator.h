@@ -14,7 +14,6 @@
 #include <memory>
 #include <new>
 #include <type_traits>
-#include <utility>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -63,16 +62,12 @@ struct HugePageAllocator
 
   /// resize() leaves trivial elements uninitialized: the arrays are written
   /// whole before they are read, and a pass of zeros first touched every
-  /// page in one thread (a fifth of a view order's sort).
+  /// page in one thread (a fifth of a view order's sort). A construction
+  /// with a value, vector(n, 0), is std::allocator_traits' own.
   template <typename U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
   {
     ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Arguments>
-  void construct(U* p, Arguments&&... arguments)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Arguments>(arguments)...);
   }
 
   void deallocate(T* p, std::size_t n) noexcept

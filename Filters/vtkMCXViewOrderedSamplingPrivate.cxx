@@ -108,36 +108,27 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
       [&](std::uint64_t begin, std::uint64_t end)
       {
         const auto image = accumulator.Local();
-        // Batch voxels at a time are located on SIMD lanes (the same bits
-        // as one at a time), then deposited one by one.
-        constexpr std::uint64_t Batch = 64;
-        static_assert(
-          Batch % mcx::PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
-        double x[Batch] = {}, y[Batch] = {}, z[Batch] = {};
-        double fx[Batch], fy[Batch], f[Batch], w[Batch];
-        std::uint8_t located[Batch];
-        for (std::uint64_t b0 = begin; b0 < end; b0 += Batch)
+        auto voxelOf = [&](std::uint64_t i, double p[3])
         {
-          const std::uint64_t n = std::min(Batch, end - b0);
-          const std::uint64_t k0 = static_cast<std::uint64_t>(first) + b0;
-          for (std::uint64_t j = 0; j < n; ++j)
+          std::uint64_t voxel[3];
+          decoder.Decode(
+            order.Ids[static_cast<std::uint64_t>(first) + i], voxel[0], voxel[1], voxel[2]);
+          for (int a = 0; a < 3; ++a)
           {
-            std::uint64_t voxel[3];
-            decoder.Decode(order.Ids[k0 + j], voxel[0], voxel[1], voxel[2]);
-            x[j] = static_cast<double>(voxel[0]);
-            y[j] = static_cast<double>(voxel[1]);
-            z[j] = static_cast<double>(voxel[2]);
+            p[a] = static_cast<double>(voxel[a]);
           }
-          binner.LocatePoints(x, y, z, n, fx, fy, f, located, w);
-          for (std::uint64_t j = 0; j < n; ++j)
+        };
+        mcx::PointsLocatedOnLanes block;
+        for (std::uint64_t i = begin; i < end; ++i)
+        {
+          const std::uint64_t j = block.Locate(binner, i, end, voxelOf);
+          const double p[3] = { block.X[j], block.Y[j], block.Z[j] };
+          mcx::ThreadImage::PreparedFootprint footprint;
+          if (block.Located[j] &&
+            image.PrepareLocatedFootprint(static_cast<std::uint64_t>(first) + i, p, block.Fx[j],
+              block.Fy[j], block.F[j], block.W[j], footprint))
           {
-            const double p[3] = { x[j], y[j], z[j] };
-            mcx::ThreadImage::PreparedFootprint footprint;
-            if (located[j] &&
-              image.PrepareLocatedFootprint(k0 + j, p, fx[j], fy[j], f[j], w[j], footprint))
-            {
-              image.AddFootprint(footprint);
-            }
+            image.AddFootprint(footprint);
           }
         }
       });
