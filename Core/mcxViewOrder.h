@@ -94,8 +94,13 @@ inline std::uint8_t PositionInPixel(double fx, double fy)
 {
   auto step = [](double f)
   {
-    const double fraction = f - std::floor(f);
-    return static_cast<unsigned>(std::min(15.0, std::max(0.0, std::floor(fraction * 16.0))));
+    // Truncation where it is the floor (the image's pixel coordinates are
+    // non-negative): without SSE 4.1, std::floor is a call, and two of them
+    // per voxel were about a fifth of a later view's sort of 402 M voxels.
+    const double whole =
+      f >= 0 && f < 0x1p52 ? static_cast<double>(static_cast<std::int64_t>(f)) : std::floor(f);
+    const double sixteenths = (f - whole) * 16.0; // in [0, 16], or not a number
+    return sixteenths >= 15.0 ? 15u : sixteenths > 0.0 ? static_cast<unsigned>(sixteenths) : 0u;
   };
   // Each 4-bit step's bits spread to the even bits of a byte.
   static constexpr std::uint8_t Spread[16] = { 0x00, 0x01, 0x04, 0x05, 0x10, 0x11, 0x14, 0x15, 0x40,
