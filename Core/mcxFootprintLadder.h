@@ -64,6 +64,7 @@ public:
     std::copy(&axes[0][0], &axes[0][0] + 6, &this->BuiltAxes[0][0]);
     this->Tables.clear();
     this->InverseDepths.clear();
+    this->Steps.clear();
     this->Perspective = binner.IsPerspective();
     if (!std::all_of(&axes[0][0], &axes[0][0] + 6, [](double a) { return std::isfinite(a); }))
     {
@@ -120,6 +121,11 @@ public:
     {
       this->InverseDepths[static_cast<std::size_t>(j)] =
         first * std::pow(Ratio, static_cast<double>(j));
+    }
+    this->Steps.resize(static_cast<std::size_t>(count - 1));
+    for (std::size_t j = 0; j + 1 < this->InverseDepths.size(); ++j)
+    {
+      this->Steps[j] = this->InverseDepths[j + 1] - this->InverseDepths[j];
     }
     this->BuildGuide();
     executor.For(0, count, 1,
@@ -179,8 +185,8 @@ public:
     {
       ++j;
     }
-    const double fraction = (w - scales[j]) / (scales[j + 1] - scales[j]);
-    return &this->Tables[u < fraction ? j + 1 : j];
+    // u < (w - scales[j]) / step, without the division's latency.
+    return &this->Tables[u * this->Steps[j] < w - scales[j] ? j + 1 : j];
   }
 
   bool IsEmpty() const { return this->Tables.empty(); }
@@ -249,6 +255,7 @@ private:
   bool Perspective = false;
   std::vector<FootprintTable> Tables;
   std::vector<double> InverseDepths; // of the tables, rising by Ratio
+  std::vector<double> Steps;         // InverseDepths[j + 1] - InverseDepths[j]
   std::vector<std::size_t> Guide;
   double GuideScale = 0.0; // buckets per unit of inverse depth
 };

@@ -228,47 +228,6 @@ private:
   double HeightAsDouble;
 };
 
-/// Points located a block at a time on SIMD lanes (PixelBinner::
-/// LocatePoints, the same bits as one at a time): for a loop that reads
-/// point i, in ascending order, through a function point(i, p).
-struct PointsLocatedOnLanes
-{
-  static constexpr std::uint64_t Size = 64;
-  static_assert(Size % PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
-  std::uint64_t Begin = 0;
-  std::uint64_t End = 0;
-  double X[Size] = {};
-  double Y[Size] = {};
-  double Z[Size] = {};
-  double Fx[Size], Fy[Size], F[Size], W[Size];
-  std::uint8_t Located[Size];
-
-  /// Point i's entry (i ascending from call to call, below end): the
-  /// block from i on is read by point(i, p) and located when i is past
-  /// the last one.
-  template <typename PointFunction>
-  std::uint64_t Locate(
-    const PixelBinner& binner, std::uint64_t i, std::uint64_t end, const PointFunction& point)
-  {
-    if (i >= this->End)
-    {
-      this->Begin = i;
-      this->End = std::min(i + Size, end);
-      for (std::uint64_t j = 0; j < this->End - this->Begin; ++j)
-      {
-        double p[3];
-        point(this->Begin + j, p);
-        this->X[j] = p[0];
-        this->Y[j] = p[1];
-        this->Z[j] = p[2];
-      }
-      binner.LocatePoints(this->X, this->Y, this->Z, this->End - this->Begin, this->Fx, this->Fy,
-        this->F, this->Located, this->W);
-    }
-    return i - this->Begin;
-  }
-};
-
 } // namespace mcx
 
 #endif

@@ -27,6 +27,7 @@
 #include "mcxChannelSplit.h"
 #include "mcxDepositSettings.h"
 #include "mcxFixedPoint.h"
+#include "mcxFootprintBatch.h"
 #include "mcxFootprintLadder.h"
 #include "mcxPixelBinner.h"
 #include "mcxPointWeights.h"
@@ -139,11 +140,10 @@ public:
   /// being sample i, in the calling thread; point i counts weights[i] times
   /// (finite, >= 0: see PointWeightProblem; null: once each; weight 0 is
   /// skipped, unless controlled), split into the channels by `shares` when
-  /// given (SetChannels). Footprints are prepared Lookahead samples before they are
-  /// added, their cache lines asked for in between: in Halton order
-  /// successive samples reach the image at random (3 to 5 % of a TF edit on
-  /// the CT body). The sums are integers: the order of the additions leaves
-  /// them unchanged.
+  /// given (SetChannels). Footprints go through a FootprintBatch, their
+  /// cache lines asked for between their preparation and their addition:
+  /// in Halton order successive samples reach the image at random. The
+  /// sums are integers: the order of the additions leaves them unchanged.
   template <typename Real, typename Weight = float>
   void DepositRange(const Real* points, std::uint64_t begin, std::uint64_t end,
     const Weight* weights = nullptr, const PointShares* shares = nullptr)
@@ -159,71 +159,36 @@ public:
     auto weightOf = [weights](std::uint64_t i)
     { return weights ? static_cast<double>(weights[i]) : 1.0; };
     auto sharesOf = [shares](std::uint64_t i) { return shares ? shares->Of(i) : nullptr; };
-    // A perspective view's division and square root on SIMD lanes; a
-    // parallel view's three products are cheaper one point at a time.
+    // A perspective view's points go on SIMD lanes (their division and
+    // square root); a parallel view's three products are cheaper one
+    // point at a time. Footprints go in batches in either view.
     const bool lanes = this->Binner->IsPerspective();
-    if (!this->Ladder)
+    typename ThreadImage::PointBatch pointBatch(image);
+    FootprintBatch footprintBatch(image);
+    for (std::uint64_t i = begin; i < end; ++i)
     {
-      typename ThreadImage::PointBatch batch(image);
-      for (std::uint64_t i = begin; i < end; ++i)
+      const double weight = weightOf(i);
+      if (weight == 0.0 && !image.Controlled) // the control counts every sample
       {
-        const double weight = weightOf(i);
-        if (weight != 0.0 || image.Controlled) // the control counts every sample
-        {
-          double p[3];
-          point(i, p);
-          if (lanes)
-          {
-            batch.AddWeighted(i, p, weight, sharesOf(i));
-          }
-          else
-          {
-            image.DepositPoint(i, p, weight, sharesOf(i));
-          }
-        }
+        continue;
       }
-      batch.Flush();
-      return;
-    }
-    constexpr std::uint64_t Lookahead = 8;
-    typename ThreadImage::PreparedFootprint ring[Lookahead];
-    bool pending[Lookahead] = {};
-    PointsLocatedOnLanes block;
-    for (std::uint64_t i = begin; i < end + Lookahead; ++i)
-    {
-      const std::uint64_t slot = i % Lookahead;
-      if (pending[slot]) // sample i - Lookahead
+      double p[3];
+      point(i, p);
+      if (this->Ladder)
       {
-        image.AddFootprint(ring[slot]);
-        pending[slot] = false;
+        footprintBatch.Add(i, p, weight, sharesOf(i));
       }
-      if (i < end)
+      else if (lanes)
       {
-        const double weight = weightOf(i);
-        if (weight == 0.0 && !image.Controlled) // the control counts every sample
-        {
-          continue;
-        }
-        if (lanes)
-        {
-          const std::uint64_t j = block.Locate(*this->Binner, i, end, point);
-          const double p[3] = { block.X[j], block.Y[j], block.Z[j] };
-          pending[slot] = block.Located[j] &&
-            image.PrepareLocatedFootprint(i, p, block.Fx[j], block.Fy[j], block.F[j], block.W[j],
-              ring[slot], weight, sharesOf(i));
-        }
-        else
-        {
-          double p[3];
-          point(i, p);
-          pending[slot] = image.PrepareFootprint(i, p, ring[slot], weight, sharesOf(i));
-        }
-        if (pending[slot])
-        {
-          image.Prefetch(ring[slot]);
-        }
+        pointBatch.AddWeighted(i, p, weight, sharesOf(i));
+      }
+      else
+      {
+        image.DepositPoint(i, p, weight, sharesOf(i));
       }
     }
+    pointBatch.Flush();
+    footprintBatch.Flush();
   }
 
   /// The same, in parallel on `executor`.

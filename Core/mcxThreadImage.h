@@ -29,6 +29,35 @@ namespace mcx
 template <typename Executor>
 class SampleAccumulator;
 
+/// Samples gathered for a deposit on SIMD lanes (ThreadImage::PointBatch,
+/// FootprintBatch): their numbers, shares, centres and weights, the
+/// centres readable up to Capacity (PixelBinner::LocatePoints).
+struct GatheredSamples
+{
+  static constexpr std::size_t Capacity = 64;
+  static_assert(Capacity % PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
+
+  /// Adds a sample; true when the gathering is full.
+  bool Push(std::uint64_t k, const double p[3], double weight, const ChannelShares* shares)
+  {
+    this->K[this->Count] = k;
+    this->Shares[this->Count] = shares;
+    this->X[this->Count] = p[0];
+    this->Y[this->Count] = p[1];
+    this->Z[this->Count] = p[2];
+    this->Weights[this->Count] = weight;
+    return ++this->Count == Capacity;
+  }
+
+  std::size_t Count = 0;
+  std::uint64_t K[Capacity];
+  const ChannelShares* Shares[Capacity];
+  double X[Capacity] = {};
+  double Y[Capacity] = {};
+  double Z[Capacity] = {};
+  double Weights[Capacity];
+};
+
 /// One thread's image; get it once per chunk of work, inside the executor's For.
 class ThreadImage
 {
@@ -116,8 +145,7 @@ public:
   class PointBatch
   {
   public:
-    static constexpr std::size_t Capacity = 64;
-    static_assert(Capacity % PixelBinner::LanePadding == 0, "LocatePoints reads whole vectors");
+    static constexpr std::size_t Capacity = GatheredSamples::Capacity;
 
     explicit PointBatch(const ThreadImage& image)
       : Image(image)
@@ -138,35 +166,23 @@ public:
 
     void Flush()
     {
-      this->Image.DepositPoints(this->K, this->X, this->Y, this->Z, this->Count,
-        this->Image.Channels > 0 ? this->Shares : nullptr,
-        this->Weighted ? this->Weights : nullptr);
-      this->Count = 0;
+      GatheredSamples& s = this->Samples;
+      this->Image.DepositPoints(s.K, s.X, s.Y, s.Z, s.Count,
+        this->Image.Channels > 0 ? s.Shares : nullptr, this->Weighted ? s.Weights : nullptr);
+      s.Count = 0;
     }
 
   private:
     void Push(std::uint64_t k, const double p[3], double weight, const ChannelShares* shares)
     {
-      this->K[this->Count] = k;
-      this->Shares[this->Count] = shares;
-      this->X[this->Count] = p[0];
-      this->Y[this->Count] = p[1];
-      this->Z[this->Count] = p[2];
-      this->Weights[this->Count] = weight;
-      if (++this->Count == Capacity)
+      if (this->Samples.Push(k, p, weight, shares))
       {
         this->Flush();
       }
     }
 
     const ThreadImage& Image;
-    std::size_t Count = 0;
-    std::uint64_t K[Capacity];
-    const ChannelShares* Shares[Capacity];
-    double X[Capacity] = {};
-    double Y[Capacity] = {};
-    double Z[Capacity] = {};
-    double Weights[Capacity];
+    GatheredSamples Samples;
     bool Weighted = false; // once AddWeighted was called: Flush passes the weights
   };
 
@@ -345,6 +361,7 @@ public:
 private:
   template <typename Executor>
   friend class SampleAccumulator;
+  friend class FootprintBatch;
 
   // The rest of PrepareFootprint, once the sample's table is chosen and its
   // point p (pixel coordinates fx, fy, perspective scale f) is located:

@@ -318,9 +318,20 @@ private:
       [&](std::uint64_t b, std::uint64_t e)
       {
         const Accumulator::ThreadImage image = accumulator.Local();
-        source.Generate(b, e,
-          [&](std::uint64_t k, const double p[3], double weight, std::int64_t level)
-          { image.Deposit(k, p, weight, this->SharesOf(level)); });
+        if (this->DepositMode == mcx::Deposit::Footprint)
+        {
+          mcx::FootprintBatch footprints(image);
+          source.Generate(b, e,
+            [&](std::uint64_t k, const double p[3], double weight, std::int64_t level)
+            { footprints.Add(k, p, weight, this->SharesOf(level)); });
+          footprints.Flush();
+        }
+        else
+        {
+          source.Generate(b, e,
+            [&](std::uint64_t k, const double p[3], double weight, std::int64_t level)
+            { image.DepositPoint(k, p, weight, this->SharesOf(level)); });
+        }
       });
   }
 
@@ -382,11 +393,21 @@ private:
         };
         // Points of perspective views are projected a batch at a time, on
         // SIMD lanes: their division and square root pay for the batch's
-        // stores and loads, a parallel view's few products do not. Each
-        // deposit gets a loop of its own.
-        // Split into channels, each sample's shares are its level's.
-        const bool batched = this->DepositMode == mcx::Deposit::Point && this->Geometry.Perspective;
-        if (batched && this->Channels > 0)
+        // stores and loads, a parallel view's few products do not.
+        // Footprints go in batches in either view (FootprintBatch). Each
+        // deposit gets a loop of its own. Split into channels, each
+        // sample's shares are its level's.
+        const bool footprint = this->DepositMode == mcx::Deposit::Footprint;
+        const bool batched = !footprint && this->Geometry.Perspective;
+        if (footprint)
+        {
+          mcx::FootprintBatch footprints(image);
+          auto batch = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
+          { footprints.Add(k, p, 1.0, this->SharesOf(level)); };
+          generate(batch);
+          footprints.Flush();
+        }
+        else if (batched && this->Channels > 0)
         {
           Accumulator::ThreadImage::PointBatch points(image);
           auto batch = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
@@ -404,12 +425,12 @@ private:
         else if (this->Channels > 0)
         {
           auto deposit = [&](std::uint64_t k, const double p[3], double, std::int64_t level)
-          { image.Deposit(k, p, 1.0, this->SharesOf(level)); };
+          { image.DepositPoint(k, p, 1.0, this->SharesOf(level)); };
           generate(deposit);
         }
         else
         {
-          auto deposit = [&](std::uint64_t k, const double p[3]) { image.Deposit(k, p); };
+          auto deposit = [&](std::uint64_t k, const double p[3]) { image.DepositPoint(k, p); };
           generate(deposit);
         }
       });

@@ -89,7 +89,6 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   }
   mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
   accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
-  const mcx::PixelBinner binner(geometry, origin, matrix); // the accumulator's
   const std::size_t pixels = accumulator.NumberOfPixels();
   const std::int64_t bins = order.NumberOfBins();
   const mcx::VoxelDecoder<IdType> decoder(
@@ -108,29 +107,17 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
       [&](std::uint64_t begin, std::uint64_t end)
       {
         const auto image = accumulator.Local();
-        auto voxelOf = [&](std::uint64_t i, double p[3])
+        mcx::FootprintBatch footprints(image);
+        for (std::uint64_t i = begin; i < end; ++i)
         {
           std::uint64_t voxel[3];
           decoder.Decode(
             order.Ids[static_cast<std::uint64_t>(first) + i], voxel[0], voxel[1], voxel[2]);
-          for (int a = 0; a < 3; ++a)
-          {
-            p[a] = static_cast<double>(voxel[a]);
-          }
-        };
-        mcx::PointsLocatedOnLanes block;
-        for (std::uint64_t i = begin; i < end; ++i)
-        {
-          const std::uint64_t j = block.Locate(binner, i, end, voxelOf);
-          const double p[3] = { block.X[j], block.Y[j], block.Z[j] };
-          mcx::ThreadImage::PreparedFootprint footprint;
-          if (block.Located[j] &&
-            image.PrepareLocatedFootprint(static_cast<std::uint64_t>(first) + i, p, block.Fx[j],
-              block.Fy[j], block.F[j], block.W[j], footprint))
-          {
-            image.AddFootprint(footprint);
-          }
+          const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
+            static_cast<double>(voxel[2]) };
+          footprints.Add(static_cast<std::uint64_t>(first) + i, p);
         }
+        footprints.Flush();
       });
     if (!completed)
     {

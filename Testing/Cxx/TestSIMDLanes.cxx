@@ -3,6 +3,7 @@
 // is forced in turn (hwy::SetSupportedTargetsForTest) and compared with the
 // scalar PixelBinner::Locate and ThreadImage::DepositPoint.
 #include "mcxExecutor.h"
+#include "mcxFootprintBatch.h"
 #include "mcxPixelBinner.h"
 #include "mcxSampleAccumulator.h"
 
@@ -240,72 +241,122 @@ TEST(SIMDLanes, DepositPointsAddsWhatDepositPointAdds)
   }
 }
 
-TEST(SIMDLanes, AStoredCloudLocatedOnLanesAddsWhatOneAtATimeAdds)
+TEST(SIMDLanes, AStoredCloudInBatchesAddsWhatOneAtATimeAdds)
 {
-  // A weighted, controlled stored cloud in a perspective view, through
-  // DepositRange: its points batched on lanes, its footprints prepared from
-  // blocks located on lanes, against Deposit's one Locate per point, on
-  // every instruction set; the points nearer than the tables' depths go as
+  // A weighted, controlled stored cloud through DepositRange, chunk by
+  // chunk, in a perspective and an oblique parallel view, unsplit and split
+  // into three channels: its perspective points batched on lanes, its
+  // footprints through FootprintBatch (located on lanes in perspective),
+  // against Deposit's one Locate and one footprint at a time, on every
+  // instruction set; the points nearer than the tables' depths go as
   // points either way.
   ResetTargets reset;
-  const std::size_t n = 3000;
-  const std::vector<double> xyz = Points(n);
+  const std::size_t n = 3000, chunk = 1000; // DepositRange chunk by chunk
+  const std::vector<double> points = Points(n);
   std::vector<float> weights(n);
+  std::vector<std::uint32_t> rows(n);
   for (std::size_t i = 0; i < n; ++i)
   {
     weights[i] = i % 7 == 0 ? 0.0f : 0.5f + 0.25f * static_cast<float>(i % 5);
+    rows[i] = static_cast<std::uint32_t>(i % 3);
   }
+  // Three rows of fractions of 2^32: one channel, two, and all three.
+  mcx::ChannelShareTable table;
+  const std::uint64_t whole = std::uint64_t(1) << 32;
+  table.Build({ whole, 0, 0, 0, whole / 4, whole - whole / 4, whole / 2, whole / 4, whole / 4 }, 3);
+  const mcx::PointShares shares{ rows.data(), &table };
   const double origin[3] = { 0, 0, 0 };
   const double identity[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-  const mcx::ProjectionGeometry g = Geometry(true);
-  const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
   mcx::DepositSettings settings;
   settings.Depths[0] = 30.0;
   settings.Depths[1] = 110.0;
-  for (const mcx::Deposit mode : { mcx::Deposit::Point, mcx::Deposit::Footprint })
+  for (const bool perspective : { true, false })
   {
-    for (std::int64_t target : Targets())
+    const mcx::ProjectionGeometry g = Geometry(perspective);
+    const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
+    // Each chunk ends in points well inside the image, so that a footprint
+    // left in the pipeline at a chunk's end would be missed.
+    std::vector<double> xyz(points);
+    const mcx::PixelBinner binner(g, origin, identity);
+    std::vector<std::size_t> inside;
+    for (std::size_t i = 0; i < n; ++i)
     {
-      settings.Mode = mode;
-      hwy::SetSupportedTargetsForTest(target);
-      std::vector<mcx::FixedSum> sums[2][4];
-      for (int blocks = 0; blocks < 2; ++blocks)
+      double fx, fy, f, w;
+      if (binner.Locate(&points[3 * i], fx, fy, f, w) && fx > 4 && fy > 4 && fx < g.Size[0] - 4 &&
+        fy < g.Size[1] - 4 && weights[i] > 0)
       {
-        mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
-        accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
-        accumulator.SetControlled(true);
-        accumulator.SetSplit(n / 3);
-        if (blocks)
+        inside.push_back(i);
+      }
+    }
+    ASSERT_GE(inside.size(), 3 * mcx::FootprintBatch::Lookahead);
+    for (std::size_t c = 0; c < n / chunk; ++c)
+    {
+      for (std::size_t j = 0; j < mcx::FootprintBatch::Lookahead; ++j)
+      {
+        const std::size_t from = inside[c * mcx::FootprintBatch::Lookahead + j];
+        const std::size_t to = (c + 1) * chunk - 1 - j;
+        std::copy(&points[3 * from], &points[3 * from] + 3, &xyz[3 * to]);
+        weights[to] = weights[from];
+      }
+    }
+    for (const int channels : { 0, 3 })
+    {
+      for (const mcx::Deposit mode : { mcx::Deposit::Point, mcx::Deposit::Footprint })
+      {
+        for (std::int64_t target : Targets())
         {
-          accumulator.DepositRange(xyz.data(), 0, n, weights.data());
-        }
-        else
-        {
-          const auto image = accumulator.Local();
-          for (std::size_t i = 0; i < n; ++i)
+          settings.Mode = mode;
+          hwy::SetSupportedTargetsForTest(target);
+          // The total's four images, then each channel's (all, first half).
+          std::vector<mcx::FixedSum> sums[2][7];
+          for (int blocks = 0; blocks < 2; ++blocks)
           {
-            image.Deposit(i, &xyz[3 * i], weights[i]);
+            mcx::SampleAccumulator<mcx::SerialExecutor> accumulator;
+            accumulator.Reset(g, origin, identity, std::vector<double>(), settings);
+            accumulator.SetControlled(true);
+            accumulator.SetSplit(n / 3);
+            accumulator.SetChannels(channels);
+            const mcx::PointShares* split = channels ? &shares : nullptr;
+            if (blocks)
+            {
+              for (std::size_t c = 0; c < n; c += chunk)
+              {
+                accumulator.DepositRange(xyz.data(), c, c + chunk, weights.data(), split);
+              }
+            }
+            else
+            {
+              const auto image = accumulator.Local();
+              for (std::size_t i = 0; i < n; ++i)
+              {
+                image.Deposit(i, &xyz[3 * i], weights[i], split ? split->Of(i) : nullptr);
+              }
+            }
+            for (int s = 0; s < 7; ++s)
+            {
+              sums[blocks][s].assign(s < 4 ? pixels : 2 * pixels, 0);
+            }
+            mcx::FixedSum* channelSums[3] = { sums[blocks][4].data(), sums[blocks][5].data(),
+              sums[blocks][6].data() };
+            accumulator.Collect(sums[blocks][0].data(), sums[blocks][1].data(),
+              sums[blocks][2].data(), sums[blocks][3].data(), channels ? channelSums : nullptr);
           }
-        }
-        for (auto& s : sums[blocks])
-        {
-          s.assign(pixels, 0);
-        }
-        accumulator.Collect(sums[blocks][0].data(), sums[blocks][1].data(), sums[blocks][2].data(),
-          sums[blocks][3].data());
-      }
-      mcx::FixedSum total = 0;
-      for (int s = 0; s < 4; ++s)
-      {
-        for (std::size_t p = 0; p < pixels; ++p)
-        {
-          ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
-            << hwy::TargetName(target) << (mode == mcx::Deposit::Point ? " points" : " footprints")
-            << " image " << s << " pixel " << p;
-          total += sums[0][s][p];
+          mcx::FixedSum total = 0, channelTotal = 0;
+          for (int s = 0; s < 7; ++s)
+          {
+            for (std::size_t p = 0; p < sums[0][s].size(); ++p)
+            {
+              ASSERT_TRUE(sums[0][s][p] == sums[1][s][p])
+                << hwy::TargetName(target) << (perspective ? " perspective" : " parallel")
+                << (mode == mcx::Deposit::Point ? " points" : " footprints") << ", " << channels
+                << " channels, image " << s << " pixel " << p;
+              (s < 4 ? total : channelTotal) += sums[0][s][p];
+            }
+          }
+          EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
+          EXPECT_EQ(channels > 0, mcx::FixedSum(0) < channelTotal) << "the channels' sums";
         }
       }
-      EXPECT_TRUE(mcx::FixedSum(0) < total) << "no sample reached the image";
     }
   }
 }
