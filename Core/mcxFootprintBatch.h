@@ -17,7 +17,8 @@ namespace mcx
 /// of a stored cloud and of the view order's control image. Each footprint
 /// is prepared, its cache lines asked for, and added Lookahead footprints
 /// later, so that the next preparations overlap the additions' waits (in
-/// Halton order successive samples reach the image at random); in
+/// Halton order successive samples reach the image at random; the control
+/// image's voxels come in pixel order, where only the overlap counts); in
 /// perspective views the samples are first located Capacity at a time on
 /// SIMD lanes (PixelBinner::LocatePoints), a parallel view's three products
 /// one at a time. The same sums as DepositFootprint one sample at a time,
@@ -26,7 +27,9 @@ class FootprintBatch
 {
 public:
   static constexpr std::size_t Capacity = GatheredSamples::Capacity;
-  /// About what the first level of cache holds of footprints' lines.
+  /// Far enough for the asked-for lines to arrive, near enough that they
+  /// are still in the first level of cache: a few footprints of a few
+  /// lines each (the stored cloud's ring had the same).
   static constexpr std::size_t Lookahead = 8;
 
   explicit FootprintBatch(const ThreadImage& image)
@@ -86,8 +89,8 @@ private:
   }
 
   // Prepares a footprint in the ring's next slot (prepare(footprint):
-  // whether there is one to add), after adding the one prepared Lookahead
-  // samples before it.
+  // whether there is one to add), after adding the one there, prepared
+  // Lookahead preparations before.
   template <typename PrepareInto>
   void Prepare(const PrepareInto& prepare)
   {

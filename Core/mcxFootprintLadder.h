@@ -185,7 +185,9 @@ public:
     {
       ++j;
     }
-    // u < (w - scales[j]) / step, without the division's latency.
+    // u < (w - scales[j]) / step, without the division's latency on every
+    // footprint's path: the same probability; an exact tie may round the
+    // other way.
     return &this->Tables[u * this->Steps[j] < w - scales[j] ? j + 1 : j];
   }
 

@@ -18,7 +18,9 @@
 // This header is the one the others include. Its parts live in headers of
 // their own: the settings (mcxDepositSettings.h), the footprint tables of a
 // view (mcxFootprintLadder.h), a thread's sums (mcxThreadSums.h) and its
-// deposits (mcxThreadImage.h), and the weights of weighted clouds
+// deposits (mcxThreadImage.h, its footprints in a pipeline:
+// mcxFootprintBatch.h, the samples gathered for SIMD lanes:
+// mcxGatheredSamples.h), and the weights of weighted clouds
 // (mcxPointWeights.h); here is the accumulator that ties them to a view and
 // an executor.
 #ifndef mcxSampleAccumulator_h

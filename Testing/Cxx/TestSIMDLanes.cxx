@@ -282,8 +282,11 @@ TEST(SIMDLanes, AStoredCloudInBatchesAddsWhatOneAtATimeAdds)
     for (std::size_t i = 0; i < n; ++i)
     {
       double fx, fy, f, w;
+      // In the image, and in perspective within the tables' depths (nearer
+      // or farther samples are deposited as points at once).
       if (binner.Locate(&points[3 * i], fx, fy, f, w) && fx > 4 && fy > 4 && fx < g.Size[0] - 4 &&
-        fy < g.Size[1] - 4 && weights[i] > 0)
+        fy < g.Size[1] - 4 && weights[i] > 0 &&
+        (!perspective || (w > 1.0 / settings.Depths[1] && w < 1.0 / settings.Depths[0])))
       {
         inside.push_back(i);
       }
