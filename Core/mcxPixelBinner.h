@@ -6,7 +6,6 @@
 #include "mcxFixedPoint.h"
 #include "mcxProjectionGeometry.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
