@@ -49,6 +49,7 @@ public:
     this->FirstHalfWeights = 0;
     this->Weighted = false;
     this->Control.clear();
+    this->ControlVariance = 0.0;
     this->OnceTotal.clear();
     this->OnceFirstHalf.clear();
     this->ChannelSums.clear();
@@ -72,9 +73,9 @@ public:
 
   /// Shows the controlled estimate (mcxControlImage.h) of the points to
   /// come: `control` is the control image H of this view, NumberOfPixels()
-  /// line integrals, and `integral` the cloud's. Call after Reset(), before
-  /// the first Advance().
-  void SetControl(std::vector<double> control, double integral)
+  /// line integrals, `integral` the cloud's and `variance` H's own, summed
+  /// over the pixels. Call after Reset(), before the first Advance().
+  void SetControl(std::vector<double> control, double integral, double variance = 0.0)
   {
     if (control.size() != this->Total.size() || this->Counted > 0)
     {
@@ -82,6 +83,7 @@ public:
     }
     this->Control = std::move(control);
     this->ControlIntegral = integral;
+    this->ControlVariance = variance;
     this->OnceTotal.assign(this->Total.size(), 0);
     this->OnceFirstHalf.assign(this->Total.size(), 0);
     this->Accumulator.SetControlled(true);
@@ -228,6 +230,7 @@ private:
     sums.CarriedWeight = this->CountedWeight();
     sums.Integral = this->ControlIntegral;
     sums.PixelArea = this->Geometry.BeamCrossSection();
+    sums.ControlVariance = this->ControlVariance;
     return sums;
   }
 
@@ -240,10 +243,11 @@ private:
   FixedSum Weights = 0; // of the points counted, when weighted
   FixedSum FirstHalfWeights = 0; // of the first half's, when weighted
   bool Weighted = false;
-  // The control (SetControl): H, the cloud's integral, and the sums of the
-  // points counted once.
+  // The control (SetControl): H, the cloud's integral, H's variance, and
+  // the sums of the points counted once.
   std::vector<double> Control;
   double ControlIntegral = 0.0;
+  double ControlVariance = 0.0;
   std::vector<FixedSum> OnceTotal;
   std::vector<FixedSum> OnceFirstHalf;
   // Per channel (SetChannels): all points' sums, then the first half's.

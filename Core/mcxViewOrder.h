@@ -172,11 +172,13 @@ template <typename IdType>
 struct ViewOrder
 {
   /// The voxel ids by (bin, cell, position, level, id); BinOffsets (bins + 1 entries)
-  /// delimits each bin, LevelInBin is each entry's level minus its bin's
-  /// first level, BinFirstLevel (bins + 1) the bins' levels.
+  /// delimits each bin and KeyStarts (bins x cells + 1) each (bin, cell)
+  /// run, LevelInBin is each entry's level minus its bin's first level,
+  /// BinFirstLevel (bins + 1) the bins' levels.
   std::vector<IdType, HugePageAllocator<IdType>> Ids;
   std::vector<std::uint16_t, HugePageAllocator<std::uint16_t>> LevelInBin;
   std::vector<std::int64_t> BinOffsets;
+  std::vector<std::int64_t> KeyStarts;
   std::vector<std::int64_t> BinFirstLevel;
   /// Build's scratch, each entry's low digit and position (what its run
   /// is sorted by): kept for the next Build, whose pages it then finds
@@ -338,6 +340,7 @@ struct ViewOrder
       this->BinOffsets[static_cast<std::size_t>(b)] =
         keyStarts[static_cast<std::size_t>(b * cells)];
     }
+    this->KeyStarts = std::move(keyStarts);
     return progress(1.0);
   }
 

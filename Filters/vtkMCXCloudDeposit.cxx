@@ -134,8 +134,10 @@ bool IsEveryVoxelCloud(vtkPolyData* cloud)
     vtkMCXTypes::EVERY_VOXEL;
 }
 
-std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeometry& geometry)
+std::vector<double> CloudControlImage(
+  vtkPolyData* cloud, const ProjectionGeometry& geometry, double& variance)
 {
+  variance = 0.0;
   vtkFieldData* fd = cloud->GetFieldData();
   vtkDataArray* image = fd ? fd->GetArray(vtkMCXTypes::ControlImageName()) : nullptr;
   vtkDataArray* view = fd ? fd->GetArray(vtkMCXTypes::ControlViewName()) : nullptr;
@@ -168,6 +170,20 @@ std::vector<double> CloudControlImage(vtkPolyData* cloud, const ProjectionGeomet
   {
     if (made->GetComponent(i, 0) != these->GetValue(i))
     {
+      return std::vector<double>();
+    }
+  }
+  // Absent: a control of every voxel, as before the variance was written.
+  if (vtkDataArray* spread = fd->GetArray(vtkMCXTypes::ControlVarianceName()))
+  {
+    if (spread->GetNumberOfValues() != 1)
+    {
+      return std::vector<double>();
+    }
+    variance = spread->GetComponent(0, 0);
+    if (!(variance >= 0 && std::isfinite(variance)))
+    {
+      variance = 0.0;
       return std::vector<double>();
     }
   }

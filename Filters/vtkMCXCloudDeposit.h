@@ -42,10 +42,12 @@ MONTECARLOXRAYFILTERS_EXPORT bool IsEveryVoxelCloud(vtkPolyData* cloud);
 /// integrals) that a view-ordered cloud carries for `geometry`: empty
 /// unless its ControlView is this geometry, bit for bit, its ControlPoints
 /// is the cloud's first point (ControlPointsOf), and it holds one finite
-/// value per pixel. Only for images of the cloud's own frame (no prop matrix)
+/// value per pixel, and its variance (vtkMCXTypes::ControlVarianceName(),
+/// 0 without it) is one finite value of at least 0, which goes to
+/// `variance`. Only for images of the cloud's own frame (no prop matrix)
 /// with nothing hiding any sample.
 MONTECARLOXRAYFILTERS_EXPORT std::vector<double> CloudControlImage(
-  vtkPolyData* cloud, const ProjectionGeometry& geometry);
+  vtkPolyData* cloud, const ProjectionGeometry& geometry, double& variance);
 
 /// The 8 corners (x, y, z each, in the cloud's coordinates: world for a
 /// sampler's cloud) of the data's field SupportCorners (the box where a

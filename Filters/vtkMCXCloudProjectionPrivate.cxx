@@ -108,7 +108,7 @@ bool ProjectCloud(vtkAlgorithm* self, vtkPolyData* cloud, const mcx::ProjectionG
   projection.FallsAsInverseM = accumulator.ErrorFallsAsInverseM();
   projection.RandomParts = RandomPartsOf(accumulator, settings, footprintReach);
   projection.EveryVoxel = mcx::IsEveryVoxelCloud(cloud);
-  projection.Control = mcx::CloudControlImage(cloud, geometry);
+  projection.Control = mcx::CloudControlImage(cloud, geometry, projection.ControlVariance);
   projection.PixelArea = geometry.BeamCrossSection();
   // The control's two more sums per thread (16 bytes a pixel) and their
   // collection (32), and the control image (8).

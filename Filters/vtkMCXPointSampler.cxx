@@ -362,5 +362,6 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OutputPointsPrecision: " << this->OutputPointsPrecision << "\n";
   os << indent << "NumberOfOrderingBins: " << this->NumberOfOrderingBins << "\n";
   os << indent << "ControlVariate: " << (this->ControlVariate ? "On" : "Off") << "\n";
+  os << indent << "ControlVoxelsPerPoint: " << this->ControlVoxelsPerPoint << "\n";
   this->ViewOrdered->PrintSelf(os, indent);
 }

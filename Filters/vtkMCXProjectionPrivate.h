@@ -48,9 +48,11 @@ struct Projection
   std::uint64_t Drawn = 0;      // the samples this run drew (Count less a prefix it extends)
   std::string RandomParts;      // the deposit's random parts, if any (RandomPartsOf)
   // A view-ordered cloud's control (mcx::CloudControlImage; empty: none):
-  // H, the sums of the points counted once (as Sums), the weight the points
-  // carry and that of the first half, and a pixel's beam cross-section.
+  // H and its variance, the sums of the points counted once (as Sums), the
+  // weight the points carry and that of the first half, and a pixel's beam
+  // cross-section.
   std::vector<double> Control;
+  double ControlVariance = 0.0;
   std::vector<mcx::FixedSum> OnceSums;
   double CarriedWeight = 0.0;
   double FirstHalfWeight = 0.0;
@@ -67,6 +69,7 @@ struct Projection
     sums.CarriedWeight = this->CarriedWeight;
     sums.Integral = this->Integral;
     sums.PixelArea = this->PixelArea;
+    sums.ControlVariance = this->ControlVariance;
     return sums;
   }
 

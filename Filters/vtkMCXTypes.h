@@ -103,6 +103,10 @@ public:
   /// (mcx::GeometryToValues' 23 values); see vtkMCXPointSampler::SetControlVariate.
   static const char* ControlImageName() { return "ControlImage"; }
   static const char* ControlViewName() { return "ControlView"; }
+  /// The control image's own variance summed over its pixels (1 value, line
+  /// integrals squared; 0 where it projects every voxel), which the image's
+  /// error estimate adds (vtkMCXPointSampler::SetControlVoxelsPerPoint).
+  static const char* ControlVarianceName() { return "ControlVariance"; }
   /// The first point of the cloud the control image was made with (3
   /// values; a prefix of the cloud keeps it), so that a filter that moves
   /// the points and passes the field data on leaves the control unused.

@@ -3,6 +3,7 @@
 #include "mcxControlImage.h"
 #include "mcxPixelBinner.h"
 #include "mcxProjectionGeometry.h"
+#include "mcxRandom.h"
 #include "mcxSampleAccumulator.h"
 #include "mcxViewOrder.h"
 #include "vtkMCXBatchedForPrivate.h"
@@ -24,6 +25,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -63,23 +65,72 @@ bool GenerateViewOrderedPoints(vtkAlgorithm* self, const mcx::IndexView& view,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
 
-// Each bin's voxels of `order` projected once each, footprints of `kernel`
-// in `geometry` (voxel coordinates, as the sort located them): bins x
-// pixels sums in the accumulator's fixed-point units (2^32 a whole voxel),
-// the bins' images of the control (mcxControlImage.h). Their footprints
-// round at random from a stream of their own, the same for every seed, so
-// a new seed keeps them. Progress runs from progressBegin to progressEnd;
-// false when aborted.
+// The voxels of bin b that the control projects (SystematicPicks, about
+// one in `stride` of each (bin, cell) run, their starts drawn from
+// `seedKey`): visit(slot, weight, firstHalf) for picks [begin, end) of the
+// bin, counted in run order from pickStarts (each run's first pick, from
+// CountPicks).
+template <typename IdType, typename Visit>
+void VisitPicks(const mcx::ViewOrder<IdType>& order, std::int64_t b, std::int64_t cells,
+  double stride, std::uint64_t seedKey, const std::vector<std::int64_t>& pickStarts,
+  std::int64_t begin, std::int64_t end, const Visit& visit)
+{
+  std::int64_t cell =
+    std::upper_bound(pickStarts.begin(), pickStarts.end(), begin) - pickStarts.begin() - 1;
+  std::int64_t j = begin - pickStarts[static_cast<std::size_t>(cell)];
+  for (std::int64_t pick = begin; pick < end; ++cell, j = 0)
+  {
+    const std::int64_t key = b * cells + cell;
+    const std::int64_t first = order.KeyStarts[static_cast<std::size_t>(key)];
+    const std::int64_t n = order.KeyStarts[static_cast<std::size_t>(key + 1)] - first;
+    mcx::CounterRandom random(seedKey, static_cast<std::uint64_t>(key));
+    const mcx::SystematicPicks picks(n, stride, 1.0 - random.NextOpenClosed());
+    for (; j < picks.Count && pick < end; ++j, ++pick)
+    {
+      visit(first + picks[j], picks.Interval, j % 2 == 0);
+    }
+  }
+}
+
+// The first pick of each of bin b's runs, and their count last (cells + 1).
+template <typename IdType>
+std::vector<std::int64_t> CountPicks(
+  const mcx::ViewOrder<IdType>& order, std::int64_t b, std::int64_t cells, double stride)
+{
+  std::vector<std::int64_t> starts(static_cast<std::size_t>(cells + 1), 0);
+  for (std::int64_t c = 0; c < cells; ++c)
+  {
+    const std::size_t key = static_cast<std::size_t>(b * cells + c);
+    const std::int64_t n = order.KeyStarts[key + 1] - order.KeyStarts[key];
+    starts[static_cast<std::size_t>(c + 1)] =
+      starts[static_cast<std::size_t>(c)] + mcx::SystematicPicks(n, stride, 0.0).Count;
+  }
+  return starts;
+}
+
+// Each bin's voxels of `order` projected, footprints of `kernel` in
+// `geometry` (voxel coordinates, as the sort located them): bins x pixels
+// sums in the accumulator's fixed-point units (2^32 a whole voxel), the
+// bins' images of the control (mcxControlImage.h). With a stride of 1 or
+// less every voxel once, rounding at random from a stream of their own, the
+// same for every seed, so a new seed keeps them, and no differences; else
+// about one voxel in `stride` of each (bin, cell) run, drawn and rounded
+// from `seed`, each carrying its interval, and `differences` gets each
+// bin's image of the even picks less that of the odd ones. Progress runs
+// from progressBegin to progressEnd; false when aborted.
 template <typename IdType>
 bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry, mcx::Kernel kernel,
-  double progressBegin, double progressEnd, std::vector<double>& images)
+  double stride, vtkTypeUInt64 seed, double progressBegin, double progressEnd,
+  std::vector<double>& images, std::vector<double>& differences)
 {
+  const bool sampled = stride > 1.0;
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
   mcx::DepositSettings settings; // samples in voxel coordinates: the identity VoxelMatrix
   settings.Mode = mcx::Deposit::Footprint;
   settings.Reconstruction = kernel;
+  settings.Seed = sampled ? seed : 0;
   if (geometry.Perspective)
   {
     double corners[24];
@@ -89,33 +140,53 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   }
   mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
   accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
+  const std::int64_t voxels = std::max<std::int64_t>(1, order.BinOffsets.back());
+  // The even picks are the first half: k < voxels.
+  accumulator.SetSplit(sampled ? static_cast<std::uint64_t>(voxels) : 0);
   const std::size_t pixels = accumulator.NumberOfPixels();
+  const std::int64_t cells = static_cast<std::int64_t>(pixels) + 1;
   const std::int64_t bins = order.NumberOfBins();
   const mcx::VoxelDecoder<IdType> decoder(
     static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
-  const double voxels = static_cast<double>(std::max<std::int64_t>(1, order.BinOffsets.back()));
+  const std::uint64_t seedKey = mcx::SeedKey(seed ^ 0xBB67AE8584CAA73Bull);
   images.assign(static_cast<std::size_t>(bins) * pixels, 0.0);
+  differences.assign(sampled ? images.size() : 0, 0.0);
   std::vector<mcx::FixedSum> all(pixels), firstHalf(pixels);
   for (std::int64_t b = 0; b < bins; ++b)
   {
     const std::int64_t first = order.BinOffsets[static_cast<std::size_t>(b)];
     const std::int64_t last = order.BinOffsets[static_cast<std::size_t>(b + 1)];
-    const double span = progressEnd - progressBegin;
-    const bool completed = mcx::BatchedFor(self, static_cast<std::uint64_t>(last - first),
-      progressBegin + span * static_cast<double>(first) / voxels,
-      progressBegin + span * static_cast<double>(last) / voxels,
+    const std::vector<std::int64_t> pickStarts =
+      sampled ? CountPicks(order, b, cells, stride) : std::vector<std::int64_t>();
+    const std::int64_t work = sampled ? pickStarts.back() : last - first;
+    const double span = (progressEnd - progressBegin) / static_cast<double>(bins);
+    const bool completed = mcx::BatchedFor(self, static_cast<std::uint64_t>(work),
+      progressBegin + span * static_cast<double>(b),
+      progressBegin + span * static_cast<double>(b + 1),
       [&](std::uint64_t begin, std::uint64_t end)
       {
         const auto image = accumulator.Local();
         mcx::FootprintBatch footprints(image);
-        for (std::uint64_t i = begin; i < end; ++i)
+        auto add = [&](std::int64_t slot, double weight, bool firstHalf)
         {
           std::uint64_t voxel[3];
-          decoder.Decode(
-            order.Ids[static_cast<std::uint64_t>(first) + i], voxel[0], voxel[1], voxel[2]);
+          decoder.Decode(order.Ids[static_cast<std::size_t>(slot)], voxel[0], voxel[1], voxel[2]);
           const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
             static_cast<double>(voxel[2]) };
-          footprints.Add(static_cast<std::uint64_t>(first) + i, p);
+          const std::int64_t k = firstHalf || !sampled ? slot : voxels + slot;
+          footprints.Add(static_cast<std::uint64_t>(k), p, weight);
+        };
+        if (sampled)
+        {
+          VisitPicks(order, b, cells, stride, seedKey, pickStarts, static_cast<std::int64_t>(begin),
+            static_cast<std::int64_t>(end), add);
+        }
+        else
+        {
+          for (std::uint64_t i = begin; i < end; ++i)
+          {
+            add(first + static_cast<std::int64_t>(i), 1.0, true);
+          }
         }
         footprints.Flush();
       });
@@ -124,11 +195,20 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
       return false;
     }
     std::fill(all.begin(), all.end(), mcx::FixedSum(0));
+    std::fill(firstHalf.begin(), firstHalf.end(), mcx::FixedSum(0));
     accumulator.Collect(all.data(), firstHalf.data());
     double* image = images.data() + static_cast<std::size_t>(b) * pixels;
     for (std::size_t p = 0; p < pixels; ++p)
     {
       image[p] = mcx::ToDouble(all[p]);
+    }
+    if (sampled)
+    {
+      double* difference = differences.data() + static_cast<std::size_t>(b) * pixels;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        difference[p] = 2.0 * mcx::ToDouble(firstHalf[p]) - image[p];
+      }
     }
   }
   return true;
@@ -136,11 +216,15 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
 
 // The control image (line integrals) of the TF whose weight on each bin is
 // binMeans[b]: the bins' images weighed by it, scaled so that it carries
-// the cloud's integral as the cloud does. Empty when no bin has weight.
+// the cloud's integral as the cloud does, and its variance summed over the
+// pixels, from the bins' differences (none: 0). Empty when no bin has
+// weight.
 std::vector<double> ControlImage(const std::vector<double>& binImages,
-  const std::vector<double>& binMeans, const std::vector<std::int64_t>& binOffsets, double integral,
-  const mcx::ProjectionGeometry& geometry)
+  const std::vector<double>& binDifferences, const std::vector<double>& binMeans,
+  const std::vector<std::int64_t>& binOffsets, double integral,
+  const mcx::ProjectionGeometry& geometry, double& variance)
 {
+  variance = 0.0;
   const std::size_t bins = binMeans.size();
   const std::size_t pixels = bins > 0 ? binImages.size() / bins : 0;
   double weightedVoxels = 0.0; // the integral in units of one voxel of weight 1
@@ -153,21 +237,33 @@ std::vector<double> ControlImage(const std::vector<double>& binImages,
     return std::vector<double>();
   }
   const double scale = integral / weightedVoxels / (mcx::FixedOne * geometry.BeamCrossSection());
-  std::vector<double> control(pixels, 0.0);
-  for (std::size_t b = 0; b < bins; ++b)
+  auto weigh = [&](const std::vector<double>& images)
   {
-    const double weight = binMeans[b] * scale;
-    if (weight == 0.0)
+    std::vector<double> sum(pixels, 0.0);
+    for (std::size_t b = 0; b < bins; ++b)
     {
-      continue;
+      const double weight = binMeans[b] * scale;
+      if (weight == 0.0)
+      {
+        continue;
+      }
+      const double* image = images.data() + b * pixels;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        sum[p] += weight * image[p];
+      }
     }
-    const double* image = binImages.data() + b * pixels;
-    for (std::size_t p = 0; p < pixels; ++p)
+    return sum;
+  };
+  if (!binDifferences.empty())
+  {
+    // The halves' sums differ by d: the variance of their sum is about d^2.
+    for (const double d : weigh(binDifferences))
     {
-      control[p] += weight * image[p];
+      variance += d * d;
     }
   }
-  return control;
+  return weigh(binImages);
 }
 }
 
@@ -190,10 +286,14 @@ struct vtkMCXViewOrderedSampling::SortedView
   int Bins = 0;
   mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
   mcx::ViewOrder<std::uint64_t> Wide;   // or 64-bit (WideIds)
-  // The control's bins' images (ProjectBins), and the kernel they were
-  // projected with; empty until a controlled cloud needs them.
+  // The control's bins' images and differences (ProjectBins), and the
+  // kernel, the stride and the seed they were projected with; empty until a
+  // controlled cloud needs them.
   std::vector<double> BinImages;
+  std::vector<double> BinDifferences;
   int BinKernel = -1;
+  double BinStride = 0.0;
+  vtkTypeInt64 BinSeed = 0;
 
   // What the arrays recycled from the previous order (ViewOrder::Recycle,
   // of one width) hold already for an order of `voxels`: those of the same
@@ -336,8 +436,8 @@ bool vtkMCXViewOrderedSampling::Generate(vtkMCXPointSampler* sampler, const mcx:
   cloud.Exponent = m;
   if (sampler->GetControlVariate() && m > 0)
   {
-    cloud.Control =
-      ControlImage(sorted.BinImages, binMeans, order.BinOffsets, integral, sorted.Geometry);
+    cloud.Control = ControlImage(sorted.BinImages, sorted.BinDifferences, binMeans,
+      order.BinOffsets, integral, sorted.Geometry, cloud.ControlVariance);
     cloud.ControlView = sorted.Geometry;
   }
   const int pointType =
@@ -381,35 +481,56 @@ void vtkMCXViewOrderedSampling::WriteControl(const Cloud& cloud, vtkFieldData* f
   controlView->SetNumberOfValues(mcx::GeometryValueCount);
   mcx::GeometryToValues(cloud.ControlView, controlView->GetPointer(0));
   fd->AddArray(controlView);
+  vtkNew<vtkDoubleArray> variance;
+  variance->SetName(vtkMCXTypes::ControlVarianceName());
+  variance->SetNumberOfValues(1);
+  variance->SetValue(0, cloud.ControlVariance);
+  fd->AddArray(variance);
   fd->AddArray(mcx::ControlPointsOf(cloud.Points));
 }
 bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   vtkMCXPointSampler* sampler, const mcx::IndexView& view, SortedView& sorted, bool& completed)
 {
   completed = true;
-  if (!sorted.BinImages.empty() && sorted.BinKernel == sampler->GetKernel())
+  // About ControlVoxelsPerPoint voxels per point of the cloud, or every one.
+  const std::int64_t voxels = view.LevelOffsets[view.NumberOfLevels];
+  const double points = std::max(1.0, std::ldexp(1.0, sampler->GetSampleExponent()) - 1.0);
+  const double stride =
+    std::max(1.0, static_cast<double>(voxels) / (sampler->GetControlVoxelsPerPoint() * points));
+  const bool sampled = stride > 1.0;
+  if (!sorted.BinImages.empty() && sorted.BinKernel == sampler->GetKernel() &&
+    sorted.BinStride == stride && (!sampled || sorted.BinSeed == sampler->GetSeed()))
   {
     return true;
   }
   sorted.BinImages = std::vector<double>(); // not held while new ones are made
+  sorted.BinDifferences = std::vector<double>();
   const double pixels = static_cast<double>(sorted.Geometry.Size[0]) * sorted.Geometry.Size[1];
   const double bins = static_cast<double>(sorted.BinsOf(view.WideIds));
-  // The images (8 bytes a bin and pixel), the threads' sums (16) and their collection (32).
+  // The images (8 bytes a bin and pixel, 16 with the differences), the
+  // threads' sums (16) and their collection (32), and a bin's first picks (8).
   if (!mcx::CheckMemory(sampler,
-        pixels * (8.0 * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() + 32.0),
+        pixels *
+          ((sampled ? 24.0 : 8.0) * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() +
+            32.0),
         "The control image's " + std::to_string(static_cast<long long>(bins)) + " bin images"))
   {
     return false;
   }
   const auto kernel = static_cast<mcx::Kernel>(sampler->GetKernel());
-  std::vector<double> images;
-  completed = view.WideIds
-    ? ProjectBins(sampler, view, sorted.Wide, sorted.Geometry, kernel, 0.3, 0.55, images)
-    : ProjectBins(sampler, view, sorted.Narrow, sorted.Geometry, kernel, 0.3, 0.55, images);
+  const auto seed = static_cast<vtkTypeUInt64>(sampler->GetSeed());
+  std::vector<double> images, differences;
+  completed = view.WideIds ? ProjectBins(sampler, view, sorted.Wide, sorted.Geometry, kernel,
+                               stride, seed, 0.3, 0.55, images, differences)
+                           : ProjectBins(sampler, view, sorted.Narrow, sorted.Geometry, kernel,
+                               stride, seed, 0.3, 0.55, images, differences);
   if (completed)
   {
     sorted.BinImages = std::move(images);
+    sorted.BinDifferences = std::move(differences);
     sorted.BinKernel = sampler->GetKernel();
+    sorted.BinStride = stride;
+    sorted.BinSeed = sampler->GetSeed();
   }
   return completed;
 }

@@ -45,7 +45,8 @@ public:
   void ForgetOrder();
 
   /// A view-ordered cloud: its points and weights, its exponent, and the
-  /// control image of the ordering view (empty: none) with that view.
+  /// control image of the ordering view (empty: none) with that view and
+  /// its own variance summed over the pixels.
   struct Cloud
   {
     vtkSmartPointer<vtkPoints> Points;
@@ -53,6 +54,7 @@ public:
     unsigned Exponent = 0;
     std::vector<double> Control;
     mcx::ProjectionGeometry ControlView;
+    double ControlVariance = 0.0;
   };
   enum class Outcome
   {
@@ -72,7 +74,7 @@ public:
     const PointAllocator& allocate, Cloud& cloud);
 
   /// Adds the cloud's control (when it has one) to a cloud's field data:
-  /// the control image, its view and the control's points.
+  /// the control image, its view, its variance and the control's points.
   static void WriteControl(const Cloud& cloud, vtkFieldData* fd);
 
   /// PrintSelf's lines of the ordering view and the kept order.

@@ -364,11 +364,12 @@ bool vtkMCXXRayMapper::vtkInternals::RestartIfChanged(
     static const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
     if (hidesNothing && std::equal(m, m + 16, identity))
     {
-      std::vector<double> control = mcx::CloudControlImage(cloud, view.Geometry);
+      double variance = 0.0;
+      std::vector<double> control = mcx::CloudControlImage(cloud, view.Geometry, variance);
       if (!control.empty())
       {
         this->Image->SetControl(std::move(control),
-          cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0));
+          cloud->GetFieldData()->GetArray(vtkMCXTypes::IntegralName())->GetTuple1(0), variance);
       }
     }
   }

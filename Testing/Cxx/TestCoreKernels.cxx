@@ -5,6 +5,7 @@
 // exactly, the footprint tables' supports and scale choice, and the view
 // order's sort and weights.
 #include "mcxChannelSplit.h"
+#include "mcxControlImage.h"
 #include "mcxCountingSort.h"
 #include "mcxEveryVoxelOrder.h"
 #include "mcxEveryVoxelSource.h"
@@ -310,6 +311,49 @@ TEST(ViewOrder, LevelsGroupIntoBinsOfEqualWidthAndAtMostTwoTo16Levels)
   std::iota(many.begin(), many.end(), 0.0);
   EXPECT_EQ((std::vector<std::int64_t>{ 0, std::int64_t(1) << 16, std::int64_t(many.size()) }),
     mcx::GroupLevelsIntoBins(many.data(), static_cast<std::int64_t>(many.size()), 1));
+}
+
+TEST(ControlImage, SystematicPicksExpectEachVoxelOnceOverTheirStarts)
+{
+  // Runs of 1 to 299 voxels, strides of 1.01 to 100: an even count, at
+  // least 2, of about n / stride picks that lie in the run and rise, those
+  // of one parity never on one voxel twice; averaged over the starts (a
+  // midpoint rule of G of them, within 2 (1 / Interval + 2) / G of the
+  // integral for each voxel) each voxel is picked 1 / Interval times.
+  const int G = 10000;
+  for (std::int64_t n : { 1, 2, 3, 5, 17, 64, 299 })
+  {
+    for (double stride : { 1.01, 1.5, 2.0, 7.3, 100.0 })
+    {
+      const std::string what = "n " + std::to_string(n) + " stride " + std::to_string(stride);
+      const mcx::SystematicPicks shape(n, stride, 0.0);
+      ASSERT_GE(shape.Count, 2) << what;
+      ASSERT_EQ(0, shape.Count % 2) << what;
+      EXPECT_GE(static_cast<double>(shape.Count), static_cast<double>(n) / stride) << what;
+      EXPECT_LT(static_cast<double>(shape.Count), static_cast<double>(n) / stride + 2.0) << what;
+      EXPECT_DOUBLE_EQ(static_cast<double>(n), shape.Interval * static_cast<double>(shape.Count));
+      std::vector<double> picked(static_cast<std::size_t>(n), 0.0);
+      for (int g = 0; g < G; ++g)
+      {
+        const mcx::SystematicPicks picks(n, stride, (g + 0.5) / G);
+        ASSERT_EQ(shape.Count, picks.Count);
+        for (std::int64_t j = 0; j < picks.Count; ++j)
+        {
+          const std::int64_t i = picks[j];
+          ASSERT_TRUE(i >= 0 && i < n) << what;
+          ASSERT_TRUE(j == 0 || picks[j - 1] <= i) << what;
+          ASSERT_TRUE(j < 2 || picks[j - 2] < i) << what;
+          picked[static_cast<std::size_t>(i)] += 1.0 / G;
+        }
+      }
+      const double expected = 1.0 / shape.Interval;
+      for (std::int64_t i = 0; i < n; ++i)
+      {
+        EXPECT_NEAR(expected, picked[static_cast<std::size_t>(i)], 2.0 * (expected + 2.0) / G)
+          << what << " voxel " << i;
+      }
+    }
+  }
 }
 
 TEST(HugePageAllocator, LargeArraysAlignToHugePagesAndAllHoldTheirValues)
@@ -1596,13 +1640,14 @@ TEST(ProgressiveImage, ControlledImageIsTheWeightedMinusTheOnceCountedPlusTheCon
     const mcx::ProjectionGeometry& g = deposit.View;
     const mcx::DepositSettings& settings = deposit.Settings;
     const std::string& what = deposit.What;
-    auto image = [&](const float* pointWeights, const std::vector<double>& control)
+    auto image =
+      [&](const float* pointWeights, const std::vector<double>& control, double variance = 0.0)
     {
       mcx::ProgressiveImage<ThreadExecutor> progressive;
       progressive.Reset(g, origin, identity, std::vector<double>(), settings);
       if (!control.empty())
       {
-        progressive.SetControl(control, integral);
+        progressive.SetControl(control, integral, variance);
       }
       for (std::uint64_t target = 1; target <= count; target = 2 * target + 1)
       {
@@ -1623,6 +1668,14 @@ TEST(ProgressiveImage, ControlledImageIsTheWeightedMinusTheOnceCountedPlusTheCon
     const auto equal = image(ones.data(), control);
     EXPECT_EQ(control, equal.first) << what;
     EXPECT_LT(equal.second, 1e-12) << what; // 0 but for the rounding of W / W_A against n / a
+    // The control's own variance joins the estimate: sqrt(variance / the
+    // image's squares), the points' part 0 here.
+    double squares = 0.0;
+    for (double v : control)
+    {
+      squares += v * v;
+    }
+    EXPECT_NEAR(0.5, image(ones.data(), control, 0.25 * squares).second, 1e-9) << what;
 
     const auto controlled = image(weights.data(), control);
     const std::vector<double> weighted = image(weights.data(), {}).first;

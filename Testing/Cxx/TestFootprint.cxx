@@ -743,13 +743,15 @@ bool SameImage(vtkImageData* a, vtkImageData* b)
 TEST(ViewOrder, ControlImageCutsTheOrderingViewsErrorAndKeepsItsGuarantees)
 {
   // A view-ordered cloud's control image (the TF constant on each bin,
-  // every voxel projected once) in its ordering view, parallel and
+  // every voxel projected once at 2^18 - 1 points; at 2^14 - 1, 186 voxels
+  // a point, about 64 a point, SetControlVoxelsPerPoint's default) in its
+  // ordering view, parallel and
   // perspective. Its error falls about as M^-1/2, at a tenth of plain Monte
-  // Carlo's (measured 0.082 to 0.092 of the bound at 2^14 - 1 and 2^18 - 1
+  // Carlo's (measured 0.082 to 0.094 of the bound at 2^14 - 1 and 2^18 - 1
   // points), the cloud's own as about M^-3/4 (2.9 and 0.38 % parallel, 4.5
-  // and 0.64 % perspective): the control cuts it 2.2 to 3.2 times at 2^14 -
+  // and 0.64 % perspective): the control cuts it 2.2 to 3.0 times at 2^14 -
   // 1 points and still 1.3 to 1.8 times at 2^18 - 1. Its halves' estimate
-  // stays within 0.75-1.35 of the true error (measured 0.96 to 1.09). The
+  // stays within 0.75-1.35 of the true error (measured 1.00 to 1.09). The
   // parallel view keeps the integral, exactly as the cloud alone does; the
   // perspective view's image stays as close to the reference's sum.
   const Scene scene = FineCTHead();
@@ -795,11 +797,118 @@ TEST(ViewOrder, ControlImageCutsTheOrderingViewsErrorAndKeepsItsGuarantees)
   }
 }
 
+TEST(ViewOrder, ASampledControlImageIsUnbiasedAndItsVarianceJoinsTheEstimate)
+{
+  // 745 voxels per point of 2^12 - 1: with 8 voxels per point the control
+  // image projects about one voxel in 93 of each (bin, pixel) run. Over
+  // seeds its mean is the every-voxel image, to within the variance its
+  // halves estimate; that estimate is near each seed's true squared error
+  // (measured: 1.16 and 1.64 of it, conservative); and the projector's error estimate adds
+  // it, exactly. The same image for one thread and two.
+  const Scene scene = FineCTHead();
+  const int size = 48;
+  const int seeds = 16;
+  for (int view : { 0, 2 })
+  {
+    auto camera = scene.Camera(view);
+    auto sampler = scene.FootprintCloud(12, vtkMCXTypes::VIEW_ORDERED);
+    sampler->SetOrderingView(camera, size, size);
+    auto control = [&]()
+    {
+      sampler->Update();
+      vtkFieldData* fd = sampler->GetOutput()->GetFieldData();
+      vtkDataArray* image = fd->GetArray(vtkMCXTypes::ControlImageName());
+      vtkDataArray* variance = fd->GetArray(vtkMCXTypes::ControlVarianceName());
+      EXPECT_TRUE(image && variance && variance->GetNumberOfValues() == 1);
+      std::vector<double> values(image ? image->GetNumberOfTuples() : 0);
+      for (std::size_t p = 0; p < values.size(); ++p)
+      {
+        values[p] = image->GetTuple1(static_cast<vtkIdType>(p));
+      }
+      return std::make_pair(values, variance ? variance->GetTuple1(0) : -1.0);
+    };
+    sampler->SetControlVoxelsPerPoint(1e9);
+    const auto every = control();
+    ASSERT_EQ(static_cast<std::size_t>(size * size), every.first.size());
+    EXPECT_EQ(0.0, every.second) << "view " << view;
+    double norm = 0.0;
+    for (double v : every.first)
+    {
+      norm += v * v;
+    }
+    ASSERT_GT(norm, 0.0);
+
+    sampler->SetControlVoxelsPerPoint(8);
+    std::vector<double> mean(every.first.size(), 0.0);
+    double estimated = 0.0, squared = 0.0;
+    for (int seed = 1; seed <= seeds; ++seed)
+    {
+      sampler->SetSeed(seed);
+      const auto sampled = control();
+      ASSERT_EQ(every.first.size(), sampled.first.size());
+      ASSERT_GT(sampled.second, 0.0) << "view " << view << " seed " << seed;
+      estimated += sampled.second / seeds;
+      for (std::size_t p = 0; p < mean.size(); ++p)
+      {
+        const double d = sampled.first[p] - every.first[p];
+        squared += d * d / seeds;
+        mean[p] += sampled.first[p] / seeds;
+      }
+    }
+    double bias = 0.0;
+    for (std::size_t p = 0; p < mean.size(); ++p)
+    {
+      bias += (mean[p] - every.first[p]) * (mean[p] - every.first[p]);
+    }
+    std::cout << "view " << view << ": the sampled control's relative error "
+              << std::sqrt(squared / norm) << ", estimated " << std::sqrt(estimated / norm)
+              << "; the mean of " << seeds << " seeds " << std::sqrt(bias / norm) << std::endl;
+    // Unbiased: the mean's squared distance is about the seeds' variance
+    // over their count (a sum over 2304 pixels: far below 3 times that).
+    EXPECT_LT(bias, 3.0 * squared / seeds) << "view " << view;
+    EXPECT_GT(estimated, 0.5 * squared) << "view " << view;
+    EXPECT_LT(estimated, 2.0 * squared) << "view " << view;
+
+    // The projector's estimate: the cloud's variance and the control's.
+    auto image = Copy(ProjectCloud(sampler->GetOutputPort(), camera, size));
+    vtkNew<vtkPolyData> cloud;
+    cloud->DeepCopy(sampler->GetOutput());
+    const double variance =
+      cloud->GetFieldData()->GetArray(vtkMCXTypes::ControlVarianceName())->GetTuple1(0);
+    cloud->GetFieldData()->RemoveArray(vtkMCXTypes::ControlVarianceName());
+    vtkNew<vtkMCXProjector> projector;
+    projector->SetInputData(cloud);
+    projector->SetCamera(camera);
+    projector->SetImageSize(size, size);
+    projector->Update();
+    ASSERT_TRUE(SameImage(image, projector->GetOutput()));
+    const double withVariance = mcxtest::FieldValue(image, "EstimatedRelativeError");
+    const double without = mcxtest::FieldValue(projector->GetOutput(), "EstimatedRelativeError");
+    const double values = mcxtest::LineIntegralSquares(image);
+    EXPECT_NEAR(withVariance * withVariance - without * without, variance / values,
+      1e-9 * withVariance * withVariance)
+      << "view " << view;
+
+    vtkSmartPointer<vtkImageData> one;
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ 1 },
+      [&]()
+      {
+        auto serial = scene.FootprintCloud(12, vtkMCXTypes::VIEW_ORDERED);
+        serial->SetOrderingView(camera, size, size);
+        serial->SetControlVoxelsPerPoint(8);
+        serial->SetSeed(seeds);
+        one = Copy(ProjectCloud(serial->GetOutputPort(), camera, size));
+      });
+    EXPECT_TRUE(SameImage(one, image)) << "view " << view;
+  }
+}
+
 TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
 {
   // Bit for bit with 1 and 2 threads (the bins' images are fixed-point
   // sums); in another view, with a control image that is not one finite
-  // value per pixel or a view 1e-4 off (a hostile file), or with the
+  // value per pixel, a view 1e-4 off or a negative variance (a hostile
+  // file), or with the
   // points moved by a filter that passed the field data on, the projector
   // shows the plain estimate, bit for bit.
   Scene scene(
@@ -848,7 +957,7 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
     projector->Update();
     return Copy(projector->GetOutput());
   };
-  for (int damage = 0; damage < 4; ++damage)
+  for (int damage = 0; damage < 5; ++damage)
   {
     vtkNew<vtkPolyData> cloud;
     cloud->DeepCopy(sampler->GetOutput());
@@ -866,6 +975,12 @@ TEST(ViewOrder, ControlImageIsTheSameForAnyThreadsAndHoldsOnlyForItsView)
     else if (damage == 2)
     {
       view->SetTuple1(4, view->GetTuple1(4) + 1e-4); // U turned by 1e-4 radians
+    }
+    else if (damage == 3)
+    {
+      vtkDataArray* variance = cloud->GetFieldData()->GetArray(vtkMCXTypes::ControlVarianceName());
+      ASSERT_TRUE(variance);
+      variance->SetTuple1(0, -1.0);
     }
     else
     {

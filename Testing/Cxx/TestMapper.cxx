@@ -504,17 +504,22 @@ TEST(Mapper, ViewOrderedCloudInItsViewRefinesItsControlledImageLikeTheOfflinePro
   // same estimate; another view, or a prop matrix, shows the plain estimate
   // (the control's image holds only for its own view and frame), and so
   // does opaque geometry in front of the volume, not behind it or empty.
+  // The control image is sampled (one voxel a point, of 5.8): its own
+  // variance is in both estimates.
   Scene scene(16);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   camera->Azimuth(20);
   camera->SetClippingRange(100, 2000); // kept: the plates below do not move it
   scene.Sampler->SetDepositToFootprint();
   scene.Sampler->SetStrategyToViewOrdered();
+  scene.Sampler->SetControlVoxelsPerPoint(1);
   scene.Sampler->SetOrderingView(camera, 160, 128);
   scene.Mapper->AutomaticWindowLevelOff();
   scene.Mapper->SetInitialSampleExponent(10);
   scene.Window->SetDesiredUpdateRate(1e6); // one level per render
   scene.Window->Render();
+  EXPECT_GT(
+    mcxtest::FieldValue(scene.Sampler->GetOutput(), vtkMCXTypes::ControlVarianceName()), 0.0);
   int steps = 0;
   while (steps++ < 40)
   {

@@ -93,6 +93,19 @@ inline double LineIntegralSum(vtkImageData* image)
   return sum;
 }
 
+/// The sum of the squares of an image's line integrals (the norm of a
+/// relative RMS error).
+inline double LineIntegralSquares(vtkImageData* image)
+{
+  vtkDataArray* values = LineIntegral(image);
+  double sum = 0;
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+  {
+    sum += values->GetTuple1(i) * values->GetTuple1(i);
+  }
+  return sum;
+}
+
 /// Largest |value| of an image (a scale that keeps sums of squares finite).
 inline double MaximumAbsolute(vtkDataArray* values)
 {
