@@ -162,10 +162,9 @@ public:
    * voxel once; else about this many per point, drawn systematically from
    * each (bin, pixel) run of the view order (mcx::SystematicPicks: an
    * unbiased estimate of every voxel's image, made again for a new Seed),
-   * and its own error joins the image's estimate. Measured on the CT chest
-   * upsampled to 402 M voxels, 256^2 cone beam, 2^19 - 1 points: the
-   * control image in a tenth of the time for about 3 % more error
-   * (Documentation/performance.md).
+   * and its own error joins the image's estimate (vtkMCXTypes::
+   * ControlVarianceName()). Fewer voxels per point cost less time per view
+   * and add more error (Documentation/method.md measures both).
    */
   vtkSetClampMacro(ControlVoxelsPerPoint, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ControlVoxelsPerPoint, double);
