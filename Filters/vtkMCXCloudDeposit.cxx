@@ -174,13 +174,13 @@ std::vector<double> CloudControlImage(
     }
   }
   // Absent: a control of every voxel, as before the variance was written.
-  if (vtkDataArray* spread = fd->GetArray(vtkMCXTypes::ControlVarianceName()))
+  if (vtkDataArray* varianceArray = fd->GetArray(vtkMCXTypes::ControlVarianceName()))
   {
-    if (spread->GetNumberOfValues() != 1)
+    if (varianceArray->GetNumberOfValues() != 1)
     {
       return std::vector<double>();
     }
-    variance = spread->GetComponent(0, 0);
+    variance = varianceArray->GetComponent(0, 0);
     if (!(variance >= 0 && std::isfinite(variance)))
     {
       variance = 0.0;

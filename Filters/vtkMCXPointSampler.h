@@ -142,12 +142,12 @@ public:
    * front; measured on a 402 M-voxel CT at 256^2: 3.4 times at 2^19 - 1
    * points, 2.7 times at 2^21 - 1) at the same point count (mcxControlImage.h):
    * the image of the TF that is constant on each bin, its mean weight,
-   * made from each bin's voxels projected once (footprints of the Kernel)
-   * when the view order is sorted, and then weighed per TF edit (a sum of
-   * NumberOfOrderingBins images, not a pass over the voxels). The
-   * projection is a pass over the voxels (ControlVoxelsPerPoint) when the
-   * view order is sorted and keeps 8 bytes per (bin, pixel), 16 when
-   * sampled.
+   * made from each bin's voxels projected (footprints of the Kernel; every
+   * voxel once, or a sample, ControlVoxelsPerPoint) when the view order is
+   * sorted, and then weighed per TF edit (a sum of NumberOfOrderingBins
+   * images, not a pass over the voxels). It keeps 8 bytes per (bin,
+   * pixel), 16 when sampled; a sampled one is made again when the Seed or
+   * the SampleExponent changes.
    */
   vtkSetMacro(ControlVariate, bool);
   vtkGetMacro(ControlVariate, bool);
@@ -158,13 +158,14 @@ public:
   /**
    * VIEW_ORDERED with the control image: how many voxels it projects per
    * point of the cloud (default 64, at least 1). Where the volume has no
-   * more voxels than that per point, the control image projects every
-   * voxel once; else about this many per point, drawn systematically from
-   * each (bin, pixel) run of the view order (mcx::SystematicPicks: an
-   * unbiased estimate of every voxel's image, made again for a new Seed),
-   * and its own error joins the image's estimate (vtkMCXTypes::
-   * ControlVarianceName()). Fewer voxels per point cost less time per view
-   * and add more error (Documentation/method.md measures both).
+   * more than twice as many voxels per point, the control image projects
+   * every voxel once; else about this many per point, at least two per
+   * (bin, pixel) run, drawn systematically from each run of the view order
+   * (mcx::ControlPicks: an unbiased estimate of every voxel's image, made
+   * again for a new Seed or SampleExponent), and its own error joins the
+   * image's estimate (vtkMCXTypes::ControlVarianceName()). Fewer voxels
+   * per point cost less time per view and add more error
+   * (Documentation/method.md measures both).
    */
   vtkSetClampMacro(ControlVoxelsPerPoint, double, 1.0, VTK_DOUBLE_MAX);
   vtkGetMacro(ControlVoxelsPerPoint, double);

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -65,59 +66,17 @@ bool GenerateViewOrderedPoints(vtkAlgorithm* self, const mcx::IndexView& view,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
 
-// The voxels of bin b that the control projects (SystematicPicks, about
-// one in `stride` of each (bin, cell) run, their starts drawn from
-// `seedKey`): visit(slot, weight, firstHalf) for picks [begin, end) of the
-// bin, counted in run order from pickStarts (each run's first pick, from
-// CountPicks).
-template <typename IdType, typename Visit>
-void VisitPicks(const mcx::ViewOrder<IdType>& order, std::int64_t b, std::int64_t cells,
-  double stride, std::uint64_t seedKey, const std::vector<std::int64_t>& pickStarts,
-  std::int64_t begin, std::int64_t end, const Visit& visit)
-{
-  std::int64_t cell =
-    std::upper_bound(pickStarts.begin(), pickStarts.end(), begin) - pickStarts.begin() - 1;
-  std::int64_t j = begin - pickStarts[static_cast<std::size_t>(cell)];
-  for (std::int64_t pick = begin; pick < end; ++cell, j = 0)
-  {
-    const std::int64_t key = b * cells + cell;
-    const std::int64_t first = order.KeyStarts[static_cast<std::size_t>(key)];
-    const std::int64_t n = order.KeyStarts[static_cast<std::size_t>(key + 1)] - first;
-    mcx::CounterRandom random(seedKey, static_cast<std::uint64_t>(key));
-    const mcx::SystematicPicks picks(n, stride, 1.0 - random.NextOpenClosed());
-    for (; j < picks.Count && pick < end; ++j, ++pick)
-    {
-      visit(first + picks[j], picks.Interval, j % 2 == 0);
-    }
-  }
-}
-
-// The first pick of each of bin b's runs, and their count last (cells + 1).
-template <typename IdType>
-std::vector<std::int64_t> CountPicks(
-  const mcx::ViewOrder<IdType>& order, std::int64_t b, std::int64_t cells, double stride)
-{
-  std::vector<std::int64_t> starts(static_cast<std::size_t>(cells + 1), 0);
-  for (std::int64_t c = 0; c < cells; ++c)
-  {
-    const std::size_t key = static_cast<std::size_t>(b * cells + c);
-    const std::int64_t n = order.KeyStarts[key + 1] - order.KeyStarts[key];
-    starts[static_cast<std::size_t>(c + 1)] =
-      starts[static_cast<std::size_t>(c)] + mcx::SystematicPicks(n, stride, 0.0).Count;
-  }
-  return starts;
-}
-
 // Each bin's voxels of `order` projected, footprints of `kernel` in
 // `geometry` (voxel coordinates, as the sort located them): bins x pixels
 // sums in the accumulator's fixed-point units (2^32 a whole voxel), the
-// bins' images of the control (mcxControlImage.h). With a stride of 1 or
-// less every voxel once, rounding at random from a stream of their own, the
-// same for every seed, so a new seed keeps them, and no differences; else
-// about one voxel in `stride` of each (bin, cell) run, drawn and rounded
-// from `seed`, each carrying its interval, and `differences` gets each
-// bin's image of the even picks less that of the odd ones. Progress runs
-// from progressBegin to progressEnd; false when aborted.
+// bins' images of the control (mcxControlImage.h). Without a stride every
+// voxel once, rounding at random from a stream of their own, the same for
+// every seed, so a new seed keeps them, and no differences; with one (> 2)
+// about one voxel in `stride` of each (bin, cell) run (mcx::ControlPicks),
+// drawn and rounded from `seed`, each carrying its interval, and
+// `differences` gets each bin's image of the even picks less that of the
+// odd ones. Progress runs from progressBegin to progressEnd; false when
+// aborted.
 template <typename IdType>
 bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry, mcx::Kernel kernel,
@@ -130,7 +89,8 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   mcx::DepositSettings settings; // samples in voxel coordinates: the identity VoxelMatrix
   settings.Mode = mcx::Deposit::Footprint;
   settings.Reconstruction = kernel;
-  settings.Seed = sampled ? seed : 0;
+  // A stream of the control's own, apart from the cloud's footprints.
+  settings.Seed = sampled ? seed ^ 0x3C6EF372FE94F82Bull : 0;
   if (geometry.Perspective)
   {
     double corners[24];
@@ -140,7 +100,7 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   }
   mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
   accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
-  const std::int64_t voxels = std::max<std::int64_t>(1, order.BinOffsets.back());
+  const std::int64_t voxels = order.BinOffsets.back();
   // The even picks are the first half: k < voxels.
   accumulator.SetSplit(sampled ? static_cast<std::uint64_t>(voxels) : 0);
   const std::size_t pixels = accumulator.NumberOfPixels();
@@ -149,6 +109,18 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   const mcx::VoxelDecoder<IdType> decoder(
     static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
   const std::uint64_t seedKey = mcx::SeedKey(seed ^ 0xBB67AE8584CAA73Bull);
+  // Each bin's work (its voxels, or its picks), which the progress follows.
+  std::vector<double> work(static_cast<std::size_t>(bins + 1), 0.0);
+  for (std::int64_t b = 0; b < bins; ++b)
+  {
+    const std::size_t i = static_cast<std::size_t>(b);
+    work[i + 1] = work[i] +
+      (sampled ? static_cast<double>(
+                   mcx::ControlPicks(order.KeyStarts.data() + b * cells, b, cells, stride, seedKey)
+                     .Count())
+               : static_cast<double>(order.BinOffsets[i + 1] - order.BinOffsets[i]));
+  }
+  const double span = (progressEnd - progressBegin) / std::max(1.0, work.back());
   images.assign(static_cast<std::size_t>(bins) * pixels, 0.0);
   differences.assign(sampled ? images.size() : 0, 0.0);
   std::vector<mcx::FixedSum> all(pixels), firstHalf(pixels);
@@ -156,30 +128,29 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   {
     const std::int64_t first = order.BinOffsets[static_cast<std::size_t>(b)];
     const std::int64_t last = order.BinOffsets[static_cast<std::size_t>(b + 1)];
-    const std::vector<std::int64_t> pickStarts =
-      sampled ? CountPicks(order, b, cells, stride) : std::vector<std::int64_t>();
-    const std::int64_t work = sampled ? pickStarts.back() : last - first;
-    const double span = (progressEnd - progressBegin) / static_cast<double>(bins);
-    const bool completed = mcx::BatchedFor(self, static_cast<std::uint64_t>(work),
-      progressBegin + span * static_cast<double>(b),
-      progressBegin + span * static_cast<double>(b + 1),
+    const std::unique_ptr<mcx::ControlPicks> picks(sampled
+        ? new mcx::ControlPicks(order.KeyStarts.data() + b * cells, b, cells, stride, seedKey)
+        : nullptr);
+    const bool completed = mcx::BatchedFor(self,
+      static_cast<std::uint64_t>(picks ? picks->Count() : last - first),
+      progressBegin + span * work[static_cast<std::size_t>(b)],
+      progressBegin + span * work[static_cast<std::size_t>(b + 1)],
       [&](std::uint64_t begin, std::uint64_t end)
       {
         const auto image = accumulator.Local();
         mcx::FootprintBatch footprints(image);
-        auto add = [&](std::int64_t slot, double weight, bool firstHalf)
+        auto add = [&](std::int64_t entry, double weight, bool firstHalf)
         {
           std::uint64_t voxel[3];
-          decoder.Decode(order.Ids[static_cast<std::size_t>(slot)], voxel[0], voxel[1], voxel[2]);
+          decoder.Decode(order.Ids[static_cast<std::size_t>(entry)], voxel[0], voxel[1], voxel[2]);
           const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
             static_cast<double>(voxel[2]) };
-          const std::int64_t k = firstHalf || !sampled ? slot : voxels + slot;
+          const std::int64_t k = firstHalf || !sampled ? entry : voxels + entry;
           footprints.Add(static_cast<std::uint64_t>(k), p, weight);
         };
-        if (sampled)
+        if (picks)
         {
-          VisitPicks(order, b, cells, stride, seedKey, pickStarts, static_cast<std::int64_t>(begin),
-            static_cast<std::int64_t>(end), add);
+          picks->Visit(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end), add);
         }
         else
         {
@@ -492,12 +463,14 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   vtkMCXPointSampler* sampler, const mcx::IndexView& view, SortedView& sorted, bool& completed)
 {
   completed = true;
-  // About ControlVoxelsPerPoint voxels per point of the cloud, or every one.
+  // About ControlVoxelsPerPoint voxels per point of the cloud, or every
+  // one: below two voxels a pick (a stride of 1, "every voxel"), the picks,
+  // which take small runs twice, would cost about what every voxel does.
   const std::int64_t voxels = view.LevelOffsets[view.NumberOfLevels];
   const double points = std::max(1.0, std::ldexp(1.0, sampler->GetSampleExponent()) - 1.0);
-  const double stride =
-    std::max(1.0, static_cast<double>(voxels) / (sampler->GetControlVoxelsPerPoint() * points));
-  const bool sampled = stride > 1.0;
+  double stride = static_cast<double>(voxels) / (sampler->GetControlVoxelsPerPoint() * points);
+  const bool sampled = stride > 2.0;
+  stride = sampled ? stride : 1.0;
   if (!sorted.BinImages.empty() && sorted.BinKernel == sampler->GetKernel() &&
     sorted.BinStride == stride && (!sampled || sorted.BinSeed == sampler->GetSeed()))
   {
@@ -508,11 +481,12 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   const double pixels = static_cast<double>(sorted.Geometry.Size[0]) * sorted.Geometry.Size[1];
   const double bins = static_cast<double>(sorted.BinsOf(view.WideIds));
   // The images (8 bytes a bin and pixel, 16 with the differences), the
-  // threads' sums (16) and their collection (32), and a bin's first picks (8).
+  // threads' sums (16 a pixel) and their collection (32), and a bin's first
+  // picks (8).
   if (!mcx::CheckMemory(sampler,
         pixels *
-          ((sampled ? 24.0 : 8.0) * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() +
-            32.0),
+          ((sampled ? 16.0 : 8.0) * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() +
+            (sampled ? 40.0 : 32.0)),
         "The control image's " + std::to_string(static_cast<long long>(bins)) + " bin images"))
   {
     return false;

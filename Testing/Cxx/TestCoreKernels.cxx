@@ -316,10 +316,11 @@ TEST(ViewOrder, LevelsGroupIntoBinsOfEqualWidthAndAtMostTwoTo16Levels)
 TEST(ControlImage, SystematicPicksExpectEachVoxelOnceOverTheirStarts)
 {
   // Runs of 1 to 299 voxels, strides of 1.01 to 100: an even count, at
-  // least 2, of about n / stride picks that lie in the run and rise, those
-  // of one parity never on one voxel twice; averaged over the starts (a
-  // midpoint rule of G of them, within 2 (1 / Interval + 2) / G of the
-  // integral for each voxel) each voxel is picked 1 / Interval times.
+  // least 2, of about n / stride picks (each voxel twice, Interval 1/2,
+  // where that many picks would take every voxel) that lie in the run and
+  // rise, those of one parity never on one voxel twice; averaged over the
+  // starts (a midpoint rule of G of them, within 2 (1 / Interval + 2) / G of
+  // the integral for each voxel) each voxel is picked 1 / Interval times.
   const int G = 10000;
   for (std::int64_t n : { 1, 2, 3, 5, 17, 64, 299 })
   {
@@ -329,8 +330,17 @@ TEST(ControlImage, SystematicPicksExpectEachVoxelOnceOverTheirStarts)
       const mcx::SystematicPicks shape(n, stride, 0.0);
       ASSERT_GE(shape.Count, 2) << what;
       ASSERT_EQ(0, shape.Count % 2) << what;
-      EXPECT_GE(static_cast<double>(shape.Count), static_cast<double>(n) / stride) << what;
-      EXPECT_LT(static_cast<double>(shape.Count), static_cast<double>(n) / stride + 2.0) << what;
+      const double sampled = 2.0 * std::ceil(static_cast<double>(n) / (2.0 * stride));
+      if (sampled >= static_cast<double>(n))
+      {
+        EXPECT_EQ(2 * n, shape.Count) << what;
+        EXPECT_EQ(0.5, shape.Interval) << what;
+      }
+      else
+      {
+        EXPECT_EQ(sampled, static_cast<double>(shape.Count)) << what;
+        EXPECT_GE(static_cast<double>(shape.Count), static_cast<double>(n) / stride) << what;
+      }
       EXPECT_DOUBLE_EQ(static_cast<double>(n), shape.Interval * static_cast<double>(shape.Count));
       std::vector<double> picked(static_cast<std::size_t>(n), 0.0);
       for (int g = 0; g < G; ++g)
@@ -353,6 +363,78 @@ TEST(ControlImage, SystematicPicksExpectEachVoxelOnceOverTheirStarts)
           << what << " voxel " << i;
       }
     }
+  }
+}
+
+TEST(ControlImage, ABinsPicksInAnyRangesAreThoseOfTheWholeBin)
+{
+  // A bin of 500 runs of 0 to 40 entries after another bin's 7: its picks
+  // visited in ranges of any size (a thread's share) are those visited at
+  // once, in the same order with the same weights and halves; each run's
+  // picks carry its entries exactly (Count x Interval) and alternate
+  // between the halves; another seed moves them.
+  const std::int64_t cells = 500;
+  std::vector<std::int64_t> keyStarts(static_cast<std::size_t>(2 * cells + 1), 0);
+  std::mt19937_64 random(5);
+  for (std::size_t k = 1; k < keyStarts.size(); ++k)
+  {
+    keyStarts[k] = keyStarts[k - 1] + (k <= static_cast<std::size_t>(cells) ? 7 : random() % 41);
+  }
+  struct Pick
+  {
+    std::int64_t Entry;
+    double Weight;
+    bool FirstHalf;
+    bool operator==(const Pick& o) const
+    {
+      return this->Entry == o.Entry && this->Weight == o.Weight && this->FirstHalf == o.FirstHalf;
+    }
+  };
+  const std::int64_t* second = keyStarts.data() + cells;
+  for (double stride : { 2.5, 9.0 })
+  {
+    const mcx::ControlPicks picks(second, 1, cells, stride, mcx::SeedKey(3));
+    std::vector<Pick> whole;
+    picks.Visit(0, picks.Count(),
+      [&](std::int64_t entry, double weight, bool firstHalf) {
+        whole.push_back(Pick{ entry, weight, firstHalf });
+      });
+    ASSERT_EQ(static_cast<std::size_t>(picks.Count()), whole.size());
+    for (std::int64_t grain : { 1, 3, 64, 1000 })
+    {
+      std::vector<Pick> ranges;
+      for (std::int64_t begin = 0; begin < picks.Count(); begin += grain)
+      {
+        picks.Visit(begin, std::min(picks.Count(), begin + grain),
+          [&](std::int64_t entry, double weight, bool firstHalf) {
+            ranges.push_back(Pick{ entry, weight, firstHalf });
+          });
+      }
+      EXPECT_TRUE(ranges == whole) << "stride " << stride << " grain " << grain;
+    }
+    // Run by run: the entries in the run, the weights summing to its size.
+    std::size_t i = 0;
+    for (std::int64_t c = 0; c < cells; ++c)
+    {
+      const std::int64_t n = second[c + 1] - second[c];
+      double carried = 0.0;
+      for (std::int64_t j = 0; i < whole.size() && whole[i].Entry < second[c + 1] && j < 2 * n;
+           ++i, ++j)
+      {
+        ASSERT_GE(whole[i].Entry, second[c]);
+        EXPECT_EQ(j % 2 == 0, whole[i].FirstHalf);
+        carried += whole[i].Weight;
+      }
+      EXPECT_DOUBLE_EQ(static_cast<double>(n), carried) << "stride " << stride << " run " << c;
+    }
+    EXPECT_EQ(whole.size(), i);
+    const mcx::ControlPicks other(second, 1, cells, stride, mcx::SeedKey(4));
+    std::vector<Pick> moved;
+    other.Visit(0, other.Count(),
+      [&](std::int64_t entry, double weight, bool firstHalf) {
+        moved.push_back(Pick{ entry, weight, firstHalf });
+      });
+    EXPECT_FALSE(moved == whole) << "stride " << stride;
   }
 }
 

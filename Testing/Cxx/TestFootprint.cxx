@@ -751,7 +751,7 @@ TEST(ViewOrder, ControlImageCutsTheOrderingViewsErrorAndKeepsItsGuarantees)
   // points), the cloud's own as about M^-3/4 (2.9 and 0.38 % parallel, 4.5
   // and 0.64 % perspective): the control cuts it 2.2 to 3.0 times at 2^14 -
   // 1 points and still 1.3 to 1.8 times at 2^18 - 1. Its halves' estimate
-  // stays within 0.75-1.35 of the true error (measured 1.00 to 1.09). The
+  // stays within 0.75-1.35 of the true error (measured 0.99 to 1.09). The
   // parallel view keeps the integral, exactly as the cloud alone does; the
   // perspective view's image stays as close to the reference's sum.
   const Scene scene = FineCTHead();
@@ -803,7 +803,9 @@ TEST(ViewOrder, ASampledControlImageIsUnbiasedAndItsVarianceJoinsTheEstimate)
   // image projects about one voxel in 93 of each (bin, pixel) run. Over
   // seeds its mean is the every-voxel image, to within the variance its
   // halves estimate; that estimate is near each seed's true squared error
-  // (measured: 1.16 and 1.64 of it, conservative); and the projector's error estimate adds
+  // and above it (measured: 1.15 and 1.64 of it; the halves, interleaved in
+  // each run, move together where the footprints change smoothly); and the
+  // projector's error estimate adds
   // it, exactly. The same image for one thread and two.
   const Scene scene = FineCTHead();
   const int size = 48;
@@ -866,7 +868,7 @@ TEST(ViewOrder, ASampledControlImageIsUnbiasedAndItsVarianceJoinsTheEstimate)
     // Unbiased: the mean's squared distance is about the seeds' variance
     // over their count (a sum over 2304 pixels: far below 3 times that).
     EXPECT_LT(bias, 3.0 * squared / seeds) << "view " << view;
-    EXPECT_GT(estimated, 0.5 * squared) << "view " << view;
+    EXPECT_GT(estimated, 0.9 * squared) << "view " << view;
     EXPECT_LT(estimated, 2.0 * squared) << "view " << view;
 
     // The projector's estimate: the cloud's variance and the control's.
