@@ -805,8 +805,9 @@ TEST(ViewOrder, ASampledControlImageIsUnbiasedAndItsVarianceJoinsTheEstimate)
   // halves estimate; that estimate is near each seed's true squared error
   // and above it (measured: 1.15 and 1.64 of it; the halves, interleaved in
   // each run, move together where the footprints change smoothly); and the
-  // projector's error estimate adds
-  // it, exactly. The same image for one thread and two.
+  // projector's error estimate adds it, exactly. Four times fewer voxels a
+  // point, with the same seed, make the images again, with more than twice
+  // the variance. The same image for one thread and two.
   const Scene scene = FineCTHead();
   const int size = 48;
   const int seeds = 16;
@@ -862,6 +863,11 @@ TEST(ViewOrder, ASampledControlImageIsUnbiasedAndItsVarianceJoinsTheEstimate)
     {
       bias += (mean[p] - every.first[p]) * (mean[p] - every.first[p]);
     }
+    // Fewer voxels a point with the same seed: a new stride, new images.
+    sampler->SetControlVoxelsPerPoint(2);
+    const double coarser = control().second;
+    sampler->SetControlVoxelsPerPoint(8);
+    EXPECT_GT(coarser, 2.0 * control().second) << "view " << view;
     std::cout << "view " << view << ": the sampled control's relative error "
               << std::sqrt(squared / norm) << ", estimated " << std::sqrt(estimated / norm)
               << "; the mean of " << seeds << " seeds " << std::sqrt(bias / norm) << std::endl;
