@@ -69,10 +69,10 @@ struct ControlledSums
 /// spread over the pixel evenly. The even and the odd picks are two
 /// interleaved halves whose images' difference estimates the variance of
 /// their sum: conservatively where the footprints change smoothly along the
-/// run (the halves then move together). A run of no more voxels than that
-/// takes each voxel twice, once in each half, with weight 1/2 (Start 0,
-/// Interval 1/2): exact, and its halves differ by their random rounding
-/// only.
+/// run (the halves then move together). A run that would get as many picks
+/// as voxels or more takes each voxel twice instead, once in each half,
+/// with weight 1/2 (Start 0, Interval 1/2): exact, and its halves differ by
+/// their random rounding only.
 struct SystematicPicks
 {
   std::int64_t Count = 0;
