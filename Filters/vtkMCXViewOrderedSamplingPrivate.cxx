@@ -145,7 +145,8 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
           decoder.Decode(order.Ids[static_cast<std::size_t>(entry)], voxel[0], voxel[1], voxel[2]);
           const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
             static_cast<double>(voxel[2]) };
-          const std::int64_t k = firstHalf || !sampled ? entry : voxels + entry;
+          // Every voxel once comes as a first half: its stream keys are its entries.
+          const std::int64_t k = firstHalf ? entry : voxels + entry;
           footprints.Add(static_cast<std::uint64_t>(k), p, weight);
         };
         if (picks)
