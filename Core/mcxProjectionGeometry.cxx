@@ -34,6 +34,29 @@ bool SameGeometry(const ProjectionGeometry& a, const ProjectionGeometry& b)
     same(a.Origin, b.Origin, 2) && same(a.Obliquity, b.Obliquity, 2);
 }
 
+double TurnDegrees(const ProjectionGeometry& a, const ProjectionGeometry& b)
+{
+  // The rotation R_ij = A_i . B_j of the axes A = (U, V, W) of a into those
+  // of b: trace 1 + 2 cos(angle), antisymmetric part sin(angle) times the
+  // axis; atan2 keeps small angles as exact as large ones.
+  const double* axesA[3] = { a.U, a.V, a.W };
+  const double* axesB[3] = { b.U, b.V, b.W };
+  double r[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      r[i][j] = axesA[i][0] * axesB[j][0] + axesA[i][1] * axesB[j][1] + axesA[i][2] * axesB[j][2];
+    }
+  }
+  const double cosine = 0.5 * (r[0][0] + r[1][1] + r[2][2] - 1.0);
+  const double sine = 0.5 *
+    std::sqrt((r[2][1] - r[1][2]) * (r[2][1] - r[1][2]) +
+      (r[0][2] - r[2][0]) * (r[0][2] - r[2][0]) + (r[1][0] - r[0][1]) * (r[1][0] - r[0][1]));
+  const double pi = 3.14159265358979323846;
+  return std::atan2(sine, cosine) * 180.0 / pi;
+}
+
 void GeometryToValues(const ProjectionGeometry& g, double values[GeometryValueCount])
 {
   const double perspective = g.Perspective ? 1.0 : 0.0;

@@ -61,6 +61,11 @@ struct ProjectionGeometry
 /// Whether two geometries are the same, bit for bit.
 bool SameGeometry(const ProjectionGeometry& a, const ProjectionGeometry& b);
 
+/// The angle, in degrees (0 to 180), of the rotation that turns the axes
+/// (U, V, W) of `a` into those of `b`: a turn of the view direction and a
+/// roll about it alike; pans and zooms do not count.
+double TurnDegrees(const ProjectionGeometry& a, const ProjectionGeometry& b);
+
 /// A geometry as GeometryValueCount numbers (a field array's): two
 /// geometries are the same when their values are. The near distance is
 /// value 14.

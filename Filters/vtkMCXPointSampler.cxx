@@ -363,5 +363,6 @@ void vtkMCXPointSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfOrderingBins: " << this->NumberOfOrderingBins << "\n";
   os << indent << "ControlVariate: " << (this->ControlVariate ? "On" : "Off") << "\n";
   os << indent << "ControlVoxelsPerPoint: " << this->ControlVoxelsPerPoint << "\n";
+  os << indent << "ReorderAngle: " << this->ReorderAngle << "\n";
   this->ViewOrdered->PrintSelf(os, indent);
 }

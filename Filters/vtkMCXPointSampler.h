@@ -113,15 +113,35 @@ public:
   ///@}
 
   /**
-   * The view whose pixel order VIEW_ORDERED follows: the geometry of
-   * `camera` for an image of width x height pixels (the renderer's size),
-   * copied now, so later camera moves do not sort the voxels again until
-   * this is called again (a viewer calls it when a TF edit follows a camera
-   * move). A null camera or an empty size clears it.
+   * The view of VIEW_ORDERED: the geometry of `camera` for an image of
+   * width x height pixels (the renderer's size), copied now, so later
+   * camera moves change nothing until this is called again (a viewer calls
+   * it when a TF edit follows a camera move). The voxels are sorted by its
+   * pixels (unless ReorderAngle keeps an order sorted for a nearby view)
+   * and the control image is of it. A null camera or an empty size clears
+   * it.
    */
   void SetOrderingView(vtkCamera* camera, int width, int height);
   /** Whether an ordering view is set. */
   bool HasOrderingView() const;
+
+  ///@{
+  /**
+   * VIEW_ORDERED: how far, in degrees (0 to 180), a new ordering view may
+   * turn (mcx::TurnDegrees: the rotation of the camera's axes, a roll
+   * included) from the view the kept order was sorted for and still use
+   * that order. Then only the control image is projected for the new view,
+   * not the sort: a new view of a 400 M-voxel CT costs about a tenth of the
+   * time, at more error for the same points (stratified by another view's
+   * pixels; unbiased in any view, and the error estimate says how much;
+   * Documentation/performance.md measures both). Pans, zooms and other
+   * image sizes keep the order too. 0 (the default) sorts for every new
+   * view; 180 keeps an order for every view until the index or the bins
+   * change.
+   */
+  vtkSetClampMacro(ReorderAngle, double, 0.0, 180.0);
+  vtkGetMacro(ReorderAngle, double);
+  ///@}
 
   ///@{
   /**
@@ -258,6 +278,7 @@ protected:
   int NumberOfOrderingBins = 16;
   bool ControlVariate = true;
   double ControlVoxelsPerPoint = 64.0;
+  double ReorderAngle = 0.0;
   /// EVERY_VOXEL, with its kept cloud (vtkMCXEveryVoxelSamplingPrivate.h).
   std::unique_ptr<vtkMCXEveryVoxelSampling> EveryVoxel;
   /// VIEW_ORDERED: SetOrderingView's geometry and the kept sort

@@ -104,8 +104,11 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   // The even picks are the first half: k < voxels.
   accumulator.SetSplit(sampled ? static_cast<std::uint64_t>(voxels) : 0);
   const std::size_t pixels = accumulator.NumberOfPixels();
-  const std::int64_t cells = static_cast<std::int64_t>(pixels) + 1;
   const std::int64_t bins = order.NumberOfBins();
+  // The order's cells: the pixels of the view it was sorted for, and one
+  // off its image (not those of `geometry`, when the view has turned since).
+  const std::int64_t cells =
+    (static_cast<std::int64_t>(order.KeyStarts.size()) - 1) / std::max<std::int64_t>(bins, 1);
   const mcx::VoxelDecoder<IdType> decoder(
     static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
   const std::uint64_t seedKey = mcx::SeedKey(seed ^ 0xBB67AE8584CAA73Bull);
@@ -258,11 +261,13 @@ struct vtkMCXViewOrderedSampling::SortedView
   int Bins = 0;
   mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
   mcx::ViewOrder<std::uint64_t> Wide;   // or 64-bit (WideIds)
-  // The control's bins' images and differences (ProjectBins), and the
-  // kernel, the stride and the seed they were projected with; empty until a
+  // The control's bins' images and differences (ProjectBins), and the view
+  // (the ordering view, which may have turned since the sort), the kernel,
+  // the stride and the seed they were projected with; empty until a
   // controlled cloud needs them.
   std::vector<double> BinImages;
   std::vector<double> BinDifferences;
+  mcx::ProjectionGeometry BinGeometry;
   int BinKernel = -1;
   double BinStride = 0.0;
   vtkTypeInt64 BinSeed = 0;
@@ -296,13 +301,18 @@ struct vtkMCXViewOrderedSampling::SortedView
     this->Bins = bins;
   }
 
-  bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins) const
+  // Whether this order serves `view` in `geometry`: the same index and
+  // bins, sorted for the same view or, when reorderAngle is above 0, for a
+  // view turned by at most that many degrees from it.
+  bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins,
+    double reorderAngle) const
   {
     SortedView wanted;
     wanted.Describe(view, geometry, bins);
     return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
-      std::equal(this->World, this->World + 12, wanted.World) &&
-      mcx::SameGeometry(this->Geometry, wanted.Geometry) && this->Bins == wanted.Bins;
+      std::equal(this->World, this->World + 12, wanted.World) && this->Bins == wanted.Bins &&
+      (mcx::SameGeometry(this->Geometry, geometry) ||
+        (reorderAngle > 0 && mcx::TurnDegrees(this->Geometry, geometry) <= reorderAngle));
   }
 };
 
@@ -409,8 +419,8 @@ bool vtkMCXViewOrderedSampling::Generate(vtkMCXPointSampler* sampler, const mcx:
   if (sampler->GetControlVariate() && m > 0)
   {
     cloud.Control = ControlImage(sorted.BinImages, sorted.BinDifferences, binMeans,
-      order.BinOffsets, integral, sorted.Geometry, cloud.ControlVariance);
-    cloud.ControlView = sorted.Geometry;
+      order.BinOffsets, integral, sorted.BinGeometry, cloud.ControlVariance);
+    cloud.ControlView = sorted.BinGeometry;
   }
   const int pointType =
     sampler->GetOutputPointsPrecision() == vtkAlgorithm::DOUBLE_PRECISION ? VTK_DOUBLE : VTK_FLOAT;
@@ -472,14 +482,18 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   double stride = static_cast<double>(voxels) / (sampler->GetControlVoxelsPerPoint() * points);
   const bool sampled = stride > 2.0;
   stride = sampled ? stride : 1.0;
-  if (!sorted.BinImages.empty() && sorted.BinKernel == sampler->GetKernel() &&
-    sorted.BinStride == stride && (!sampled || sorted.BinSeed == sampler->GetSeed()))
+  // The control's view is the ordering view, whatever view the order was
+  // sorted for (ReorderAngle).
+  const mcx::ProjectionGeometry& geometry = this->Ordering->Geometry;
+  if (!sorted.BinImages.empty() && mcx::SameGeometry(sorted.BinGeometry, geometry) &&
+    sorted.BinKernel == sampler->GetKernel() && sorted.BinStride == stride &&
+    (!sampled || sorted.BinSeed == sampler->GetSeed()))
   {
     return true;
   }
   sorted.BinImages = std::vector<double>(); // not held while new ones are made
   sorted.BinDifferences = std::vector<double>();
-  const double pixels = static_cast<double>(sorted.Geometry.Size[0]) * sorted.Geometry.Size[1];
+  const double pixels = static_cast<double>(geometry.Size[0]) * geometry.Size[1];
   const double bins = static_cast<double>(sorted.BinsOf(view.WideIds));
   // The images (8 bytes a bin and pixel, 16 with the differences), the
   // threads' sums (16 a pixel) and their collection (32), and a bin's first
@@ -495,14 +509,15 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   const auto kernel = static_cast<mcx::Kernel>(sampler->GetKernel());
   const auto seed = static_cast<vtkTypeUInt64>(sampler->GetSeed());
   std::vector<double> images, differences;
-  completed = view.WideIds ? ProjectBins(sampler, view, sorted.Wide, sorted.Geometry, kernel,
-                               stride, seed, 0.3, 0.55, images, differences)
-                           : ProjectBins(sampler, view, sorted.Narrow, sorted.Geometry, kernel,
-                               stride, seed, 0.3, 0.55, images, differences);
+  completed = view.WideIds ? ProjectBins(sampler, view, sorted.Wide, geometry, kernel, stride, seed,
+                               0.3, 0.55, images, differences)
+                           : ProjectBins(sampler, view, sorted.Narrow, geometry, kernel, stride,
+                               seed, 0.3, 0.55, images, differences);
   if (completed)
   {
     sorted.BinImages = std::move(images);
     sorted.BinDifferences = std::move(differences);
+    sorted.BinGeometry = geometry;
     sorted.BinKernel = sampler->GetKernel();
     sorted.BinStride = stride;
     sorted.BinSeed = sampler->GetSeed();
@@ -516,7 +531,8 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   completed = true;
   const mcx::ProjectionGeometry& geometry = this->Ordering->Geometry;
   if (this->KeptViewOrder &&
-    this->KeptViewOrder->Fits(view, geometry, sampler->GetNumberOfOrderingBins()))
+    this->KeptViewOrder->Fits(
+      view, geometry, sampler->GetNumberOfOrderingBins(), sampler->GetReorderAngle()))
   {
     return this->KeptViewOrder.get();
   }

@@ -68,6 +68,7 @@ void vtkMCXVolumeSampling::Configure(const Settings& settings)
   this->Sampler->SetKernel(settings.Kernel);
   this->Sampler->SetDeposit(settings.Deposit);
   this->Sampler->SetSeed(settings.Seed);
+  this->Sampler->SetReorderAngle(settings.ReorderAngle);
 }
 
 vtkPolyData* vtkMCXVolumeSampling::Sample(

@@ -33,6 +33,7 @@ public:
     int Kernel;
     int Deposit;
     vtkTypeInt64 Seed;
+    double ReorderAngle;
   };
 
   vtkMCXVolumeSampling();

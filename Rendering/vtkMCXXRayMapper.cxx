@@ -54,7 +54,7 @@ mcx::RadiographEffects EffectsOf(vtkMCXXRayMapper* self)
 vtkMCXVolumeSampling::Settings SamplingSettingsOf(vtkMCXXRayMapper* self)
 {
   return { self->GetSampleExponent(), self->GetStrategy(), self->GetKernel(), self->GetDeposit(),
-    self->GetSeed() };
+    self->GetSeed(), self->GetReorderAngle() };
 }
 
 // `output` framed as the image of `g`, with its LineIntegral scalars of
@@ -472,6 +472,7 @@ void vtkMCXXRayMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Kernel: " << vtkMCXTypes::KernelCommandName(this->Kernel) << "\n";
   os << indent << "Deposit: " << vtkMCXTypes::DepositCommandName(this->Deposit) << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "ReorderAngle: " << this->ReorderAngle << "\n";
   os << indent << "ColorWindow: " << this->ColorWindow << "\n";
   os << indent << "ColorLevel: " << this->ColorLevel << "\n";
   os << indent << "AutomaticWindowLevel: " << this->AutomaticWindowLevel << "\n";

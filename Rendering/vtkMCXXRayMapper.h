@@ -150,6 +150,20 @@ public:
 
   ///@{
   /**
+   * The VIEW_ORDERED strategy's vtkMCXPointSampler::ReorderAngle, in
+   * degrees (0 to 180; default 30, where the sampler's is 0): a TF edit
+   * after the camera turned by at most this much from the view the voxels
+   * were last sorted for keeps that order and projects only the control
+   * image of the view as it is, which on a 400 M-voxel CT takes about a
+   * tenth of the sort's time, at more error for the same points (the
+   * estimate shows it). 0 sorts for every new view.
+   */
+  vtkSetClampMacro(ReorderAngle, double, 0.0, 180.0);
+  vtkGetMacro(ReorderAngle, double);
+  ///@}
+
+  ///@{
+  /**
    * Window and level of the display, in line-integral units (TF units times
    * world length); used when AutomaticWindowLevel is off.
    */
@@ -406,6 +420,7 @@ protected:
   int Kernel = vtkMCXTypes::TENT;
   int Deposit = vtkMCXTypes::FOOTPRINT;
   vtkTypeInt64 Seed = 0;
+  double ReorderAngle = 30.0;
   double ColorWindow = 1.0;
   double ColorLevel = 0.5;
   bool AutomaticWindowLevel = true;

@@ -223,6 +223,15 @@ const Option Options[] = {
   { "--seed", Both, true,
     [](Settings& s, const Argument& a)
     { s.Seed = static_cast<unsigned long long>(ParseInteger(a.Value, a.Name, 0)); } },
+  { "--reorder-angle", View, true,
+    [](Settings& s, const Argument& a)
+    {
+      s.ReorderAngle = ParseNumber(a.Value, a.Name);
+      if (!(s.ReorderAngle >= 0 && s.ReorderAngle <= 180))
+      {
+        Fail(a.Name + " must be 0 to 180 degrees");
+      }
+    } },
   { "--threads", Both, true, [](Settings& s, const Argument& a) { s.Threads = ThreadsOf(a); } },
   { "--memory-limit", Both, true,
     [](Settings& s, const Argument& a) { s.MemoryLimit = ParseByteSize(a.Value, a.Name); } },

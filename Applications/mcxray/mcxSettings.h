@@ -24,6 +24,7 @@ struct Settings
   std::string Deposit = "footprint";
   bool DepositGiven = false; // without it a target chooses the deposit by measurement
   unsigned long long Seed = 0;
+  double ReorderAngle = -1.0; // --reorder-angle, degrees; below 0: the mapper's default
   int Threads = 0;            // 0: all cores
   double MemoryLimit = 0.0;   // bytes; 0: the machine's physical memory
   double ReadTimeout = 300.0; // seconds the volume reader may take

@@ -57,7 +57,13 @@ options:
                      --samples, and + and - do nothing) or view-ordered (hybrid
                      in the pixel order of the view: several times less noise
                      where voxels are much smaller than pixels; a TF edit after
-                     a camera move first sorts every voxel for the new view)
+                     a camera move first sorts every voxel for the new view,
+                     unless --reorder-angle keeps the order)
+  --reorder-angle A  view-ordered: a TF edit after the camera turned by at most
+                     A degrees (0 to 180, default 30) from the view last sorted
+                     for keeps that order and projects only the new view's
+                     control image (a tenth of the time on 400 M voxels, more
+                     error at the same samples); 0 sorts for every new view
   --kernel K         tent (default) or box
   --deposit D        footprint (default) or point (see mcxray render --help)
   --seed N           seed of the pseudo-random parts (default 0)
@@ -112,6 +118,11 @@ void CheckCombinations(const Settings& settings)
   if (settings.Method == "every-voxel" && settings.SamplesGiven)
   {
     Fail("every-voxel takes each voxel of non-zero weight once: leave out --samples");
+  }
+  if (settings.ReorderAngle >= 0 && settings.Method != "view-ordered")
+  {
+    Fail("--reorder-angle keeps the order of --method view-ordered: leave it out for " +
+      settings.Method);
   }
   CheckKernel(settings.Kernel);
   CheckDeposit(settings.Deposit);
@@ -187,6 +198,7 @@ ViewerOptions MakeViewerOptions(const Settings& settings)
   ViewerOptions viewer;
   viewer.TransferFunction = settings.TF;
   viewer.Seed = settings.Seed;
+  viewer.ReorderAngle = settings.ReorderAngle;
   viewer.SampleExponent = static_cast<int>(mcx::ExponentForSampleCount(settings.Samples));
   viewer.Strategy = StrategyOf(settings.Method);
   viewer.Kernel = KernelOf(settings.Kernel);

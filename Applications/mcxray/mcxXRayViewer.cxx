@@ -145,6 +145,10 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   this->Mapper->SetKernel(options.Kernel);
   this->Mapper->SetDeposit(options.Deposit);
   this->Mapper->SetSeed(static_cast<vtkTypeInt64>(options.Seed));
+  if (options.ReorderAngle >= 0)
+  {
+    this->Mapper->SetReorderAngle(options.ReorderAngle);
+  }
   this->Volume->GetProperty()->SetScalarOpacity(this->TransferFunction);
   this->Volume->SetMapper(this->Mapper);
   this->Renderer->AddVolume(this->Volume);

@@ -50,6 +50,7 @@ struct ViewerOptions
   int Kernel = vtkMCXTypes::TENT;
   int Deposit = vtkMCXTypes::FOOTPRINT;
   unsigned long long Seed = 0;
+  double ReorderAngle = -1.0; // below 0: the mapper's default
   int Size[2] = { 768, 768 };
   bool OffScreen = false;
 };

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -533,4 +534,63 @@ TEST(CameraGeometry, ProjectorsWriteTheMatrixTheyWereGivenBesideTheirFields)
   }
   EXPECT_EQ(1023, mcxtest::FieldValue(monteCarlo->GetOutput(), "SampleCount"));
   EXPECT_GE(mcxtest::FieldValue(reference->GetOutput(), "RaysPerPixelAxis"), 1);
+}
+
+TEST(CameraGeometry, TurnDegreesIsTheRotationOfTheAxesNotAPanOrAZoom)
+{
+  // Axes turned by a known angle about V: that angle, both ways round.
+  for (double degrees : { 0.0, 1e-3, 10.0, 90.0, 179.0 })
+  {
+    const double t = vtkMath::RadiansFromDegrees(degrees);
+    mcx::ProjectionGeometry a, b;
+    const double u[3] = { std::cos(t), 0, -std::sin(t) }, w[3] = { std::sin(t), 0, std::cos(t) };
+    std::copy(u, u + 3, b.U);
+    std::copy(w, w + 3, b.W);
+    EXPECT_NEAR(degrees, mcx::TurnDegrees(a, b), 1e-6);
+    EXPECT_NEAR(degrees, mcx::TurnDegrees(b, a), 1e-6);
+  }
+  // A camera's azimuth, elevation and roll turn it; a pan, a zoom and
+  // another image size do not.
+  const int size[2] = { 40, 30 };
+  auto geometryOf = [&](vtkCamera* camera, const int* pixels)
+  {
+    mcx::ProjectionGeometry g;
+    EXPECT_EQ("", mcx::GeometryFromCamera(camera, pixels, 0.0, 0.0, g));
+    return g;
+  };
+  vtkNew<vtkCamera> start;
+  start->SetPosition(10, -300, 20);
+  start->SetFocalPoint(10, 0, 20);
+  start->SetViewUp(0, 0, 1);
+  const mcx::ProjectionGeometry first = geometryOf(start, size);
+  auto moved = [&](const std::function<void(vtkCamera*)>& move, const int* pixels)
+  {
+    vtkNew<vtkCamera> camera;
+    camera->DeepCopy(start);
+    move(camera);
+    return mcx::TurnDegrees(first, geometryOf(camera, pixels));
+  };
+  EXPECT_NEAR(10.0, moved([](vtkCamera* c) { c->Azimuth(10); }, size), 1e-9);
+  EXPECT_NEAR(25.0, moved([](vtkCamera* c) { c->Roll(25); }, size), 1e-9);
+  EXPECT_NEAR(35.0,
+    moved(
+      [](vtkCamera* c)
+      {
+        c->Elevation(35);
+        c->OrthogonalizeViewUp();
+      },
+      size),
+    1e-9);
+  EXPECT_NEAR(180.0, moved([](vtkCamera* c) { c->Azimuth(180); }, size), 1e-6);
+  const int larger[2] = { 64, 64 };
+  EXPECT_NEAR(0.0,
+    moved(
+      [](vtkCamera* c)
+      {
+        c->Zoom(2.5);
+        c->SetPosition(40, -250, 0); // a pan and a dolly: the same direction
+        c->SetFocalPoint(40, 50, 0);
+      },
+      larger),
+    1e-6);
 }

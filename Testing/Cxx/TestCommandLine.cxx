@@ -441,6 +441,11 @@ TEST(CommandLine, ViewerBadInputGivesOneLineErrorAndNoOutput)
     "view --tf 1:x --screenshot ",
     "view --frames 3 --screenshot ",
     "view --screenshot /nonexistent-dir/x.png --tf raw --seed ",
+    "view --method view-ordered --reorder-angle 181 --screenshot ",
+    "view --method view-ordered --reorder-angle -1 --screenshot ",
+    "view --method view-ordered --reorder-angle nan --screenshot ",
+    "view --reorder-angle 10 --screenshot ",
+    "render --method view-ordered --reorder-angle 10 --output ",
   };
   for (const char* arguments : cases)
   {

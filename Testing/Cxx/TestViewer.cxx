@@ -303,7 +303,9 @@ TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
   // the start; a camera move alone neither sorts nor samples again; the TF
   // edit after it orders by the moved camera, and the image is the cloud
   // sorted for that view, all of its points, with its control image (not
-  // in the moved view before the edit).
+  // in the moved view before the edit). A turn past the mapper's
+  // ReorderAngle (30 degrees) sorts; a smaller one keeps that order, and
+  // the TF edit after it shows the turned view's control image.
   mcxapp::ViewerOptions options;
   options.Strategy = vtkMCXTypes::VIEW_ORDERED;
   options.SampleExponent = 16;
@@ -344,6 +346,19 @@ TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
   const float* b = static_cast<const float*>(shown->GetPoints()->GetVoidPointer(0));
   EXPECT_TRUE(std::equal(a, a + 3 * shown->GetNumberOfPoints(), b));
   EXPECT_EQ(65535, viewer.GetMapper()->GetNumberOfAccumulatedSamples());
+
+  EXPECT_EQ(30.0, viewer.GetSampler()->GetReorderAngle());
+  viewer.GetRenderer()->GetActiveCamera()->Azimuth(10);
+  Press(interactor, '3'); // soft tissue
+  viewer.RefineUntilComplete();
+  EXPECT_EQ(3, samplerRuns.Count);
+  EXPECT_TRUE(viewer.GetMapper()->GetLastRenderUsedControlImage());
+  fresh->Update(); // the new TF, sorted for the view before the turn
+  shown = viewer.GetSampler()->GetOutput();
+  ASSERT_EQ(fresh->GetOutput()->GetNumberOfPoints(), shown->GetNumberOfPoints());
+  a = static_cast<const float*>(fresh->GetOutput()->GetPoints()->GetVoidPointer(0));
+  b = static_cast<const float*>(shown->GetPoints()->GetVoidPointer(0));
+  EXPECT_TRUE(std::equal(a, a + 3 * shown->GetNumberOfPoints(), b));
 }
 
 TEST(Viewer, EveryVoxelSession)

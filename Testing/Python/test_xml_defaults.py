@@ -133,6 +133,7 @@ class XMLDefaults(unittest.TestCase):
         sampler = mcxray.vtkMCXPointSampler()
         getters = {"SetSampleExponent": lambda: 22, "SetStrategy": sampler.GetStrategy,
                    "SetKernel": sampler.GetKernel, "SetSeed": sampler.GetSeed,
+                   "SetReorderAngle": mapper.GetReorderAngle,
                    "SetInvertDisplay": mapper.GetInvertDisplay, "SetCompositing": mapper.GetCompositing,
                    "SetAutomaticWindowLevel": mapper.GetAutomaticWindowLevel,
                    "SetColorWindow": mapper.GetColorWindow, "SetColorLevel": mapper.GetColorLevel,

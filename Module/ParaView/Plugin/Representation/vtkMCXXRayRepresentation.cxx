@@ -560,6 +560,11 @@ void vtkMCXXRayRepresentation::SetSeed(vtkTypeInt64 seed)
   this->Mapper->SetSeed(seed);
 }
 
+void vtkMCXXRayRepresentation::SetReorderAngle(double degrees)
+{
+  this->Mapper->SetReorderAngle(degrees);
+}
+
 void vtkMCXXRayRepresentation::SetFootprintReach(double reach)
 {
   this->Mapper->SetFootprintReach(reach);

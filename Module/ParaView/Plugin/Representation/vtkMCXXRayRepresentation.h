@@ -65,6 +65,7 @@ public:
   void SetKernel(int kernel);
   void SetDeposit(int deposit);
   void SetSeed(vtkTypeInt64 seed);
+  void SetReorderAngle(double degrees);
   ///@}
 
   ///@{
