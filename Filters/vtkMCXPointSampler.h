@@ -78,12 +78,11 @@ public:
    * PointWeightName()), so the image has no voxel-choice noise; the cost of
    * a TF edit grows with those voxels, not with M. It pays where they are
    * fewer than the samples a target error needs with the footprint deposit
-   * (Documentation/performance.md compares them). The points are the voxels in runs of 64 neighbours in
-   * voxel-id order, the runs in base-2 van der Corput (bit-reversed) order,
-   * so any prefix is spread over the volume (the mapper's progressive
-   * refinement). With ReusePoints on,
-   * a TF edit that keeps the same voxels rewrites only the weights. The
-   * output has no SampleExponent field.
+   * (Documentation/performance.md compares them). The points are the voxels in runs of 64
+   * neighbours in voxel-id order, the runs in base-2 van der Corput (bit-reversed) order, so any
+   * prefix is spread over the volume (the mapper's progressive refinement). With ReusePoints on, a
+   * TF edit that keeps the same voxels rewrites only the weights. The output has no SampleExponent
+   * field.
    *
    * VIEW_ORDERED draws M samples too, for voxels much smaller than the
    * pixels of one view (a 400 M-voxel CT at 256^2), where the Halton choice
@@ -99,9 +98,9 @@ public:
    * and 64 times fewer with the control image, SetControlVariate).
    * The sort is three passes over every voxel (there 1.5 times the index
    * build's time), done when the view, the bins or the index change and
-   * kept while only the TF
-   * changes: it pays where one view takes many TF edits. The whole volume
-   * must be in this process (not a piece of a distributed index).
+   * kept while only the TF changes (and for a view turned by at most
+   * ReorderAngle): it pays where one view takes many TF edits. The whole
+   * volume must be in this process (not a piece of a distributed index).
    */
   vtkSetClampMacro(Strategy, int, vtkMCXTypes::HYBRID, vtkMCXTypes::VIEW_ORDERED);
   vtkGetMacro(Strategy, int);

@@ -15,8 +15,9 @@ function and checks what it computes and what it draws:
 - the screenshot is the window and level of that image, per pixel, and equals
   the baseline within a few grey levels (no shift, no averaging);
 - with the View ordered strategy, the image is that of a cloud sorted for
-  the view's camera and size, and a TF edit after a camera move sorts for
-  the moved camera.
+  the view's camera and size; a TF edit after a camera turn within X-Ray
+  Reorder Angle keeps that order with the moved view's control image, and
+  one after a larger turn sorts for the moved camera.
 
     pvbatch pvbatch_xray.py PLUGIN VOLUME.vti BASELINE.png OUTPUT_DIR
 """
@@ -30,6 +31,7 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's scripting API)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkFieldData, vtkPiecewiseFunction
 from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkRenderingCore import vtkCamera
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from pvbatch_support import (  # noqa: E402
@@ -54,17 +56,23 @@ def as_array(image, name):
     return vtk_to_numpy(array).reshape(height, width, -1).squeeze().astype(numpy.float64)
 
 
-def offline_image(index, points, camera, size, ordered=False, **parameters):
+def offline_image(index, points, camera, size, ordered=False, sorted_for=None, **parameters):
     """X-Ray Projector's image of an X-Ray Point Sampler cloud for a camera
-    (ordered: a view-ordered cloud sorted for that camera and size)."""
+    (ordered: a view-ordered cloud sorted for that camera and size, or for
+    the camera sorted_for, that order kept with the control image of this
+    camera)."""
     cloud = XRayPointSampler(Input=index)
     cloud.TransferFunction.Points = points
     for name, value in parameters.items():
         setattr(cloud, name, value)
     if ordered:
         sampler = obj(cloud.GetClientSideObject())
-        invoke("Invoke %s SetStrategyToViewOrdered" % sampler,
-               "Invoke %s SetOrderingView %s int32(%d) int32(%d)" % (sampler, obj(camera), size[0], size[1]))
+        invoke("Invoke %s SetStrategyToViewOrdered" % sampler)
+        if sorted_for is not None:
+            invoke("Invoke %s SetReorderAngle float64(180)" % sampler,
+                   "Invoke %s SetOrderingView %s int32(%d) int32(%d)" % (sampler, obj(sorted_for), size[0], size[1]),
+                   "Invoke %s Update" % sampler)
+        invoke("Invoke %s SetOrderingView %s int32(%d) int32(%d)" % (sampler, obj(camera), size[0], size[1]))
     offline = XRayProjector(Input=cloud)
     offline.ImageSize = size
     # The proxy has no camera property: set the VTK object's before its first update.
@@ -300,23 +308,32 @@ check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expecte
 # view it was sorted for; the view's empty actors hide nothing).
 used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
 check("bool(true)" in used, "view ordered: the view's image is not the controlled one (%r)" % used.strip())
-# A camera move keeps the sort (the plain estimate is shown); the TF edit
-# that follows sorts for the view as it is then, and is controlled again.
-camera.Azimuth(30)
-Render(view)
-used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
-check("bool(false)" in used, "view ordered: the control image is used after a camera move (%r)" % used.strip())
-opacity.Points = [1200.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0]
-Render(view)
-used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
-check("bool(true)" in used, "view ordered: a TF edit after a camera move is not controlled (%r)" % used.strip())
-on_screen = line_integral_image(representation)
-expected = offline_image(index, opacity.Points, camera, [300, 240], ordered=True,
-                         SampleExponent=20, Seed=5, Kernel=1, Deposit=0)
-check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
-      "view ordered, a TF edit after a camera move: %d pixels differ from the off-line image of a cloud "
-      "sorted for the moved camera"
-      % (numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
+# A camera move keeps the sort (the plain estimate is shown). The TF edit
+# that follows is controlled again, with the moved view's control image:
+# after a turn within X-Ray Reorder Angle (default 30 degrees) it keeps the
+# order sorted for the view before the turn; after a larger one it sorts
+# for the view as it is then.
+check(display.XRayReorderAngle == 30, "X-Ray Reorder Angle is %r, not 30" % display.XRayReorderAngle)
+sorted_for = vtkCamera()
+invoke("Invoke %s DeepCopy %s" % (obj(sorted_for), obj(camera)))
+for turn, tf, kept in ((10, [1200.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0], True),
+                       (40, [900.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0], False)):
+    camera.Azimuth(turn)
+    Render(view)
+    used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
+    check("bool(false)" in used, "view ordered: the control image is used after a camera move (%r)" % used.strip())
+    opacity.Points = tf
+    Render(view)
+    used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
+    check("bool(true)" in used, "view ordered: a TF edit after a camera move is not controlled (%r)" % used.strip())
+    on_screen = line_integral_image(representation)
+    expected = offline_image(index, opacity.Points, camera, [300, 240], ordered=True,
+                             sorted_for=sorted_for if kept else None,
+                             SampleExponent=20, Seed=5, Kernel=1, Deposit=0)
+    check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected) and expected.sum() > 0,
+          "view ordered, a TF edit after a turn of %d degrees: %d pixels differ from the off-line image of a cloud "
+          "%s" % (turn, numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1,
+                  "sorted for the view before the turn" if kept else "sorted for the moved camera"))
 
 if failures:
     sys.exit("%d check(s) failed" % len(failures))
