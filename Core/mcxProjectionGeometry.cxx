@@ -38,7 +38,18 @@ double TurnDegrees(const ProjectionGeometry& a, const ProjectionGeometry& b)
 {
   // The rotation R_ij = A_i . B_j of the axes A = (U, V, W) of a into those
   // of b: trace 1 + 2 cos(angle), antisymmetric part sin(angle) times the
-  // axis; atan2 keeps small angles as exact as large ones.
+  // axis; atan2 keeps small angles as exact as large ones. Axes of opposite
+  // handedness make R a reflection, no turn: a mirrored image.
+  auto handedness = [](const ProjectionGeometry& g)
+  {
+    const double cross[3] = { g.U[1] * g.V[2] - g.U[2] * g.V[1], g.U[2] * g.V[0] - g.U[0] * g.V[2],
+      g.U[0] * g.V[1] - g.U[1] * g.V[0] };
+    return Dot(cross, g.W) > 0;
+  };
+  if (handedness(a) != handedness(b))
+  {
+    return 180.0;
+  }
   const double* axesA[3] = { a.U, a.V, a.W };
   const double* axesB[3] = { b.U, b.V, b.W };
   double r[3][3];
@@ -46,7 +57,7 @@ double TurnDegrees(const ProjectionGeometry& a, const ProjectionGeometry& b)
   {
     for (int j = 0; j < 3; ++j)
     {
-      r[i][j] = axesA[i][0] * axesB[j][0] + axesA[i][1] * axesB[j][1] + axesA[i][2] * axesB[j][2];
+      r[i][j] = Dot(axesA[i], axesB[j]);
     }
   }
   const double cosine = 0.5 * (r[0][0] + r[1][1] + r[2][2] - 1.0);
@@ -55,6 +66,46 @@ double TurnDegrees(const ProjectionGeometry& a, const ProjectionGeometry& b)
       (r[0][2] - r[2][0]) * (r[0][2] - r[2][0]) + (r[1][0] - r[0][1]) * (r[1][0] - r[0][1]));
   const double pi = 3.14159265358979323846;
   return std::atan2(sine, cosine) * 180.0 / pi;
+}
+
+bool SameFraming(const ProjectionGeometry& a, const ProjectionGeometry& b, const double centre[3],
+  double tolerance)
+{
+  if (a.Perspective != b.Perspective || a.Size[0] != b.Size[0] || a.Size[1] != b.Size[1])
+  {
+    return false;
+  }
+  // The point's pixel (fractions of the image) and a pixel's size there.
+  auto frame = [centre](const ProjectionGeometry& g, double where[2], double size[2])
+  {
+    double plane[2];
+    if (!ProjectToPlane(g, centre, plane[0], plane[1]))
+    {
+      return false;
+    }
+    const double d[3] = { centre[0] - g.Eye[0], centre[1] - g.Eye[1], centre[2] - g.Eye[2] };
+    const double scale = g.Perspective ? Dot(d, g.W) / g.FocalDistance : 1.0;
+    for (int k = 0; k < 2; ++k)
+    {
+      where[k] = (plane[k] - g.Origin[k]) / (g.Spacing[k] * g.Size[k]);
+      size[k] = g.Spacing[k] * scale;
+    }
+    return true;
+  };
+  double whereA[2], sizeA[2], whereB[2], sizeB[2];
+  if (!frame(a, whereA, sizeA) || !frame(b, whereB, sizeB))
+  {
+    return false;
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    if (!(std::fabs(whereB[k] - whereA[k]) <= tolerance) ||
+      !(std::fabs(sizeB[k] - sizeA[k]) <= tolerance * sizeA[k]))
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 void GeometryToValues(const ProjectionGeometry& g, double values[GeometryValueCount])

@@ -63,8 +63,19 @@ bool SameGeometry(const ProjectionGeometry& a, const ProjectionGeometry& b);
 
 /// The angle, in degrees (0 to 180), of the rotation that turns the axes
 /// (U, V, W) of `a` into those of `b`: a turn of the view direction and a
-/// roll about it alike; pans and zooms do not count.
+/// roll about it alike; pans and zooms do not count. 180 when one image is
+/// mirrored against the other (axes of opposite handedness).
 double TurnDegrees(const ProjectionGeometry& a, const ProjectionGeometry& b);
+
+/// Whether `b` frames the world point `centre` as `a` does, to within
+/// `tolerance`: the same projection (parallel or perspective) and image
+/// size, the point's pixel moved by at most tolerance times the image's
+/// width and height, and the size of a pixel there (at the point's depth,
+/// in perspective) changed by at most that fraction. Turns about the point
+/// keep the framing; pans, zooms and resizes change it. False when the
+/// point is not in front of either eye.
+bool SameFraming(const ProjectionGeometry& a, const ProjectionGeometry& b, const double centre[3],
+  double tolerance);
 
 /// A geometry as GeometryValueCount numbers (a field array's): two
 /// geometries are the same when their values are. The near distance is

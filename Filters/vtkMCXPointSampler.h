@@ -130,13 +130,13 @@ public:
    * turn (mcx::TurnDegrees: the rotation of the camera's axes, a roll
    * included) from the view the kept order was sorted for and still use
    * that order. Then only the control image is projected for the new view,
-   * not the sort: a new view of a 400 M-voxel CT costs about a tenth of the
-   * time, at more error for the same points (stratified by another view's
-   * pixels; unbiased in any view, and the error estimate says how much;
-   * Documentation/performance.md measures both). Pans, zooms and other
-   * image sizes keep the order too. 0 (the default) sorts for every new
-   * view; 180 keeps an order for every view until the index or the bins
-   * change.
+   * not the sort: a new view of a 400 M-voxel CT costs about an eighth of
+   * the time, at more error for the same points (stratified by another
+   * view's pixels; unbiased in any view, and the error estimate says how
+   * much; Documentation/method.md measures both). The new view must frame
+   * the volume's centre as the sorted one did (mcx::SameFraming, to 5 %:
+   * a turn about it): a pan, a zoom, another image size or projection
+   * sorts again. 0 (the default) sorts for every new view.
    */
   vtkSetClampMacro(ReorderAngle, double, 0.0, 180.0);
   vtkGetMacro(ReorderAngle, double);

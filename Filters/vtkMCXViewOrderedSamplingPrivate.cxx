@@ -245,6 +245,28 @@ std::vector<double> ControlImage(const std::vector<double>& binImages,
 // The largest view to order by: the projector's largest image.
 const double MaximumOrderingPixels = 4294967296.0;
 
+namespace
+{
+// How far a kept order's view may frame the volume's centre otherwise
+// (mcx::SameFraming): a twentieth of the image, and of a pixel's size.
+const double ReframeTolerance = 0.05;
+
+// The world centre of the index's volume.
+void VolumeCentre(const mcx::IndexView& view, double centre[3])
+{
+  double corners[24];
+  mcx::ComputeSupportCorners(view.Extent, view.Origin, view.Spacing, view.Direction, 0.0, corners);
+  for (int k = 0; k < 3; ++k)
+  {
+    centre[k] = 0.0;
+    for (int c = 0; c < 8; ++c)
+    {
+      centre[k] += corners[3 * c + k] / 8.0;
+    }
+  }
+}
+}
+
 // SetOrderingView's copy of the camera's geometry.
 struct vtkMCXViewOrderedSampling::OrderingView
 {
@@ -303,16 +325,35 @@ struct vtkMCXViewOrderedSampling::SortedView
 
   // Whether this order serves `view` in `geometry`: the same index and
   // bins, sorted for the same view or, when reorderAngle is above 0, for a
-  // view turned by at most that many degrees from it.
+  // view turned by at most that many degrees from it that frames the
+  // volume's centre alike (no pan, zoom or resize).
   bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins,
     double reorderAngle) const
   {
     SortedView wanted;
     wanted.Describe(view, geometry, bins);
-    return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
-      std::equal(this->World, this->World + 12, wanted.World) && this->Bins == wanted.Bins &&
-      (mcx::SameGeometry(this->Geometry, geometry) ||
-        (reorderAngle > 0 && mcx::TurnDegrees(this->Geometry, geometry) <= reorderAngle));
+    if (!(this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
+          std::equal(this->World, this->World + 12, wanted.World) && this->Bins == wanted.Bins))
+    {
+      return false;
+    }
+    if (mcx::SameGeometry(this->Geometry, geometry))
+    {
+      return true;
+    }
+    double centre[3];
+    VolumeCentre(view, centre);
+    return reorderAngle > 0 && mcx::TurnDegrees(this->Geometry, geometry) <= reorderAngle &&
+      mcx::SameFraming(this->Geometry, geometry, centre, ReframeTolerance);
+  }
+
+  // The cells of the order: the pixels of its view and one off its image.
+  std::int64_t CellsOf(bool wideIds) const
+  {
+    const std::vector<std::int64_t>& starts =
+      wideIds ? this->Wide.KeyStarts : this->Narrow.KeyStarts;
+    return (static_cast<std::int64_t>(starts.size()) - 1) /
+      std::max<std::int64_t>(this->BinsOf(wideIds), 1);
   }
 };
 
@@ -483,8 +524,9 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   const bool sampled = stride > 2.0;
   stride = sampled ? stride : 1.0;
   // The control's view is the ordering view, whatever view the order was
-  // sorted for (ReorderAngle).
-  const mcx::ProjectionGeometry& geometry = this->Ordering->Geometry;
+  // sorted for (ReorderAngle); a copy, which an observer's SetOrderingView
+  // cannot pull away.
+  const mcx::ProjectionGeometry geometry = this->Ordering->Geometry;
   if (!sorted.BinImages.empty() && mcx::SameGeometry(sorted.BinGeometry, geometry) &&
     sorted.BinKernel == sampler->GetKernel() && sorted.BinStride == stride &&
     (!sampled || sorted.BinSeed == sampler->GetSeed()))
@@ -497,11 +539,12 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   const double bins = static_cast<double>(sorted.BinsOf(view.WideIds));
   // The images (8 bytes a bin and pixel, 16 with the differences), the
   // threads' sums (16 a pixel) and their collection (32), and a bin's first
-  // picks (8).
+  // picks (8 a cell of the order, whose view may not be this one).
   if (!mcx::CheckMemory(sampler,
         pixels *
-          ((sampled ? 16.0 : 8.0) * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() +
-            (sampled ? 40.0 : 32.0)),
+            ((sampled ? 16.0 : 8.0) * bins + 16.0 * vtkSMPTools::GetEstimatedNumberOfThreads() +
+              32.0) +
+          (sampled ? 8.0 * static_cast<double>(sorted.CellsOf(view.WideIds)) : 0.0),
         "The control image's " + std::to_string(static_cast<long long>(bins)) + " bin images"))
   {
     return false;
@@ -529,7 +572,7 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   vtkMCXPointSampler* sampler, const mcx::IndexView& view, bool& completed)
 {
   completed = true;
-  const mcx::ProjectionGeometry& geometry = this->Ordering->Geometry;
+  const mcx::ProjectionGeometry geometry = this->Ordering->Geometry; // a copy, as above
   if (this->KeptViewOrder &&
     this->KeptViewOrder->Fits(
       view, geometry, sampler->GetNumberOfOrderingBins(), sampler->GetReorderAngle()))
@@ -648,5 +691,12 @@ void vtkMCXViewOrderedSampling::PrintSelf(std::ostream& os, vtkIndent indent) co
      << (this->KeptViewOrder ? static_cast<vtkIdType>(this->KeptViewOrder->Narrow.Ids.size() +
                                  this->KeptViewOrder->Wide.Ids.size())
                              : 0)
-     << " voxels\n";
+     << " voxels";
+  if (this->KeptViewOrder && this->Ordering)
+  {
+    os << ", sorted for a view turned "
+       << mcx::TurnDegrees(this->KeptViewOrder->Geometry, this->Ordering->Geometry)
+       << " degrees from the ordering view";
+  }
+  os << "\n";
 }

@@ -152,11 +152,12 @@ public:
   /**
    * The VIEW_ORDERED strategy's vtkMCXPointSampler::ReorderAngle, in
    * degrees (0 to 180; default 30, where the sampler's is 0): a TF edit
-   * after the camera turned by at most this much from the view the voxels
-   * were last sorted for keeps that order and projects only the control
-   * image of the view as it is, which on a 400 M-voxel CT takes about a
-   * tenth of the sort's time, at more error for the same points (the
-   * estimate shows it). 0 sorts for every new view.
+   * after the camera turned about the volume by at most this much from the
+   * view the voxels were last sorted for keeps that order and projects
+   * only the control image of the view as it is, which on a 400 M-voxel CT
+   * takes about an eighth of the sort's time, at more error for the same
+   * points (the estimate shows it). A pan, a zoom or a resize sorts again;
+   * so does every new view with 0.
    */
   vtkSetClampMacro(ReorderAngle, double, 0.0, 180.0);
   vtkGetMacro(ReorderAngle, double);

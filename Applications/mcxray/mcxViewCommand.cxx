@@ -59,11 +59,12 @@ options:
                      where voxels are much smaller than pixels; a TF edit after
                      a camera move first sorts every voxel for the new view,
                      unless --reorder-angle keeps the order)
-  --reorder-angle A  view-ordered: a TF edit after the camera turned by at most
-                     A degrees (0 to 180, default 30) from the view last sorted
-                     for keeps that order and projects only the new view's
-                     control image (a tenth of the time on 400 M voxels, more
-                     error at the same samples); 0 sorts for every new view
+  --reorder-angle A  view-ordered: a TF edit after the camera turned about the
+                     volume by at most A degrees (0 to 180, default 30) from
+                     the view last sorted for keeps that order and projects
+                     only the new view's control image (an eighth of the time
+                     on 400 M voxels, more error at the same samples); a pan,
+                     a zoom or a resize sorts again, as does any move with 0
   --kernel K         tent (default) or box
   --deposit D        footprint (default) or point (see mcxray render --help)
   --seed N           seed of the pseudo-random parts (default 0)

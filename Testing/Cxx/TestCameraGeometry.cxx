@@ -594,3 +594,71 @@ TEST(CameraGeometry, TurnDegreesIsTheRotationOfTheAxesNotAPanOrAZoom)
       larger),
     1e-6);
 }
+
+TEST(CameraGeometry, SameFramingHoldsForTurnsAboutThePointAndNotForPansZoomsOrResizes)
+{
+  // A perspective camera looking at the point, turned about it: the same
+  // framing; zoomed, dollied, panned, resized or made parallel: another.
+  // Tolerance 5 %: a zoom of 1.02 keeps it, one of 1.1 does not.
+  const double centre[3] = { 10, 0, 20 };
+  const int size[2] = { 40, 30 };
+  vtkNew<vtkCamera> start;
+  start->SetPosition(10, -300, 20);
+  start->SetFocalPoint(centre);
+  start->SetViewUp(0, 0, 1);
+  auto geometryOf = [](vtkCamera* camera, const int* pixels)
+  {
+    mcx::ProjectionGeometry g;
+    EXPECT_EQ("", mcx::GeometryFromCamera(camera, pixels, 0.0, 0.0, g));
+    return g;
+  };
+  for (bool parallel : { false, true })
+  {
+    start->SetParallelProjection(parallel);
+    const mcx::ProjectionGeometry first = geometryOf(start, size);
+    auto framed = [&](const std::function<void(vtkCamera*)>& move, const int* pixels)
+    {
+      vtkNew<vtkCamera> camera;
+      camera->DeepCopy(start);
+      move(camera);
+      return mcx::SameFraming(first, geometryOf(camera, pixels), centre, 0.05);
+    };
+    EXPECT_TRUE(framed([](vtkCamera*) {}, size));
+    EXPECT_TRUE(framed([](vtkCamera* c) { c->Azimuth(40); }, size)) << parallel;
+    EXPECT_TRUE(framed([](vtkCamera* c) { c->Roll(30); }, size)) << parallel;
+    EXPECT_TRUE(framed([](vtkCamera* c) { c->Zoom(1.02); }, size)) << parallel;
+    EXPECT_FALSE(framed([](vtkCamera* c) { c->Zoom(1.1); }, size)) << parallel;
+    EXPECT_FALSE(framed(
+      [](vtkCamera* c)
+      {
+        c->SetPosition(30, -300, 20); // a pan of 20 mm, a third of the image
+        c->SetFocalPoint(30, 0, 20);
+      },
+      size))
+      << parallel;
+    const int larger[2] = { 48, 30 };
+    EXPECT_FALSE(framed([](vtkCamera*) {}, larger)) << parallel;
+    EXPECT_FALSE(
+      framed([](vtkCamera* c) { c->SetParallelProjection(!c->GetParallelProjection()); }, size))
+      << parallel;
+  }
+  start->SetParallelProjection(false);
+  EXPECT_FALSE(mcx::SameFraming(geometryOf(start, size), geometryOf(start, size),
+    std::array<double, 3>{ 10, -400, 20 }.data(), 0.05))
+    << "a point behind the eye";
+  vtkNew<vtkCamera> dollied;
+  dollied->DeepCopy(start);
+  dollied->Dolly(1.5); // nearer: larger in the perspective image
+  EXPECT_FALSE(mcx::SameFraming(geometryOf(start, size), geometryOf(dollied, size), centre, 0.05));
+}
+
+TEST(CameraGeometry, TurnDegreesOfAMirroredImageIs180)
+{
+  mcx::ProjectionGeometry a, b;
+  const double t = vtkMath::RadiansFromDegrees(10.0);
+  const double u[3] = { -std::cos(t), 0, std::sin(t) }, w[3] = { std::sin(t), 0, std::cos(t) };
+  std::copy(u, u + 3, b.U); // U flipped: the image mirrored
+  std::copy(w, w + 3, b.W);
+  EXPECT_EQ(180.0, mcx::TurnDegrees(a, b));
+  EXPECT_EQ(180.0, mcx::TurnDegrees(b, a));
+}

@@ -441,15 +441,22 @@ TEST(CommandLine, ViewerBadInputGivesOneLineErrorAndNoOutput)
     "view --tf 1:x --screenshot ",
     "view --frames 3 --screenshot ",
     "view --screenshot /nonexistent-dir/x.png --tf raw --seed ",
-    "view --method view-ordered --reorder-angle 181 --screenshot ",
-    "view --method view-ordered --reorder-angle -1 --screenshot ",
-    "view --method view-ordered --reorder-angle nan --screenshot ",
-    "view --reorder-angle 10 --screenshot ",
-    "render --method view-ordered --reorder-angle 10 --output ",
   };
   for (const char* arguments : cases)
   {
     ExpectOneLineError(std::string(arguments) + output, output);
+  }
+  // --reorder-angle: a value out of 0..180, or a method without an order;
+  // each error names the option.
+  for (const char* arguments : { "view --method view-ordered --reorder-angle 181 --screenshot ",
+         "view --method view-ordered --reorder-angle -1 --screenshot ",
+         "view --method view-ordered --reorder-angle nan --screenshot ",
+         "view --reorder-angle 10 --screenshot ", "render --reorder-angle 10 --output " })
+  {
+    ExpectOneLineError(std::string(arguments) + output, output);
+    EXPECT_NE(
+      std::string::npos, RunCLI(std::string(arguments) + output).Errors.find("--reorder-angle"))
+      << arguments;
   }
   Result jpeg = RunCLI("view --screenshot " + Temporary("cli_view.jpg"));
   EXPECT_EQ(2, jpeg.Status);

@@ -1128,89 +1128,111 @@ vtkSmartPointer<vtkCamera> Turned(vtkCamera* camera, double azimuth)
 TEST(ViewOrder, AReorderAngleKeepsTheOrderForANearbyViewWithThatViewsControlImage)
 {
   // Sorted for the lateral view with ReorderAngle 20: a view turned 10
-  // degrees, at the same size and at another, keeps the order (no sort, the
-  // same points) and carries its own control image: with every voxel
-  // projected, that of a sampler sorted for it, but for the footprints'
-  // random rounding, keyed by a voxel's place in the order (measured 7e-4
-  // of the image, RMS; at most 1e-3 here, a sixth of the cloud's error); sampled (2^10 - 1 points,
-  // far fewer than the voxels), an estimate of it whose squared distance over the pixels is about
-  // its own estimated variance (that estimate is 1.15 to 1.64 times the true one,
-  // ASampledControlImageIsUnbiased... above, and the sum over pixels is near its mean). The
-  // controlled image of the kept order is an estimate of the turned view whose halves' estimate
-  // tracks its error. A turn of 30 degrees sorts again (a fresh sampler's cloud), and with
-  // ReorderAngle 0 so does a zoom.
+  // degrees about the volume keeps the order (no sort, the same points) and
+  // carries its own control image: with every voxel projected, that of a
+  // sampler sorted for it, but for the footprints' random rounding, keyed
+  // by a voxel's place in the order (measured 7e-4 of the image, RMS; at
+  // most 1e-3 here, a sixth of the cloud's error); sampled (2^10 - 1
+  // points, far fewer than the voxels), an estimate of it whose squared
+  // distance over the pixels is about its own estimated variance (which is
+  // 1.15 to 1.64 times the true one, ASampledControlImageIsUnbiased...
+  // above). The controlled image of the kept order is an estimate of the
+  // turned view whose halves' estimate tracks its error. Back in the sorted
+  // view, its first control image again, bit for bit. Sorting again: a
+  // ReorderAngle lowered below the turn, a turn of 30 degrees (a fresh
+  // sampler's cloud), a pan or a resize within the angle, and with
+  // ReorderAngle 0 a zoom.
   const Scene scene = FineCTHead();
+  const int size = 48;
   auto lateral = scene.Camera(0);
   auto turned = Turned(lateral, 10.0);
   for (int m : { 16, 10 })
   {
     auto sampler = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
     sampler->SetReorderAngle(20.0);
-    sampler->SetOrderingView(lateral, 48, 48);
-    sampler->Update();
+    sampler->SetOrderingView(lateral, size, size);
+    double firstVariance = 0;
+    const std::vector<double> first = ControlOf(sampler, firstVariance);
     vtkNew<vtkPolyData> before;
     before->DeepCopy(sampler->GetOutput());
     SortWatch watch(sampler, 0.3);
-    for (int size : { 48, 32 })
+    sampler->SetOrderingView(turned, size, size);
+    double variance = 0, everyVariance = 0;
+    const std::vector<double> control = ControlOf(sampler, variance);
+    EXPECT_FALSE(watch.Sorted) << "m " << m;
+    EXPECT_TRUE(SameCloud(before, sampler->GetOutput())) << "m " << m;
+    auto sorted = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
+    sorted->SetOrderingView(turned, size, size);
+    sorted->SetControlVoxelsPerPoint(1e12); // every voxel
+    const std::vector<double> every = ControlOf(sorted, everyVariance);
+    ASSERT_EQ(static_cast<std::size_t>(size * size), control.size());
+    ASSERT_EQ(every.size(), control.size());
+    EXPECT_EQ(0.0, everyVariance);
+    double norm = 0, squared = 0;
+    for (std::size_t p = 0; p < every.size(); ++p)
     {
-      sampler->SetOrderingView(turned, size, size);
-      double variance = 0, everyVariance = 0;
-      const std::vector<double> control = ControlOf(sampler, variance);
-      EXPECT_FALSE(watch.Sorted) << "m " << m << " size " << size;
-      EXPECT_TRUE(SameCloud(before, sampler->GetOutput())) << "m " << m << " size " << size;
-      auto sorted = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
-      sorted->SetOrderingView(turned, size, size);
-      sorted->SetControlVoxelsPerPoint(1e12); // every voxel
-      const std::vector<double> every = ControlOf(sorted, everyVariance);
-      ASSERT_EQ(static_cast<std::size_t>(size * size), control.size());
-      ASSERT_EQ(every.size(), control.size());
-      EXPECT_EQ(0.0, everyVariance);
-      double norm = 0, squared = 0;
-      for (std::size_t p = 0; p < every.size(); ++p)
-      {
-        norm += every[p] * every[p];
-        squared += (control[p] - every[p]) * (control[p] - every[p]);
-      }
-      if (m == 16)
-      {
-        EXPECT_EQ(0.0, variance);
-        std::cout << "size " << size << ": every voxel's control " << std::sqrt(squared / norm)
-                  << " from the sorted one's" << std::endl;
-        EXPECT_LT(squared, 1e-6 * norm) << "size " << size;
-      }
-      else
-      {
-        std::cout << "size " << size << ": sampled control's squared error " << squared / variance
-                  << " of its estimated variance" << std::endl;
-        EXPECT_GT(squared, 0.2 * variance) << "size " << size;
-        EXPECT_LT(squared, 3.0 * variance) << "size " << size;
-      }
-      if (m == 16 && size == 48)
-      {
-        auto image = ProjectCloud(sampler->GetOutputPort(), turned, size);
-        const double error = mcxtest::RelativeRMS(image, scene.Reference(turned, size));
-        const double estimate = mcxtest::FieldValue(image, "EstimatedRelativeError");
-        std::cout << "kept order, view turned 10 degrees: error " << error << ", estimate "
-                  << estimate / error << " of it" << std::endl;
-        EXPECT_GT(estimate, 0.6 * error);
-        EXPECT_LT(estimate, 1.6 * error);
-      }
+      norm += every[p] * every[p];
+      squared += (control[p] - every[p]) * (control[p] - every[p]);
     }
-    auto far = Turned(lateral, 30.0);
-    sampler->SetOrderingView(far, 48, 48);
+    if (m == 16)
+    {
+      EXPECT_EQ(0.0, variance);
+      std::cout << "every voxel's control " << std::sqrt(squared / norm) << " from the sorted one's"
+                << std::endl;
+      EXPECT_LT(squared, 1e-6 * norm);
+      auto image = ProjectCloud(sampler->GetOutputPort(), turned, size);
+      const double error = mcxtest::RelativeRMS(image, scene.Reference(turned, size));
+      const double estimate = mcxtest::FieldValue(image, "EstimatedRelativeError");
+      std::cout << "kept order, view turned 10 degrees: error " << error << ", estimate "
+                << estimate / error << " of it" << std::endl;
+      EXPECT_GT(estimate, 0.6 * error);
+      EXPECT_LT(estimate, 1.6 * error);
+    }
+    else
+    {
+      std::cout << "sampled control's squared error " << squared / variance
+                << " of its estimated variance" << std::endl;
+      EXPECT_GT(squared, 0.2 * variance);
+      EXPECT_LT(squared, 3.0 * variance);
+    }
+    sampler->SetOrderingView(lateral, size, size);
+    double backVariance = 0;
+    EXPECT_EQ(first, ControlOf(sampler, backVariance)) << "m " << m;
+    EXPECT_EQ(firstVariance, backVariance) << "m " << m;
+    EXPECT_FALSE(watch.Sorted) << "m " << m;
+
+    auto sortsFor = [&](vtkCamera* camera, int width, const char* what)
+    {
+      watch.Sorted = false;
+      sampler->SetOrderingView(camera, width, size);
+      sampler->Update();
+      EXPECT_TRUE(watch.Sorted) << what << ", m " << m;
+    };
+    sampler->SetOrderingView(turned, size, size);
     sampler->Update();
-    EXPECT_TRUE(watch.Sorted) << "m " << m;
+    sampler->SetReorderAngle(5.0);
+    watch.Sorted = false;
+    sampler->Update();
+    EXPECT_TRUE(watch.Sorted) << "a ReorderAngle below the turn, m " << m;
+    sampler->SetReorderAngle(20.0);
+    auto panned = Turned(turned, 0.0);
+    const double* focal = panned->GetFocalPoint();
+    const double* position = panned->GetPosition();
+    const double shift = 0.2 * panned->GetParallelScale(); // a tenth of the image
+    panned->SetFocalPoint(focal[0] + shift, focal[1], focal[2] + shift);
+    panned->SetPosition(position[0] + shift, position[1], position[2] + shift);
+    sortsFor(panned, size, "a pan");
+    sortsFor(panned, size + 8, "a resize");
+    auto far = Turned(lateral, 30.0);
+    sortsFor(far, size, "a turn of 30 degrees");
     auto fresh = scene.FootprintCloud(m, vtkMCXTypes::VIEW_ORDERED);
-    fresh->SetOrderingView(far, 48, 48);
+    fresh->SetOrderingView(far, size, size);
     fresh->Update();
     EXPECT_TRUE(SameCloud(fresh->GetOutput(), sampler->GetOutput())) << "m " << m;
-    watch.Sorted = false;
     sampler->SetReorderAngle(0.0);
     auto zoomed = Turned(far, 0.0);
-    zoomed->Zoom(1.25); // no turn at all
-    sampler->SetOrderingView(zoomed, 48, 48);
-    sampler->Update();
-    EXPECT_TRUE(watch.Sorted) << "m " << m;
+    zoomed->Zoom(1.01); // no turn at all, and within the framing's 5 %
+    sortsFor(zoomed, size, "a zoom with ReorderAngle 0");
   }
 }
 

@@ -359,6 +359,14 @@ TEST(Viewer, ViewOrderedSessionSortsForTheViewOfEachTFEdit)
   a = static_cast<const float*>(fresh->GetOutput()->GetPoints()->GetVoidPointer(0));
   b = static_cast<const float*>(shown->GetPoints()->GetVoidPointer(0));
   EXPECT_TRUE(std::equal(a, a + 3 * shown->GetNumberOfPoints(), b));
+
+  // --reorder-angle reaches the mapper and its sampler.
+  options.ReorderAngle = 12.5;
+  mcxapp::XRayViewer other(BundledCT(), options);
+  ASSERT_EQ("", other.Error());
+  EXPECT_EQ(12.5, other.GetMapper()->GetReorderAngle());
+  other.RefineUntilComplete();
+  EXPECT_EQ(12.5, other.GetSampler()->GetReorderAngle());
 }
 
 TEST(Viewer, EveryVoxelSession)
