@@ -247,8 +247,7 @@ const double MaximumOrderingPixels = 4294967296.0;
 
 namespace
 {
-// How far a kept order's view may frame the volume's centre otherwise
-// (mcx::SameFraming): a twentieth of the image, and of a pixel's size.
+// mcx::SameFraming's tolerance for a kept order: a twentieth of the image.
 const double ReframeTolerance = 0.05;
 
 // The world centre of the index's volume.
@@ -323,10 +322,9 @@ struct vtkMCXViewOrderedSampling::SortedView
     this->Bins = bins;
   }
 
-  // Whether this order serves `view` in `geometry`: the same index and
-  // bins, sorted for the same view or, when reorderAngle is above 0, for a
-  // view turned by at most that many degrees from it that frames the
-  // volume's centre alike (no pan, zoom or resize).
+  // Whether this order serves `view` in `geometry`: the same index and bins,
+  // sorted for the same view or (reorderAngle above 0) for one turned by at
+  // most that many degrees that frames the volume's centre alike.
   bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins,
     double reorderAngle) const
   {
@@ -523,9 +521,8 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   double stride = static_cast<double>(voxels) / (sampler->GetControlVoxelsPerPoint() * points);
   const bool sampled = stride > 2.0;
   stride = sampled ? stride : 1.0;
-  // The control's view is the ordering view, whatever view the order was
-  // sorted for (ReorderAngle); a copy, which an observer's SetOrderingView
-  // cannot pull away.
+  // The ordering view, whatever view the order was sorted for (ReorderAngle);
+  // a copy, which an observer's SetOrderingView cannot pull away.
   const mcx::ProjectionGeometry geometry = this->Ordering->Geometry;
   if (!sorted.BinImages.empty() && mcx::SameGeometry(sorted.BinGeometry, geometry) &&
     sorted.BinKernel == sampler->GetKernel() && sorted.BinStride == stride &&
