@@ -306,12 +306,10 @@ void vtkMCXXRayMapper::RenderImage(vtkRenderer* renderer, vtkVolume* volume)
   // A view-ordered image complete without its control in a view the kept
   // order serves: the next render in this view projects the view's control
   // image (not the sort) and starts again, controlled; until then the
-  // refinement is not complete, so viewers render once more. Not where a
-  // prop matrix leaves the control unused.
-  static const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  // refinement is not complete, so viewers render once more.
   in.ControlFollowPending = in.VolumeInput && !in.Polychromatic &&
-    std::equal(in.Matrix, in.Matrix + 16, identity) && in.Image->Count() >= in.NumberOfPoints &&
-    !in.Image->IsControlled() && in.Sampling.CanFollow(view.Camera, view.Size);
+    in.Image->Count() >= in.NumberOfPoints && !in.Image->IsControlled() &&
+    in.Sampling.CanFollow(view.Camera, view.Size);
   if (in.UploadIfChanged(window, EffectsOf(this), view.Size))
   {
     ++this->NumberOfUploads;

@@ -156,9 +156,8 @@ public:
    * view the voxels were last sorted for keeps that order and projects
    * only the control image of the view as it is, which on a 400 M-voxel CT
    * takes about an eighth of the sort's time, at more error for the same
-   * points (the estimate shows it). Such a turn is followed without a TF
-   * edit too, once its plain image is complete. A pan, a zoom or a resize
-   * sorts again at the TF edit; so does every new view with 0.
+   * points (the estimate shows it). A pan, a zoom or a resize sorts again;
+   * so does every new view with 0.
    */
   vtkSetClampMacro(ReorderAngle, double, 0.0, 180.0);
   vtkGetMacro(ReorderAngle, double);
@@ -352,11 +351,7 @@ public:
    */
   vtkTypeInt64 GetNumberOfInputPoints();
 
-  /**
-   * True when the image on screen holds every point of the input, and no
-   * camera turn within ReorderAngle waits to be followed by its control
-   * image (the next render of a complete plain view-ordered image does it).
-   */
+  /** True when the image on screen holds every point of the input. */
   bool IsRefinementComplete();
 
   /**

@@ -58,8 +58,7 @@ options:
                      in the pixel order of the view: several times less noise
                      where voxels are much smaller than pixels; a TF edit after
                      a camera move first sorts every voxel for the new view,
-                     unless --reorder-angle keeps the order, and a turn within
-                     it shows its control image once its image is complete)
+                     unless --reorder-angle keeps the order)
   --reorder-angle A  view-ordered: a TF edit after the camera turned about the
                      volume by at most A degrees (0 to 180, default 30) from
                      the view last sorted for keeps that order and projects
