@@ -126,20 +126,6 @@ bool vtkMCXPointSampler::HasOrderingView() const
   return this->ViewOrdered->HasView();
 }
 
-bool vtkMCXPointSampler::CanFollowWithoutSorting(vtkCamera* camera, int width, int height) const
-{
-  // Called from Python: no exception may leave it.
-  try
-  {
-    return this->Strategy == vtkMCXTypes::VIEW_ORDERED &&
-      this->ViewOrdered->CanFollow(camera, width, height, this->ReorderAngle);
-  }
-  catch (const std::exception&)
-  {
-    return false;
-  }
-}
-
 vtkTypeInt64 vtkMCXPointSampler::GetNumberOfSamples()
 {
   return static_cast<vtkTypeInt64>(mcx::SampleCount(static_cast<unsigned>(this->SampleExponent)));

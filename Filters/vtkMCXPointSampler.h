@@ -123,13 +123,6 @@ public:
   void SetOrderingView(vtkCamera* camera, int width, int height);
   /** Whether an ordering view is set. */
   bool HasOrderingView() const;
-  /**
-   * Whether SetOrderingView(camera, width, height) would change the
-   * ordering view and keep the order sorted last (ReorderAngle): the next
-   * update would project only the new view's control image. The mapper
-   * asks this to follow a camera turn once its image is complete.
-   */
-  bool CanFollowWithoutSorting(vtkCamera* camera, int width, int height) const;
 
   ///@{
   /**

@@ -1,7 +1,10 @@
 #include "vtkMCXViewOrderedSamplingPrivate.h"
 
+#include "mcxControlImage.h"
 #include "mcxPixelBinner.h"
 #include "mcxProjectionGeometry.h"
+#include "mcxRandom.h"
+#include "mcxSampleAccumulator.h"
 #include "mcxViewOrder.h"
 #include "vtkMCXBatchedForPrivate.h"
 #include "vtkMCXCameraGeometry.h"
@@ -11,7 +14,6 @@
 #include "vtkMCXPointSampler.h"
 #include "vtkMCXSMPExecutor.h"
 #include "vtkMCXSampledCloudPrivate.h"
-#include "vtkMCXViewOrderControlPrivate.h"
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -63,6 +65,181 @@ bool GenerateViewOrderedPoints(vtkAlgorithm* self, const mcx::IndexView& view,
     self, source.NumberOfStorageItems(), 0.55, 1.0,
     [&](std::uint64_t b, std::uint64_t e) { source.GenerateForStorage(b, e, store); }, 1);
 }
+
+// Each bin's voxels of `order` projected, footprints of `kernel` in
+// `geometry` (voxel coordinates, as the sort located them): bins x pixels
+// sums in the accumulator's fixed-point units (2^32 a whole voxel), the
+// bins' images of the control (mcxControlImage.h). Without a stride every
+// voxel once, rounding at random from a stream of their own, the same for
+// every seed, so a new seed keeps them, and no differences; with one (> 2)
+// about one voxel in `stride` of each (bin, cell) run (mcx::ControlPicks),
+// drawn and rounded from `seed`, each carrying its interval, and
+// `differences` gets each bin's image of the even picks less that of the
+// odd ones. Progress runs from progressBegin to progressEnd; false when
+// aborted.
+template <typename IdType>
+bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
+  const mcx::ViewOrder<IdType>& order, const mcx::ProjectionGeometry& geometry, mcx::Kernel kernel,
+  double stride, vtkTypeUInt64 seed, double progressBegin, double progressEnd,
+  std::vector<double>& images, std::vector<double>& differences)
+{
+  const bool sampled = stride > 1.0;
+  double origin[3], matrix[9];
+  view.SourceToWorld(origin, matrix);
+  mcx::DepositSettings settings; // samples in voxel coordinates: the identity VoxelMatrix
+  settings.Mode = mcx::Deposit::Footprint;
+  settings.Reconstruction = kernel;
+  // A stream of the control's own, apart from the cloud's footprints.
+  settings.Seed = sampled ? seed ^ 0x3C6EF372FE94F82Bull : 0;
+  if (geometry.Perspective)
+  {
+    double corners[24];
+    mcx::ComputeSupportCorners(
+      view.Extent, view.Origin, view.Spacing, view.Direction, mcx::KernelRadius(kernel), corners);
+    mcx::SupportDepthRange(geometry, corners, settings.Depths);
+  }
+  mcx::SampleAccumulator<mcx::SMPExecutor> accumulator;
+  accumulator.Reset(geometry, origin, matrix, std::vector<double>(), settings);
+  const std::int64_t voxels = order.BinOffsets.back();
+  // The even picks are the first half: k < voxels.
+  accumulator.SetSplit(sampled ? static_cast<std::uint64_t>(voxels) : 0);
+  const std::size_t pixels = accumulator.NumberOfPixels();
+  const std::int64_t bins = order.NumberOfBins();
+  // The order's cells: the pixels of the view it was sorted for, and one
+  // off its image (not those of `geometry`, when the view has turned since).
+  const std::int64_t cells =
+    (static_cast<std::int64_t>(order.KeyStarts.size()) - 1) / std::max<std::int64_t>(bins, 1);
+  const mcx::VoxelDecoder<IdType> decoder(
+    static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
+  const std::uint64_t seedKey = mcx::SeedKey(seed ^ 0xBB67AE8584CAA73Bull);
+  // Each bin's work (its voxels, or its picks), which the progress follows.
+  std::vector<double> work(static_cast<std::size_t>(bins + 1), 0.0);
+  for (std::int64_t b = 0; b < bins; ++b)
+  {
+    const std::size_t i = static_cast<std::size_t>(b);
+    work[i + 1] = work[i] +
+      (sampled ? static_cast<double>(
+                   mcx::ControlPicks(order.KeyStarts.data() + b * cells, b, cells, stride, seedKey)
+                     .Count())
+               : static_cast<double>(order.BinOffsets[i + 1] - order.BinOffsets[i]));
+  }
+  const double span = (progressEnd - progressBegin) / std::max(1.0, work.back());
+  images.assign(static_cast<std::size_t>(bins) * pixels, 0.0);
+  differences.assign(sampled ? images.size() : 0, 0.0);
+  std::vector<mcx::FixedSum> all(pixels), firstHalf(pixels);
+  for (std::int64_t b = 0; b < bins; ++b)
+  {
+    const std::int64_t first = order.BinOffsets[static_cast<std::size_t>(b)];
+    const std::int64_t last = order.BinOffsets[static_cast<std::size_t>(b + 1)];
+    const std::unique_ptr<mcx::ControlPicks> picks(sampled
+        ? new mcx::ControlPicks(order.KeyStarts.data() + b * cells, b, cells, stride, seedKey)
+        : nullptr);
+    const bool completed = mcx::BatchedFor(self,
+      static_cast<std::uint64_t>(picks ? picks->Count() : last - first),
+      progressBegin + span * work[static_cast<std::size_t>(b)],
+      progressBegin + span * work[static_cast<std::size_t>(b + 1)],
+      [&](std::uint64_t begin, std::uint64_t end)
+      {
+        const auto image = accumulator.Local();
+        mcx::FootprintBatch footprints(image);
+        auto add = [&](std::int64_t entry, double weight, bool firstHalf)
+        {
+          std::uint64_t voxel[3];
+          decoder.Decode(order.Ids[static_cast<std::size_t>(entry)], voxel[0], voxel[1], voxel[2]);
+          const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
+            static_cast<double>(voxel[2]) };
+          // Every voxel once comes as a first half: its stream keys are its entries.
+          const std::int64_t k = firstHalf ? entry : voxels + entry;
+          footprints.Add(static_cast<std::uint64_t>(k), p, weight);
+        };
+        if (picks)
+        {
+          picks->Visit(static_cast<std::int64_t>(begin), static_cast<std::int64_t>(end), add);
+        }
+        else
+        {
+          for (std::uint64_t i = begin; i < end; ++i)
+          {
+            add(first + static_cast<std::int64_t>(i), 1.0, true);
+          }
+        }
+        footprints.Flush();
+      });
+    if (!completed)
+    {
+      return false;
+    }
+    std::fill(all.begin(), all.end(), mcx::FixedSum(0));
+    std::fill(firstHalf.begin(), firstHalf.end(), mcx::FixedSum(0));
+    accumulator.Collect(all.data(), firstHalf.data());
+    double* image = images.data() + static_cast<std::size_t>(b) * pixels;
+    for (std::size_t p = 0; p < pixels; ++p)
+    {
+      image[p] = mcx::ToDouble(all[p]);
+    }
+    if (sampled)
+    {
+      double* difference = differences.data() + static_cast<std::size_t>(b) * pixels;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        difference[p] = 2.0 * mcx::ToDouble(firstHalf[p]) - image[p];
+      }
+    }
+  }
+  return true;
+}
+
+// The control image (line integrals) of the TF whose weight on each bin is
+// binMeans[b]: the bins' images weighed by it, scaled so that it carries
+// the cloud's integral as the cloud does, and its variance summed over the
+// pixels, from the bins' differences (none: 0). Empty when no bin has
+// weight.
+std::vector<double> ControlImage(const std::vector<double>& binImages,
+  const std::vector<double>& binDifferences, const std::vector<double>& binMeans,
+  const std::vector<std::int64_t>& binOffsets, double integral,
+  const mcx::ProjectionGeometry& geometry, double& variance)
+{
+  variance = 0.0;
+  const std::size_t bins = binMeans.size();
+  const std::size_t pixels = bins > 0 ? binImages.size() / bins : 0;
+  double weightedVoxels = 0.0; // the integral in units of one voxel of weight 1
+  for (std::size_t b = 0; b < bins; ++b)
+  {
+    weightedVoxels += binMeans[b] * static_cast<double>(binOffsets[b + 1] - binOffsets[b]);
+  }
+  if (!(weightedVoxels > 0) || pixels == 0)
+  {
+    return std::vector<double>();
+  }
+  const double scale = integral / weightedVoxels / (mcx::FixedOne * geometry.BeamCrossSection());
+  auto weigh = [&](const std::vector<double>& images)
+  {
+    std::vector<double> sum(pixels, 0.0);
+    for (std::size_t b = 0; b < bins; ++b)
+    {
+      const double weight = binMeans[b] * scale;
+      if (weight == 0.0)
+      {
+        continue;
+      }
+      const double* image = images.data() + b * pixels;
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        sum[p] += weight * image[p];
+      }
+    }
+    return sum;
+  };
+  if (!binDifferences.empty())
+  {
+    // The halves' sums differ by d: the variance of their sum is about d^2.
+    for (const double d : weigh(binDifferences))
+    {
+      variance += d * d;
+    }
+  }
+  return weigh(binImages);
+}
 }
 
 // The largest view to order by: the projector's largest image.
@@ -101,7 +278,6 @@ struct vtkMCXViewOrderedSampling::SortedView
   vtkDataArray* Ids = nullptr; // the index's sorted ids: compared only, never dereferenced
   vtkMTimeType IdsTime = 0;
   double World[12] = { 0 }; // the index's source-to-world origin and matrix
-  double Centre[3] = { 0 }; // the volume's, in world coordinates
   mcx::ProjectionGeometry Geometry;
   int Bins = 0;
   mcx::ViewOrder<std::uint32_t> Narrow; // the index's ids are 32-bit
@@ -142,31 +318,31 @@ struct vtkMCXViewOrderedSampling::SortedView
     this->Ids = view.Ids;
     this->IdsTime = view.Ids->GetMTime();
     view.SourceToWorld(this->World, this->World + 3);
-    VolumeCentre(view, this->Centre);
     this->Geometry = geometry;
     this->Bins = bins;
   }
 
-  // Whether this order serves `geometry` of the same index: sorted for it
-  // or (reorderAngle above 0) for a view turned by at most that many
-  // degrees from it that frames the volume's centre alike.
-  bool Serves(const mcx::ProjectionGeometry& geometry, double reorderAngle) const
-  {
-    return mcx::SameGeometry(this->Geometry, geometry) ||
-      (reorderAngle > 0 && mcx::TurnDegrees(this->Geometry, geometry) <= reorderAngle &&
-        mcx::SameFraming(this->Geometry, geometry, this->Centre, ReframeTolerance));
-  }
-
-  // Whether this order serves `view` in `geometry`: the same index and
-  // bins, and Serves(geometry).
+  // Whether this order serves `view` in `geometry`: the same index and bins,
+  // sorted for the same view or (reorderAngle above 0) for one turned by at
+  // most that many degrees that frames the volume's centre alike.
   bool Fits(const mcx::IndexView& view, const mcx::ProjectionGeometry& geometry, int bins,
     double reorderAngle) const
   {
     SortedView wanted;
     wanted.Describe(view, geometry, bins);
-    return this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
-      std::equal(this->World, this->World + 12, wanted.World) && this->Bins == wanted.Bins &&
-      this->Serves(geometry, reorderAngle);
+    if (!(this->Ids == wanted.Ids && this->IdsTime == wanted.IdsTime &&
+          std::equal(this->World, this->World + 12, wanted.World) && this->Bins == wanted.Bins))
+    {
+      return false;
+    }
+    if (mcx::SameGeometry(this->Geometry, geometry))
+    {
+      return true;
+    }
+    double centre[3];
+    VolumeCentre(view, centre);
+    return reorderAngle > 0 && mcx::TurnDegrees(this->Geometry, geometry) <= reorderAngle &&
+      mcx::SameFraming(this->Geometry, geometry, centre, ReframeTolerance);
   }
 
   // The cells of the order: the pixels of its view and one off its image.
@@ -220,21 +396,6 @@ bool vtkMCXViewOrderedSampling::SetView(vtkObject* self, vtkCamera* camera, int 
 bool vtkMCXViewOrderedSampling::HasView() const
 {
   return this->Ordering != nullptr;
-}
-
-bool vtkMCXViewOrderedSampling::CanFollow(
-  vtkCamera* camera, int width, int height, double reorderAngle) const
-{
-  mcx::ProjectionGeometry geometry;
-  const int size[2] = { width, height };
-  if (!this->KeptViewOrder || !camera || width <= 0 || height <= 0 ||
-    static_cast<double>(width) * static_cast<double>(height) > MaximumOrderingPixels ||
-    !mcx::GeometryFromCamera(camera, size, 0.0, 0.0, geometry).empty())
-  {
-    return false;
-  }
-  return !(this->Ordering && mcx::SameGeometry(this->Ordering->Geometry, geometry)) &&
-    this->KeptViewOrder->Serves(geometry, reorderAngle);
 }
 
 void vtkMCXViewOrderedSampling::ForgetOrder()
@@ -296,8 +457,8 @@ bool vtkMCXViewOrderedSampling::Generate(vtkMCXPointSampler* sampler, const mcx:
   cloud.Exponent = m;
   if (sampler->GetControlVariate() && m > 0)
   {
-    cloud.Control = vtkMCXViewOrderControl::ControlImage(sorted.BinImages, sorted.BinDifferences,
-      binMeans, order.BinOffsets, integral, sorted.BinGeometry, cloud.ControlVariance);
+    cloud.Control = ControlImage(sorted.BinImages, sorted.BinDifferences, binMeans,
+      order.BinOffsets, integral, sorted.BinGeometry, cloud.ControlVariance);
     cloud.ControlView = sorted.BinGeometry;
   }
   const int pointType =
@@ -388,10 +549,10 @@ bool vtkMCXViewOrderedSampling::ProjectBinsFor(
   const auto kernel = static_cast<mcx::Kernel>(sampler->GetKernel());
   const auto seed = static_cast<vtkTypeUInt64>(sampler->GetSeed());
   std::vector<double> images, differences;
-  completed = view.WideIds ? vtkMCXViewOrderControl::ProjectBins(sampler, view, sorted.Wide,
-                               geometry, kernel, stride, seed, 0.3, 0.55, images, differences)
-                           : vtkMCXViewOrderControl::ProjectBins(sampler, view, sorted.Narrow,
-                               geometry, kernel, stride, seed, 0.3, 0.55, images, differences);
+  completed = view.WideIds ? ProjectBins(sampler, view, sorted.Wide, geometry, kernel, stride, seed,
+                               0.3, 0.55, images, differences)
+                           : ProjectBins(sampler, view, sorted.Narrow, geometry, kernel, stride,
+                               seed, 0.3, 0.55, images, differences);
   if (completed)
   {
     sorted.BinImages = std::move(images);

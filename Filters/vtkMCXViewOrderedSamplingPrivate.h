@@ -41,11 +41,6 @@ public:
   bool SetView(vtkObject* self, vtkCamera* camera, int width, int height);
   bool HasView() const;
 
-  /// Whether SetView(camera, width, height) would change the view and the
-  /// kept order would serve the new one (no sort; only the control image
-  /// is projected again) under `reorderAngle`.
-  bool CanFollow(vtkCamera* camera, int width, int height, double reorderAngle) const;
-
   /// Lets the kept view order go (another strategy runs); keeps the view.
   void ForgetOrder();
 

@@ -72,25 +72,19 @@ void vtkMCXVolumeSampling::Configure(const Settings& settings)
 }
 
 vtkPolyData* vtkMCXVolumeSampling::Sample(
-  vtkPiecewiseFunction* tf, vtkCamera* camera, const int size[2], bool follow)
+  vtkPiecewiseFunction* tf, vtkCamera* camera, const int size[2])
 {
   this->Sampler->SetTransferFunction(tf);
   // The sampler's time folds in its TF's: an edit, or a setting, since the
-  // last sort sorts for the view as it is now; a view the kept order serves
-  // may be followed without one.
+  // last sort sorts for the view as it is now.
   if (this->Sampler->GetStrategy() == vtkMCXTypes::VIEW_ORDERED && camera &&
-    (this->Sampler->GetMTime() > this->SortedAt || (follow && this->CanFollow(camera, size))))
+    this->Sampler->GetMTime() > this->SortedAt)
   {
     this->Sampler->SetOrderingView(camera, size[0], size[1]);
     this->SortedAt = this->Sampler->GetMTime();
   }
   this->Sampler->Update();
   return this->Sampler->GetOutput();
-}
-
-bool vtkMCXVolumeSampling::CanFollow(vtkCamera* camera, const int size[2]) const
-{
-  return this->Sampler->CanFollowWithoutSorting(camera, size[0], size[1]);
 }
 
 bool vtkMCXVolumeSampling::SupportCorners(double corners[24])

@@ -53,16 +53,9 @@ public:
   void Configure(const Settings& settings);
 
   /// The cloud under tf, sorted for the camera's view of width x height
-  /// pixels when the sampler is view-ordered and needs a sort, or (follow)
-  /// with the control image of that view where the kept order serves it;
-  /// without an Integral when the index or the sampler failed (they
-  /// reported it).
-  vtkPolyData* Sample(
-    vtkPiecewiseFunction* tf, vtkCamera* camera, const int size[2], bool follow = false);
-
-  /// Whether Sample(..., follow) would give the camera's view its control
-  /// image without a sort (vtkMCXPointSampler::CanFollowWithoutSorting).
-  bool CanFollow(vtkCamera* camera, const int size[2]) const;
+  /// pixels when the sampler is view-ordered and needs a sort; without an
+  /// Integral when the index or the sampler failed (they reported it).
+  vtkPolyData* Sample(vtkPiecewiseFunction* tf, vtkCamera* camera, const int size[2]);
 
   /// The world corners of the support of the TF's volume, known before any
   /// point is made; false when the index cannot tell.

@@ -149,8 +149,7 @@ vtkTypeInt64 vtkMCXXRayMapper::GetNumberOfAccumulatedSamples()
 bool vtkMCXXRayMapper::IsRefinementComplete()
 {
   return this->Internals->HasImage &&
-    this->Internals->Image->Count() >= this->Internals->NumberOfPoints &&
-    !this->Internals->ControlFollowPending;
+    this->Internals->Image->Count() >= this->Internals->NumberOfPoints;
 }
 
 double vtkMCXXRayMapper::GetEstimatedRelativeError()
@@ -303,13 +302,6 @@ void vtkMCXXRayMapper::RenderImage(vtkRenderer* renderer, vtkVolume* volume)
       ++this->NumberOfRefinements;
     }
   }
-  // A view-ordered image complete without its control in a view the kept
-  // order serves: the next render in this view projects the view's control
-  // image (not the sort) and starts again, controlled; until then the
-  // refinement is not complete, so viewers render once more.
-  in.ControlFollowPending = in.VolumeInput && !in.Polychromatic &&
-    in.Image->Count() >= in.NumberOfPoints && !in.Image->IsControlled() &&
-    in.Sampling.CanFollow(view.Camera, view.Size);
   if (in.UploadIfChanged(window, EffectsOf(this), view.Size))
   {
     ++this->NumberOfUploads;

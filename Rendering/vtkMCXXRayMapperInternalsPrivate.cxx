@@ -121,14 +121,12 @@ vtkPolyData* vtkMCXXRayMapper::vtkInternals::UpdateInput(
   vtkDataObject* input = self->GetInputDataObject(0, 0);
   vtkPolyData* cloud = vtkPolyData::SafeDownCast(input);
   this->Polychromatic = false;
-  this->VolumeInput = false;
   if (!self->GetSpectrum() || !*self->GetSpectrum())
   {
     this->Refused.clear(); // monochromatic: a later refusal is said again
   }
   if (auto* image = vtkImageData::SafeDownCast(input))
   {
-    this->VolumeInput = true;
     bool refused = false;
     this->Polychromatic = this->ConfigurePolychromatic(self, image, refused);
     if (refused)
@@ -178,11 +176,7 @@ vtkPolyData* vtkMCXXRayMapper::vtkInternals::SampleVolume(
   // Polychromatic: the materials' total density, whatever the property's TF.
   vtkPiecewiseFunction* tf =
     this->Polychromatic ? this->Channels.Density() : volume->GetProperty()->GetScalarOpacity();
-  // The camera still where the pending image was completed: follow it.
-  const bool follow = this->ControlFollowPending && this->HasImage &&
-    mcx::SameGeometry(view.Geometry, this->Geometry);
-  this->ControlFollowPending = false;
-  return this->Sampling.Sample(tf, view.Camera, view.Size, follow);
+  return this->Sampling.Sample(tf, view.Camera, view.Size);
 }
 
 bool vtkMCXXRayMapper::vtkInternals::ConfigurePolychromatic(

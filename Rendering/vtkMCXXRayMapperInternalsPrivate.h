@@ -81,11 +81,6 @@ struct vtkMCXXRayMapper::vtkInternals
   vtkMCXXRayDisplay Display;
 
   vtkMCXVolumeSampling Sampling; // for an image input: its index and sampler
-  // A view-ordered cloud's complete image without its control, in a view
-  // the kept order serves (ReorderAngle): the next render in that view
-  // projects the view's control image and starts again, controlled.
-  bool ControlFollowPending = false;
-  bool VolumeInput = false; // this render's input is a volume or an index, sampled here
 
   // The polychromatic mode (a Spectrum set, an image input): the image
   // above is the total density's, the channels follow it point for point

@@ -308,11 +308,11 @@ check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expecte
 # view it was sorted for; the view's empty actors hide nothing).
 used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
 check("bool(true)" in used, "view ordered: the view's image is not the controlled one (%r)" % used.strip())
-# A camera move keeps the sort. After a turn within X-Ray Reorder Angle
-# (default 30 degrees) the complete image is followed, at the next render,
-# by the turned view's control image with the order sorted before the turn,
-# and so is the TF edit after it; after a larger turn the plain estimate
-# stays until the TF edit, which sorts for the view as it is then.
+# A camera move keeps the sort (the plain estimate is shown). The TF edit
+# that follows is controlled again, with the moved view's control image:
+# after a turn within X-Ray Reorder Angle (default 30 degrees) it keeps the
+# order sorted for the view before the turn; after a larger one it sorts
+# for the view as it is then.
 check(display.XRayReorderAngle == 30, "X-Ray Reorder Angle is %r, not 30" % display.XRayReorderAngle)
 sorted_for = vtkCamera()
 invoke("Invoke %s DeepCopy %s" % (obj(sorted_for), obj(camera)))
@@ -320,18 +320,8 @@ for turn, tf, kept in ((10, [1200.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0], True
                        (40, [900.0, 0.0, 0.5, 0.0, 3926.0, 1.0, 0.5, 0.0], False)):
     camera.Azimuth(turn)
     Render(view)
-    Render(view)  # the render after a complete image follows a turn within the angle
     used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
-    check(("bool(true)" if kept else "bool(false)") in used,
-          "view ordered, a turn of %d degrees: the image %s controlled (%r)"
-          % (turn, "is not" if kept else "is", used.strip()))
-    if kept:
-        on_screen = line_integral_image(representation)
-        expected = offline_image(index, opacity.Points, camera, [300, 240], ordered=True, sorted_for=sorted_for,
-                                 SampleExponent=20, Seed=5, Kernel=1, Deposit=0)
-        check(on_screen.shape == expected.shape and numpy.array_equal(on_screen, expected),
-              "view ordered, a turn of %d degrees followed: %d pixels differ from the off-line image"
-              % (turn, numpy.count_nonzero(on_screen != expected) if on_screen.shape == expected.shape else -1))
+    check("bool(false)" in used, "view ordered: the control image is used after a camera move (%r)" % used.strip())
     opacity.Points = tf
     Render(view)
     used = invoke("Invoke %s GetMapper" % obj(representation), "Invoke result() GetLastRenderUsedControlImage")
