@@ -190,6 +190,14 @@ struct ViewOrder
     return static_cast<std::int64_t>(this->BinFirstLevel.size()) - 1;
   }
 
+  /// The cells each bin is sorted by: the pixels of the view the order was
+  /// sorted for, and one off its image.
+  std::int64_t NumberOfCells() const
+  {
+    return (static_cast<std::int64_t>(this->KeyStarts.size()) - 1) /
+      std::max<std::int64_t>(this->NumberOfBins(), 1);
+  }
+
   /// Takes the arrays of an order no longer needed, so that the next Build
   /// of as many voxels writes into pages already touched: the first touch
   /// of a page, which the kernel zeroes, cost a third of a sort.

@@ -105,10 +105,8 @@ bool ProjectBins(vtkAlgorithm* self, const mcx::IndexView& view,
   accumulator.SetSplit(sampled ? static_cast<std::uint64_t>(voxels) : 0);
   const std::size_t pixels = accumulator.NumberOfPixels();
   const std::int64_t bins = order.NumberOfBins();
-  // The order's cells: the pixels of the view it was sorted for, and one
-  // off its image (not those of `geometry`, when the view has turned since).
-  const std::int64_t cells =
-    (static_cast<std::int64_t>(order.KeyStarts.size()) - 1) / std::max<std::int64_t>(bins, 1);
+  // The order's cells (not the pixels of `geometry`, when the view has turned since).
+  const std::int64_t cells = order.NumberOfCells();
   const mcx::VoxelDecoder<IdType> decoder(
     static_cast<std::uint64_t>(view.Dimensions[0]), static_cast<std::uint64_t>(view.Dimensions[1]));
   const std::uint64_t seedKey = mcx::SeedKey(seed ^ 0xBB67AE8584CAA73Bull);
@@ -348,10 +346,7 @@ struct vtkMCXViewOrderedSampling::SortedView
   // The cells of the order: the pixels of its view and one off its image.
   std::int64_t CellsOf(bool wideIds) const
   {
-    const std::vector<std::int64_t>& starts =
-      wideIds ? this->Wide.KeyStarts : this->Narrow.KeyStarts;
-    return (static_cast<std::int64_t>(starts.size()) - 1) /
-      std::max<std::int64_t>(this->BinsOf(wideIds), 1);
+    return wideIds ? this->Wide.NumberOfCells() : this->Narrow.NumberOfCells();
   }
 };
 
