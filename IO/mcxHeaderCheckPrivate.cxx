@@ -14,9 +14,11 @@
 #include <cctype>
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <locale>
 #include <sstream>
 #include <vector>
 
@@ -177,6 +179,36 @@ bool ParseIntegers(const std::string& text, std::vector<long long>& values)
     values.push_back(v);
   }
   return in.eof() && !values.empty();
+}
+
+bool ParseFiniteNumbers(const std::string& text, std::vector<double>& values)
+{
+  std::istringstream in(text);
+  in.imbue(std::locale::classic());
+  double v = 0;
+  values.clear();
+  while (in >> v)
+  {
+    if (!std::isfinite(v))
+    {
+      return false;
+    }
+    values.push_back(v);
+  }
+  return in.eof() && !values.empty();
+}
+
+bool FiniteNumbersOrNone(
+  const std::string& name, const std::string& text, std::size_t count, std::string& error)
+{
+  std::vector<double> values;
+  if (text.empty() || (ParseFiniteNumbers(text, values) && values.size() == count))
+  {
+    return true;
+  }
+  error =
+    "the image's " + name + " '" + text + "' is not " + std::to_string(count) + " finite numbers";
+  return false;
 }
 
 bool ReadHead(const std::string& path, std::string& text, std::string& error)

@@ -50,6 +50,14 @@ bool DecodeBase64(const std::string& text, std::string& decoded);
 
 /// Whitespace-separated integers, all of text; false for none.
 bool ParseIntegers(const std::string& text, std::vector<long long>& values);
+/// Whitespace-separated finite numbers, all of text; false for none, or
+/// for any token that is not one ("nan", "inf", "1e999", "abc").
+bool ParseFiniteNumbers(const std::string& text, std::vector<double>& values);
+/// False (error set: "the image's NAME 'TEXT' is not COUNT finite
+/// numbers") unless text is empty or COUNT finite numbers: a reader that
+/// takes a value it cannot parse as its default would misplace the volume.
+bool FiniteNumbersOrNone(
+  const std::string& name, const std::string& text, std::size_t count, std::string& error);
 
 /// A data file named relative to its header's folder.
 std::string Beside(const std::string& header, const std::string& name);

@@ -572,6 +572,14 @@ bool CheckXMLImageHeader(const std::string& path, Bytes& claimed, std::string& e
     error = "not a VTK XML image (no <VTKFile> with <ImageData>)";
     return false;
   }
+  // The placement: the reader takes one it cannot parse as its default.
+  const std::string& tag = image->Tag;
+  if (!FiniteNumbersOrNone("Origin", Attribute(tag, "Origin"), 3, error) ||
+    !FiniteNumbersOrNone("Spacing", Attribute(tag, "Spacing"), 3, error) ||
+    !FiniteNumbersOrNone("Direction", Attribute(tag, "Direction"), 9, error))
+  {
+    return false;
+  }
   Layout layout;
   layout.Word = Attribute(file->Tag, "header_type") == "UInt64" ? 8 : 4;
   layout.BigEndian = Attribute(file->Tag, "byte_order") == "BigEndian";

@@ -27,6 +27,7 @@
 
 #include "mcxByteSize.h"
 #include "mcxDicomFiles.h"
+#include "mcxHeaderCheckPrivate.h"
 #include "mcxPrintableText.h"
 
 #include <algorithm>
@@ -114,8 +115,90 @@ std::vector<double> SlicePositions(vtkDICOMReader* reader, const double normal[3
   return along;
 }
 
-// Repeated positions and gaps of more than 1.5 times the median spacing
-// (missing slices); empty when the slices are evenly spaced.
+// Values of one decimal-string attribute of image (file, frame), parsed
+// from its text (vtk-dicom reads "nan" as a number); false unless there
+// are `count` of them, each finite.
+bool FiniteValues(
+  vtkDICOMMetaData* meta, int file, int frame, vtkDICOMTag tag, std::size_t count, double* values)
+{
+  std::string text = meta->Get(file, frame, tag).AsString();
+  std::replace(text.begin(), text.end(), '\\', ' ');
+  std::vector<double> parsed;
+  if (!mcxio::check::ParseFiniteNumbers(text, parsed) || parsed.size() != count)
+  {
+    return false;
+  }
+  std::copy(parsed.begin(), parsed.end(), values);
+  return true;
+}
+
+// Whether the images stack into one volume as vtk-dicom reads it: each
+// with a position, the first image's orientation and pixel spacing (> 0),
+// and a finite rescale; and every image of the series in the volume (its
+// slice sorter leaves out what does not stack, a tilted slice). Empty
+// when they do, else which image does not and why.
+std::string CheckSlicesStack(vtkDICOMReader* reader, vtkIdType filesInSeries)
+{
+  vtkIntArray* files = reader->GetFileIndexArray();
+  vtkIntArray* frames = reader->GetFrameIndexArray();
+  vtkDICOMMetaData* meta = reader->GetMetaData();
+  double first[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }; // orientation, then pixel spacing
+  std::vector<bool> used(static_cast<std::size_t>(std::max<vtkIdType>(filesInSeries, 0)));
+  for (vtkIdType k = 0; k < files->GetNumberOfTuples(); ++k)
+  {
+    const int file = static_cast<int>(files->GetComponent(k, 0));
+    const int frame = frames ? static_cast<int>(frames->GetComponent(k, 0)) : 0;
+    if (file >= 0 && file < static_cast<int>(used.size()))
+    {
+      used[static_cast<std::size_t>(file)] = true;
+    }
+    const std::string slice = "slice " + std::to_string(k + 1) + " ('" +
+      vtksys::SystemTools::GetFilenameName(reader->GetFileNames()->GetValue(file)) + "')";
+    double v[8], rescale[2];
+    if (!FiniteValues(meta, file, frame, DC::ImagePositionPatient, 3, v))
+    {
+      return slice + " has no ImagePositionPatient of 3 finite numbers";
+    }
+    if (!FiniteValues(meta, file, frame, DC::ImageOrientationPatient, 6, v) ||
+      !FiniteValues(meta, file, frame, DC::PixelSpacing, 2, v + 6) || !(v[6] > 0 && v[7] > 0))
+    {
+      return slice +
+        " has no ImageOrientationPatient of 6 finite numbers and PixelSpacing of 2 "
+        "positive ones";
+    }
+    const bool same = k == 0 ||
+      std::equal(v, v + 8, first,
+        [](double a, double b) { return std::fabs(a - b) <= 1e-4 * std::max(1.0, std::fabs(b)); });
+    if (!same)
+    {
+      return slice +
+        " has another ImageOrientationPatient or PixelSpacing than slice 1 (a tilted "
+        "or resized slice?)";
+    }
+    std::copy(v, v + 8, first);
+    const bool rescaled = meta->Get(file, frame, DC::RescaleSlope).IsValid() ||
+      meta->Get(file, frame, DC::RescaleIntercept).IsValid();
+    if (rescaled &&
+      (!FiniteValues(meta, file, frame, DC::RescaleSlope, 1, rescale) ||
+        !FiniteValues(meta, file, frame, DC::RescaleIntercept, 1, rescale + 1)))
+    {
+      return slice + " has no RescaleSlope and RescaleIntercept of one finite number each";
+    }
+  }
+  const auto missing = std::find(used.begin(), used.end(), false);
+  if (missing != used.end())
+  {
+    return "the image '" +
+      vtksys::SystemTools::GetFilenameName(
+        reader->GetFileNames()->GetValue(static_cast<vtkIdType>(missing - used.begin()))) +
+      "' does not stack with the others (vtk-dicom left it out: another orientation or position)";
+  }
+  return std::string();
+}
+
+// Repeated positions, gaps of more than 1.5 times the median spacing
+// (missing slices) and slices off the even spacing the volume gives them;
+// empty when the slices are evenly spaced.
 std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
 {
   if (reader->GetFileIndexArray()->GetNumberOfComponents() > 1)
@@ -154,6 +237,26 @@ std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
           << where.str() << " (missing slices?)";
       return gap.str();
     }
+  }
+  // The volume places slice k at along[0] + k x the mean step: refuse a
+  // slice a tenth of a step or more off that (positions rounded to 0.1 mm
+  // of 0.625 mm slices stay within 0.05 mm).
+  const double mean = (along.back() - along.front()) / static_cast<double>(along.size() - 1);
+  std::size_t worst = 0;
+  double worstOff = 0.0;
+  for (std::size_t k = 1; k + 1 < along.size(); ++k)
+  {
+    const double off = std::fabs(along[k] - (along.front() + static_cast<double>(k) * mean));
+    worst = off > worstOff ? k : worst;
+    worstOff = std::max(off, worstOff);
+  }
+  if (worstOff >= 0.1 * std::fabs(mean))
+  {
+    std::ostringstream uneven;
+    uneven << "slice " << worst + 1 << " lies " << worstOff << " mm off the even spacing of "
+           << std::fabs(mean) << " mm (at " << along[worst]
+           << " mm along the normal; resample the series to even spacing)";
+    return uneven.str();
   }
   return std::string();
 }
@@ -320,7 +423,9 @@ struct vtkMCXDICOMSeriesReader::Internals
     // Patient space: world = M (spacing x index), M the patient matrix.
     vtkMatrix4x4* m = this->Reader->GetPatientMatrix();
     const double normal[3] = { m->GetElement(0, 2), m->GetElement(1, 2), m->GetElement(2, 2) };
-    const std::string spacing = CheckSliceSpacing(this->Reader, normal);
+    const std::string stack =
+      CheckSlicesStack(this->Reader, this->Reader->GetFileNames()->GetNumberOfValues());
+    const std::string spacing = stack.empty() ? CheckSliceSpacing(this->Reader, normal) : stack;
     if (!spacing.empty())
     {
       return std::string("the DICOM series in '") + folder + "' is not a volume: " + spacing;

@@ -107,6 +107,18 @@ const std::string Mha = "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\n";
 const std::string Nrrd = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 16 1 4\n";
 const std::string Vtk = "# vtk DataFile Version 3.0\nhostile\nBINARY\nDATASET STRUCTURED_POINTS\n";
 
+// A VTI of 2 x 2 x 2 voxels placed by `placement`: VTK's reader takes an
+// Origin, Spacing or Direction it cannot parse as its default.
+std::string Vti(const std::string& placement)
+{
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
+         "<ImageData WholeExtent=\"0 1 0 1 0 1\" " +
+    placement +
+    ">\n<Piece Extent=\"0 1 0 1 0 1\"><PointData Scalars=\"v\">"
+    "<DataArray type=\"UInt8\" Name=\"v\" format=\"ascii\">1 2 3 4 5 6 7 8</DataArray>"
+    "</PointData></Piece>\n</ImageData>\n</VTKFile>\n";
+}
+
 struct Hostile
 {
   std::string Name;  // the file, in the test's folder
@@ -157,6 +169,14 @@ std::vector<Hostile> Shapes(const std::string& folder)
       "ASCII NRRD data attached" },
     { "two-data-files.nhdr", Nrrd + "encoding: raw\ndata file: voxels.raw\ndatafile: voxels.raw\n",
       "names its data file 2 times" },
+    { "nan-spacing.vti", Vti("Spacing=\"NaN 3.2 1.5\""),
+      "Spacing 'NaN 3.2 1.5' is not 3 finite numbers" },
+    { "text-spacing.vti", Vti("Spacing=\"abc 1.5 2\""), "Spacing 'abc 1.5 2' is not 3" },
+    { "two-spacings.vti", Vti("Spacing=\"1 1.5\""), "Spacing '1 1.5' is not 3" },
+    { "infinite-origin.vti", Vti("Origin=\"1e999 0 0\""), "Origin '1e999 0 0' is not 3" },
+    { "six-direction.vti", Vti("Direction=\"1 0 0 0 1 0\""), "Direction '1 0 0 0 1 0' is not 9" },
+    { "nan-direction.vti", Vti("Direction=\"nan 0 0 0 1 0 0 0 1\""),
+      "Direction 'nan 0 0 0 1 0 0 0 1' is not 9 finite numbers" },
     // Attributes VTK's reader allocates for before the scalars.
     { "color-first.vtk",
       Vtk + "DIMENSIONS 1000 1000 1000\nPOINT_DATA 1000000000\nCOLOR_SCALARS c 4\n" +
@@ -316,6 +336,21 @@ TEST(HostileTextFormats, ADataFileGivenAsOutputIsRefusedAndLeftIntact)
     EXPECT_NE(std::string::npos, r.Errors.find("refusing to overwrite")) << r.Errors;
     EXPECT_EQ(r.Errors.size() - 1, r.Errors.find('\n')) << r.Errors;
     EXPECT_EQ(before, Slurp(target)) << form.Header << " let the output overwrite " << target;
+  }
+}
+
+TEST(HostileTextFormats, AVTIsParsablePlacementPasses)
+{
+  const std::string folder = Folder();
+  for (const std::string& placement : { std::string(),
+         std::string("Origin=\"-1.5 2 1e-3\" Spacing=\"0.5 .5 2E0\" "
+                     "Direction=\"0 1 0 -1 0 0 0 0 1\"") })
+  {
+    const std::string path = folder + "/placed.vti";
+    WriteBytes(path, Vti(placement));
+    unsigned long long claimed = 0;
+    std::string error;
+    EXPECT_TRUE(mcxio::CheckVolumeHeader(path, claimed, error)) << placement << ": " << error;
   }
 }
 

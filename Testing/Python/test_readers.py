@@ -185,6 +185,53 @@ class DicomSeries(unittest.TestCase):
         self.assertEqual(1, len(messages), messages)
         self.assertIn("no DICOM series in", messages[0])
 
+    def test_images_that_do_not_stack_evenly_are_errors_that_name_one(self):
+        # What vtk-dicom would read silently into a wrong volume: a tilted
+        # slice (left out), pixel spacing 0 (read as 1 mm) or changing
+        # midway, slices off the even spacing, a rescale of "nan", no position.
+        import pydicom
+
+        def tilt(ds):
+            ds.ImageOrientationPatient = [1, 0, 0, 0, 0.9, 0.43589]
+
+        def zero(ds):
+            ds.PixelSpacing = [0, 0]
+
+        def wider(ds):
+            ds.PixelSpacing = [float(ds.PixelSpacing[0]) * 1.1, float(ds.PixelSpacing[1])]
+
+        def shifted(ds):
+            position = [float(v) for v in ds.ImagePositionPatient]
+            position[2] += 0.7
+            ds.ImagePositionPatient = position
+
+        def nan_slope(ds):
+            ds.RescaleSlope = "nan"
+
+        def no_position(ds):
+            del ds.ImagePositionPatient
+
+        cases = [("tilt", tilt, [30], "'CTHead30.dcm' does not stack with the others"),
+                 ("zero", zero, range(1, 94), "has no ImageOrientationPatient of 6 finite numbers "
+                  "and PixelSpacing of 2 positive ones"),
+                 ("wider", wider, range(50, 94), "has another ImageOrientationPatient or PixelSpacing"),
+                 ("shifted", shifted, range(50, 94), "mm off the even spacing of"),
+                 ("slope", nan_slope, [5], "('CTHead5.dcm') has no RescaleSlope and RescaleIntercept"),
+                 ("position", no_position, [20], "('CTHead20.dcm') has no ImagePositionPatient")]
+        for name, change, slices, needle in cases:
+            folder = self.copy_series(name)
+            for n in slices:
+                path = os.path.join(folder, "CTHead%d.dcm" % n)
+                ds = pydicom.dcmread(path)
+                change(ds)
+                ds.save_as(path)
+            reader, messages = read(folder)
+            self.assertEqual(vtkErrorCode.FileFormatError, reader.GetErrorCode(), name)
+            self.assertEqual(1, len(messages), messages)
+            self.assertIn("is not a volume: ", messages[0])
+            self.assertIn(needle, messages[0])
+            self.assertEqual(0, reader.GetOutput().GetNumberOfPoints(), name)
+
 
 class Nifti(unittest.TestCase):
     def setUp(self):
