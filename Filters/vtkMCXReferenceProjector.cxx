@@ -238,12 +238,21 @@ int vtkMCXReferenceProjector::RequestData(
         difference += (current[p] - previous[p]) * (current[p] - previous[p]);
         norm += current[p] * current[p];
       }
+      // An empty image has not converged: rays between them may still meet
+      // a volume thinner than a pixel (it stays empty where the view misses).
       change = norm > 0 ? std::sqrt(difference / norm) : 0.0;
-      if (change <= this->RelativeTolerance)
+      if (change <= this->RelativeTolerance && norm > 0)
       {
         break;
       }
     }
+  }
+  if (steps > 1 && change > this->RelativeTolerance)
+  {
+    vtkWarningMacro(<< "the exact projection stopped at " << subdivision << "^2 rays per pixel "
+                    << "(MaximumSubdivision) with an estimated relative error of " << change
+                    << ", above its RelativeTolerance of " << this->RelativeTolerance
+                    << " (voxels much thinner than a pixel?)");
   }
 
   vtkDoubleArray* values = this->AllocateLineIntegral(output);

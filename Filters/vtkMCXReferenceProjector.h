@@ -9,7 +9,9 @@
  * the mean over a pixel's area uses S x S rays at the centres of a regular
  * subdivision of the pixel, with S = 1, 3, 9, 27, ... (nested, so each step
  * refines the last) until the relative RMS change of the image between two
- * steps is at most RelativeTolerance, or S reaches MaximumSubdivision.
+ * steps is at most RelativeTolerance, or S reaches MaximumSubdivision
+ * (then with a warning). An empty image is refined on: a volume thinner
+ * than a pixel may lie between the rays.
  * The output's field data holds "EstimatedRelativeError" (that last change)
  * and "RaysPerPixelAxis" (S).
  *
