@@ -145,6 +145,11 @@ bool WriteAtomically(const std::string& path, const Write& write, std::string& e
     error = refused;
     return false;
   }
+  if (written && OutputsHeld())
+  {
+    HoldOutput(temporary, path); // renamed with the run's other outputs
+    return true;
+  }
   if (!written || std::rename(temporary.c_str(), path.c_str()) != 0)
   {
     // Only the causes a write itself has (a stale errno of some other call

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <vector>
 
 #include <unistd.h>
 
@@ -15,6 +18,16 @@ namespace
 char PartialPath[4096];
 volatile std::sig_atomic_t HasPartial = 0;
 bool TerminalStderr = false; // set before the handlers, read only by them
+
+// HoldOutputs' temporaries and their paths. The handlers read them; they
+// change only with the terminating signals blocked (SignalsBlocked).
+struct HeldOutput
+{
+  std::string Temporary;
+  std::string Path;
+};
+std::vector<HeldOutput> Held;
+bool Holding = false;
 
 void Say(const char* text)
 {
@@ -47,10 +60,14 @@ const char* NameOf(int signal)
 
 extern "C" void OnTerminatingSignal(int signal)
 {
-  const bool removed = HasPartial != 0;
-  if (removed)
+  const bool removed = HasPartial != 0 || !Held.empty();
+  if (HasPartial != 0)
   {
     ::unlink(PartialPath);
+  }
+  for (const HeldOutput& held : Held)
+  {
+    ::unlink(held.Temporary.c_str());
   }
   // On a terminal the progress bar's line may be open: start a new one.
   Say(TerminalStderr ? "\nmcxray: error: " : "mcxray: error: ");
@@ -88,6 +105,84 @@ void InstallInterruptHandlers()
   }
   std::signal(SIGXFSZ, SIG_IGN); // the write fails with EFBIG and is reported
   std::signal(SIGPIPE, SIG_IGN); // the write fails with EPIPE and is reported
+}
+
+namespace
+{
+// Blocks the terminating signals for its lifetime: the held list changes
+// only while no handler can read it.
+class SignalsBlocked
+{
+public:
+  SignalsBlocked()
+  {
+    sigset_t blocked;
+    sigemptyset(&blocked);
+    for (const Terminating& t : Signals)
+    {
+      sigaddset(&blocked, t.Signal);
+    }
+    sigprocmask(SIG_BLOCK, &blocked, &this->Saved);
+  }
+  ~SignalsBlocked() { sigprocmask(SIG_SETMASK, &this->Saved, nullptr); }
+  SignalsBlocked(const SignalsBlocked&) = delete;
+  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
+
+private:
+  sigset_t Saved;
+};
+
+// At exit (a failed run's Fail): the held temporaries go.
+extern "C" void RemoveHeldOutputs()
+{
+  const SignalsBlocked blocked;
+  for (const HeldOutput& held : Held)
+  {
+    std::remove(held.Temporary.c_str());
+  }
+  Held.clear();
+}
+}
+
+void HoldOutputs()
+{
+  if (!Holding)
+  {
+    Holding = true;
+    std::atexit(&RemoveHeldOutputs);
+  }
+}
+
+bool OutputsHeld()
+{
+  return Holding;
+}
+
+void HoldOutput(const std::string& temporary, const std::string& path)
+{
+  const SignalsBlocked blocked;
+  Held.push_back({ temporary, path });
+}
+
+bool CommitHeldOutputs(std::string& error)
+{
+  const SignalsBlocked blocked;
+  std::size_t done = 0;
+  for (; done < Held.size(); ++done)
+  {
+    if (std::rename(Held[done].Temporary.c_str(), Held[done].Path.c_str()) != 0)
+    {
+      error = "cannot write '" + Held[done].Path + "'";
+      break;
+    }
+  }
+  for (std::size_t i = done; i < Held.size(); ++i)
+  {
+    std::remove(Held[i].Temporary.c_str());
+  }
+  const bool committed = done == Held.size();
+  Held.clear();
+  return committed;
 }
 
 PartialFileGuard::PartialFileGuard(const std::string& path)

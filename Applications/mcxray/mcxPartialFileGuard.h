@@ -29,6 +29,21 @@ public:
   PartialFileGuard& operator=(const PartialFileGuard&) = delete;
 };
 
+/// From now on in this process, files written all or nothing (mcxImageOutput)
+/// stay under their temporary names until CommitHeldOutputs: a run of many
+/// outputs (poses, their geometry file) writes all of them or none. A signal,
+/// or an exit before the commit (a failed run), removes them.
+void HoldOutputs();
+
+/// Renames the held temporaries to their paths; false (error set, the
+/// rest removed) if one cannot be.
+bool CommitHeldOutputs(std::string& error);
+
+/// Whether HoldOutputs is in force; then HoldOutput takes a written
+/// temporary to be renamed to path at the commit.
+bool OutputsHeld();
+void HoldOutput(const std::string& temporary, const std::string& path);
+
 } // namespace mcxapp
 
 #endif

@@ -7,6 +7,7 @@
 #include "mcxFail.h"
 #include "mcxImageOutput.h"
 #include "mcxOptionTable.h"
+#include "mcxPartialFileGuard.h"
 #include "mcxPolychromaticStage.h"
 #include "mcxPoseOutput.h"
 #include "mcxPreflight.h"
@@ -212,6 +213,7 @@ public:
       stack.reset(new PoseStack(count, poses[0].Size));
     }
     std::vector<PoseRecord> records;
+    HoldOutputs(); // every pose's image and the geometry file, or none
     for (int k = 0; k < count; ++k)
     {
       const Pose* pose = poses.empty() ? nullptr : &poses[k];
@@ -242,6 +244,10 @@ public:
       this->Write(stack->GetImage(), this->Options.Output);
     }
     this->WriteGeometry(records);
+    if (!CommitHeldOutputs(error))
+    {
+      Fail(error);
+    }
     // Warnings only once the run has succeeded: a failing run says one line.
     for (const std::string& warning : this->Warnings)
     {

@@ -392,6 +392,34 @@ TEST(HostileProcess, SignalsDuringTheWriteLeaveNoTemporary)
   }
 }
 
+TEST(HostileProcess, ASignalDuringASweepLeavesNoneOfItsImages)
+{
+  // Signalled while the second pose's image is written: the first, complete
+  // and held until the run ends, goes with it. Nothing of the run is left.
+  const std::string folder = Folder("process_sweep");
+  Conditions during;
+  during.Signal = SIGTERM;
+  during.Folder = folder;
+  during.SignalWhen = "_0001.pfm.part-";
+  const Outcome r = RunMcxray(
+    { "render", "--gantry", "0:90:3", "--detector", "2048x2048", "--samples", "1023", "--quiet",
+      "--output", folder + "/sweep.pfm", "--output-geometry", folder + "/sweep.json" },
+    during);
+  ASSERT_TRUE(r.Signalled) << r.Errors;
+  EXPECT_TRUE(WIFSIGNALED(r.Status) && WTERMSIG(r.Status) == SIGTERM) << r.Status;
+  EXPECT_EQ(1, Lines(r.Errors)) << r.Errors;
+  EXPECT_NE(std::string::npos, r.Errors.find("the unfinished output was removed")) << r.Errors;
+  EXPECT_EQ(0, CountFiles(folder, "sweep")) << "files of the interrupted run are left";
+  // Unsignalled, the run writes all three and the geometry.
+  const Outcome whole = RunMcxray(
+    { "render", "--gantry", "0:90:3", "--detector", "16x16", "--samples", "1023", "--quiet",
+      "--output", folder + "/sweep.pfm", "--output-geometry", folder + "/sweep.json" },
+    Conditions());
+  EXPECT_TRUE(WIFEXITED(whole.Status) && WEXITSTATUS(whole.Status) == 0) << whole.Errors;
+  EXPECT_EQ(4, CountFiles(folder, "sweep"));
+  EXPECT_EQ(0, CountFiles(folder, ".part-"));
+}
+
 TEST(HostileProcess, OptionsThatWouldRunWithoutEndAreOneLine)
 {
   const std::string folder = Folder("process_options");
