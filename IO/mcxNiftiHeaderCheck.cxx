@@ -84,8 +84,10 @@ Bytes GzipLength(const std::string& path, Bytes limit)
   return total;
 }
 
-// The first 540 bytes of the file (decompressed): how many were read.
-int ReadHeaderBytes(const std::string& path, bool compressed, unsigned char (&header)[540])
+// The first 540 bytes of the file (decompressed): how many were read, and
+// zlib's complaint about a gzip stream that ended or broke before them.
+int ReadHeaderBytes(
+  const std::string& path, bool compressed, unsigned char (&header)[540], std::string& broken)
 {
   if (compressed)
   {
@@ -93,6 +95,13 @@ int ReadHeaderBytes(const std::string& path, bool compressed, unsigned char (&he
     const int got = in ? gzread(in, header, sizeof(header)) : -1;
     if (in)
     {
+      int code = Z_OK;
+      const char* message = gzerror(in, &code);
+      broken = code != Z_OK && code != Z_STREAM_END && message ? message : "";
+      if (broken.compare(0, path.size() + 2, path + ": ") == 0)
+      {
+        broken.erase(0, path.size() + 2); // zlib names the file, the message does already
+      }
       gzclose(in);
     }
     return got;
@@ -112,10 +121,12 @@ bool CheckNiftiHeader(const std::string& path, Bytes& claimed, std::string& erro
   }
   const bool compressed = EndsWith(path, ".gz");
   unsigned char header[540] = { 0 };
-  const int got = ReadHeaderBytes(path, compressed, header);
+  std::string broken;
+  const int got = ReadHeaderBytes(path, compressed, header, broken);
   if (got < 348)
   {
-    error = "not a NIfTI file (shorter than its 348-byte header)";
+    error = broken.empty() ? "not a NIfTI file (shorter than its 348-byte header)"
+                           : "its gzip stream is truncated or corrupt (zlib: " + broken + ")";
     return false;
   }
   const int size = Field<std::int32_t>(header, 0, false);

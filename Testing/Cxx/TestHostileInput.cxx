@@ -507,6 +507,8 @@ TEST(HostileInput, RegressionFilesGiveOneLine)
     // Was a heap overrun inside VTK: the check now decodes every slice.
     { "rle-run-overflow.slc", "slice 13 decodes to more voxels than a slice holds" },
     { "block-table-lies.vti", "block table" },
+    { "truncated-gzip.nii.gz", "its gzip stream is truncated or corrupt (zlib: unexpected end" },
+    { "corrupt-gzip.nii.gz", "its gzip stream is truncated or corrupt (zlib: invalid" },
   };
   for (const auto& c : cases)
   {
