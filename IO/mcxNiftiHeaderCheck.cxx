@@ -167,6 +167,20 @@ bool CheckNiftiHeader(const std::string& path, Bytes& claimed, std::string& erro
     error = "the NIfTI header's dim[0] is " + std::to_string(rank) + " (expected 1 to 7)";
     return false;
   }
+  if (rank >= 4 && dims[3] > 1)
+  {
+    error = "the NIfTI file holds " + std::to_string(dims[3]) +
+      " volumes along dim[4] (a time series): extract the one to render first";
+    return false;
+  }
+  const double scale[2] = { version == 1 ? Field<float>(header, 112, swap)
+                                         : Field<double>(header, 176, swap),
+    version == 1 ? Field<float>(header, 116, swap) : Field<double>(header, 184, swap) };
+  if (!std::isfinite(scale[0]) || !std::isfinite(scale[1]))
+  {
+    error = "the NIfTI header's scl_slope or scl_inter is not a finite number";
+    return false;
+  }
   const Bytes element = NiftiElementBytes(datatype);
   if (element == 0)
   {

@@ -26,6 +26,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <string>
 #include <thread>
@@ -179,7 +180,18 @@ TEST(HostileInput, LyingAndTruncatedHeadersGiveOneLine)
     { "rank.nii", Nifti({}, 2, 8, 10), "dim[0]" },
     { "type.nii", Nifti({ 4, 4, 4 }, 3, 8, 64), "datatype" },
     { "tiny.nii", std::string(100, 'x'), "348-byte header" },
-    { "missing.mhd", "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = gone.raw\n",
+    { "time.nii", Nifti({ 4, 4, 4, 3 }, 2, 8, 192), "holds 3 volumes along dim[4]" },
+    { "slope.nii",
+      []
+      {
+        std::string nifti = Nifti({ 4, 4, 4 }, 2, 8, 64);
+        const float slope = std::numeric_limits<float>::quiet_NaN();
+        std::memcpy(&nifti[112], &slope, 4);
+        return nifti;
+      }(),
+      "scl_slope or scl_inter is not a finite number" },
+    { "missing.mhd",
+      "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = gone.raw\n",
       "missing" },
     { "dims.mhd", "NDims = 3\nDimSize = 4 4\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n",
       "DimSize" },
@@ -193,9 +205,11 @@ TEST(HostileInput, LyingAndTruncatedHeadersGiveOneLine)
         std::string(1000, '\0'),
       "more than deflate" },
     { "pattern.mhd",
-      "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = s%d.raw 1 999999999\n",
+      "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = s%d.raw 1 "
+      "999999999\n",
       "pattern" },
-    { "short.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\nencoding: raw\n\n" +
+    { "short.nrrd",
+      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\nencoding: raw\n\n" +
         std::string(100, '\0'),
       "truncated" },
     { "sizes.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64\nencoding: raw\n\n",
@@ -204,7 +218,8 @@ TEST(HostileInput, LyingAndTruncatedHeadersGiveOneLine)
       "type" },
     { "short.vtk",
       "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET STRUCTURED_POINTS\nDIMENSIONS 64 64 64\n"
-      "SPACING 1 1 1\nORIGIN 0 0 0\nPOINT_DATA 262144\nSCALARS s unsigned_char\nLOOKUP_TABLE default\n" +
+      "SPACING 1 1 1\nORIGIN 0 0 0\nPOINT_DATA 262144\nSCALARS s unsigned_char\nLOOKUP_TABLE "
+      "default\n" +
         std::string(10, '\0'),
       "truncated" },
     { "points.vtk",
