@@ -1,5 +1,6 @@
 #include "mcxProjectionMatrix.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mcx
@@ -55,14 +56,22 @@ std::string PinholeFromMatrix(const double P[12], PinholeCamera& camera)
       return "the projection matrix has a value that is not a finite number";
     }
   }
+  // A camera's matrix is defined up to scale: divided by its largest entry,
+  // 1e300 and 1e-300 scales neither overflow nor underflow below.
+  double largest = 0.0;
+  for (int k = 0; k < 12; ++k)
+  {
+    largest = std::max(largest, std::fabs(P[k]));
+  }
+  const double unit = largest > 0.0 ? 1.0 / largest : 1.0;
   double m[3][3], p4[3];
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
     {
-      m[r][c] = P[4 * r + c];
+      m[r][c] = P[4 * r + c] * unit;
     }
-    p4[r] = P[4 * r + 3];
+    p4[r] = P[4 * r + 3] * unit;
   }
   const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +

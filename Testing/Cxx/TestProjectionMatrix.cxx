@@ -108,7 +108,7 @@ TEST(ProjectionMatrix, DecomposesWhatItComposesAtAnyScale)
     const mcx::PinholeCamera camera = RandomCamera(random);
     double P[12];
     mcx::MatrixFromPinhole(camera, P);
-    for (double scale : { 1.0, -2.5, 1e-6, 3e4 })
+    for (double scale : { 1.0, -2.5, 1e-6, 3e4, 1e-300, -1e290 })
     {
       double scaled[12];
       for (int k = 0; k < 12; ++k)
