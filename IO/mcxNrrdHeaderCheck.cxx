@@ -217,6 +217,11 @@ bool NrrdRuns(const std::string& path, std::vector<DataRun>& runs, Bytes& claime
   const std::string encoding = Lower(f["encoding"]);
   const bool gzip = encoding == "gzip" || encoding == "gz";
   const bool text = encoding == "ascii" || encoding == "text" || encoding == "txt";
+  if (encoding.empty())
+  {
+    error = "the NRRD header gives no encoding (a field the format requires: a truncated header?)";
+    return false;
+  }
   if (!gzip && !text && encoding != "raw")
   {
     error = "the NRRD encoding '" + f["encoding"] + "' is not supported (raw, ascii or gzip)";

@@ -214,6 +214,8 @@ TEST(HostileInput, LyingAndTruncatedHeadersGiveOneLine)
       "truncated" },
     { "sizes.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64\nencoding: raw\n\n",
       "sizes" },
+    { "cut.nrrd", "NRRD0004\ntype: short\ndimension: 3\nsizes: 28 24 20\nspace directions: (",
+      "the NRRD header gives no encoding" },
     { "type.nrrd", "NRRD0004\ntype: quaternion\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n",
       "type" },
     { "short.vtk",
