@@ -38,6 +38,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#ifdef __linux__
+#include <linux/magic.h>
+#include <sys/vfs.h>
+#endif
+
 namespace mcxio
 {
 
@@ -76,6 +81,35 @@ bool Identity(const std::string& path, struct stat& info, Inode& id)
   return true;
 }
 
+// Whether folder lies on a kernel's pseudo file system (/proc, /sys, ...):
+// its files are no images, and reading some of them blocks.
+bool OnPseudoFileSystem(const std::string& folder)
+{
+#ifdef __linux__
+  struct statfs info;
+  if (::statfs(folder.c_str(), &info) != 0)
+  {
+    return false;
+  }
+  const unsigned long type = static_cast<unsigned long>(info.f_type);
+  for (unsigned long pseudo :
+    { static_cast<unsigned long>(PROC_SUPER_MAGIC), static_cast<unsigned long>(SYSFS_MAGIC),
+      static_cast<unsigned long>(DEBUGFS_MAGIC), static_cast<unsigned long>(TRACEFS_MAGIC),
+      static_cast<unsigned long>(SECURITYFS_MAGIC), static_cast<unsigned long>(CGROUP_SUPER_MAGIC),
+      static_cast<unsigned long>(CGROUP2_SUPER_MAGIC),
+      static_cast<unsigned long>(DEVPTS_SUPER_MAGIC), static_cast<unsigned long>(BPF_FS_MAGIC) })
+  {
+    if (type == pseudo)
+    {
+      return true;
+    }
+  }
+#else
+  (void)folder;
+#endif
+  return false;
+}
+
 struct Walk
 {
   std::set<Inode> Folders, Files;
@@ -105,6 +139,10 @@ struct Walk
       }
       if (S_ISDIR(info.st_mode))
       {
+        if (OnPseudoFileSystem(path))
+        {
+          continue; // a link into /proc or /sys: no images there
+        }
         // Each folder once: a link back to it or above adds nothing.
         if (depth > 0 && this->Folders.insert(id).second && !this->Visit(path, depth - 1, error))
         {
@@ -360,6 +398,11 @@ std::string CheckFile(const std::string& path, double& claimed)
 bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
   std::vector<std::string>& files, std::string& error)
 {
+  if (OnPseudoFileSystem(folder))
+  {
+    error = "it lies on a pseudo file system of the kernel (/proc, /sys), which holds no images";
+    return false;
+  }
   Walk walk;
   walk.Found = &files;
   walk.Limit = limit;

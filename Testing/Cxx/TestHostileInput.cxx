@@ -542,6 +542,27 @@ TEST(HostileInput, RegressionFilesGiveOneLine)
   vtksys::SystemTools::RemoveFile(odd);
 }
 
+TEST(HostileInput, PseudoFileSystemsAreNoDicomFolders)
+{
+  // /proc's files read as regular ones, and some block: the folder is
+  // refused at once, and a link into it inside a series is skipped.
+  const auto start = std::chrono::steady_clock::now();
+  ExpectRefused("render /proc/self --samples 1023", "pseudo file system of the kernel");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+  const std::string series = mcxtest::SharedDataPath("ct_head_headsq_dicom");
+  MCXTEST_NEED(vtksys::SystemTools::FileIsDirectory(series), series);
+  const std::string folder = Temporary("hostile_dicom_proc");
+  vtksys::SystemTools::RemoveADirectory(folder);
+  vtksys::SystemTools::CopyADirectory(series, folder);
+  ASSERT_EQ(0, ::symlink("/proc/self", (folder + "/proc").c_str()));
+  const std::string output = Temporary("hostile_dicom_proc.png");
+  const Result r = RunCLI("render " + folder + " --samples 1023 --quiet --output " + output);
+  EXPECT_EQ(0, r.Status) << r.Errors;
+  EXPECT_TRUE(vtksys::SystemTools::FileExists(output));
+  vtksys::SystemTools::RemoveADirectory(folder);
+  vtksys::SystemTools::RemoveFile(output);
+}
+
 TEST(HostileInput, DicomFoldersAsHospitalsExportThem)
 {
   // Two series in one folder (the second a copy with another
