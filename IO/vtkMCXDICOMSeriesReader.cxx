@@ -148,10 +148,12 @@ std::string CheckSlicesStack(vtkDICOMReader* reader, vtkIdType filesInSeries)
   {
     const int file = static_cast<int>(files->GetComponent(k, 0));
     const int frame = frames ? static_cast<int>(frames->GetComponent(k, 0)) : 0;
-    if (file >= 0 && file < static_cast<int>(used.size()))
+    if (file < 0 || file >= static_cast<int>(used.size()) || file >= meta->GetNumberOfInstances() ||
+      frame < 0)
     {
-      used[static_cast<std::size_t>(file)] = true;
+      return "slice " + std::to_string(k + 1) + " is no image of the series";
     }
+    used[static_cast<std::size_t>(file)] = true;
     const std::string slice = "slice " + std::to_string(k + 1) + " ('" +
       vtksys::SystemTools::GetFilenameName(reader->GetFileNames()->GetValue(file)) + "')";
     double v[8], rescale[2];

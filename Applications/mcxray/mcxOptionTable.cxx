@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -443,6 +444,7 @@ const char* CommandName(Command command)
 
 bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
 {
+  std::set<const Option*> given; // an option twice is a typo or a script's slip, not an override
   for (int i = 2; i < argc; ++i)
   {
     const std::string name = argv[i];
@@ -451,6 +453,10 @@ bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
       return false;
     }
     const Option* option = Find(name, command);
+    if (option && !given.insert(option).second)
+    {
+      Fail("option " + name + " is given twice");
+    }
     if (option && !option->TakesValue)
     {
       option->Apply(settings, { name, std::string() });

@@ -356,6 +356,7 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
   const std::string output = Temporary("cli_never.png");
   const char* cases[] = {
     "render /nonexistent/volume.nii.gz --output ",
+    "render --samples 100 --samples 200 --output ",
     "render --tf 100:x --output ",
     "render --samples -5 --output ",
     "render --view +w --output ",
