@@ -153,7 +153,14 @@ std::string CheckSlicesStack(vtkDICOMReader* reader, vtkIdType filesInSeries)
     {
       return "slice " + std::to_string(k + 1) + " is no image of the series";
     }
-    used[static_cast<std::size_t>(file)] = true;
+    for (int c = 0; c < files->GetNumberOfComponents(); ++c) // images sharing the slice
+    {
+      const int shared = static_cast<int>(files->GetComponent(k, c));
+      if (shared >= 0 && shared < static_cast<int>(used.size()))
+      {
+        used[static_cast<std::size_t>(shared)] = true;
+      }
+    }
     const std::string slice = "slice " + std::to_string(k + 1) + " ('" +
       vtksys::SystemTools::GetFilenameName(reader->GetFileNames()->GetValue(file)) + "')";
     double v[8], rescale[2];
@@ -177,7 +184,10 @@ std::string CheckSlicesStack(vtkDICOMReader* reader, vtkIdType filesInSeries)
         " has another ImageOrientationPatient or PixelSpacing than slice 1 (a tilted "
         "or resized slice?)";
     }
-    std::copy(v, v + 8, first);
+    if (k == 0)
+    {
+      std::copy(v, v + 8, first);
+    }
     const bool rescaled = meta->Get(file, frame, DC::RescaleSlope).IsValid() ||
       meta->Get(file, frame, DC::RescaleIntercept).IsValid();
     if (rescaled &&
@@ -193,7 +203,8 @@ std::string CheckSlicesStack(vtkDICOMReader* reader, vtkIdType filesInSeries)
     return "the image '" +
       vtksys::SystemTools::GetFilenameName(
         reader->GetFileNames()->GetValue(static_cast<vtkIdType>(missing - used.begin()))) +
-      "' does not stack with the others (vtk-dicom left it out: another orientation or position)";
+      "' does not stack with the others (vtk-dicom left it out: another orientation or position; "
+      "a localizer? remove it from the folder)";
   }
   return std::string();
 }

@@ -71,6 +71,7 @@ options:
   --view AXIS           parallel view along +x, -x, +y, -y, +z or -z (default +z).
                         Image axis 0 runs along the first remaining world axis in
                         x, y, z order, axis 1 along the second; never mirrored.
+                        x, y and z without a sign are +x, +y and +z.
   --camera P:F:U:KIND   any view: position P, focal point F and view-up U as
                         x,y,z triples, and KIND parallel=SCALE (half the image
                         height in world units) or angle=DEGREES (perspective,

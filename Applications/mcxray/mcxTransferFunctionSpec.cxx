@@ -24,6 +24,25 @@ const char* TransferFunctionPresetHelp()
          "0 at air; default MU_WATER 0.02 per mm, water at about 70 keV)";
 }
 
+namespace
+{
+// Whether tf has a point at `value` with another weight than `weight`
+// (AddPoint would silently replace it).
+bool HasOtherPointAt(vtkPiecewiseFunction* tf, double value, double weight)
+{
+  for (int i = 0; i < tf->GetSize(); ++i)
+  {
+    double node[4];
+    tf->GetNodeValue(i, node);
+    if (node[0] == value && node[1] != weight)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
 vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
   const std::string& spec, const double dataRange[2], std::string& error)
 {
@@ -88,6 +107,12 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     {
       error = "bad --tf point '" + item +
         "' (expected value:weight with finite numbers, or a preset: raw, bone, soft-tissue, mu)";
+      return nullptr;
+    }
+    if (HasOtherPointAt(tf, value, weight))
+    {
+      error = "bad --tf: density " + valueText +
+        " is given twice with different weights (a step needs two densities, e.g. 999.9:0,1000:1)";
       return nullptr;
     }
     tf->AddPoint(value, weight);

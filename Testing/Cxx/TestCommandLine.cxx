@@ -358,6 +358,7 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
     "render /nonexistent/volume.nii.gz --output ",
     "render --samples 100 --samples 200 --output ",
     "render --tf 100:x --output ",
+    "render --tf 1000:0,1000:1 --output ",
     "render --samples -5 --output ",
     "render --view +w --output ",
     "render --method fast --output ",
