@@ -252,8 +252,8 @@ std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
     }
   }
   // The volume places slice k at along[0] + k x the mean step: refuse a
-  // slice a tenth of a step or more off that (positions rounded to 0.1 mm
-  // of 0.625 mm slices stay within 0.05 mm).
+  // slice a tenth of a step or more off that, and more than the 0.05 mm of
+  // positions written to 0.1 mm (0.25 mm slices among them).
   const double mean = (along.back() - along.front()) / static_cast<double>(along.size() - 1);
   std::size_t worst = 0;
   double worstOff = 0.0;
@@ -263,7 +263,7 @@ std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
     worst = off > worstOff ? k : worst;
     worstOff = std::max(off, worstOff);
   }
-  if (worstOff >= 0.1 * std::fabs(mean))
+  if (worstOff >= std::max(0.1 * std::fabs(mean), 0.051))
   {
     std::ostringstream uneven;
     uneven << "slice " << worst + 1 << " lies " << worstOff << " mm off the even spacing of "

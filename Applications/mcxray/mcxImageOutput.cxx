@@ -145,10 +145,9 @@ bool WriteAtomically(const std::string& path, const Write& write, std::string& e
     error = refused;
     return false;
   }
-  if (written && OutputsHeld())
+  if (written && OutputsHeld() && HoldOutput(temporary, path))
   {
-    HoldOutput(temporary, path); // renamed with the run's other outputs
-    return true;
+    return true; // renamed with the run's other outputs
   }
   if (!written || std::rename(temporary.c_str(), path.c_str()) != 0)
   {

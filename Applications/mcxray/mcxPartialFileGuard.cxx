@@ -1,6 +1,7 @@
 #include "mcxPartialFileGuard.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -19,14 +20,19 @@ char PartialPath[4096];
 volatile std::sig_atomic_t HasPartial = 0;
 bool TerminalStderr = false; // set before the handlers, read only by them
 
-// HoldOutputs' temporaries and their paths. The handlers read them; they
-// change only with the terminating signals blocked (SignalsBlocked).
+// HoldOutputs' temporaries and their paths, room reserved up front: the
+// vector never reallocates, so a handler (on any thread: TBB's do not block
+// signals) reads entries [HeldFirst, HeldCount) that no one moves; the
+// bounds change only once an entry is complete, and drop to 0 before any
+// entry is destroyed.
 struct HeldOutput
 {
   std::string Temporary;
   std::string Path;
 };
 std::vector<HeldOutput> Held;
+volatile std::sig_atomic_t HeldFirst = 0; // entries before it are renamed already
+volatile std::sig_atomic_t HeldCount = 0;
 bool Holding = false;
 
 void Say(const char* text)
@@ -60,14 +66,14 @@ const char* NameOf(int signal)
 
 extern "C" void OnTerminatingSignal(int signal)
 {
-  const bool removed = HasPartial != 0 || !Held.empty();
+  const bool removed = HasPartial != 0 || HeldFirst < HeldCount;
   if (HasPartial != 0)
   {
     ::unlink(PartialPath);
   }
-  for (const HeldOutput& held : Held)
+  for (std::sig_atomic_t i = HeldFirst; i < HeldCount; ++i)
   {
-    ::unlink(held.Temporary.c_str());
+    ::unlink(Held[static_cast<std::size_t>(i)].Temporary.c_str());
   }
   // On a terminal the progress bar's line may be open: start a new one.
   Say(TerminalStderr ? "\nmcxray: error: " : "mcxray: error: ");
@@ -109,43 +115,31 @@ void InstallInterruptHandlers()
 
 namespace
 {
-// Blocks the terminating signals for its lifetime: the held list changes
-// only while no handler can read it.
-class SignalsBlocked
+// Forgets the held entries (their files renamed or removed): the handlers
+// see none before any is destroyed.
+void ForgetHeld()
 {
-public:
-  SignalsBlocked()
-  {
-    sigset_t blocked;
-    sigemptyset(&blocked);
-    for (const Terminating& t : Signals)
-    {
-      sigaddset(&blocked, t.Signal);
-    }
-    sigprocmask(SIG_BLOCK, &blocked, &this->Saved);
-  }
-  ~SignalsBlocked() { sigprocmask(SIG_SETMASK, &this->Saved, nullptr); }
-  SignalsBlocked(const SignalsBlocked&) = delete;
-  SignalsBlocked& operator=(const SignalsBlocked&) = delete;
-
-private:
-  sigset_t Saved;
-};
+  HeldCount = 0;
+  HeldFirst = 0;
+  Held.clear();
+}
 
 // At exit (a failed run's Fail): the held temporaries go.
 extern "C" void RemoveHeldOutputs()
 {
-  const SignalsBlocked blocked;
-  for (const HeldOutput& held : Held)
+  const std::size_t count = static_cast<std::size_t>(HeldCount);
+  for (std::size_t i = static_cast<std::size_t>(HeldFirst); i < count; ++i)
   {
-    std::remove(held.Temporary.c_str());
+    std::remove(Held[i].Temporary.c_str());
   }
-  Held.clear();
+  ForgetHeld();
 }
 }
 
-void HoldOutputs()
+void HoldOutputs(std::size_t most)
 {
+  ForgetHeld();
+  Held.reserve(most);
   if (!Holding)
   {
     Holding = true;
@@ -158,31 +152,38 @@ bool OutputsHeld()
   return Holding;
 }
 
-void HoldOutput(const std::string& temporary, const std::string& path)
+bool HoldOutput(const std::string& temporary, const std::string& path)
 {
-  const SignalsBlocked blocked;
+  if (Held.size() >= Held.capacity())
+  {
+    return false; // beyond the room reserved: the caller renames it now
+  }
   Held.push_back({ temporary, path });
+  HeldCount = static_cast<std::sig_atomic_t>(Held.size());
+  return true;
 }
 
 bool CommitHeldOutputs(std::string& error)
 {
-  const SignalsBlocked blocked;
+  // In order: a signal during the commit removes only the temporaries not
+  // renamed yet.
+  const std::size_t count = static_cast<std::size_t>(HeldCount);
   std::size_t done = 0;
-  for (; done < Held.size(); ++done)
+  for (; done < count; ++done)
   {
     if (std::rename(Held[done].Temporary.c_str(), Held[done].Path.c_str()) != 0)
     {
-      error = "cannot write '" + Held[done].Path + "'";
+      error = "cannot write '" + Held[done].Path + "': " + std::strerror(errno);
       break;
     }
+    HeldFirst = static_cast<std::sig_atomic_t>(done + 1);
   }
-  for (std::size_t i = done; i < Held.size(); ++i)
+  for (std::size_t i = done; i < count; ++i)
   {
     std::remove(Held[i].Temporary.c_str());
   }
-  const bool committed = done == Held.size();
-  Held.clear();
-  return committed;
+  ForgetHeld();
+  return done == count;
 }
 
 PartialFileGuard::PartialFileGuard(const std::string& path)

@@ -7,6 +7,7 @@
 #ifndef mcxPartialFileGuard_h
 #define mcxPartialFileGuard_h
 
+#include <cstddef>
 #include <string>
 
 namespace mcxapp
@@ -29,20 +30,22 @@ public:
   PartialFileGuard& operator=(const PartialFileGuard&) = delete;
 };
 
-/// From now on in this process, files written all or nothing (mcxImageOutput)
-/// stay under their temporary names until CommitHeldOutputs: a run of many
-/// outputs (poses, their geometry file) writes all of them or none. A signal,
-/// or an exit before the commit (a failed run), removes them.
-void HoldOutputs();
+/// From now on in this process, up to `most` files written all or nothing
+/// (mcxImageOutput) stay under their temporary names until
+/// CommitHeldOutputs: a run of many outputs (poses, their geometry file)
+/// writes all of them or none. A signal, or an exit before the commit (a
+/// failed run), removes them.
+void HoldOutputs(std::size_t most);
 
-/// Renames the held temporaries to their paths; false (error set, the
-/// rest removed) if one cannot be.
+/// Renames the held temporaries to their paths, in the order written; false
+/// (error set, the rest removed) if one cannot be.
 bool CommitHeldOutputs(std::string& error);
 
 /// Whether HoldOutputs is in force; then HoldOutput takes a written
-/// temporary to be renamed to path at the commit.
+/// temporary to be renamed to path at the commit (false, taking nothing,
+/// past the `most` reserved).
 bool OutputsHeld();
-void HoldOutput(const std::string& temporary, const std::string& path);
+bool HoldOutput(const std::string& temporary, const std::string& path);
 
 } // namespace mcxapp
 

@@ -213,7 +213,8 @@ public:
       stack.reset(new PoseStack(count, poses[0].Size));
     }
     std::vector<PoseRecord> records;
-    HoldOutputs(); // every pose's image and the geometry file, or none
+    // Every pose's image (or their stack) and the geometry file, or none.
+    HoldOutputs(static_cast<std::size_t>(count) + 2);
     for (int k = 0; k < count; ++k)
     {
       const Pose* pose = poses.empty() ? nullptr : &poses[k];

@@ -344,7 +344,8 @@ TEST(HostileTextFormats, AVTIsParsablePlacementPasses)
   const std::string folder = Folder();
   for (const std::string& placement : { std::string(),
          std::string("Origin=\"-1.5 2 1e-3\" Spacing=\"0.5 .5 2E0\" "
-                     "Direction=\"0 1 0 -1 0 0 0 0 1\"") })
+                     "Direction=\"6.123233995736766e-17 1 -0 -1 6.123233995736766e-17 0 0 "
+                     "0 1E+00\"") })
   {
     const std::string path = folder + "/placed.vti";
     WriteBytes(path, Vti(placement));

@@ -231,6 +231,21 @@ class DicomSeries(unittest.TestCase):
             self.assertIn("is not a volume: ", messages[0])
             self.assertIn(needle, messages[0])
             self.assertEqual(0, reader.GetOutput().GetNumberOfPoints(), name)
+        # What real series carry and still stack: orientations that differ in
+        # the 5th decimal, a rescale of its own per slice, positions 0.03 mm off.
+        folder = self.copy_series("varied")
+        for n in range(1, 94, 3):
+            path = os.path.join(folder, "CTHead%d.dcm" % n)
+            ds = pydicom.dcmread(path)
+            ds.ImageOrientationPatient = [1, 0.00001, 0, 0, 1, -0.00001]
+            ds.RescaleSlope, ds.RescaleIntercept = 2, -1000
+            position = [float(v) for v in ds.ImagePositionPatient]
+            position[2] += 0.03
+            ds.ImagePositionPatient = position
+            ds.save_as(path)
+        reader, messages = read(folder)
+        self.assertEqual([], messages)
+        self.assertEqual(64 * 64 * 93, reader.GetOutput().GetNumberOfPoints())
 
 
 class Nifti(unittest.TestCase):
