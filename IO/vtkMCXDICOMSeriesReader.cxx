@@ -137,8 +137,9 @@ bool FiniteValues(
 // and a finite rescale; and every image of the series in the volume (its
 // slice sorter leaves out what does not stack, a tilted slice). Empty
 // when they do, else which image does not and why.
-std::string CheckSlicesStack(vtkDICOMReader* reader, vtkIdType filesInSeries)
+std::string CheckSlicesStack(vtkDICOMReader* reader)
 {
+  const vtkIdType filesInSeries = reader->GetFileNames()->GetNumberOfValues();
   vtkIntArray* files = reader->GetFileIndexArray();
   vtkIntArray* frames = reader->GetFrameIndexArray();
   vtkDICOMMetaData* meta = reader->GetMetaData();
@@ -436,8 +437,7 @@ struct vtkMCXDICOMSeriesReader::Internals
     // Patient space: world = M (spacing x index), M the patient matrix.
     vtkMatrix4x4* m = this->Reader->GetPatientMatrix();
     const double normal[3] = { m->GetElement(0, 2), m->GetElement(1, 2), m->GetElement(2, 2) };
-    const std::string stack =
-      CheckSlicesStack(this->Reader, this->Reader->GetFileNames()->GetNumberOfValues());
+    const std::string stack = CheckSlicesStack(this->Reader);
     const std::string spacing = stack.empty() ? CheckSliceSpacing(this->Reader, normal) : stack;
     if (!spacing.empty())
     {
