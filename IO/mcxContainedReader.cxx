@@ -38,7 +38,8 @@ namespace mcxio
 namespace
 {
 // What the child hands back, at the start of the shared file: a message on
-// failure, else the scalars (name, then data at DataOffset) and geometry.
+// failure, the read's note, then the scalars (name, then data at
+// DataOffset) and geometry.
 struct Handover
 {
   char Magic[8] = { 'M', 'C', 'X', 'V', 'O', 'L', '1', 0 };
@@ -51,6 +52,7 @@ struct Handover
   double Origin[3] = { 0, 0, 0 };
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   std::uint64_t MessageBytes = 0;
+  std::uint64_t NoteBytes = 0;
   std::uint64_t NameBytes = 0;
   std::uint64_t DataOffset = 0;
   std::uint64_t DataBytes = 0;
@@ -100,17 +102,20 @@ bool WriteAll(int fd, const void* data, std::uint64_t bytes)
   return true;
 }
 
-void HandOverFailure(int fd, const std::string& message, std::int32_t failure = 1)
+void HandOverFailure(
+  int fd, const std::string& message, const std::string& note, std::int32_t failure = 1)
 {
   Handover header;
   header.Failed = failure;
   header.MessageBytes = message.size();
+  header.NoteBytes = note.size();
   WriteAll(fd, &header, sizeof(header));
   WriteAll(fd, message.data(), message.size());
+  WriteAll(fd, note.data(), note.size());
 }
 
 // False (errno set) when the volume could not be written whole.
-bool HandOverVolume(int fd, vtkImageData* volume)
+bool HandOverVolume(int fd, vtkImageData* volume, const std::string& note)
 {
   vtkDataArray* scalars = volume->GetPointData()->GetScalars();
   Handover header;
@@ -123,18 +128,20 @@ bool HandOverVolume(int fd, vtkImageData* volume)
   std::copy(volume->GetDirectionMatrix()->GetData(), volume->GetDirectionMatrix()->GetData() + 9,
     header.Direction);
   const std::string name = scalars->GetName() ? scalars->GetName() : "";
+  header.NoteBytes = note.size();
   header.NameBytes = name.size();
-  header.DataOffset = sizeof(header) + name.size();
+  header.DataOffset = sizeof(header) + note.size() + name.size();
   header.DataBytes = static_cast<std::uint64_t>(scalars->GetNumberOfValues()) *
     static_cast<std::uint64_t>(scalars->GetDataTypeSize());
-  return WriteAll(fd, &header, sizeof(header)) && WriteAll(fd, name.data(), name.size()) &&
+  return WriteAll(fd, &header, sizeof(header)) && WriteAll(fd, note.data(), note.size()) &&
+    WriteAll(fd, name.data(), name.size()) &&
     WriteAll(fd, scalars->GetVoidPointer(0), header.DataBytes);
 }
 
 // The child: silent (stderr to /dev/null), under the memory limit, killed
 // with its parent; it reads, hands over and ends without running any
 // destructor (a reader fault may have left the heap in any state).
-[[noreturn]] void ReadInChild(const std::string& path, VolumeReadOptions options,
+[[noreturn]] void ReadInChild(const std::string& path, const ContainedRead& read,
   const ReadLimits& limits, int fd, pid_t parent)
 {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -157,11 +164,11 @@ bool HandOverVolume(int fd, vtkImageData* volume)
     ::setrlimit(RLIMIT_AS, &memory);
   }
   std::string error;
+  std::string note;
   try
   {
-    options.MemoryBudget = limits.MemoryBytes;
-    vtkSmartPointer<vtkImageData> volume = ReadVolume(path, options, error);
-    if (volume && HandOverVolume(fd, volume))
+    vtkSmartPointer<vtkImageData> volume = read(error, note);
+    if (volume && HandOverVolume(fd, volume, note))
     {
       ::_exit(0);
     }
@@ -172,7 +179,7 @@ bool HandOverVolume(int fd, vtkImageData* volume)
         std::strerror(errno) + ")";
       ::ftruncate(fd, 0);
       ::lseek(fd, 0, SEEK_SET);
-      HandOverFailure(fd, error, fileSizeLimit ? NotHandedOver : 1);
+      HandOverFailure(fd, error, note, fileSizeLimit ? NotHandedOver : 1);
       ::_exit(0);
     }
   }
@@ -180,7 +187,7 @@ bool HandOverVolume(int fd, vtkImageData* volume)
   {
     error = "cannot read '" + path + "': out of memory while reading";
   }
-  HandOverFailure(fd, error);
+  HandOverFailure(fd, error, note);
   ::_exit(0);
 }
 
@@ -240,8 +247,7 @@ bool WaitFor(pid_t child, double seconds, int& status)
 // bytes) copied out of the shared file; null with error set when its sizes
 // disagree, it exceeds the budget or cannot be allocated.
 vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header, std::uint64_t voxels,
-  const std::string& path, const ReadLimits& limits, const std::string& memoryBudgetName,
-  std::string& error)
+  const std::string& path, const ReadLimits& limits, std::string& error)
 {
   auto scalars =
     vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
@@ -256,7 +262,7 @@ vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header, st
   {
     error = "cannot read '" + path + "': the volume needs " +
       mcx::DescribeBytes(double(header.DataBytes)) + ", more than the memory budget of " +
-      mcx::DescribeBytes(double(limits.MemoryBytes)) + " (" + memoryBudgetName + ")";
+      mcx::DescribeBytes(double(limits.MemoryBytes)) + " (" + limits.MemoryBytesName + ")";
     return nullptr;
   }
   scalars->SetNumberOfComponents(header.Components);
@@ -270,7 +276,7 @@ vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header, st
   std::memcpy(scalars->GetVoidPointer(0), bytes + header.DataOffset,
     static_cast<std::size_t>(header.DataBytes));
   scalars->SetName(std::string(
-    bytes + sizeof(header) + header.MessageBytes, static_cast<std::size_t>(header.NameBytes))
+    bytes + header.DataOffset - header.NameBytes, static_cast<std::size_t>(header.NameBytes))
                      .c_str());
   auto volume = vtkSmartPointer<vtkImageData>::New();
   volume->SetExtent(header.Extent);
@@ -283,7 +289,7 @@ vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header, st
 
 // The volume from the shared file, its sizes checked against each other.
 vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const ReadLimits& limits,
-  const std::string& memoryBudgetName, bool& readHere, std::string& error)
+  bool& readHere, std::string& error, std::string& note)
 {
   readHere = false;
   struct stat info;
@@ -311,11 +317,17 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
       static_cast<std::int64_t>(header.Extent[2 * a + 1]) - header.Extent[2 * a] + 1;
     voxels *= static_cast<std::uint64_t>(std::max<std::int64_t>(side, 0));
   }
-  if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 || header.MessageBytes > size - sizeof(header))
+  const std::uint64_t texts = size - sizeof(header);
+  if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 || header.MessageBytes > texts ||
+    header.NoteBytes > texts - header.MessageBytes)
   {
     error = "cannot read '" + path + "': the reader ended without a result";
+    ::munmap(mapped, size);
+    return nullptr;
   }
-  else if (header.Failed == NotHandedOver)
+  note.assign(bytes + sizeof(header) + (header.Failed ? header.MessageBytes : 0),
+    static_cast<std::size_t>(header.NoteBytes));
+  if (header.Failed == NotHandedOver)
   {
     readHere = true;
   }
@@ -327,23 +339,26 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
       error = "cannot read '" + path + "'";
     }
   }
-  else if (header.NameBytes > size || header.DataOffset > size ||
-    header.DataBytes > size - header.DataOffset || header.Components < 1 || voxels == 0)
+  else if (header.MessageBytes != 0 || header.NameBytes > size ||
+    header.DataOffset != sizeof(header) + header.NoteBytes + header.NameBytes ||
+    header.DataOffset > size || header.DataBytes > size - header.DataOffset ||
+    header.Components < 1 || voxels == 0)
   {
     error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
   }
   else
   {
-    volume = CopyVolume(bytes, header, voxels, path, limits, memoryBudgetName, error);
+    volume = CopyVolume(bytes, header, voxels, path, limits, error);
   }
   ::munmap(mapped, size);
   return volume;
 }
 }
 
-vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
-  const VolumeReadOptions& options, const ReadLimits& limits, std::string& error)
+vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const ContainedRead& read,
+  const ReadLimits& limits, std::string& error, std::string& note)
 {
+  note.clear();
   int fd = ::memfd_create("mcxray-volume", MFD_CLOEXEC);
   if (fd >= 0 && fd <= STDERR_FILENO)
   {
@@ -379,7 +394,7 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   }
   if (child == 0)
   {
-    ReadInChild(path, options, limits, fd, parent);
+    ReadInChild(path, read, limits, fd, parent);
   }
   int status = 0;
   vtkSmartPointer<vtkImageData> volume;
@@ -410,16 +425,28 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   else
   {
     bool readHere = false;
-    volume = TakeOver(fd, path, limits, options.MemoryBudgetName, readHere, error);
+    volume = TakeOver(fd, path, limits, readHere, error, note);
     if (readHere)
     {
-      VolumeReadOptions here = options;
-      here.MemoryBudget = limits.MemoryBytes;
-      volume = ReadVolume(path, here, error);
+      volume = read(error, note);
     }
   }
   ::close(fd);
   return volume;
+}
+
+vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
+  const VolumeReadOptions& options, const ReadLimits& limits, std::string& error)
+{
+  VolumeReadOptions here = options;
+  here.MemoryBudget = limits.MemoryBytes;
+  here.DicomInThisProcess = true; // contained already
+  ReadLimits named = limits;
+  named.MemoryBytesName = options.MemoryBudgetName;
+  std::string note;
+  return RunContained(
+    path, [&](std::string& problem, std::string&) { return ReadVolume(path, here, problem); },
+    named, error, note);
 }
 
 } // namespace mcxio

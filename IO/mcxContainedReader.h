@@ -9,6 +9,7 @@
 #include "mcxVolumeReader.h"
 #include "vtkSmartPointer.h"
 
+#include <functional>
 #include <string>
 
 class vtkImageData;
@@ -23,7 +24,22 @@ struct ReadLimits
   // How the caller's user sets Seconds, named in the message of a reader
   // stopped by it (vtkMCXVolumeReader's setter; the command line's option).
   std::string SecondsName = "SetTimeLimit";
+  // How the caller's user sets MemoryBytes (named where a volume exceeds it).
+  std::string MemoryBytesName = "SetMemoryBudget";
 };
+
+/// A read to run in the child: the volume, or null with error set to one
+/// line; note is text for the caller besides the volume (a DICOM folder's
+/// list of series, say), handed back either way.
+using ContainedRead =
+  std::function<vtkSmartPointer<vtkImageData>(std::string& error, std::string& note)>;
+
+/// read run in a child process within limits, as below: its volume and
+/// note, or null with error set to one line (its own, its signal's, the
+/// time limit's). Where a file-size limit (ulimit -f) keeps the child from
+/// handing the volume over, read runs again in this process.
+vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const ContainedRead& read,
+  const ReadLimits& limits, std::string& error, std::string& note);
 
 /// ReadVolume (checked headers first, then the VTK reader) in a child
 /// process within limits (options.MemoryBudget is limits.MemoryBytes; POSIX

@@ -453,9 +453,10 @@ bool CheckDicomPixelData(
   return true;
 }
 
-bool ProbeDicomFiles(
-  const std::vector<std::string>& files, const std::function<void()>& scan, std::string& error)
+bool ParseInChild(
+  const std::function<std::string()>& parse, std::string& answer, std::string& error)
 {
+  answer.clear();
   int channel[2];
   if (::pipe(channel) != 0)
   {
@@ -475,15 +476,9 @@ bool ProbeDicomFiles(
   if (child == 0)
   {
     ::close(channel[0]);
-    if (scan)
-    {
-      scan();
-    }
-    unsigned long long claimed = 0;
-    std::string verdict;
-    CheckDicomPixelData(files, claimed, verdict);
-    const char* at = verdict.data();
-    for (std::size_t left = verdict.size(); left > 0;)
+    const std::string said = parse();
+    const char* at = said.data();
+    for (std::size_t left = said.size(); left > 0;)
     {
       const ssize_t wrote = ::write(channel[1], at, left);
       if (wrote <= 0)
@@ -496,7 +491,6 @@ bool ProbeDicomFiles(
     ::_exit(0); // no destructors, no atexit handlers of the parent's
   }
   ::close(channel[1]);
-  std::string verdict;
   char buffer[4096];
   for (ssize_t got; (got = ::read(channel[0], buffer, sizeof(buffer))) != 0;)
   {
@@ -504,7 +498,7 @@ bool ProbeDicomFiles(
     {
       break;
     }
-    verdict.append(buffer, got > 0 ? static_cast<std::size_t>(got) : 0);
+    answer.append(buffer, got > 0 ? static_cast<std::size_t>(got) : 0);
   }
   ::close(channel[0]);
   int status = 0;
@@ -517,8 +511,31 @@ bool ProbeDicomFiles(
       ") on one of its files";
     return false;
   }
-  error = verdict;
-  return verdict.empty();
+  return true;
+}
+
+bool ProbeDicomFiles(
+  const std::vector<std::string>& files, const std::function<void()>& scan, std::string& error)
+{
+  std::string verdict;
+  const bool ended = ParseInChild(
+    [&]()
+    {
+      if (scan)
+      {
+        scan();
+      }
+      unsigned long long claimed = 0;
+      std::string problem;
+      CheckDicomPixelData(files, claimed, problem);
+      return problem;
+    },
+    verdict, error);
+  if (ended)
+  {
+    error = verdict;
+  }
+  return ended && verdict.empty();
 }
 
 } // namespace mcxio

@@ -28,6 +28,16 @@ constexpr std::size_t DicomFileLimit = 1000000;
 bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
   std::vector<std::string>& files, std::string& error);
 
+/// parse run in a forked child, its answer handed back through a pipe:
+/// true with answer set to what it returned, false with error set to
+/// "vtk-dicom's parser crashed (SIGSEGV) on one of its files" or to why no
+/// child could be started. For what parses a file with vtk-dicom whose
+/// parser reads past its buffer on some damaged files (into what the heap
+/// held: a parse that passed in one process can fault in another), so that
+/// the caller's process never parses it. POSIX: fork and a pipe.
+bool ParseInChild(
+  const std::function<std::string()>& parse, std::string& answer, std::string& error);
+
 /// CheckDicomPixelData over files in a forked child first, so that a file
 /// that crashes vtk-dicom's parser (which the series reader and its folder
 /// scan run in this process, a Python interpreter's or ParaView's) ends the

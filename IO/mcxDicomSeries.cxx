@@ -12,21 +12,22 @@ namespace mcxio
 {
 
 #ifndef MCXRAY_IO_DICOM
-vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int, const std::string&,
-  std::string& error, unsigned long long, const std::string&)
+vtkSmartPointer<vtkImageData> ReadDicomSeries(
+  const std::string& folder, const VolumeReadOptions&, std::string& error)
 {
   error = "cannot read '" + folder + "': this build reads no DICOM series (it has no vtk-dicom)";
   return nullptr;
 }
 #else
-vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int series,
-  const std::string& seriesName, std::string& error, unsigned long long memoryBudget,
-  const std::string& budgetName)
+vtkSmartPointer<vtkImageData> ReadDicomSeries(
+  const std::string& folder, const VolumeReadOptions& options, std::string& error)
 {
+  const int series = options.DicomSeries;
   vtkNew<vtkMCXDICOMSeriesReader> reader;
   reader->SetDirectoryName(folder.c_str());
-  reader->SetMemoryBudget(memoryBudget);
-  reader->SetSeriesIndex(series - 1);    // counted from 1; 0 (none) is -1
+  reader->SetMemoryBudget(options.MemoryBudget);
+  reader->SetSeriesIndex(series - 1); // counted from 1; 0 (none) is -1
+  reader->SetReadInChildProcess(!options.DicomInThisProcess);
   vtkNew<vtkMCXFirstErrorObserver> read; // the reader's report, said once below
   read->ObserveAlgorithm(reader);
   reader->Update();
@@ -42,15 +43,15 @@ vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int ser
     }
     error = "'" + folder + "' holds " + std::to_string(count) + " DICOM series" +
       (series > count ? "; there is no series " + std::to_string(series) : std::string()) +
-      "; choose one with " + seriesName + ": " + list;
+      "; choose one with " + options.DicomSeriesName + ": " + list;
     return nullptr;
   }
   if (!read->GetErrorText().empty())
   {
     // The budget as the caller's user sets it.
     error = read->GetErrorText() +
-      (!budgetName.empty() && read->GetErrorText().find("memory budget") != std::string::npos
-          ? " (" + budgetName + ")"
+      (read->GetErrorText().find("memory budget") != std::string::npos
+          ? " (" + options.MemoryBudgetName + ")"
           : std::string());
     return nullptr;
   }

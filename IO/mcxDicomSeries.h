@@ -5,6 +5,7 @@
 #ifndef mcxDicomSeries_h
 #define mcxDicomSeries_h
 
+#include "mcxVolumeReader.h"
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -14,16 +15,16 @@ class vtkImageData;
 namespace mcxio
 {
 
-/// The series of folder: series is its number (1, 2, ...) in the folder's
-/// list, or 0 when the folder must hold exactly one (else error lists them
-/// and says to choose one with seriesName, as "--series N"). Slices at
-/// repeated positions and uneven gaps (missing slices) are errors that say
-/// where; so are short pixel data. On failure returns null with error set
-/// to one line. memoryBudget (0: any) bounds the voxels before they are
-/// read; budgetName is how the caller's user sets it.
-vtkSmartPointer<vtkImageData> ReadDicomSeries(const std::string& folder, int series,
-  const std::string& seriesName, std::string& error, unsigned long long memoryBudget = 0,
-  const std::string& budgetName = std::string());
+/// The series of folder: options.DicomSeries is its number (1, 2, ...) in
+/// the folder's list, or 0 when the folder must hold exactly one (else error
+/// lists them and says to choose one with options.DicomSeriesName, as
+/// "--series N"). Slices at repeated positions and uneven gaps (missing
+/// slices) are errors that say where; so are short pixel data. On failure
+/// returns null with error set to one line. options.MemoryBudget (0: any)
+/// bounds the voxels before they are read. The series is read in a child
+/// process unless options.DicomInThisProcess.
+vtkSmartPointer<vtkImageData> ReadDicomSeries(
+  const std::string& folder, const VolumeReadOptions& options, std::string& error);
 
 } // namespace mcxio
 

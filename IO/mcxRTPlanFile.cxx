@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 
 namespace mcxio
 {
@@ -189,25 +190,11 @@ std::string ReadBeam(vtkDICOMMetaData* meta, const vtkDICOMItem& beam, RTPlanBea
   }
   return std::string();
 }
-}
 
-std::string ReadRTPlanBeam(const std::string& path, const std::string& beam, RTPlanBeam& out)
+// The beam of the plan read in this process (ReadRTPlanBeam's work).
+std::string ReadBeamHere(const std::string& path, const std::string& beam, RTPlanBeam& out)
 {
   const std::string named = "RT plan '" + path + "': ";
-  if (!vtksys::SystemTools::FileExists(path, true))
-  {
-    return named + "no such file";
-  }
-  if (vtksys::SystemTools::FileLength(path) > MaximumFileBytes)
-  {
-    return named + "larger than 64 MiB: no plan";
-  }
-  // A file that crashes vtk-dicom's parser ends a child, not mcxray.
-  std::string crashed;
-  if (!ProbeDicomFiles({ path }, nullptr, crashed))
-  {
-    return named + crashed;
-  }
   vtkNew<vtkDICOMMetaData> meta;
   vtkNew<vtkDICOMParser> parser;
   vtkNew<vtkCallbackCommand> quiet; // the failure is said once, below
@@ -261,6 +248,100 @@ std::string ReadRTPlanBeam(const std::string& path, const std::string& beam, RTP
   }
   const std::string problem = ReadBeam(meta, *chosen, out);
   return problem.empty() ? problem : named + "beam " + std::to_string(out.Number) + ": " + problem;
+}
+
+// What the child hands back: 'E' and the error, or 'B', the beam's numbers
+// as this machine stores them, and its name.
+template <typename T>
+void Put(std::string& bytes, const T& value)
+{
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof(value));
+}
+
+template <typename T>
+void Take(const std::string& bytes, std::size_t& at, T& value)
+{
+  std::memcpy(&value, bytes.data() + at, sizeof(value));
+  at += sizeof(value);
+}
+
+const std::size_t BeamBytes = sizeof(int) + 7 * sizeof(double) + sizeof(bool);
+
+std::string HandedBack(const std::string& problem, const RTPlanBeam& beam)
+{
+  if (!problem.empty())
+  {
+    return "E" + problem;
+  }
+  std::string bytes = "B";
+  Put(bytes, beam.Number);
+  Put(bytes, beam.GantryAngle);
+  Put(bytes, beam.BeamLimitingDeviceAngle);
+  Put(bytes, beam.PatientSupportAngle);
+  Put(bytes, beam.HasSourceAxisDistance);
+  Put(bytes, beam.SourceAxisDistance);
+  for (double x : beam.IsocenterPosition)
+  {
+    Put(bytes, x);
+  }
+  return bytes + beam.Name;
+}
+
+// The child's answer as ReadRTPlanBeam returns it (named: the plan, as
+// errors name it).
+std::string TakenBack(const std::string& answer, const std::string& named, RTPlanBeam& beam)
+{
+  if (answer.size() > 1 && answer[0] == 'E')
+  {
+    return answer.substr(1);
+  }
+  if (answer.size() < 1 + BeamBytes || answer[0] != 'B')
+  {
+    return named + "its reading ended without an answer";
+  }
+  std::size_t at = 1;
+  Take(answer, at, beam.Number);
+  Take(answer, at, beam.GantryAngle);
+  Take(answer, at, beam.BeamLimitingDeviceAngle);
+  Take(answer, at, beam.PatientSupportAngle);
+  Take(answer, at, beam.HasSourceAxisDistance);
+  Take(answer, at, beam.SourceAxisDistance);
+  for (double& x : beam.IsocenterPosition)
+  {
+    Take(answer, at, x);
+  }
+  beam.Name = answer.substr(at);
+  return std::string();
+}
+}
+
+std::string ReadRTPlanBeam(const std::string& path, const std::string& beam, RTPlanBeam& out)
+{
+  const std::string named = "RT plan '" + path + "': ";
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    return named + "no such file";
+  }
+  if (vtksys::SystemTools::FileLength(path) > MaximumFileBytes)
+  {
+    return named + "larger than 64 MiB: no plan";
+  }
+  // Parsed in a child (mcxDicomFiles.h: vtk-dicom's parser may read past
+  // its buffer): a file that crashes it ends the child, not the caller.
+  std::string answer;
+  std::string crashed;
+  if (!ParseInChild(
+        [&]()
+        {
+          RTPlanBeam read;
+          const std::string problem = ReadBeamHere(path, beam, read);
+          return HandedBack(problem, read);
+        },
+        answer, crashed))
+  {
+    return named + crashed;
+  }
+  return TakenBack(answer, named, out);
 }
 
 } // namespace mcxio

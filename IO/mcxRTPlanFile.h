@@ -6,7 +6,7 @@
 // of mcxIECBeamView.h does not describe is refused: a patient position other
 // than head first supine (PatientSetupSequence), a table top eccentric,
 // pitch or roll angle other than 0, an angle outside [0, 360). The file is
-// parsed in a forked child first (ProbeDicomFiles), as series files are.
+// parsed in a forked child (ParseInChild), as series files are.
 #ifndef mcxRTPlanFile_h
 #define mcxRTPlanFile_h
 

@@ -237,8 +237,7 @@ static vtkSmartPointer<vtkImageData> ReadAnyVolume(
   }
   if (vtksys::SystemTools::FileIsDirectory(path))
   {
-    auto series = ReadDicomSeries(path, options.DicomSeries, options.DicomSeriesName, error,
-      memoryBudget, options.MemoryBudgetName);
+    auto series = ReadDicomSeries(path, options, error);
     const std::string placement =
       series ? vtkMCXPatientSpace::DescribeUnusablePlacement(series) : std::string();
     if (!placement.empty())

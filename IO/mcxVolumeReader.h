@@ -24,6 +24,9 @@ struct VolumeReadOptions
   // them (vtkMCXVolumeReader's setters; the command line's options).
   std::string MemoryBudgetName = "SetMemoryBudget";
   std::string DicomSeriesName = "SetDicomSeries(N)";
+  // A DICOM folder is read in a child process of its own (vtk-dicom's parser
+  // reads past its buffer on some files); true where this read is contained already.
+  bool DicomInThisProcess = false;
 };
 
 /// Reads path (.vti, .mha/.mhd, .nii/.nii.gz, .nrrd/.nhdr, .vtk, .slc, or a

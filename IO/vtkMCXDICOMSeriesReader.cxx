@@ -5,9 +5,7 @@
 #include "vtkDICOMDictHash.h"
 #include "vtkDICOMDirectory.h"
 #include "vtkDICOMItem.h"
-#include "vtkDICOMMetaData.h"
 #include "vtkDICOMReader.h"
-#include "vtkDICOMValue.h"
 #include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
@@ -15,26 +13,26 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkIntArray.h"
 #include "vtkMCXFirstErrorObserver.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtksys/SystemTools.hxx"
 
 #include "mcxByteSize.h"
+#include "mcxContainedReader.h"
 #include "mcxDicomFiles.h"
-#include "mcxHeaderCheckPrivate.h"
+#include "mcxDicomSliceChecks.h"
 #include "mcxPrintableText.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <exception>
-#include <new>
 #include <sstream>
 #include <vector>
 
@@ -93,186 +91,53 @@ std::string SplitSeries(vtkDICOMDirectory* directory)
   return std::string();
 }
 
-// Positions along the slice normal, in the reader's slice order.
-std::vector<double> SlicePositions(vtkDICOMReader* reader, const double normal[3])
+// What a read in the child hands back besides the volume: its error code and
+// the folder's series in words, each text as its length, ':' and its bytes.
+std::string SeriesNote(unsigned long code, const std::vector<std::string>& series)
 {
-  vtkIntArray* files = reader->GetFileIndexArray();
-  vtkIntArray* frames = reader->GetFrameIndexArray(); // enhanced multi-frame files
-  vtkDICOMMetaData* meta = reader->GetMetaData();
-  std::vector<double> along(static_cast<std::size_t>(files->GetNumberOfTuples()));
-  for (vtkIdType k = 0; k < files->GetNumberOfTuples(); ++k)
+  std::string note = std::to_string(code) + ":";
+  for (const std::string& text : series)
   {
-    double p[3] = { 0, 0, 0 };
-    const int file = static_cast<int>(files->GetComponent(k, 0));
-    const int frame = frames ? static_cast<int>(frames->GetComponent(k, 0)) : 0;
-    const vtkDICOMValue& position = meta->Get(file, frame, DC::ImagePositionPatient);
-    if (position.GetNumberOfValues() == 3)
-    {
-      position.GetValues(p, 3);
-    }
-    along[static_cast<std::size_t>(k)] = p[0] * normal[0] + p[1] * normal[1] + p[2] * normal[2];
+    note += std::to_string(text.size()) + ":" + text;
   }
-  return along;
+  return note;
 }
 
-// Values of one decimal-string attribute of image (file, frame), parsed
-// from its text (vtk-dicom reads "nan" as a number); false unless there
-// are `count` of them, each finite.
-bool FiniteValues(
-  vtkDICOMMetaData* meta, int file, int frame, vtkDICOMTag tag, std::size_t count, double* values)
+// The decimal number of note[from, to); false where it is none.
+bool ReadCount(const std::string& note, std::size_t from, std::size_t to, unsigned long long& value)
 {
-  std::string text = meta->Get(file, frame, tag).AsString();
-  std::replace(text.begin(), text.end(), '\\', ' ');
-  std::vector<double> parsed;
-  if (!mcxio::check::ParseFiniteNumbers(text, parsed) || parsed.size() != count)
+  if (to == std::string::npos || to == from || to - from > 19 ||
+    note.find_first_not_of("0123456789", from) < to)
   {
     return false;
   }
-  std::copy(parsed.begin(), parsed.end(), values);
+  value = std::stoull(note.substr(from, to - from));
   return true;
 }
 
-// Whether the images stack into one volume as vtk-dicom reads it: each
-// with a position, the first image's orientation and pixel spacing (> 0),
-// and a finite rescale; and every image of the series in the volume (its
-// slice sorter leaves out what does not stack, a tilted slice). Empty
-// when they do, else which image does not and why.
-std::string CheckSlicesStack(vtkDICOMReader* reader)
+// The code and series of a note; false for a note that is none (a child that
+// crashed leaves none).
+bool ReadSeriesNote(const std::string& note, unsigned long& code, std::vector<std::string>& series)
 {
-  const vtkIdType filesInSeries = reader->GetFileNames()->GetNumberOfValues();
-  vtkIntArray* files = reader->GetFileIndexArray();
-  vtkIntArray* frames = reader->GetFrameIndexArray();
-  vtkDICOMMetaData* meta = reader->GetMetaData();
-  double first[8] = { 0, 0, 0, 0, 0, 0, 0, 0 }; // orientation, then pixel spacing
-  std::vector<bool> used(static_cast<std::size_t>(std::max<vtkIdType>(filesInSeries, 0)));
-  for (vtkIdType k = 0; k < files->GetNumberOfTuples(); ++k)
+  series.clear();
+  unsigned long long value = 0;
+  std::size_t at = note.find(':');
+  if (!ReadCount(note, 0, at, value))
   {
-    const int file = static_cast<int>(files->GetComponent(k, 0));
-    const int frame = frames ? static_cast<int>(frames->GetComponent(k, 0)) : 0;
-    if (file < 0 || file >= static_cast<int>(used.size()) || file >= meta->GetNumberOfInstances() ||
-      frame < 0)
-    {
-      return "slice " + std::to_string(k + 1) + " is no image of the series";
-    }
-    for (int c = 0; c < files->GetNumberOfComponents(); ++c) // images sharing the slice
-    {
-      const int shared = static_cast<int>(files->GetComponent(k, c));
-      if (shared >= 0 && shared < static_cast<int>(used.size()))
-      {
-        used[static_cast<std::size_t>(shared)] = true;
-      }
-    }
-    const std::string slice = "slice " + std::to_string(k + 1) + " ('" +
-      vtksys::SystemTools::GetFilenameName(reader->GetFileNames()->GetValue(file)) + "')";
-    double v[8], rescale[2];
-    if (!FiniteValues(meta, file, frame, DC::ImagePositionPatient, 3, v))
-    {
-      return slice + " has no ImagePositionPatient of 3 finite numbers";
-    }
-    if (!FiniteValues(meta, file, frame, DC::ImageOrientationPatient, 6, v) ||
-      !FiniteValues(meta, file, frame, DC::PixelSpacing, 2, v + 6) || !(v[6] > 0 && v[7] > 0))
-    {
-      return slice +
-        " has no ImageOrientationPatient of 6 finite numbers and PixelSpacing of 2 "
-        "positive ones";
-    }
-    const bool same = k == 0 ||
-      std::equal(v, v + 8, first,
-        [](double a, double b) { return std::fabs(a - b) <= 1e-4 * std::max(1.0, std::fabs(b)); });
-    if (!same)
-    {
-      return slice +
-        " has another ImageOrientationPatient or PixelSpacing than slice 1 (a tilted "
-        "or resized slice?)";
-    }
-    if (k == 0)
-    {
-      std::copy(v, v + 8, first);
-    }
-    const bool rescaled = meta->Get(file, frame, DC::RescaleSlope).IsValid() ||
-      meta->Get(file, frame, DC::RescaleIntercept).IsValid();
-    if (rescaled &&
-      (!FiniteValues(meta, file, frame, DC::RescaleSlope, 1, rescale) ||
-        !FiniteValues(meta, file, frame, DC::RescaleIntercept, 1, rescale + 1)))
-    {
-      return slice + " has no RescaleSlope and RescaleIntercept of one finite number each";
-    }
+    return false;
   }
-  const auto missing = std::find(used.begin(), used.end(), false);
-  if (missing != used.end())
+  code = static_cast<unsigned long>(value);
+  for (++at; at < note.size();)
   {
-    return "the image '" +
-      vtksys::SystemTools::GetFilenameName(
-        reader->GetFileNames()->GetValue(static_cast<vtkIdType>(missing - used.begin()))) +
-      "' does not stack with the others (vtk-dicom left it out: another orientation or position; "
-      "a localizer? remove it from the folder)";
-  }
-  return std::string();
-}
-
-// Repeated positions, gaps of more than 1.5 times the median spacing
-// (missing slices) and slices off the even spacing the volume gives them;
-// empty when the slices are evenly spaced.
-std::string CheckSliceSpacing(vtkDICOMReader* reader, const double normal[3])
-{
-  if (reader->GetFileIndexArray()->GetNumberOfComponents() > 1)
-  {
-    return "several images share slice positions (duplicated slices, or a time series: "
-           "keep one image per position)";
-  }
-  const std::vector<double> along = SlicePositions(reader, normal);
-  if (along.size() < 3)
-  {
-    return std::string();
-  }
-  std::vector<double> steps;
-  for (std::size_t k = 1; k < along.size(); ++k)
-  {
-    steps.push_back(std::fabs(along[k] - along[k - 1]));
-  }
-  std::vector<double> sorted = steps;
-  // The lower median: with 2 steps, the smaller (a gap is the larger one).
-  const std::size_t middle = (sorted.size() - 1) / 2;
-  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
-  const double median = sorted[middle];
-  for (std::size_t k = 0; k < steps.size(); ++k)
-  {
-    std::ostringstream where;
-    where << " between slices " << k + 1 << " and " << k + 2 << " (" << along[k] << " and "
-          << along[k + 1] << " mm along the normal)";
-    if (!(steps[k] > 1e-3 * median))
+    const std::size_t colon = note.find(':', at);
+    if (!ReadCount(note, at, colon, value) || value > note.size() - colon - 1)
     {
-      return "two slices lie at the same position" + where.str() + " (a duplicated slice?)";
+      return false;
     }
-    if (steps[k] > 1.5 * median)
-    {
-      std::ostringstream gap;
-      gap << "a gap of " << steps[k] << " mm where the slices are " << median << " mm apart"
-          << where.str() << " (missing slices?)";
-      return gap.str();
-    }
+    series.push_back(note.substr(colon + 1, static_cast<std::size_t>(value)));
+    at = colon + 1 + static_cast<std::size_t>(value);
   }
-  // The volume places slice k at along[0] + k x the mean step: refuse a
-  // slice a tenth of a step or more off that, and more than the 0.05 mm of
-  // positions written to 0.1 mm (0.25 mm slices among them).
-  const double mean = (along.back() - along.front()) / static_cast<double>(along.size() - 1);
-  std::size_t worst = 0;
-  double worstOff = 0.0;
-  for (std::size_t k = 1; k + 1 < along.size(); ++k)
-  {
-    const double off = std::fabs(along[k] - (along.front() + static_cast<double>(k) * mean));
-    worst = off > worstOff ? k : worst;
-    worstOff = std::max(off, worstOff);
-  }
-  if (worstOff >= std::max(0.1 * std::fabs(mean), 0.051))
-  {
-    std::ostringstream uneven;
-    uneven << "slice " << worst + 1 << " lies " << worstOff << " mm off the even spacing of "
-           << std::fabs(mean) << " mm (at " << along[worst]
-           << " mm along the normal; resample the series to even spacing)";
-    return uneven.str();
-  }
-  return std::string();
+  return true;
 }
 }
 
@@ -284,6 +149,18 @@ struct vtkMCXDICOMSeriesReader::Internals
   double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
   double Origin[3] = { 0, 0, 0 };
   bool Failed = false; // the last RequestInformation reported an error
+  std::vector<std::string> Series;      // the last scan's series, in words
+  vtkSmartPointer<vtkImageData> Volume; // read in the child (ReadInChildProcess)
+
+  // The last scan's series in words, from the directory.
+  void ListSeries()
+  {
+    this->Series.clear();
+    for (int s = 0; s < this->Directory->GetNumberOfSeries(); ++s)
+    {
+      this->Series.push_back(Describe(this->Directory, s));
+    }
+  }
 
   // Drops what the wrapped reader read, so that the next update reads again.
   void Forget()
@@ -437,8 +314,9 @@ struct vtkMCXDICOMSeriesReader::Internals
     // Patient space: world = M (spacing x index), M the patient matrix.
     vtkMatrix4x4* m = this->Reader->GetPatientMatrix();
     const double normal[3] = { m->GetElement(0, 2), m->GetElement(1, 2), m->GetElement(2, 2) };
-    const std::string stack = CheckSlicesStack(this->Reader);
-    const std::string spacing = stack.empty() ? CheckSliceSpacing(this->Reader, normal) : stack;
+    const std::string stack = mcxio::CheckSlicesStack(this->Reader);
+    const std::string spacing =
+      stack.empty() ? mcxio::CheckSliceSpacing(this->Reader, normal) : stack;
     if (!spacing.empty())
     {
       return std::string("the DICOM series in '") + folder + "' is not a volume: " + spacing;
@@ -489,7 +367,7 @@ vtkMCXDICOMSeriesReader::~vtkMCXDICOMSeriesReader()
 
 int vtkMCXDICOMSeriesReader::GetNumberOfSeries()
 {
-  return this->Internal->Directory->GetNumberOfSeries();
+  return static_cast<int>(this->Internal->Series.size());
 }
 
 std::string vtkMCXDICOMSeriesReader::GetSeriesDescription(int index)
@@ -498,18 +376,55 @@ std::string vtkMCXDICOMSeriesReader::GetSeriesDescription(int index)
   {
     return std::string();
   }
-  return Describe(this->Internal->Directory, index);
+  return this->Internal->Series[static_cast<std::size_t>(index)];
 }
 
-int vtkMCXDICOMSeriesReader::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+std::string vtkMCXDICOMSeriesReader::ReadInChild(unsigned long& code)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  // A failure below leaves no stale volume of an earlier series.
-  vtkImageData::GetData(outInfo)->Initialize();
+  const std::string folder = this->DirectoryName ? this->DirectoryName : "";
+  mcxio::ReadLimits limits;
+  limits.Seconds = this->TimeLimit;
+  limits.MemoryBytes = this->MemoryBudget;
+  const int index = this->SeriesIndex;
+  const unsigned long long budget = this->MemoryBudget;
+  auto read = [&folder, index, budget](std::string& error, std::string& note)
+  {
+    vtkNew<vtkMCXDICOMSeriesReader> reader;
+    reader->SetDirectoryName(folder.c_str());
+    reader->SetSeriesIndex(index);
+    reader->SetMemoryBudget(budget);
+    reader->ReadInChildProcessOff(); // this is the child
+    vtkNew<vtkMCXFirstErrorObserver> errors;
+    errors->ObserveAlgorithm(reader);
+    reader->Update();
+    errors->StopObserving();
+    note = SeriesNote(reader->GetErrorCode(), reader->Internal->Series);
+    error = errors->GetErrorText();
+    auto volume = vtkSmartPointer<vtkImageData>::New();
+    volume->ShallowCopy(reader->GetOutput());
+    return error.empty() ? volume : nullptr;
+  };
+  this->UpdateProgress(0.0);
+  std::string error;
+  std::string note;
+  this->Internal->Volume = mcxio::RunContained(folder, read, limits, error, note);
+  if (!ReadSeriesNote(note, code, this->Internal->Series))
+  {
+    code = vtkErrorCode::FileFormatError; // the child said nothing: it crashed or hung
+  }
+  this->UpdateProgress(1.0);
+  if (this->Internal->Volume || !error.empty())
+  {
+    return error;
+  }
+  return "cannot read the DICOM series in '" + folder + "'";
+}
+
+std::string vtkMCXDICOMSeriesReader::ReadInformationHere(unsigned long& code)
+{
   const char* folder = this->DirectoryName ? this->DirectoryName : "";
-  unsigned long code = vtkErrorCode::NoError;
   std::string problem = this->Internal->ChooseSeries(this->DirectoryName, this->SeriesIndex, code);
+  this->Internal->ListSeries();
   if (problem.empty())
   {
     problem = this->Internal->ReadInformation(folder, code);
@@ -519,6 +434,19 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
     problem = this->Internal->CheckRoom(folder, this->MemoryBudget);
     code = problem.empty() ? code : vtkErrorCode::OutOfDiskSpaceError;
   }
+  return problem;
+}
+
+int vtkMCXDICOMSeriesReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // A failure below leaves no stale volume of an earlier series.
+  vtkImageData::GetData(outInfo)->Initialize();
+  this->Internal->Volume = nullptr;
+  unsigned long code = vtkErrorCode::NoError;
+  const std::string problem =
+    this->ReadInChildProcess ? this->ReadInChild(code) : this->ReadInformationHere(code);
   this->SetErrorCode(code);
   if (!problem.empty())
   {
@@ -531,6 +459,17 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
     return 1;
   }
   this->Internal->Failed = false;
+  if (vtkImageData* volume = this->Internal->Volume)
+  {
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), volume->GetExtent(), 6);
+    outInfo->Set(vtkDataObject::SPACING(), volume->GetSpacing(), 3);
+    outInfo->Set(vtkDataObject::ORIGIN(), volume->GetOrigin(), 3);
+    outInfo->Set(vtkDataObject::DIRECTION(), volume->GetDirectionMatrix()->GetData(), 9);
+    vtkDataArray* scalars = volume->GetPointData()->GetScalars();
+    vtkDataObject::SetPointDataActiveScalarInfo(
+      outInfo, scalars->GetDataType(), scalars->GetNumberOfComponents());
+    return 1;
+  }
   vtkInformation* readerInfo = this->Internal->Reader->GetOutputInformation(0);
   outInfo->CopyEntry(readerInfo, vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
   outInfo->CopyEntry(readerInfo, vtkDataObject::SPACING());
@@ -548,6 +487,11 @@ int vtkMCXDICOMSeriesReader::RequestData(
   if (this->Internal->Failed)
   {
     return 1; // reported by RequestInformation
+  }
+  if (this->Internal->Volume)
+  {
+    output->ShallowCopy(this->Internal->Volume); // read whole in the child
+    return 1;
   }
   const std::string folder = this->DirectoryName ? this->DirectoryName : "";
   vtkDICOMReader* reader = this->Internal->Reader;
@@ -595,5 +539,7 @@ void vtkMCXDICOMSeriesReader::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SeriesIndex: " << this->SeriesIndex << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << "\n";
+  os << indent << "ReadInChildProcess: " << this->ReadInChildProcess << "\n";
+  os << indent << "TimeLimit: " << this->TimeLimit << "\n";
   os << indent << "NumberOfSeries (last scan): " << this->GetNumberOfSeries() << "\n";
 }

@@ -25,6 +25,10 @@
  * names none of them). VTK's vtkDICOMImageReader trusts its headers and passes truncated
  * slices silently; this reader does neither.
  *
+ * By default the series is read whole in a child process (ReadInChildProcess)
+ * when the pipeline first asks for information, and handed back with the
+ * folder's list of series; RequestData hands the volume over.
+ *
  * After UpdateInformation(), GetNumberOfSeries() and GetSeriesDescription()
  * list the folder's series, so that a caller can choose one.
  */
@@ -76,6 +80,25 @@ public:
   vtkGetMacro(MemoryBudget, unsigned long long);
   ///@}
 
+  ///@{
+  /**
+   * Whether to read in a child process (default: on): vtk-dicom's parser
+   * reads past its buffer on some damaged files, a fault that depends on
+   * what the heap held, so a file is never parsed in this process (Python,
+   * ParaView). The child reads the whole series and hands it back through
+   * shared memory; a crash, or a read past TimeLimit, is one line of error.
+   */
+  vtkSetMacro(ReadInChildProcess, bool);
+  vtkGetMacro(ReadInChildProcess, bool);
+  vtkBooleanMacro(ReadInChildProcess, bool);
+  ///@}
+
+  ///@{
+  /** Seconds the child may read before it is stopped (default: 300). */
+  vtkSetClampMacro(TimeLimit, double, 0.001, VTK_DOUBLE_MAX);
+  vtkGetMacro(TimeLimit, double);
+  ///@}
+
   /** The number of series the last scan of DirectoryName found. */
   int GetNumberOfSeries();
 
@@ -95,10 +118,18 @@ protected:
   char* DirectoryName = nullptr;
   int SeriesIndex = -1;
   unsigned long long MemoryBudget = 0;
+  bool ReadInChildProcess = true;
+  double TimeLimit = 300.0;
 
 private:
   vtkMCXDICOMSeriesReader(const vtkMCXDICOMSeriesReader&) = delete;
   void operator=(const vtkMCXDICOMSeriesReader&) = delete;
+
+  // The series read whole in a child; "" or the one line of error.
+  std::string ReadInChild(unsigned long& code);
+  // The series chosen and its information read in this process; "" or the
+  // one line of error.
+  std::string ReadInformationHere(unsigned long& code);
 
   // vtk-dicom's directory scan and reader, kept out of the public header.
   struct Internals;

@@ -73,7 +73,9 @@ std::string vtkMCXVolumeReader::Read()
   std::string error;
   try
   {
-    if (this->ReadInChildProcess)
+    // A DICOM folder always: vtk-dicom's parser reads past its buffer on
+    // some damaged files (vtkMCXDICOMSeriesReader.h).
+    if (this->ReadInChildProcess || vtksys::SystemTools::FileIsDirectory(this->FileName))
     {
       mcxio::ReadLimits limits;
       limits.Seconds = this->TimeLimit;

@@ -18,7 +18,9 @@
  * is read in a forked child process under an address-space limit of
  * MemoryBudget and stopped after TimeLimit seconds, the volume handed back
  * through shared memory: a reader that crashes or hangs on a file that
- * passed the checks is one line of error, not the end of this process.
+ * passed the checks is one line of error, not the end of this process. A
+ * DICOM folder is read so whatever the setting (vtk-dicom's parser reads
+ * past its buffer on some damaged files, vtkMCXDICOMSeriesReader.h).
  *
  * The volume is read whole when the pipeline first asks for information
  * (several formats place the volume only once read, and the child reads in

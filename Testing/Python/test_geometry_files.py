@@ -414,6 +414,11 @@ class GeometryFiles(unittest.TestCase):
         with open(plan, "wb") as f:
             f.write(data[:len(data) - 60])
         self.assert_one_error_line("RT plan '%s': " % plan, ["--rtplan", plan])
+        # A file that crashes vtk-dicom's parser: parsed in a child only.
+        crash = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Fuzz", "Regressions",
+                             "PythonReaders", "dicom-parser-crash.dcm")
+        self.assert_one_error_line("vtk-dicom's parser crashed (SIGSEGV) on one of its files",
+                                   ["--rtplan", crash])
         self.assert_one_error_line("--beam chooses a beam of --rtplan", ["--beam", "1"])
 
 

@@ -43,11 +43,13 @@ def voxels(image):
     return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(dims[2], dims[1], dims[0])
 
 
-def read(folder, index=-1):
+def read(folder, index=-1, **settings):
     """The reader after Update(), and the messages of its errors."""
     reader = mcxray.vtkMCXDICOMSeriesReader()
     reader.SetDirectoryName(folder)
     reader.SetSeriesIndex(index)
+    for name, value in settings.items():
+        getattr(reader, "Set" + name)(value)
     messages = []
 
     def keep(caller, event, text=None):
@@ -105,6 +107,40 @@ class DicomSeries(unittest.TestCase):
         xml.Update()
         expected = voxels(xml.GetOutput())[::-1]  # slices sorted by position run the other way
         self.assertTrue(numpy.array_equal(expected, voxels(volume)))
+
+    def test_the_series_is_read_in_a_child_as_it_would_be_here(self):
+        # vtk-dicom's parser reads past its buffer on some damaged files, a
+        # fault that depends on what the heap held: by default no file is
+        # parsed in this process. The child's volume, placement and list of
+        # series are those of a read here; its time limit stops it.
+        contained, messages = read(SERIES)
+        self.assertEqual([], messages)
+        self.assertTrue(contained.GetReadInChildProcess())
+        here = read(SERIES, ReadInChildProcess=False)[0]
+        a, b = contained.GetOutput(), here.GetOutput()
+        for get in ("GetExtent", "GetSpacing", "GetOrigin"):
+            self.assertEqual(getattr(b, get)(), getattr(a, get)(), get)
+        self.assertEqual([b.GetDirectionMatrix().GetElement(r, c) for r in range(3) for c in range(3)],
+                         [a.GetDirectionMatrix().GetElement(r, c) for r in range(3) for c in range(3)])
+        self.assertEqual(b.GetScalarType(), a.GetScalarType())
+        self.assertEqual(b.GetPointData().GetScalars().GetName(), a.GetPointData().GetScalars().GetName())
+        self.assertTrue(numpy.array_equal(voxels(b), voxels(a)))
+        self.assertEqual((1, here.GetSeriesDescription(0)),
+                         (contained.GetNumberOfSeries(), contained.GetSeriesDescription(0)))
+        crash = os.path.join(self.work, "crash")
+        os.makedirs(crash)
+        shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Fuzz", "Regressions",
+                                 "PythonReaders", "dicom-parser-crash.dcm"), crash)
+        reader, messages = read(crash)
+        self.assertEqual(1, len(messages), messages)
+        self.assertIn("vtk-dicom's parser crashed (SIGSEGV)", messages[0])
+        self.assertEqual(0, reader.GetOutput().GetNumberOfPoints())
+        reader, messages = read(SERIES, TimeLimit=0.001)
+        self.assertEqual(1, len(messages), messages)
+        self.assertIn("did not finish within 0.001 s (a corrupt file? SetTimeLimit sets the limit)",
+                      messages[0])
+        self.assertEqual(vtkErrorCode.FileFormatError, reader.GetErrorCode())
+        self.assertEqual(0, reader.GetOutput().GetNumberOfPoints())
 
     def test_series_feeds_the_projector(self):
         # The same voxels at the same spacing: the TF integral of the series is
