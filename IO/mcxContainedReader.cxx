@@ -11,6 +11,7 @@
 #include "vtkImageData.h"
 #include "vtkMatrix3x3.h"
 #include "vtkPointData.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <cerrno>
@@ -176,7 +177,9 @@ bool HandOverVolume(int fd, vtkImageData* volume, const std::string& note)
     {
       const bool fileSizeLimit = errno == EFBIG;
       error = "cannot read '" + path + "': the volume cannot be handed over from the reader (" +
-        std::strerror(errno) + ")";
+        std::strerror(errno) +
+        (fileSizeLimit ? ": the file-size limit, ulimit -f, holds for its shared memory" : "") +
+        ")";
       ::ftruncate(fd, 0);
       ::lseek(fd, 0, SEEK_SET);
       HandOverFailure(fd, error, note, fileSizeLimit ? NotHandedOver : 1);
@@ -330,6 +333,7 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
   if (header.Failed == NotHandedOver)
   {
     readHere = true;
+    error.assign(bytes + sizeof(header), static_cast<std::size_t>(header.MessageBytes));
   }
   else if (header.Failed)
   {
@@ -426,7 +430,7 @@ vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const Contai
   {
     bool readHere = false;
     volume = TakeOver(fd, path, limits, readHere, error, note);
-    if (readHere)
+    if (readHere && limits.ReadHereWhenNotHandedOver)
     {
       volume = read(error, note);
     }
@@ -443,6 +447,8 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   here.DicomInThisProcess = true; // contained already
   ReadLimits named = limits;
   named.MemoryBytesName = options.MemoryBudgetName;
+  // A DICOM series is never parsed here (mcxVolumeReader.h).
+  named.ReadHereWhenNotHandedOver = !vtksys::SystemTools::FileIsDirectory(path);
   std::string note;
   return RunContained(
     path, [&](std::string& problem, std::string&) { return ReadVolume(path, here, problem); },

@@ -26,6 +26,11 @@ struct ReadLimits
   std::string SecondsName = "SetTimeLimit";
   // How the caller's user sets MemoryBytes (named where a volume exceeds it).
   std::string MemoryBytesName = "SetMemoryBudget";
+  // Where a file-size limit (ulimit -f, which holds for shared memory too)
+  // keeps the child from handing the volume over: read again in this
+  // process (true), or fail with an error that says so (false: a read that
+  // must never run here, a DICOM series').
+  bool ReadHereWhenNotHandedOver = true;
 };
 
 /// A read to run in the child: the volume, or null with error set to one
@@ -36,8 +41,7 @@ using ContainedRead =
 
 /// read run in a child process within limits, as below: its volume and
 /// note, or null with error set to one line (its own, its signal's, the
-/// time limit's). Where a file-size limit (ulimit -f) keeps the child from
-/// handing the volume over, read runs again in this process.
+/// time limit's).
 vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const ContainedRead& read,
   const ReadLimits& limits, std::string& error, std::string& note);
 

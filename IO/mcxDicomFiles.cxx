@@ -34,6 +34,7 @@
 #include <sstream>
 #include <utility>
 
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -453,8 +454,8 @@ bool CheckDicomPixelData(
   return true;
 }
 
-bool ParseInChild(
-  const std::function<std::string()>& parse, std::string& answer, std::string& error)
+bool ParseInChild(const std::function<std::string()>& parse, const std::string& parsed,
+  std::string& answer, std::string& error)
 {
   answer.clear();
   int channel[2];
@@ -464,19 +465,38 @@ bool ParseInChild(
       std::string("cannot check its files in a child process (pipe: ") + std::strerror(errno) + ")";
     return false;
   }
+  // The child's status is needed: a launcher that ignores SIGCHLD would
+  // make the system reap it unseen.
+  struct sigaction defaultChild, previousChild;
+  std::memset(&defaultChild, 0, sizeof(defaultChild));
+  defaultChild.sa_handler = SIG_DFL;
+  sigemptyset(&defaultChild.sa_mask);
+  ::sigaction(SIGCHLD, &defaultChild, &previousChild);
+  const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0)
   {
+    const int cause = errno;
+    ::sigaction(SIGCHLD, &previousChild, nullptr);
     ::close(channel[0]);
     ::close(channel[1]);
     error =
-      std::string("cannot check its files in a child process (fork: ") + std::strerror(errno) + ")";
+      std::string("cannot check its files in a child process (fork: ") + std::strerror(cause) + ")";
     return false;
   }
   if (child == 0)
   {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     ::close(channel[0]);
-    const std::string said = parse();
+    std::string said;
+    try
+    {
+      said = ::getppid() == parent ? parse() : std::string();
+    }
+    catch (...) // never unwind into the parent's frames copied here
+    {
+      ::_exit(1);
+    }
     const char* at = said.data();
     for (std::size_t left = said.size(); left > 0;)
     {
@@ -505,10 +525,18 @@ bool ParseInChild(
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
   {
   }
+  ::sigaction(SIGCHLD, &previousChild, nullptr);
   if (WIFSIGNALED(status))
   {
-    error = std::string("vtk-dicom's parser crashed (") + SignalName(WTERMSIG(status)) +
-      ") on one of its files";
+    error = "vtk-dicom's parser crashed (" + SignalName(WTERMSIG(status)) + ") on " + parsed;
+    return false;
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  {
+    // The child ends with 0 on its own; anything else is a fault's (an
+    // exception, a sanitizer's report).
+    error = "vtk-dicom's parser failed (exit status " +
+      std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ") on " + parsed;
     return false;
   }
   return true;
@@ -530,7 +558,7 @@ bool ProbeDicomFiles(
       CheckDicomPixelData(files, claimed, problem);
       return problem;
     },
-    verdict, error);
+    "one of its files", verdict, error);
   if (ended)
   {
     error = verdict;

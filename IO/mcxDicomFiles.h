@@ -30,23 +30,21 @@ bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
 
 /// parse run in a forked child, its answer handed back through a pipe:
 /// true with answer set to what it returned, false with error set to
-/// "vtk-dicom's parser crashed (SIGSEGV) on one of its files" or to why no
-/// child could be started. For what parses a file with vtk-dicom whose
-/// parser reads past its buffer on some damaged files (into what the heap
-/// held: a parse that passed in one process can fault in another), so that
-/// the caller's process never parses it. POSIX: fork and a pipe.
-bool ParseInChild(
-  const std::function<std::string()>& parse, std::string& answer, std::string& error);
+/// "vtk-dicom's parser crashed (SIGSEGV) on " + parsed (or failed: an
+/// exception, an exit status) or to why no child could be started. For what parses a file with
+/// vtk-dicom whose parser reads past its buffer on some damaged files (into what the heap held: a
+/// parse that passed in one process can fault in another), so that the caller's process never
+/// parses it. POSIX: fork and a pipe.
+bool ParseInChild(const std::function<std::string()>& parse, const std::string& parsed,
+  std::string& answer, std::string& error);
 
-/// CheckDicomPixelData over files in a forked child first, so that a file
-/// that crashes vtk-dicom's parser (which the series reader and its folder
-/// scan run in this process, a Python interpreter's or ParaView's) ends the
-/// child, not the caller: false with error set to the child's verdict, to
-/// "vtk-dicom's parser crashed (SIGSEGV) on one of its files", or to why no
-/// child could be started. POSIX: fork and a pipe.
-/// The child first runs scan (the caller's own next step, the series
-/// reader's vtkDICOMDirectory update: the same code on the same memory as
-/// the parent's, which a parser's out-of-bounds read depends on).
+/// CheckDicomPixelData over files in a forked child (ParseInChild) first, so
+/// that a file that crashes vtk-dicom's parser is named as such: false with
+/// error set to the child's verdict, to "vtk-dicom's parser crashed
+/// (SIGSEGV) on one of its files", or to why no child could be started. The
+/// series reader probes so where it reads in its own process (in its
+/// contained child by default). The child first runs scan (the caller's own
+/// next step, the series reader's vtkDICOMDirectory update).
 bool ProbeDicomFiles(
   const std::vector<std::string>& files, const std::function<void()>& scan, std::string& error);
 

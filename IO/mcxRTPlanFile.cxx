@@ -337,7 +337,7 @@ std::string ReadRTPlanBeam(const std::string& path, const std::string& beam, RTP
           const std::string problem = ReadBeamHere(path, beam, read);
           return HandedBack(problem, read);
         },
-        answer, crashed))
+        "the plan", answer, crashed))
   {
     return named + crashed;
   }

@@ -223,6 +223,7 @@ struct vtkMCXDICOMSeriesReader::Internals
     }
     FirstError scan(this->Directory);
     this->Directory->Update();
+    this->ListSeries();
     const int count = this->Directory->GetNumberOfSeries();
     if (count == 0)
     {
@@ -344,7 +345,8 @@ vtkMCXDICOMSeriesReader::vtkMCXDICOMSeriesReader()
   : Internal(new Internals)
 {
   this->SetNumberOfInputPorts(0);
-  // The reader's progress is this reader's; an abort here stops it.
+  // The reader's progress is this reader's; an abort here stops it (read
+  // in this process; in a child, TimeLimit stops it).
   this->Internal->Progress->SetClientData(this);
   this->Internal->Progress->SetCallback(
     [](vtkObject* caller, unsigned long, void* self, void*)
@@ -385,6 +387,7 @@ std::string vtkMCXDICOMSeriesReader::ReadInChild(unsigned long& code)
   mcxio::ReadLimits limits;
   limits.Seconds = this->TimeLimit;
   limits.MemoryBytes = this->MemoryBudget;
+  limits.ReadHereWhenNotHandedOver = false; // never parsed here
   const int index = this->SeriesIndex;
   const unsigned long long budget = this->MemoryBudget;
   auto read = [&folder, index, budget](std::string& error, std::string& note)
@@ -424,7 +427,6 @@ std::string vtkMCXDICOMSeriesReader::ReadInformationHere(unsigned long& code)
 {
   const char* folder = this->DirectoryName ? this->DirectoryName : "";
   std::string problem = this->Internal->ChooseSeries(this->DirectoryName, this->SeriesIndex, code);
-  this->Internal->ListSeries();
   if (problem.empty())
   {
     problem = this->Internal->ReadInformation(folder, code);
@@ -444,9 +446,14 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
   // A failure below leaves no stale volume of an earlier series.
   vtkImageData::GetData(outInfo)->Initialize();
   this->Internal->Volume = nullptr;
+  this->Internal->Series.clear();
   unsigned long code = vtkErrorCode::NoError;
   const std::string problem =
     this->ReadInChildProcess ? this->ReadInChild(code) : this->ReadInformationHere(code);
+  if (!problem.empty() && code == vtkErrorCode::NoError)
+  {
+    code = vtkErrorCode::FileFormatError; // the child read it, this process could not take it
+  }
   this->SetErrorCode(code);
   if (!problem.empty())
   {

@@ -74,7 +74,8 @@ public:
   ///@{
   /**
    * Bytes the series' voxels may take (0, the default: any); checked with
-   * the files' pixel data against their headers before anything is read.
+   * the files' pixel data against their headers before anything is read
+   * (and, read in a child, its address space for data).
    */
   vtkSetMacro(MemoryBudget, unsigned long long);
   vtkGetMacro(MemoryBudget, unsigned long long);
@@ -84,9 +85,14 @@ public:
   /**
    * Whether to read in a child process (default: on): vtk-dicom's parser
    * reads past its buffer on some damaged files, a fault that depends on
-   * what the heap held, so a file is never parsed in this process (Python,
-   * ParaView). The child reads the whole series and hands it back through
-   * shared memory; a crash, or a read past TimeLimit, is one line of error.
+   * what the heap held, so that by default no file is parsed in this
+   * process (Python, ParaView). The child reads the whole series under an
+   * address-space limit of MemoryBudget and hands it back through shared
+   * memory; a crash, or a read past TimeLimit, is one line of error. (A
+   * file-size limit, ulimit -f, that keeps it from handing the volume over
+   * is an error too, not a read here.) Progress then goes from 0 to 1 when
+   * the read ends, and TimeLimit, not AbortExecute, stops it. Off: read in
+   * this process, each file's parse probed in a child first.
    */
   vtkSetMacro(ReadInChildProcess, bool);
   vtkGetMacro(ReadInChildProcess, bool);

@@ -417,7 +417,7 @@ class GeometryFiles(unittest.TestCase):
         # A file that crashes vtk-dicom's parser: parsed in a child only.
         crash = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Fuzz", "Regressions",
                              "PythonReaders", "dicom-parser-crash.dcm")
-        self.assert_one_error_line("vtk-dicom's parser crashed (SIGSEGV) on one of its files",
+        self.assert_one_error_line("vtk-dicom's parser crashed (SIGSEGV) on the plan",
                                    ["--rtplan", crash])
         self.assert_one_error_line("--beam chooses a beam of --rtplan", ["--beam", "1"])
 

@@ -135,6 +135,21 @@ class DicomSeries(unittest.TestCase):
         self.assertEqual(1, len(messages), messages)
         self.assertIn("vtk-dicom's parser crashed (SIGSEGV)", messages[0])
         self.assertEqual(0, reader.GetOutput().GetNumberOfPoints())
+        # A file-size limit keeps the child from handing the volume over:
+        # an error, not a read in this process (nor in vtkMCXVolumeReader's).
+        limited = subprocess.run([sys.executable, "-c", (
+            "import resource, signal, mcxray\n"
+            "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+            "resource.setrlimit(resource.RLIMIT_FSIZE, (1 << 17, 1 << 17))\n"
+            "for r in (mcxray.vtkMCXDICOMSeriesReader(), mcxray.vtkMCXVolumeReader()):\n"
+            "    (r.SetDirectoryName if hasattr(r, 'SetDirectoryName') else r.SetFileName)(%r)\n"
+            "    r.Update()\n"
+            "    print(r.GetOutput().GetNumberOfPoints())\n") % SERIES],
+            capture_output=True, text=True, timeout=120)
+        self.assertEqual(["0", "0"], limited.stdout.split(), limited.stderr)
+        errors = [line for line in limited.stderr.splitlines() if "ERR|" in line or "ERROR:" in line]
+        self.assertEqual(2, len(errors), limited.stderr)
+        self.assertTrue(all("the file-size limit, ulimit -f" in e for e in errors), errors)
         reader, messages = read(SERIES, TimeLimit=0.001)
         self.assertEqual(1, len(messages), messages)
         self.assertIn("did not finish within 0.001 s (a corrupt file? SetTimeLimit sets the limit)",
