@@ -14,6 +14,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -143,7 +144,7 @@ bool HandOverVolume(int fd, vtkImageData* volume, const std::string& note)
 // with its parent; it reads, hands over and ends without running any
 // destructor (a reader fault may have left the heap in any state).
 [[noreturn]] void ReadInChild(const std::string& path, const ContainedRead& read,
-  const ReadLimits& limits, int fd, pid_t parent)
+  const ReadLimits& limits, int fd, pid_t parent, std::atomic<std::uint64_t>* progress)
 {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent)
@@ -168,7 +169,13 @@ bool HandOverVolume(int fd, vtkImageData* volume, const std::string& note)
   std::string note;
   try
   {
-    vtkSmartPointer<vtkImageData> volume = read(error, note);
+    vtkSmartPointer<vtkImageData> volume = read(error, note,
+      [progress](double fraction)
+      {
+        std::uint64_t bits = 0;
+        std::memcpy(&bits, &fraction, sizeof(bits));
+        progress->store(bits, std::memory_order_relaxed);
+      });
     if (volume && HandOverVolume(fd, volume, note))
     {
       ::_exit(0);
@@ -223,23 +230,37 @@ std::string SignalName(int signal)
   }
 }
 
-// Waits for the child at most `seconds`; false (child killed) past it.
-bool WaitFor(pid_t child, double seconds, int& status)
+enum class Waited
 {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  Finished,
+  TimedOut,
+  Stopped
+};
+
+// Waits for the child at most limits.Seconds, passing its progress on to
+// limits.Progress; the child is killed past the time or when told to stop.
+Waited WaitFor(
+  pid_t child, const ReadLimits& limits, const std::atomic<std::uint64_t>& progress, int& status)
+{
+  const auto deadline =
+    std::chrono::steady_clock::now() + std::chrono::duration<double>(limits.Seconds);
   std::chrono::milliseconds pause(1);
   for (;;)
   {
     const pid_t done = ::waitpid(child, &status, WNOHANG);
     if (done == child || (done < 0 && errno != EINTR))
     {
-      return true;
+      return Waited::Finished;
     }
-    if (std::chrono::steady_clock::now() >= deadline)
+    double fraction = 0.0;
+    const std::uint64_t bits = progress.load(std::memory_order_relaxed);
+    std::memcpy(&fraction, &bits, sizeof(fraction));
+    const bool stopped = limits.Progress && !limits.Progress(fraction);
+    if (stopped || std::chrono::steady_clock::now() >= deadline)
     {
       ::kill(child, SIGKILL);
       ::waitpid(child, &status, 0);
-      return false;
+      return stopped ? Waited::Stopped : Waited::TimedOut;
     }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::milliseconds(20));
@@ -386,25 +407,43 @@ vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const Contai
   defaultChild.sa_handler = SIG_DFL;
   sigemptyset(&defaultChild.sa_mask);
   ::sigaction(SIGCHLD, &defaultChild, &previousChild);
+  // The child's progress, a double's bits in a page both processes share.
+  void* page = ::mmap(nullptr, sizeof(std::atomic<std::uint64_t>), PROT_READ | PROT_WRITE,
+    MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  if (page == MAP_FAILED)
+  {
+    const int cause = errno;
+    ::sigaction(SIGCHLD, &previousChild, nullptr);
+    ::close(fd);
+    error = NotStarted(path, "no shared memory for its progress", cause);
+    return nullptr;
+  }
+  auto* progress = new (page) std::atomic<std::uint64_t>(0);
   const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0)
   {
     const int cause = errno;
     ::sigaction(SIGCHLD, &previousChild, nullptr);
+    ::munmap(page, sizeof(*progress));
     ::close(fd);
     error = NotStarted(path, "cannot start a process", cause);
     return nullptr;
   }
   if (child == 0)
   {
-    ReadInChild(path, read, limits, fd, parent);
+    ReadInChild(path, read, limits, fd, parent, progress);
   }
   int status = 0;
   vtkSmartPointer<vtkImageData> volume;
-  const bool finished = WaitFor(child, limits.Seconds, status);
+  const Waited waited = WaitFor(child, limits, *progress, status);
   ::sigaction(SIGCHLD, &previousChild, nullptr);
-  if (!finished)
+  ::munmap(page, sizeof(*progress));
+  if (waited == Waited::Stopped)
+  {
+    error.clear(); // the caller's user asked for it: no error
+  }
+  else if (waited == Waited::TimedOut)
   {
     std::ostringstream seconds;
     seconds << std::setprecision(3) << limits.Seconds;
@@ -432,7 +471,14 @@ vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const Contai
     volume = TakeOver(fd, path, limits, readHere, error, note);
     if (readHere && limits.ReadHereWhenNotHandedOver)
     {
-      volume = read(error, note);
+      volume = read(error, note,
+        [&limits](double fraction)
+        {
+          if (limits.Progress)
+          {
+            limits.Progress(fraction); // no stop here: the read runs in this process
+          }
+        });
     }
   }
   ::close(fd);
@@ -451,7 +497,9 @@ vtkSmartPointer<vtkImageData> ReadVolumeContained(const std::string& path,
   named.ReadHereWhenNotHandedOver = !vtksys::SystemTools::FileIsDirectory(path);
   std::string note;
   return RunContained(
-    path, [&](std::string& problem, std::string&) { return ReadVolume(path, here, problem); },
+    path,
+    [&](std::string& problem, std::string&, const std::function<void(double)>&)
+    { return ReadVolume(path, here, problem); },
     named, error, note);
 }
 

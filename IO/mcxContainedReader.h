@@ -31,17 +31,22 @@ struct ReadLimits
   // process (true), or fail with an error that says so (false: a read that
   // must never run here, a DICOM series').
   bool ReadHereWhenNotHandedOver = true;
+  // Called every few milliseconds while the child reads, with the progress
+  // it reports (0 to 1); false stops the read (the caller's user aborted):
+  // null and no error. Empty: the read runs to its end or its limits.
+  std::function<bool(double)> Progress;
 };
 
 /// A read to run in the child: the volume, or null with error set to one
 /// line; note is text for the caller besides the volume (a DICOM folder's
-/// list of series, say), handed back either way.
-using ContainedRead =
-  std::function<vtkSmartPointer<vtkImageData>(std::string& error, std::string& note)>;
+/// list of series, say), handed back either way; progress(fraction) tells
+/// the caller how far it is.
+using ContainedRead = std::function<vtkSmartPointer<vtkImageData>(
+  std::string& error, std::string& note, const std::function<void(double)>& progress)>;
 
 /// read run in a child process within limits, as below: its volume and
 /// note, or null with error set to one line (its own, its signal's, the
-/// time limit's).
+/// time limit's), or null and no error where limits.Progress stopped it.
 vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const ContainedRead& read,
   const ReadLimits& limits, std::string& error, std::string& note);
 

@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -345,8 +346,7 @@ vtkMCXDICOMSeriesReader::vtkMCXDICOMSeriesReader()
   : Internal(new Internals)
 {
   this->SetNumberOfInputPorts(0);
-  // The reader's progress is this reader's; an abort here stops it (read
-  // in this process; in a child, TimeLimit stops it).
+  // The reader's progress is this reader's; an abort here stops it.
   this->Internal->Progress->SetClientData(this);
   this->Internal->Progress->SetCallback(
     [](vtkObject* caller, unsigned long, void* self, void*)
@@ -388,15 +388,33 @@ std::string vtkMCXDICOMSeriesReader::ReadInChild(unsigned long& code)
   limits.Seconds = this->TimeLimit;
   limits.MemoryBytes = this->MemoryBudget;
   limits.ReadHereWhenNotHandedOver = false; // never parsed here
+  // The child's progress is this reader's; an abort stops the child (the
+  // executive clears AbortExecute before RequestData, not before this).
+  this->AbortExecuteOff();
+  limits.Progress = [this](double fraction)
+  {
+    this->UpdateProgress(fraction);
+    return !this->GetAbortExecute();
+  };
   const int index = this->SeriesIndex;
   const unsigned long long budget = this->MemoryBudget;
-  auto read = [&folder, index, budget](std::string& error, std::string& note)
+  auto read = [&folder, index, budget](
+                std::string& error, std::string& note, const std::function<void(double)>& progress)
   {
     vtkNew<vtkMCXDICOMSeriesReader> reader;
     reader->SetDirectoryName(folder.c_str());
     reader->SetSeriesIndex(index);
     reader->SetMemoryBudget(budget);
     reader->ReadInChildProcessOff(); // this is the child
+    vtkNew<vtkCallbackCommand> report;
+    report->SetClientData(const_cast<std::function<void(double)>*>(&progress));
+    report->SetCallback(
+      [](vtkObject* caller, unsigned long, void* to, void*)
+      {
+        (*static_cast<std::function<void(double)>*>(to))(
+          static_cast<vtkAlgorithm*>(caller)->GetProgress());
+      });
+    reader->AddObserver(vtkCommand::ProgressEvent, report);
     vtkNew<vtkMCXFirstErrorObserver> errors;
     errors->ObserveAlgorithm(reader);
     reader->Update();
@@ -415,10 +433,9 @@ std::string vtkMCXDICOMSeriesReader::ReadInChild(unsigned long& code)
   {
     code = vtkErrorCode::FileFormatError; // the child said nothing: it crashed or hung
   }
-  this->UpdateProgress(1.0);
-  if (this->Internal->Volume || !error.empty())
+  if (this->Internal->Volume || !error.empty() || this->GetAbortExecute())
   {
-    return error;
+    return error; // "" and no volume: stopped by the user
   }
   return "cannot read the DICOM series in '" + folder + "'";
 }
@@ -466,6 +483,14 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
     return 1;
   }
   this->Internal->Failed = false;
+  if (this->ReadInChildProcess && !this->Internal->Volume)
+  {
+    // Stopped by the user: an empty output, no error (Modified() reads again).
+    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+    this->Internal->Failed = true;
+    return 1;
+  }
   if (vtkImageData* volume = this->Internal->Volume)
   {
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), volume->GetExtent(), 6);

@@ -90,8 +90,9 @@ public:
    * address-space limit of MemoryBudget and hands it back through shared
    * memory; a crash, or a read past TimeLimit, is one line of error. (A
    * file-size limit, ulimit -f, that keeps it from handing the volume over
-   * is an error too, not a read here.) Progress then goes from 0 to 1 when
-   * the read ends, and TimeLimit, not AbortExecute, stops it. Off: read in
+   * is an error too, not a read here.) The child's progress is this
+   * reader's, and AbortExecute (set from a progress observer) stops it: an
+   * empty output and no error, read again after Modified(). Off: read in
    * this process, each file's parse probed in a child first.
    */
   vtkSetMacro(ReadInChildProcess, bool);

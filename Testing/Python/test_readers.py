@@ -150,6 +150,27 @@ class DicomSeries(unittest.TestCase):
         errors = [line for line in limited.stderr.splitlines() if "ERR|" in line or "ERROR:" in line]
         self.assertEqual(2, len(errors), limited.stderr)
         self.assertTrue(all("the file-size limit, ulimit -f" in e for e in errors), errors)
+        # An abort from a progress observer stops the child: an empty
+        # output and no error; Modified() reads again.
+        stopped = mcxray.vtkMCXDICOMSeriesReader()
+        stopped.SetDirectoryName(SERIES)
+        seen = []
+
+        def stop(caller, event):
+            seen.append(caller.GetProgress())
+            caller.AbortExecuteOn()
+        observer = stopped.AddObserver(vtkCommand.ProgressEvent, stop)
+        errors = mcxray.vtkMCXFirstErrorObserver()
+        errors.ObserveAlgorithm(stopped)
+        stopped.Update()
+        self.assertEqual("", errors.GetErrorText())
+        self.assertEqual(0, stopped.GetOutput().GetNumberOfPoints())
+        self.assertEqual(0.0, seen[0])
+        stopped.RemoveObserver(observer)
+        stopped.Modified()
+        stopped.Update()
+        self.assertEqual("", errors.GetErrorText())
+        self.assertTrue(numpy.array_equal(voxels(b), voxels(stopped.GetOutput())))
         reader, messages = read(SERIES, TimeLimit=0.001)
         self.assertEqual(1, len(messages), messages)
         self.assertIn("did not finish within 0.001 s (a corrupt file? SetTimeLimit sets the limit)",
