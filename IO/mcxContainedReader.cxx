@@ -275,9 +275,13 @@ vtkSmartPointer<vtkImageData> CopyVolume(const char* bytes, Handover& header, st
 {
   auto scalars =
     vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(header.ScalarType));
-  const std::uint64_t values = voxels * static_cast<std::uint64_t>(header.Components);
+  std::uint64_t values = 0;
+  std::uint64_t dataBytes = 0;
   if (!scalars ||
-    values * static_cast<std::uint64_t>(scalars->GetDataTypeSize()) != header.DataBytes)
+    __builtin_mul_overflow(voxels, static_cast<std::uint64_t>(header.Components), &values) ||
+    __builtin_mul_overflow(
+      values, static_cast<std::uint64_t>(scalars->GetDataTypeSize()), &dataBytes) ||
+    dataBytes != header.DataBytes)
   {
     error = "cannot read '" + path + "': the reader handed back an inconsistent volume";
     return nullptr;
@@ -334,12 +338,17 @@ vtkSmartPointer<vtkImageData> TakeOver(int fd, const std::string& path, const Re
   Handover header;
   std::memcpy(&header, bytes, sizeof(header));
   vtkSmartPointer<vtkImageData> volume;
-  std::uint64_t voxels = 1;
+  std::uint64_t voxels = 1; // 0 where the product of the sides would wrap
   for (int a = 0; a < 3; ++a)
   {
     const std::int64_t side =
       static_cast<std::int64_t>(header.Extent[2 * a + 1]) - header.Extent[2 * a] + 1;
-    voxels *= static_cast<std::uint64_t>(std::max<std::int64_t>(side, 0));
+    if (__builtin_mul_overflow(
+          voxels, static_cast<std::uint64_t>(std::max<std::int64_t>(side, 0)), &voxels))
+    {
+      voxels = 0;
+      break;
+    }
   }
   const std::uint64_t texts = size - sizeof(header);
   if (std::memcmp(header.Magic, "MCXVOL1", 8) != 0 || header.MessageBytes > texts ||
