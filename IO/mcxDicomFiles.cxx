@@ -23,17 +23,20 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <new>
 #include <set>
 #include <sstream>
 #include <utility>
 
+#include <poll.h>
 #include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -455,7 +458,7 @@ bool CheckDicomPixelData(
 }
 
 bool ParseInChild(const std::function<std::string()>& parse, const std::string& parsed,
-  std::string& answer, std::string& error)
+  std::string& answer, std::string& error, double seconds)
 {
   answer.clear();
   int channel[2];
@@ -511,10 +514,26 @@ bool ParseInChild(const std::function<std::string()>& parse, const std::string& 
     ::_exit(0); // no destructors, no atexit handlers of the parent's
   }
   ::close(channel[1]);
+  // The answer until the child closes the pipe, or until the time is up.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  bool late = false;
   char buffer[4096];
-  for (ssize_t got; (got = ::read(channel[0], buffer, sizeof(buffer))) != 0;)
+  for (;;)
   {
-    if (got < 0 && errno != EINTR)
+    const long long left = std::chrono::duration_cast<std::chrono::milliseconds>(
+      deadline - std::chrono::steady_clock::now())
+                             .count();
+    pollfd ready = { channel[0], POLLIN, 0 };
+    const int wait = static_cast<int>(std::min<long long>(left, 1 << 30));
+    const int polled = left > 0 ? ::poll(&ready, 1, wait) : 0;
+    if (polled == 0)
+    {
+      late = true;
+      ::kill(child, SIGKILL);
+      break;
+    }
+    const ssize_t got = polled > 0 ? ::read(channel[0], buffer, sizeof(buffer)) : -1;
+    if (got == 0 || (got < 0 && errno != EINTR))
     {
       break;
     }
@@ -526,6 +545,13 @@ bool ParseInChild(const std::function<std::string()>& parse, const std::string& 
   {
   }
   ::sigaction(SIGCHLD, &previousChild, nullptr);
+  if (late)
+  {
+    std::ostringstream limit;
+    limit << std::setprecision(3) << seconds;
+    error = "vtk-dicom's parser did not finish within " + limit.str() + " s on " + parsed;
+    return false;
+  }
   if (WIFSIGNALED(status))
   {
     error = "vtk-dicom's parser crashed (" + SignalName(WTERMSIG(status)) + ") on " + parsed;

@@ -31,12 +31,13 @@ bool DicomFolderFiles(const std::string& folder, int depth, std::size_t limit,
 /// parse run in a forked child, its answer handed back through a pipe:
 /// true with answer set to what it returned, false with error set to
 /// "vtk-dicom's parser crashed (SIGSEGV) on " + parsed (or failed: an
-/// exception, an exit status) or to why no child could be started. For what parses a file with
+/// exception, an exit status; or did not finish within `seconds`, when the
+/// child is killed) or to why no child could be started. For what parses a file with
 /// vtk-dicom whose parser reads past its buffer on some damaged files (into what the heap held: a
 /// parse that passed in one process can fault in another), so that the caller's process never
 /// parses it. POSIX: fork and a pipe.
 bool ParseInChild(const std::function<std::string()>& parse, const std::string& parsed,
-  std::string& answer, std::string& error);
+  std::string& answer, std::string& error, double seconds = 300.0);
 
 /// CheckDicomPixelData over files in a forked child (ParseInChild) first, so
 /// that a file that crashes vtk-dicom's parser is named as such: false with
