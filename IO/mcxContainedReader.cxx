@@ -4,6 +4,7 @@
 #include "mcxContainedReader.h"
 
 #include "mcxByteSize.h"
+#include "mcxChildProcess.h"
 #include "mcxHeaderCheck.h"
 #include "mcxVolumeReader.h"
 
@@ -209,27 +210,6 @@ std::string NotStarted(const std::string& path, const std::string& what, int cau
     ": " + std::strerror(cause) + ")";
 }
 
-std::string SignalName(int signal)
-{
-  switch (signal)
-  {
-    case SIGSEGV:
-      return "SIGSEGV";
-    case SIGBUS:
-      return "SIGBUS";
-    case SIGFPE:
-      return "SIGFPE";
-    case SIGABRT:
-      return "SIGABRT";
-    case SIGILL:
-      return "SIGILL";
-    case SIGKILL:
-      return "SIGKILL";
-    default:
-      return "signal " + std::to_string(signal);
-  }
-}
-
 enum class Waited
 {
   Finished,
@@ -409,20 +389,13 @@ vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const Contai
     error = NotStarted(path, "no shared memory for the volume", errno);
     return nullptr;
   }
-  // The child's status is needed: a launcher that ignores SIGCHLD would
-  // make the system reap it unseen.
-  struct sigaction defaultChild, previousChild;
-  std::memset(&defaultChild, 0, sizeof(defaultChild));
-  defaultChild.sa_handler = SIG_DFL;
-  sigemptyset(&defaultChild.sa_mask);
-  ::sigaction(SIGCHLD, &defaultChild, &previousChild);
+  const DefaultChildSignal childSignal;
   // The child's progress, a double's bits in a page both processes share.
   void* page = ::mmap(nullptr, sizeof(std::atomic<std::uint64_t>), PROT_READ | PROT_WRITE,
     MAP_SHARED | MAP_ANONYMOUS, -1, 0);
   if (page == MAP_FAILED)
   {
     const int cause = errno;
-    ::sigaction(SIGCHLD, &previousChild, nullptr);
     ::close(fd);
     error = NotStarted(path, "no shared memory for its progress", cause);
     return nullptr;
@@ -433,7 +406,6 @@ vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const Contai
   if (child < 0)
   {
     const int cause = errno;
-    ::sigaction(SIGCHLD, &previousChild, nullptr);
     ::munmap(page, sizeof(*progress));
     ::close(fd);
     error = NotStarted(path, "cannot start a process", cause);
@@ -446,7 +418,6 @@ vtkSmartPointer<vtkImageData> RunContained(const std::string& path, const Contai
   int status = 0;
   vtkSmartPointer<vtkImageData> volume;
   const Waited waited = WaitFor(child, limits, *progress, status);
-  ::sigaction(SIGCHLD, &previousChild, nullptr);
   ::munmap(page, sizeof(*progress));
   if (waited == Waited::Stopped)
   {

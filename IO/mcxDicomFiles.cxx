@@ -3,6 +3,7 @@
 #include "mcxDicomFiles.h"
 
 #include "mcxByteSize.h"
+#include "mcxChildProcess.h"
 #include "mcxHeaderCheck.h"
 
 #include "vtkCallbackCommand.h"
@@ -53,26 +54,6 @@ namespace mcxio
 namespace
 {
 using Inode = std::pair<unsigned long long, unsigned long long>; // device, inode
-
-// "SIGSEGV" for SIGSEGV; the number for a signal without a name here.
-std::string SignalName(int signal)
-{
-  switch (signal)
-  {
-    case SIGSEGV:
-      return "SIGSEGV";
-    case SIGABRT:
-      return "SIGABRT";
-    case SIGBUS:
-      return "SIGBUS";
-    case SIGFPE:
-      return "SIGFPE";
-    case SIGILL:
-      return "SIGILL";
-    default:
-      return "signal " + std::to_string(signal);
-  }
-}
 
 bool Identity(const std::string& path, struct stat& info, Inode& id)
 {
@@ -468,19 +449,12 @@ bool ParseInChild(const std::function<std::string()>& parse, const std::string& 
       std::string("cannot check its files in a child process (pipe: ") + std::strerror(errno) + ")";
     return false;
   }
-  // The child's status is needed: a launcher that ignores SIGCHLD would
-  // make the system reap it unseen.
-  struct sigaction defaultChild, previousChild;
-  std::memset(&defaultChild, 0, sizeof(defaultChild));
-  defaultChild.sa_handler = SIG_DFL;
-  sigemptyset(&defaultChild.sa_mask);
-  ::sigaction(SIGCHLD, &defaultChild, &previousChild);
+  const DefaultChildSignal childSignal;
   const pid_t parent = ::getpid();
   const pid_t child = ::fork();
   if (child < 0)
   {
     const int cause = errno;
-    ::sigaction(SIGCHLD, &previousChild, nullptr);
     ::close(channel[0]);
     ::close(channel[1]);
     error =
@@ -544,7 +518,6 @@ bool ParseInChild(const std::function<std::string()>& parse, const std::string& 
   while (::waitpid(child, &status, 0) < 0 && errno == EINTR)
   {
   }
-  ::sigaction(SIGCHLD, &previousChild, nullptr);
   if (late)
   {
     std::ostringstream limit;

@@ -474,21 +474,18 @@ int vtkMCXDICOMSeriesReader::RequestInformation(
   this->SetErrorCode(code);
   if (!problem.empty())
   {
-    // One line: reported here, then an empty extent (not a failed request,
-    // which the executive would report again).
     vtkErrorMacro(<< mcx::PrintableText(problem));
-    const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-    this->Internal->Failed = true;
-    return 1;
   }
-  this->Internal->Failed = false;
-  if (this->ReadInChildProcess && !this->Internal->Volume)
+  // A child read stopped by the user leaves no volume and no error
+  // (Modified() reads again).
+  this->Internal->Failed =
+    !problem.empty() || (this->ReadInChildProcess && !this->Internal->Volume);
+  if (this->Internal->Failed)
   {
-    // Stopped by the user: an empty output, no error (Modified() reads again).
+    // One line, said above, then an empty extent (not a failed request,
+    // which the executive would report again).
     const int empty[6] = { 0, -1, 0, -1, 0, -1 };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-    this->Internal->Failed = true;
     return 1;
   }
   if (vtkImageData* volume = this->Internal->Volume)
