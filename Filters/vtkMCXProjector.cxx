@@ -6,6 +6,7 @@
 #include "vtkMCXProjector.h"
 
 #include "mcxChannelSplit.h"
+#include "mcxErrorEstimate.h"
 #include "mcxSampleGenerator.h"
 #include "vtkMCXCloudProjectionPrivate.h"
 #include "vtkMCXDistributed.h"
@@ -39,6 +40,40 @@ namespace
 {
 using mcx::Projection;
 
+// A target the largest sample count leaves unmet is said so, once (the
+// first process): the run stopped at 2^MaximumSampleExponent - 1 samples.
+void WarnOfAnUnmetTarget(vtkMCXProjector* self, const Projection& projection)
+{
+  const double targetError = self->GetTargetRelativeError();
+  const int targetLevels = self->GetTargetQuantizationLevels();
+  const int maximum = self->GetMaximumSampleExponent();
+  vtkMultiProcessController* controller = self->GetController();
+  if ((targetError <= 0 && targetLevels <= 0) || !projection.Completed || projection.EveryVoxel ||
+    projection.Count < mcx::SampleCount(static_cast<unsigned>(maximum)) ||
+    (controller && controller->GetLocalProcessId() != 0))
+  {
+    return;
+  }
+  if (targetError > 0 && projection.EstimatedError() > targetError)
+  {
+    vtkWarningWithObjectMacro(self,
+      "The target relative error " << targetError << " is not met: the error estimated at 2^"
+                                   << maximum
+                                   << " - 1 samples, the most MaximumSampleExponent allows, is "
+                                   << projection.EstimatedError());
+    return;
+  }
+  const double needed =
+    targetLevels > 0 ? mcx::QuantizationSampleCount(projection.Sums, targetLevels) : 0.0;
+  if (needed > static_cast<double>(projection.Count))
+  {
+    vtkWarningWithObjectMacro(self,
+      "The target of " << targetLevels << " quantization levels is not met: it asks for " << needed
+                       << " samples, more than the 2^" << maximum
+                       << " - 1 MaximumSampleExponent allows");
+  }
+}
+
 // Stage 1: the input's samples, projected (false, reported, when there is
 // no image to make).
 bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeExtent[6],
@@ -56,8 +91,13 @@ bool ProjectInput(vtkMCXProjector* self, vtkDataObject* input, const int wholeEx
     }
     return mcx::ProjectCloud(self, cloud, geometry, self->GetFootprintReach(), projection);
   }
-  return mcx::ProjectIndex(
-    self, vtkImageData::SafeDownCast(input), wholeExtent, geometry, projection);
+  if (!mcx::ProjectIndex(
+        self, vtkImageData::SafeDownCast(input), wholeExtent, geometry, projection))
+  {
+    return false;
+  }
+  WarnOfAnUnmetTarget(self, projection);
+  return true;
 }
 
 // Stage 3: line integrals and the field data that tells how they were made.

@@ -38,8 +38,9 @@
  * criterion (its equation 1) that the average pixel deviation stays below
  * one of L grey levels, M > (W H - 1) B^2 L^2 with B the mean over the
  * maximum of the image -- and checked again on the larger run (up to three
- * times), within 2^MaximumSampleExponent - 1 samples. SampleExponent is then
- * ignored, and "SampleCount" tells the count used.
+ * times), within 2^MaximumSampleExponent - 1 samples (a warning says so when
+ * those fall short of the target). SampleExponent is then ignored, and
+ * "SampleCount" tells the count used.
  *
  * Channels (index input): with SetNumberOfChannels(K) and a fraction
  * function per channel (SetChannelFraction), each sample drawn under the

@@ -467,17 +467,15 @@ bool ParseArguments(int argc, char* argv[], Command command, Settings& settings)
       SetInput(settings, name);
       continue;
     }
-    // An option unknown to this command is taken to have a value, so that
-    // one left without any is reported as such.
+    if (!option)
+    {
+      Fail("unknown option " + name + " (try: mcxray " + CommandName(command) + " --help)");
+    }
     if (i + 1 >= argc)
     {
       Fail("option " + name + " needs a value");
     }
     const std::string value = argv[++i];
-    if (!option)
-    {
-      Fail("unknown option " + name + " (try: mcxray " + CommandName(command) + " --help)");
-    }
     option->Apply(settings, { name, value });
   }
   if (settings.RASCoordinates)

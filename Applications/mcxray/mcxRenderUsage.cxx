@@ -35,7 +35,8 @@ options:
                         at most 2^40 - 1, about 3 to 12 hours on 2 cores)
   --target-error E      choose the sample count for a relative RMS error E (a
                         pilot run of about 4 samples per pixel, at least 65535,
-                        measures the image; up to 2^30 - 1 samples); replaces
+                        measures the image; up to 2^30 - 1 samples, with a
+                        warning where those fall short of E); replaces
                         --samples. Without --deposit the deposit is chosen too:
                         a pilot of each measures its error and seconds, and the
                         one predicted to reach E soonest is taken, or every

@@ -53,10 +53,10 @@ _PRESETS = "raw, bone, soft-tissue, mu or mu=MU_WATER"
 _METHODS = ("hybrid", "mc", "qmc", "every-voxel", "reference")
 # static constexpr limits of the C++ classes, which the wrapper leaves out:
 # vtkMCXRadiographGeometry::MaximumDetectorPixels,
-# vtkMCXRadiograph::MaximumPhotonsPerPixel, vtkMCXTypes::LargestSampleExponent.
+# vtkMCXRadiograph::MaximumPhotonsPerPixel; the command's --samples limit (mcxRenderChecks.cxx).
 _MAXIMUM_DETECTOR_PIXELS = 65536
 _MAXIMUM_PHOTONS = 1e15
-_MAXIMUM_SAMPLES = 2**63 - 1
+_MAXIMUM_SAMPLES = 2**40 - 1
 
 
 @dataclass(frozen=True)
@@ -519,7 +519,7 @@ class Renderer:
 
         Sampling (vtkMCXProjector): deposit "footprint" (default; under target_error chosen by measurement
         for each pose, as mcxray's: give it for common random numbers) or "point"; kernel "tent" or "box";
-        method "hybrid", "mc", "qmc" or "every-voxel"; samples (rounded up to 2^k - 1) or target_error
+        method "hybrid", "mc", "qmc" or "every-voxel"; samples (1 to 2^40 - 1, rounded up to 2^k - 1) or target_error
         (relative RMS error); seed, the same for every pose (common random numbers: pose-to-pose
         differences are not sampling noise). method "reference": the exact
         projector (vtkMCXReferenceProjector), to a relative tolerance

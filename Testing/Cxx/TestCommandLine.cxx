@@ -427,6 +427,22 @@ TEST(CommandLine, ErrorsNameTheOptionGiven)
     EXPECT_EQ(2, r.Status) << c.first;
     EXPECT_EQ(c.second, r.Errors) << c.first;
   }
+  // An option the command does not know is named as unknown wherever it
+  // stands, last included (it once read as an option missing its value);
+  // a known one left without its value says so.
+  const std::pair<const char*, const char*> last[] = {
+    { "render --frob", "mcxray: error: unknown option --frob (try: mcxray render --help)\n" },
+    { "render --frob 3", "mcxray: error: unknown option --frob (try: mcxray render --help)\n" },
+    { "view --stored-points",
+      "mcxray: error: unknown option --stored-points (try: mcxray view --help)\n" },
+    { "render --samples", "mcxray: error: option --samples needs a value\n" },
+  };
+  for (const auto& c : last)
+  {
+    const Result r = RunCLI(c.first);
+    EXPECT_EQ(2, r.Status) << c.first;
+    EXPECT_EQ(c.second, r.Errors) << c.first;
+  }
 }
 
 TEST(CommandLine, ViewerBadInputGivesOneLineErrorAndNoOutput)

@@ -779,3 +779,52 @@ TEST(Projection, TargetAccuracyControlsChooseEnoughSamples)
   EXPECT_GT(mcxtest::FieldValue(image, "SampleCount"), 0.9 * criterion);
   EXPECT_LT(mcxtest::FieldValue(image, "SampleCount"), 2.2 * criterion);
 }
+
+TEST(Projection, ATargetThatTheLargestSampleCountMissesIsWarnedOf)
+{
+  // A target the run cannot reach within 2^MaximumSampleExponent - 1
+  // samples ends with that many and a warning naming both; one it reaches,
+  // or one within its last count, warns of nothing.
+  Scene scene;
+  struct Case
+  {
+    double Error;
+    int Levels;
+    int Maximum;
+    const char* Expected; // nullptr: no warning
+  };
+  const Case cases[] = {
+    { 1e-4, 0, 16,
+      "The target relative error 0.0001 is not met: the error estimated at 2^16 - 1 "
+      "samples, the most MaximumSampleExponent allows, is " },
+    { 0, 4096, 16, "The target of 4096 quantization levels is not met: it asks for " },
+    { 0.05, 0, 30, nullptr },
+    { 0, 16, 30, nullptr },
+  };
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkMCXProjector> projector;
+    scene.Configure(projector.Get(), nullptr, 48);
+    projector->SetTargetRelativeError(c.Error);
+    projector->SetTargetQuantizationLevels(c.Levels);
+    projector->SetMaximumSampleExponent(c.Maximum);
+    std::string warnings;
+    vtkNew<vtkCallbackCommand> onWarning;
+    onWarning->SetClientData(&warnings);
+    onWarning->SetCallback([](vtkObject*, unsigned long, void* target, void* text)
+      { *static_cast<std::string*>(target) += static_cast<const char*>(text); });
+    projector->AddObserver(vtkCommand::WarningEvent, onWarning);
+    projector->Update();
+    const double samples = mcxtest::FieldValue(projector->GetOutput(), "SampleCount");
+    if (c.Expected)
+    {
+      EXPECT_EQ(65535.0, samples);
+      EXPECT_NE(std::string::npos, warnings.find(c.Expected)) << warnings;
+    }
+    else
+    {
+      EXPECT_LT(samples, 1073741823.0);
+      EXPECT_EQ("", warnings) << c.Error << " " << c.Levels;
+    }
+  }
+}

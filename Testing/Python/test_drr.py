@@ -382,7 +382,10 @@ class BadInput(unittest.TestCase):
             (ValueError, "tolerance= goes with method='reference'", lambda: r.drr(tolerance=0.01)),
             (ValueError, "give samples= or target_error=, not both",
              lambda: r.drr(samples=1023, target_error=0.01)),
-            (ValueError, "samples must be >= 1|samples must be 1 to", lambda: r.drr(samples=0)),
+            (ValueError, "samples must be 1 to 1099511627775, got 0", lambda: r.drr(samples=0)),
+            # The command's limit, 2^40 - 1: 2^62 once started a render of centuries.
+            (ValueError, "samples must be 1 to 1099511627775, got 4611686018427387904",
+             lambda: r.drr(samples=2**62)),
             (ValueError, "target_error must be between 0 and 1", lambda: r.drr(target_error=2)),
             (TypeError, "seed must be an integer", lambda: r.drr(seed=1.5)),
             (ValueError, "photons must be 0", lambda: r.drr(photons=-1)),
