@@ -187,6 +187,128 @@ std::string GeometryFromPinhole(
   return std::string();
 }
 
+bool IsAffineMatrix(const double P[12])
+{
+  for (int k = 0; k < 12; ++k)
+  {
+    if (!std::isfinite(P[k]))
+    {
+      return false;
+    }
+  }
+  return P[8] == 0.0 && P[9] == 0.0 && P[10] == 0.0 && P[11] != 0.0;
+}
+
+namespace
+{
+void Cross3(const double* a, const double* b, double* c)
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// The detector plane's normal for an affine P's rows a and b (independent):
+// the rays' direction n = a x b where a and b are perpendicular, else n
+// tilted towards a bisector m of a and b by the angle whose sine squared is
+// 2 |cos phi| / (1 + |cos phi|), phi the angle between a and b: then
+// (a . W)(b . W) = a . b, so that a and b less their parts along W are
+// perpendicular (rectangular pixels on the plane). Returns whether the
+// rows are perpendicular (W then along the rays).
+bool DetectorNormal(const double a[3], const double b[3], double W[3])
+{
+  double n[3];
+  Cross3(a, b, n);
+  const double nn = Norm3(n);
+  const double na = Norm3(a), nb = Norm3(b);
+  // Rows perpendicular but for rounding (a skew moving no pixel of a
+  // 65536-pixel side by 1e-7 pixel) count as perpendicular: the square
+  // root below would make 1e-16 a tilt of 1e-8.
+  double c = Dot3(a, b) / (na * nb);
+  c = std::fabs(c) <= 1e-12 ? 0.0 : c;
+  const double sign = c < 0 ? -1.0 : 1.0;
+  double m[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    m[i] = a[i] / na + sign * b[i] / nb;
+  }
+  const double nm = Norm3(m);
+  const double sine2 = 2.0 * std::fabs(c) / (1.0 + std::fabs(c));
+  const double sine = std::sqrt(sine2), cosine = std::sqrt(1.0 - sine2);
+  for (int i = 0; i < 3; ++i)
+  {
+    W[i] = cosine * n[i] / nn + (nm > 0 ? sine * m[i] / nm : 0.0);
+  }
+  return c == 0.0;
+}
+}
+
+std::string GeometryFromAffineMatrix(
+  const double P[12], const int size[2], ProjectionGeometry& geometry)
+{
+  if (!IsAffineMatrix(P))
+  {
+    return "the projection matrix is not affine (its last row must be 0 0 0 c, c not 0)";
+  }
+  double a[3], b[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    a[i] = P[i] / P[11];
+    b[i] = P[4 + i] / P[11];
+  }
+  double n[3];
+  Cross3(a, b, n);
+  if (!(Norm3(n) > 1e-12 * Norm3(a) * Norm3(b)))
+  {
+    return "the affine projection matrix's first two rows are not independent (no direction for "
+           "the rays)";
+  }
+  double W[3];
+  const bool alongW = DetectorNormal(a, b, W);
+  // a = (U - o0 W) / s0 and b = -(V - o1 W) / s1 (MatrixFromGeometry); rays
+  // along W have o0 = o1 = 0 exactly.
+  ProjectionGeometry g;
+  double aPlane[3], bPlane[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    aPlane[i] = alongW ? a[i] : a[i] - Dot3(a, W) * W[i];
+    bPlane[i] = alongW ? b[i] : b[i] - Dot3(b, W) * W[i];
+  }
+  g.Spacing[0] = 1.0 / Norm3(aPlane);
+  g.Spacing[1] = 1.0 / Norm3(bPlane);
+  for (int i = 0; i < 3; ++i)
+  {
+    g.U[i] = aPlane[i] * g.Spacing[0];
+    g.V[i] = -bPlane[i] * g.Spacing[1];
+  }
+  Cross3(g.V, g.U, g.W); // the perspective frame's handedness (GeometryFromPinhole)
+  g.Obliquity[0] = alongW ? 0.0 : -Dot3(a, g.W) * g.Spacing[0];
+  g.Obliquity[1] = alongW ? 0.0 : Dot3(b, g.W) * g.Spacing[1];
+  g.Size[0] = size[0];
+  g.Size[1] = size[1];
+  g.Origin[0] = -(P[3] / P[11]) * g.Spacing[0];
+  g.Origin[1] = (P[7] / P[11] - (size[1] - 1)) * g.Spacing[1];
+  const std::string problem = g.Validate();
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  geometry = g;
+  return std::string();
+}
+
+std::string ProjectionMatrixProblem(const double P[12])
+{
+  if (IsAffineMatrix(P))
+  {
+    const int size[2] = { 1, 1 };
+    ProjectionGeometry unused;
+    return GeometryFromAffineMatrix(P, size, unused);
+  }
+  PinholeCamera unused;
+  return PinholeFromMatrix(P, unused);
+}
+
 PinholeCamera PinholeFromGeometry(const ProjectionGeometry& g)
 {
   PinholeCamera c;

@@ -51,6 +51,23 @@ std::string PinholeFromMatrix(const double P[12], PinholeCamera& camera);
 std::string GeometryFromPinhole(const PinholeCamera& camera, const int size[2],
   double focalDistance, ProjectionGeometry& geometry);
 
+/// Whether P is a parallel view's: finite, its last row 0 0 0 c with c not 0.
+bool IsAffineMatrix(const double P[12]);
+
+/// The parallel geometry of an affine P (any nonzero scale) for a detector
+/// of size[0] columns and size[1] rows: MatrixFromGeometry gives P back (to
+/// rounding). P fixes the rays and each pixel's beam, not the detector's
+/// plane: the plane taken is perpendicular to the rays where P's pixels are
+/// rectangles across them, else the one tilted just enough that they are
+/// (an oblique view's). Returns why not, or "": rows that are not
+/// independent (no direction for the rays).
+std::string GeometryFromAffineMatrix(
+  const double P[12], const int size[2], ProjectionGeometry& geometry);
+
+/// Why P is no camera (PinholeFromMatrix's and GeometryFromAffineMatrix's
+/// reasons), or "": the check of a matrix given before any image size.
+std::string ProjectionMatrixProblem(const double P[12]);
+
 /// The pinhole camera of a perspective geometry.
 PinholeCamera PinholeFromGeometry(const ProjectionGeometry& geometry);
 

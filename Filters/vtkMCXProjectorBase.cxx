@@ -113,6 +113,10 @@ std::string GeometryFromMatrix(
   }
   double P[12];
   self.GetProjectionMatrix(P);
+  if (mcx::IsAffineMatrix(P))
+  {
+    return mcx::GeometryFromAffineMatrix(P, size, g); // a parallel view: no focal plane
+  }
   mcx::PinholeCamera camera;
   std::string problem = mcx::PinholeFromMatrix(P, camera);
   if (!problem.empty())

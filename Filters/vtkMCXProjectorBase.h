@@ -52,12 +52,15 @@ public:
 
   ///@{
   /**
-   * A perspective view given as a 3x4 projection matrix (row-major, the
-   * layout of the output's ProjectionMatrix field, any nonzero scale): used
+   * A view given as a 3x4 projection matrix (row-major, the layout of the
+   * output's ProjectionMatrix field, any nonzero scale): perspective, or
+   * parallel when affine (last row 0 0 0 c; the rays along its rows' null
+   * direction, oblique where those rows are not perpendicular): used
    * instead of the camera and the explicit detector when
    * UseProjectionMatrix is on (default off), with ImageSize, which must
-   * then be set. A matrix that is no camera (not finite, rank below 3,
-   * skewed pixels) fails the request with the reason.
+   * then be set. A matrix that is no camera (not finite, rank below 3 and
+   * not affine, affine with dependent rows, skewed pixels) fails the
+   * request with the reason.
    */
   virtual void SetProjectionMatrix(const double matrix[12]);
   void GetProjectionMatrix(double matrix[12]) const;

@@ -182,8 +182,7 @@ std::string MatrixFilePoses(const std::string& path, std::size_t limit,
   }
   for (std::size_t k = 0; k < matrices.size(); ++k)
   {
-    mcx::PinholeCamera camera;
-    const std::string why = mcx::PinholeFromMatrix(matrices[k].Matrix, camera);
+    const std::string why = mcx::ProjectionMatrixProblem(matrices[k].Matrix);
     if (!why.empty())
     {
       poses.clear();

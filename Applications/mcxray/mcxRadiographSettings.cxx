@@ -241,7 +241,7 @@ std::vector<Pose> RadiographSettings::Poses(vtkImageData* volume) const
     mcx::PinholeCamera camera;
     if (this->HasMatrix)
     {
-      const std::string problem = mcx::PinholeFromMatrix(this->Matrix, camera);
+      const std::string problem = mcx::ProjectionMatrixProblem(this->Matrix);
       if (!problem.empty())
       {
         Fail("bad --projection-matrix: " + problem);

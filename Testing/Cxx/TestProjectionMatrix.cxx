@@ -180,6 +180,77 @@ TEST(ProjectionMatrix, TheGeometryGivesBackItsCamera)
   }
 }
 
+TEST(ProjectionMatrix, AnAffineMatrixGivesBackItsParallelView)
+{
+  // A parallel view's affine P (MatrixFromGeometry) read back gives a
+  // geometry of the same P, the same beams (cross-section) and rays, at any
+  // scale: rays along W, and oblique ones whose P's rows are not
+  // perpendicular (the plane then tilted so that the pixels are rectangles).
+  std::mt19937_64 random(17);
+  std::uniform_real_distribution<double> obliquity(-0.8, 0.8);
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const int size[2] = { 100 + trial, 300 - trial };
+    mcx::ProjectionGeometry g;
+    ASSERT_EQ("", mcx::GeometryFromPinhole(RandomCamera(random), size, 700.0, g));
+    g.Perspective = false;
+    if (trial % 3 != 0)
+    {
+      g.Obliquity[0] = obliquity(random);
+      g.Obliquity[1] = trial % 3 == 1 ? 0.0 : obliquity(random);
+    }
+    double P[12];
+    mcx::MatrixFromGeometry(g, P);
+    const double scale = trial % 2 == 0 ? -3.5 : 1e-3;
+    double scaled[12];
+    for (int k = 0; k < 12; ++k)
+    {
+      scaled[k] = scale * P[k];
+    }
+    ASSERT_TRUE(mcx::IsAffineMatrix(scaled));
+    EXPECT_EQ("", mcx::ProjectionMatrixProblem(scaled));
+    mcx::ProjectionGeometry back;
+    ASSERT_EQ("", mcx::GeometryFromAffineMatrix(scaled, size, back)) << trial;
+    EXPECT_FALSE(back.Perspective);
+    EXPECT_EQ(size[0], back.Size[0]);
+    EXPECT_EQ(size[1], back.Size[1]);
+    double again[12];
+    mcx::MatrixFromGeometry(back, again);
+    for (int k = 0; k < 12; ++k)
+    {
+      EXPECT_NEAR(P[k], again[k], 1e-12 * (1.0 + std::fabs(P[k]))) << trial << " " << k;
+    }
+    EXPECT_NEAR(g.BeamCrossSection(), back.BeamCrossSection(), 1e-12 * g.BeamCrossSection());
+    // The rays W + o0 U + o1 V of both, as unit vectors, agree up to sign.
+    double rays[2][3];
+    for (int a = 0; a < 3; ++a)
+    {
+      rays[0][a] = g.W[a] + g.Obliquity[0] * g.U[a] + g.Obliquity[1] * g.V[a];
+      rays[1][a] = back.W[a] + back.Obliquity[0] * back.U[a] + back.Obliquity[1] * back.V[a];
+    }
+    double dot = 0, n0 = 0, n1 = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      dot += rays[0][a] * rays[1][a];
+      n0 += rays[0][a] * rays[0][a];
+      n1 += rays[1][a] * rays[1][a];
+    }
+    EXPECT_NEAR(1.0, std::fabs(dot) / std::sqrt(n0 * n1), 1e-12);
+    if (g.Obliquity[0] == 0 && g.Obliquity[1] == 0)
+    {
+      EXPECT_EQ(0.0, back.Obliquity[0]);
+      EXPECT_EQ(0.0, back.Obliquity[1]);
+    }
+  }
+  // Rows that are not independent: no direction for the rays.
+  const double flat[12] = { 1, 2, 3, 0, 2, 4, 6, 1, 0, 0, 0, 1 };
+  EXPECT_NE(std::string::npos, mcx::ProjectionMatrixProblem(flat).find("not independent"));
+  // A last row of zeros is no affine matrix: the pinhole's rank error.
+  const double zero[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0 };
+  EXPECT_FALSE(mcx::IsAffineMatrix(zero));
+  EXPECT_NE(std::string::npos, mcx::ProjectionMatrixProblem(zero).find("rank below 3"));
+}
+
 TEST(ProjectionMatrix, RefusesWhatIsNoCamera)
 {
   mcx::PinholeCamera camera;

@@ -25,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -550,12 +551,24 @@ TEST(Radiograph, AProjectionMatrixIsTheViewItDescribes)
       EXPECT_NEAR(P[k] / std::sqrt(norms[0]), written[k] / std::sqrt(norms[1]), 1e-12) << k;
     }
   }
-  // A matrix that is no camera fails the request with the reason.
-  const double affine[12] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1 };
+  // An affine matrix is a parallel view: pixels of 1 / |row| world units.
+  const double affine[12] = { 0.5, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0, 2 };
   exact->SetProjectionMatrix(affine);
-  mcxtest::FirstError errors(exact);
   exact->Update();
-  EXPECT_NE(std::string::npos, errors.Text.find("rank below 3")) << errors.Text;
+  EXPECT_DOUBLE_EQ(4.0, exact->GetOutput()->GetSpacing()[0]);
+  EXPECT_GT(mcxtest::LineIntegralSum(exact->GetOutput()), 0.0);
+  // A matrix that is no camera fails the request with the reason.
+  const std::pair<std::array<double, 12>, const char*> cases[] = {
+    { { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0 }, "rank below 3" },
+    { { 1, 2, 3, 0, 2, 4, 6, 0, 0, 0, 0, 1 }, "not independent" },
+  };
+  for (const auto& c : cases)
+  {
+    exact->SetProjectionMatrix(c.first.data());
+    mcxtest::FirstError errors(exact);
+    exact->Update();
+    EXPECT_NE(std::string::npos, errors.Text.find(c.second)) << errors.Text;
+  }
   // A camera cannot hold an off-centre image centre.
   geometry->UseImageCenterOn();
   vtkNew<vtkCamera> other;
