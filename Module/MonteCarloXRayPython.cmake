@@ -26,7 +26,7 @@ vtk_module_wrap_python(
 configure_file("${CMAKE_CURRENT_LIST_DIR}/Python/__init__.py.in"
   "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/__init__.py" @ONLY)
 # The pure-Python modules, copied as they are (configure_file re-copies on change).
-set(mcxray_python_modules drr.py polychromatic.py)
+set(mcxray_python_modules drr.py polychromatic.py presets.py)
 foreach (module IN LISTS mcxray_python_modules)
   configure_file("${CMAKE_CURRENT_LIST_DIR}/Python/${module}"
     "${CMAKE_BINARY_DIR}/${MCXRAY_PYTHON_DESTINATION}/mcxray/${module}" COPYONLY)

@@ -200,6 +200,7 @@ public:
     {
       Fail(error);
     }
+    this->WarnIfNotHounsfield();
     // One read and one index (and with --stored-points one cloud): every
     // pose from them, each image written (or kept in the stack) as it is
     // made. Without --stored-points each pose samples as it projects, as it
@@ -258,6 +259,29 @@ public:
   }
 
 private:
+  // mu and the materials take CT in HU: values with no air (none at or
+  // below -500) are read as HU all the same, as the formula says (a water
+  // phantom's image stays exact), and said to be.
+  void WarnIfNotHounsfield()
+  {
+    const std::string note = NotHounsfieldNote(this->DataRange());
+    const std::string& tf = this->Options.TF;
+    if (note.empty())
+    {
+      return;
+    }
+    if (this->Polychromatic.Active())
+    {
+      this->Warnings.push_back(
+        "--spectrum's materials take CT in HU, but " + note + " (no air): read as HU all the same");
+    }
+    else if (tf == "mu" || tf.rfind("mu=", 0) == 0)
+    {
+      this->Warnings.push_back(
+        "--tf " + tf + " takes CT in HU, but " + note + " (no air): read as HU all the same");
+    }
+  }
+
   void Log(const std::string& line) const { mcxapp::Log(this->Options, line); }
 
   void BuildIndex(vtkImageData* volume)

@@ -21,7 +21,9 @@ const char* TransferFunctionPresetHelp()
          "soft-tissue (CT in HU: 1 from -50 to 150 HU, 0 below -200 and above 300), "
          "mu or mu=MU_WATER (CT in HU to linear attenuation, mu = MU_WATER (1 + HU/1000) per world "
          "unit, "
-         "0 at air; default MU_WATER 0.02 per mm, water at about 70 keV)";
+         "0 at air; default MU_WATER 0.02 per mm, water at about 70 keV; read as HU even where no "
+         "value "
+         "is at or below -500, with a warning)";
 }
 
 namespace
@@ -150,6 +152,22 @@ std::vector<double> ProductNodes(vtkPiecewiseFunction* weight, double air, const
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
 }
+}
+
+double AirValueOf(const double dataRange[2])
+{
+  return dataRange[0] <= -500.0 ? -1000.0 : dataRange[0];
+}
+
+std::string NotHounsfieldNote(const double dataRange[2])
+{
+  if (AirValueOf(dataRange) == -1000.0)
+  {
+    return std::string();
+  }
+  std::ostringstream note;
+  note << "the values " << dataRange[0] << " .. " << dataRange[1] << " are not CT in HU";
+  return note.str();
 }
 
 vtkSmartPointer<vtkPiecewiseFunction> MakeWeightedAttenuation(

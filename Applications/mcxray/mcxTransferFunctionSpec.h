@@ -21,6 +21,14 @@ const char* TransferFunctionPresetHelp();
 vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
   const std::string& spec, const double dataRange[2], std::string& error);
 
+/// The value that counts as air in a volume of values dataRange: -1000 for
+/// CT in HU (a lowest value at or below -500 HU), else the lowest value.
+double AirValueOf(const double dataRange[2]);
+
+/// "" for CT in HU (AirValueOf), else "the values LOW .. HIGH are not CT in
+/// HU": what a warning says before what is done about it.
+std::string NotHounsfieldNote(const double dataRange[2]);
+
 /// The attenuation of a radiograph of the tissue `weight` selects: mu =
 /// water (1 + HU / 1000) per world unit (0 at and below air), HU = value -
 /// airValue - 1000 (airValue -1000 for CT in HU), times the weight clamped to

@@ -131,8 +131,7 @@ XRayViewer::XRayViewer(vtkImageData* volume, const ViewerOptions& options)
   {
     this->LabelFormat = "%.0f";
   }
-  // CT in HU reaches air (-1000); elsewhere the lowest value counts as air.
-  this->AirValue = this->DataRange[0] <= -500.0 ? -1000.0 : this->DataRange[0];
+  this->AirValue = AirValueOf(this->DataRange);
   if (!this->ReadTransferFunctionOption(options.TransferFunction))
   {
     return;
@@ -407,9 +406,9 @@ void XRayViewer::WarnIfNotHounsfield()
     return;
   }
   this->NotHounsfieldWarned = true;
-  std::cerr << "mcxray: warning: the radiograph's mu takes CT in HU, but the values "
-            << this->DataRange[0] << " .. " << this->DataRange[1]
-            << " are not CT in HU: the lowest counts as air (-1000 HU)" << std::endl;
+  std::cerr << "mcxray: warning: the radiograph's mu takes CT in HU, but "
+            << NotHounsfieldNote(this->DataRange) << ": the lowest counts as air (-1000 HU)"
+            << std::endl;
 }
 
 std::string XRayViewer::OverlayText(bool withFrameTime) const

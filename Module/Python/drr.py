@@ -16,7 +16,6 @@ matrices do.
 """
 from __future__ import annotations
 
-import math
 import os
 import signal
 import threading
@@ -31,23 +30,17 @@ from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand, vtkSMPTools
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 
-from .MonteCarloXRayFilters import (vtkMCXAttenuationFunction, vtkMCXDensityIndex, vtkMCXProjector,
+from .MonteCarloXRayFilters import (vtkMCXDensityIndex, vtkMCXProjector,
                                     vtkMCXRadiograph, vtkMCXRadiographGeometry, vtkMCXReferenceProjector,
                                     vtkMCXTypes)
 from .MonteCarloXRayIO import vtkMCXFirstErrorObserver, vtkMCXProjectionGeometryReader, vtkMCXVolumeReader
+from .presets import fill_preset
 
 __all__ = ["drr", "Renderer", "DRRResult"]
 
 Volume = Union[str, "os.PathLike[str]", vtkImageData, np.ndarray]
 TransferFunction = Union[str, Sequence[Sequence[float]], Callable[[np.ndarray], Any]]
 
-# The command's presets (Applications/mcxray/mcxTransferFunctionSpec.cxx) that
-# are fixed points; "raw" and "mu" depend on the data and are built below.
-_PRESET_POINTS = {
-    "bone": ((150.0, 0.0), (700.0, 1.0)),
-    "soft-tissue": ((-200.0, 0.0), (-50.0, 1.0), (150.0, 1.0), (300.0, 0.0)),
-}
-_PRESETS = "raw, bone, soft-tissue, mu or mu=MU_WATER"
 # The command's --method values; view-ordered is the point sampler's alone,
 # reference the exact projector (vtkMCXReferenceProjector).
 _METHODS = ("hybrid", "mc", "qmc", "every-voxel", "reference")
@@ -293,30 +286,7 @@ class Renderer:
         result = vtkPiecewiseFunction()
         result.ClampingOn()
         if isinstance(tf, str):
-            if tf in _PRESET_POINTS:
-                for value, weight in _PRESET_POINTS[tf]:
-                    result.AddPoint(value, weight)
-            elif tf == "raw":  # g = value - minimum over the index's range, as the command
-                low, high = (levels[0], levels[-1]) if levels.size else (0.0, 0.0)
-                result.AddPoint(low, 0.0)
-                result.AddPoint(high if high > low else low + 1, high - low)
-            elif tf == "mu" or tf.startswith("mu="):
-                attenuation = vtkMCXAttenuationFunction()
-                if tf != "mu":
-                    try:
-                        water = float(tf[3:])
-                    except ValueError:
-                        water = float("nan")
-                    if not (math.isfinite(water) and water > 0):
-                        raise ValueError("bad tf %r (expected mu=MU_WATER with a positive number, "
-                                         "e.g. mu=0.02)" % tf)
-                    attenuation.SetWaterAttenuation(water)
-                low, high = (levels[0], levels[-1]) if levels.size else (0.0, 0.0)
-                # Exact over the whole data range (and at least the usual CT range), as the command.
-                attenuation.SetHounsfieldRange(min(-1024.0, low), max(3071.0, high))
-                attenuation.FillTransferFunction(result)
-            else:
-                raise ValueError("unknown tf preset %r (expected %s, points or a callable)" % (tf, _PRESETS))
+            fill_preset(tf, levels, result, stacklevel=3)
         elif callable(tf):
             # The projector evaluates the TF only at the levels' values, so
             # sampling there is exact.
@@ -489,7 +459,9 @@ class Renderer:
 
         tf: a preset of the ``mcxray`` command ("raw": value above the minimum,
             the default; "bone"; "soft-tissue"; "mu" or "mu=MU_WATER": HU to
-            linear attenuation per mm, vtkMCXAttenuationFunction), points
+            linear attenuation per mm, vtkMCXAttenuationFunction; values
+            with no air, none at or below -500, are read as HU all the
+            same, with a RuntimeWarning, as the command), points
             [(value, weight), ...] of a piecewise-linear function, or a
             callable on data values (HU) giving weights, sampled at the
             index's levels (``Renderer.levels``), where the projector reads

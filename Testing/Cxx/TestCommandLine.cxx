@@ -578,6 +578,29 @@ TEST(CommandLine, PhotonsGivePoissonCounts)
   EXPECT_NEAR(1.0, sum / n, 5 * std::sqrt(variance) / n);
 }
 
+TEST(CommandLine, HounsfieldPhysicsOnValuesWithNoAirWarns)
+{
+  // The bundled CT is stored from 0 (no air at or below -500): --tf mu and
+  // --spectrum read its values as HU all the same (a phantom without air
+  // stays exact) and say so, one line each after the image is written.
+  const std::pair<const char*, const char*> cases[] = {
+    { "render --tf mu --gantry 0 -r \"32 32\" --samples 1023",
+      "mcxray: warning: --tf mu takes CT in HU, but the values 0 .. 3926 are not CT in HU (no "
+      "air): read as HU all the same\n" },
+    { "render --spectrum 70kVp,2.5mmAl --view +y --size 16x16 --samples 1023",
+      "mcxray: warning: --spectrum's materials take CT in HU, but the values 0 .. 3926 are not CT "
+      "in HU (no air): read as HU all the same\n" },
+  };
+  for (const auto& c : cases)
+  {
+    const std::string output = Temporary("cli_no_air.vti");
+    const Result r = RunCLI(std::string(c.first) + " --quiet --output " + output);
+    EXPECT_EQ(0, r.Status) << c.first;
+    EXPECT_EQ(c.second, r.Errors) << c.first;
+    EXPECT_TRUE(vtksys::SystemTools::FileExists(output)) << c.first;
+  }
+}
+
 TEST(CommandLine, GantryTurnsTheSourceAboutZ)
 {
   // A volume without symmetry about z, on a grid that a quarter turn about

@@ -275,6 +275,19 @@ class Inputs(unittest.TestCase):
         shifted = renderer.drr([(low, 0), (high, high - low)], **options).images
         np.testing.assert_array_equal(raw, shifted)
 
+    def test_mu_reads_values_with_no_air_as_hu(self):
+        # All water, no air: "mu" reads the values as HU all the same, as its
+        # formula says (mu_water at 0 HU, a phantom's image stays exact), and
+        # warns that none is air (at or below -500), as the command does.
+        renderer = mcxray.Renderer(np.zeros((6, 10, 20), np.int16))
+        options = dict(gantry=30, detector=(16, 16), pitch=2.0, samples=2**12 - 1)
+        with self.assertWarnsRegex(RuntimeWarning, r"^tf 'mu' takes CT in HU, but the values 0 \.\. 0 are "
+                                   r"not CT in HU \(no air\): read as HU all the same$"):
+            mu = renderer.drr("mu", **options).images
+        water = renderer.drr([(0, MU_WATER), (1, MU_WATER)], **options).images
+        np.testing.assert_allclose(mu, water, rtol=1e-12)
+        self.assertGreater(mu.max(), 0)
+
     def test_progress_and_interruption(self):
         renderer = mcxray.Renderer(water_box())
         seen = []
