@@ -47,7 +47,9 @@ options:
                         choose the sample count by the paper's criterion: the
                         mean pixel deviation below one of L grey levels (the
                         deposit chosen as for --target-error)
-  --method M            hybrid (default), mc, qmc, every-voxel (each voxel of
+  --method M            hybrid (default), mc, qmc (low-discrepancy kernel offsets:
+                        with --deposit point; footprints need none, so it is
+                        hybrid there), every-voxel (each voxel of
                         non-zero weight once, weighted by the TF: no sampling
                         noise while each voxel's footprint reaches at most 16
                         pixels, else a warning; replaces --samples; with

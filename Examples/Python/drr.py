@@ -27,18 +27,24 @@ from vtkmodules.vtkCommonCore import vtkCommand
 BUNDLED = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Testing", "Data", "ct_head_headsq.vti")
 
 
-def read_with(reader):
-    """Updates the reader; its first error ends the script in one line (nothing is written)."""
+def first_error(algorithm, run):
+    """Runs run(); the algorithm's first error, kept instead of printed, or None."""
     errors = []
 
     def keep(caller, event, report=None):
         errors.append(mcxray.vtkMCXFirstErrorObserver.MessageOf(report))
     keep.CallDataType = VTK_STRING  # VTK hands the report over
-    reader.AddObserver(vtkCommand.ErrorEvent, keep)  # kept instead of printed
-    reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, keep)  # its "returned failure"
-    reader.Update()
-    if errors:
-        sys.exit("drr.py: error: %s" % errors[0])
+    algorithm.AddObserver(vtkCommand.ErrorEvent, keep)
+    algorithm.GetExecutive().AddObserver(vtkCommand.ErrorEvent, keep)  # its "returned failure"
+    run()
+    return errors[0] if errors else None
+
+
+def read_with(reader):
+    """Updates the reader; its first error ends the script in one line (nothing is written)."""
+    error = first_error(reader, reader.Update)
+    if error:
+        sys.exit("drr.py: error: %s" % error)
     volume = reader.GetOutput()
     if volume.GetNumberOfPoints() == 0:
         sys.exit("drr.py: error: no voxels read")
@@ -67,6 +73,44 @@ def read_volume(path):
     return read_with(reader)
 
 
+def check_output(prefix):
+    """Ends the script in one line, before any work, where PREFIX.png or PREFIX.npy cannot be written."""
+    folder = os.path.dirname(os.path.abspath(prefix))
+    if not os.path.isdir(folder):
+        sys.exit("drr.py: error: no folder %r for --output %r" % (folder, prefix))
+    for path in (prefix + ".png", prefix + ".npy"):
+        if os.path.isdir(path):
+            sys.exit("drr.py: error: cannot write %r: it is a directory" % path)
+
+
+def write_outputs(prefix, image, values):
+    """PREFIX.png and PREFIX.npy, both or neither: each written under a temporary name, renamed
+    once both are complete (an existing file is replaced only then)."""
+    png, npy = prefix + ".png", prefix + ".npy"
+    parts = [png + ".part", npy + ".part"]
+    try:
+        with open(parts[1], "wb") as f:
+            numpy.save(f, values)
+        window = vtkImageShiftScale()
+        window.SetInputData(image)
+        window.SetScale(255.0 / values.max() if values.max() > 0 else 1.0)
+        window.SetOutputScalarTypeToUnsignedChar()
+        window.ClampOverflowOn()
+        writer = vtkPNGWriter()
+        writer.SetInputConnection(window.GetOutputPort())
+        writer.SetFileName(parts[0])
+        error = first_error(writer, writer.Write)
+        if error or writer.GetErrorCode():
+            raise OSError(error or "the PNG writer failed (error code %d)" % writer.GetErrorCode())
+        os.replace(parts[1], npy)
+        os.replace(parts[0], png)
+    except OSError as error:
+        for part in parts:
+            if os.path.exists(part):
+                os.remove(part)
+        sys.exit("drr.py: error: cannot write %s and %s: %s" % (png, npy, error))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("volume", nargs="?", default=BUNDLED)
@@ -75,6 +119,7 @@ def main():
     parser.add_argument("--size", type=int, default=256)
     args = parser.parse_args()
 
+    check_output(args.output)
     volume = read_volume(args.volume)
     low, high = volume.GetScalarRange()
     # Denser tissue weighs more: 0 at the darkest third of the range, rising to 1 at the top.
@@ -98,16 +143,7 @@ def main():
     image = projector.GetOutput()
 
     values = mcxray.image_to_numpy(image)
-    numpy.save(args.output + ".npy", values)
-    window = vtkImageShiftScale()
-    window.SetInputData(image)
-    window.SetScale(255.0 / values.max() if values.max() > 0 else 1.0)
-    window.SetOutputScalarTypeToUnsignedChar()
-    window.ClampOverflowOn()
-    writer = vtkPNGWriter()
-    writer.SetInputConnection(window.GetOutputPort())
-    writer.SetFileName(args.output + ".png")
-    writer.Write()
+    write_outputs(args.output, image, values)
 
     fd = image.GetFieldData()
     spacing = image.GetSpacing()

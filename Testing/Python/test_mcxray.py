@@ -244,6 +244,31 @@ class Pipeline(unittest.TestCase):
             self.assertTrue(lines[0].startswith("drr.py: error: "), run.stderr)
             self.assertEqual([os.path.basename(cut)], os.listdir(folder))
 
+    def test_drr_example_refuses_an_output_it_cannot_write(self):
+        """Examples/Python/drr.py with PREFIX.png a folder, or PREFIX in a missing folder: one error
+        line before any work, a failing exit status, nothing written (it once said "wrote" after
+        VTK's errors, or ended in a traceback)."""
+        import subprocess
+        import sys
+        import tempfile
+        example = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Examples", "Python", "drr.py")
+        with tempfile.TemporaryDirectory() as folder:
+            os.mkdir(os.path.join(folder, "half.png"))
+            cases = {os.path.join(folder, "half"): "drr.py: error: cannot write '%s': it is a directory"
+                     % os.path.join(folder, "half.png"),
+                     os.path.join(folder, "missing", "x"): "drr.py: error: no folder '%s' for --output"
+                     % os.path.join(folder, "missing")}
+            for prefix, expected in cases.items():
+                run = subprocess.run([sys.executable, example, "--output", prefix, "--samples", "1023"],
+                                     capture_output=True, text=True, timeout=300)
+                self.assertNotEqual(0, run.returncode)
+                lines = run.stderr.strip().splitlines()
+                self.assertEqual(1, len(lines), run.stderr)
+                self.assertTrue(lines[0].startswith(expected), run.stderr)
+                self.assertEqual("", run.stdout)
+            self.assertEqual(["half.png"], os.listdir(folder))
+            self.assertEqual([], os.listdir(os.path.join(folder, "half.png")))
+
     def test_errors_do_not_crash(self):
         with self.assertRaises(ValueError):
             mcxray.image_to_numpy(vtkImageData())
