@@ -72,6 +72,27 @@ bool IsSeparator(char c)
   return c == '=' || c == ':';
 }
 
+// Whether the first key (up to a separator or a line's end, within 500
+// bytes, where MetaIO stops) is text: printable ASCII and tabs. An empty
+// header passes, for the checks that name what it lacks.
+bool BeginsWithAKey(const std::string& text)
+{
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  for (std::size_t at = first; at < text.size() && at - first < 500; ++at)
+  {
+    const unsigned char u = static_cast<unsigned char>(text[at]);
+    if (IsSeparator(text[at]) || u == '\n' || u == '\r')
+    {
+      break;
+    }
+    if ((u < 0x20 && u != '\t') || u >= 0x7f)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The end of the line from at (its '\n' or the text's end); false when the
 // line is longer than MetaIO reads.
 bool LineEnd(const std::string& text, std::size_t at, std::size_t& end)
@@ -115,6 +136,13 @@ bool ReadNumbers(
 // of MetaIO's in another case, which MetaIO skips as an unknown one).
 bool ParseHeader(const std::string& text, MetaHeader& header, std::string& error)
 {
+  if (!BeginsWithAKey(text))
+  {
+    // Another format's bytes (a NIfTI or DICOM file named .mha): say so
+    // rather than what MetaIO would stumble on further in.
+    error = "not a MetaImage header (it does not begin with a 'Key = Value' line)";
+    return false;
+  }
   std::size_t at = 0;
   int dims = 0;
   while (at < text.size())
@@ -139,6 +167,7 @@ bool ParseHeader(const std::string& text, MetaHeader& header, std::string& error
     {
       key.pop_back();
     }
+
     if (key.size() > 254)
     {
       // MetaIO copies a key it does not know into a field's 255-byte name

@@ -67,6 +67,11 @@ struct NrrdHeader
 // ReadHeaderInternal and ReadHeader's loop over the first bytes of path.
 bool ParseHeader(const std::string& text, NrrdHeader& header, std::string& error)
 {
+  if (text.compare(0, 4, "NRRD") != 0)
+  {
+    error = "not a NRRD file (no NRRD magic)"; // another format's bytes, before what they hold
+    return false;
+  }
   // The header ends after the first "\n\n" or "\n\r\n" past the first byte,
   // looked for as a C string (strchr): up to a NUL byte.
   const std::size_t nul = text.find('\0');
@@ -101,12 +106,7 @@ bool ParseHeader(const std::string& text, NrrdHeader& header, std::string& error
   }
   std::istringstream in(text.substr(0, header.Size));
   std::string line;
-  std::getline(in, line);
-  if (line.compare(0, 4, "NRRD") != 0)
-  {
-    error = "not a NRRD file (no NRRD magic)";
-    return false;
-  }
+  std::getline(in, line); // the magic
   while (std::getline(in, line) && !line.empty())
   {
     const std::size_t separator = line.find(": ");

@@ -26,6 +26,37 @@ vtkMCXProjectionGeometryReader::~vtkMCXProjectionGeometryReader()
   this->SetBeam(nullptr);
 }
 
+namespace
+{
+const char* KindName(int kind)
+{
+  switch (kind)
+  {
+    case vtkMCXProjectionGeometryReader::RTKGeometryFile:
+      return "RTK geometry";
+    case vtkMCXProjectionGeometryReader::RTPlanFile:
+      return "RT plan";
+    case vtkMCXProjectionGeometryReader::ProjectionMatricesFile:
+      return "projection matrices";
+    default:
+      return "none";
+  }
+}
+
+int ReaderKind(mcxio::GeometryFileKind kind)
+{
+  switch (kind)
+  {
+    case mcxio::GeometryFileKind::RTPlan:
+      return vtkMCXProjectionGeometryReader::RTPlanFile;
+    case mcxio::GeometryFileKind::RTKGeometry:
+      return vtkMCXProjectionGeometryReader::RTKGeometryFile;
+    default:
+      return vtkMCXProjectionGeometryReader::ProjectionMatricesFile;
+  }
+}
+}
+
 bool vtkMCXProjectionGeometryReader::Update()
 {
   this->Poses->List.clear();
@@ -38,6 +69,15 @@ bool vtkMCXProjectionGeometryReader::Update()
   const std::string path = this->FileName;
   mcxio::GeometryFileKind kind;
   std::string problem = mcxio::GeometryFileKindOf(path, kind);
+  if (problem.empty() && this->ExpectedFileKind != NoFile &&
+    ReaderKind(kind) != this->ExpectedFileKind)
+  {
+    const char* given[] = { "an XML file", "a DICOM file", "a file of numbers" };
+    const char* asked[] = { "", "RTK geometry XML", "DICOM RT plan",
+      "file of projection matrices" };
+    problem = std::string("geometry file '") + path + "': " + given[static_cast<int>(kind)] +
+      ", not the " + asked[this->ExpectedFileKind] + " asked for";
+  }
   if (!problem.empty())
   {
     vtkErrorMacro(<< problem);
@@ -80,17 +120,7 @@ bool vtkMCXProjectionGeometryReader::Update()
 
 const char* vtkMCXProjectionGeometryReader::GetFileKindAsString()
 {
-  switch (this->FileKind)
-  {
-    case RTKGeometryFile:
-      return "RTK geometry";
-    case RTPlanFile:
-      return "RT plan";
-    case ProjectionMatricesFile:
-      return "projection matrices";
-    default:
-      return "none";
-  }
+  return KindName(this->FileKind);
 }
 
 int vtkMCXProjectionGeometryReader::GetNumberOfPoses()
@@ -138,5 +168,6 @@ void vtkMCXProjectionGeometryReader::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "UseDetectorOrigin: " << this->UseDetectorOrigin << "\n";
   os << indent << "FileKind: " << this->GetFileKindAsString() << "\n";
+  os << indent << "ExpectedFileKind: " << KindName(this->ExpectedFileKind) << "\n";
   os << indent << "NumberOfPoses: " << this->GetNumberOfPoses() << "\n";
 }

@@ -101,6 +101,17 @@ public:
   /** "none", "RTK geometry", "RT plan" or "projection matrices". */
   const char* GetFileKindAsString();
 
+  ///@{
+  /**
+   * The kind of file the caller means (NoFile, the default: any). Update
+   * tells the kind by the content; a file of another kind is then one error
+   * line that names both (an RT plan asked for, an XML file given), not the
+   * other reader's complaint.
+   */
+  vtkSetClampMacro(ExpectedFileKind, int, NoFile, ProjectionMatricesFile);
+  vtkGetMacro(ExpectedFileKind, int);
+  ///@}
+
   /** The poses the last Update gave: all of RTK's projections, or one beam. */
   int GetNumberOfPoses();
 
@@ -136,6 +147,7 @@ protected:
   double DetectorOrigin[2] = { 0, 0 };
   bool UseDetectorOrigin = false;
   int FileKind = NoFile;
+  int ExpectedFileKind = NoFile;
 
 private:
   vtkMCXProjectionGeometryReader(const vtkMCXProjectionGeometryReader&) = delete;

@@ -125,6 +125,18 @@ void SetDetectorSize(Settings& settings, const Argument& argument)
 
 // DEG, or START:STOP:COUNT: COUNT angles from START, STOP excluded (a full
 // turn 0:360:N repeats no angle), as plastimatch's -a COUNT -N STEP.
+// An angle in degrees: finite and within a million degrees (beyond, its
+// sine and cosine are rounding noise, and a sweep's steps could overflow).
+double ParseAngle(const std::string& text, const std::string& option)
+{
+  const double degrees = ParseNumber(text, option);
+  if (!(std::fabs(degrees) <= 1e6))
+  {
+    Fail("bad value '" + text + "' for " + option + " (expected degrees from -1e6 to 1e6)");
+  }
+  return degrees;
+}
+
 void SetGantry(Settings& settings, const Argument& argument)
 {
   settings.Radiograph.Geometry = true;
@@ -132,15 +144,15 @@ void SetGantry(Settings& settings, const Argument& argument)
   const std::vector<std::string> parts = Split(argument.Value, ':');
   if (parts.size() == 1)
   {
-    settings.Radiograph.Gantry = ParseNumber(argument.Value, argument.Name);
+    settings.Radiograph.Gantry = ParseAngle(argument.Value, argument.Name);
     return;
   }
   if (parts.size() != 3)
   {
     Fail("bad " + argument.Name + " '" + argument.Value + "' (expected DEG or START:STOP:COUNT)");
   }
-  const double start = ParseNumber(parts[0], argument.Name);
-  const double stop = ParseNumber(parts[1], argument.Name);
+  const double start = ParseAngle(parts[0], argument.Name);
+  const double stop = ParseAngle(parts[1], argument.Name);
   const long long count = ParseInteger(parts[2], argument.Name, 1, 100000);
   settings.Radiograph.GantryList.clear();
   for (long long k = 0; k < count; ++k)
@@ -158,7 +170,7 @@ void SetAngleCount(Settings& settings, const Argument& argument)
 
 void SetAngleStep(Settings& settings, const Argument& argument)
 {
-  settings.Radiograph.AngleStep = ParseNumber(argument.Value, argument.Name);
+  settings.Radiograph.AngleStep = ParseAngle(argument.Value, argument.Name);
   settings.Radiograph.Geometry = true;
 }
 

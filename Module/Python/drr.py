@@ -140,6 +140,14 @@ def _numbers(value, name, shapes):
     return array
 
 
+def _within(array, name, above, at_most):
+    """``array`` where every value is above ``above`` and at most ``at_most`` (None: no bound)."""
+    if (above is not None and not np.all(array > above)) or (at_most is not None and not np.all(array <= at_most)):
+        raise ValueError("%s must be %s, got %s" % (name, "positive" if above == 0 and at_most is None
+                                                    else "at most %g in magnitude" % at_most, array.tolist()))
+    return array
+
+
 def _integer(value, name, lowest, highest=None):
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
         raise TypeError("%s must be an integer, got %r" % (name, value))
@@ -373,6 +381,7 @@ class Renderer:
         reader.AddObserver(vtkCommand.ErrorEvent, messages._on_error)
         path = os.fspath(rtk_geometry if rtk else rtplan)
         reader.SetFileName(path)
+        reader.SetExpectedFileKind(reader.RTKGeometryFile if rtk else reader.RTPlanFile)
         if isinstance(beam, (bool, np.bool_)) or not isinstance(beam, (str, int, np.integer, type(None))):
             raise TypeError("beam must be a BeamNumber or a BeamName, got %r" % (beam,))
         reader.SetBeam("" if beam is None else str(beam))
@@ -405,13 +414,14 @@ class Renderer:
         messages = _Messages()
         geometry.AddObserver(vtkCommand.ErrorEvent, messages._on_error)
         if sad is not None:
-            geometry.SetSourceToAxisDistance(float(_numbers(sad, "sad", [()])))
+            geometry.SetSourceToAxisDistance(float(_within(_numbers(sad, "sad", [()]), "sad", 0, None)))
         if sid is not None:
-            geometry.SetSourceToImageDistance(float(_numbers(sid, "sid", [()])))
+            geometry.SetSourceToImageDistance(float(_within(_numbers(sid, "sid", [()]), "sid", 0, None)))
         if detector is not None:
             geometry.SetDetectorPixels(*_size(detector, "detector"))
         if pitch is not None:
-            geometry.SetPixelPitch(*np.broadcast_to(_numbers(pitch, "pitch", [(), (2,)]), (2,)))
+            geometry.SetPixelPitch(*np.broadcast_to(_within(_numbers(pitch, "pitch", [(), (2,)]), "pitch", 0, None),
+                                                    (2,)))
         if vup is not None:
             geometry.SetViewUp(*_numbers(vup, "vup", [(3,)]))
         if image_center is not None:
@@ -427,6 +437,7 @@ class Renderer:
             poses = [lambda n=n: geometry.SetDetectorNormal(*n) for n in normals]
         else:
             angles = _numbers(0.0 if gantry is None else gantry, "gantry", [(), (None,)]).reshape(-1)
+            _within(np.abs(angles), "gantry (degrees)", None, 1e6)  # beyond, sine and cosine are rounding noise
             poses = [lambda a=a: geometry.SetGantryAngle(a) for a in angles]
         size = tuple(geometry.GetDetectorPixels())
         result = []

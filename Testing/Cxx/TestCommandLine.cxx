@@ -420,6 +420,11 @@ TEST(CommandLine, ErrorsNameTheOptionGiven)
     { "render --size 0x5", "mcxray: error: bad value '0' for --size (expected an integer >= 1)\n" },
     { "render --camera 1,2:0,0,0:0,0,1:angle=30",
       "mcxray: error: bad --camera position '1,2' (expected x,y,z)\n" },
+    // An angle past a million degrees: its own message, not --vup's.
+    { "render --gantry 1e308",
+      "mcxray: error: bad value '1e308' for --gantry (expected degrees from -1e6 to 1e6)\n" },
+    { "render --gantry 0:2e6:3",
+      "mcxray: error: bad value '2e6' for --gantry (expected degrees from -1e6 to 1e6)\n" },
   };
   for (const auto& c : cases)
   {

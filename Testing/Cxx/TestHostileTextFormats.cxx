@@ -193,6 +193,13 @@ std::vector<Hostile> Shapes(const std::string& folder)
       "# vtk DataFile Version 3.0\nhostile\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
       "POINT_DATA 8\nSCALARS s short\nLOOKUP_TABLE default\n1 2 3 4 5 6 7\n",
       "SCALARS of 8 x 1 values as text hold 7 numbers" },
+    // Another format's bytes under the extension: named as such, not by
+    // what the parser met further in (a NUL byte, a header past 1 MiB).
+    { "gzip-named.nrrd", gz + std::string(2 << 20, '\0'), "not a NRRD file (no NRRD magic)" },
+    { "nifti-named.mha", std::string("\x5c\x01\x00\x00", 4) + std::string(2 << 20, 'x'),
+      "not a MetaImage header (it does not begin with a 'Key = Value' line)" },
+    { "dicom-named.mha", std::string(128, '\0') + "DICM" + std::string(100, 'y'),
+      "not a MetaImage header (it does not begin with a 'Key = Value' line)" },
   };
 }
 

@@ -379,7 +379,7 @@ class BadInput(unittest.TestCase):
             (ValueError, r"detector must be \(columns, rows\)", lambda: r.drr(detector=64)),
             (ValueError, "detector must be 1 to 65536, got 0", lambda: r.drr(detector=(0, 8))),
             (TypeError, "detector must be an integer", lambda: r.drr(detector=(8.5, 8))),
-            (ValueError, "bad geometry: .*", lambda: r.drr(sad=0, detector=(8, 8))),
+            (ValueError, r"sad must be positive, got 0\.0", lambda: r.drr(sad=0, detector=(8, 8))),
             (ValueError, "gantry holds non-finite values", lambda: r.drr(gantry=[0, np.inf])),
             (ValueError, "gantry is empty", lambda: r.drr(gantry=[])),
             (TypeError, "gantry must be numbers", lambda: r.drr(gantry="ninety")),
@@ -396,6 +396,11 @@ class BadInput(unittest.TestCase):
             (ValueError, "give samples= or target_error=, not both",
              lambda: r.drr(samples=1023, target_error=0.01)),
             (ValueError, "samples must be 1 to 1099511627775, got 0", lambda: r.drr(samples=0)),
+            # Each names what was given (once the detector size, or the view-up vector).
+            (ValueError, r"pitch must be positive, got -1\.0", lambda: r.drr(pitch=-1)),
+            (ValueError, r"sid must be positive, got 0\.0", lambda: r.drr(sid=0)),
+            (ValueError, r"gantry \(degrees\) must be at most 1e\+06 in magnitude, got \[1e\+308\]",
+             lambda: r.drr(gantry=1e308)),
             # The command's limit, 2^40 - 1: 2^62 once started a render of centuries.
             (ValueError, "samples must be 1 to 1099511627775, got 4611686018427387904",
              lambda: r.drr(samples=2**62)),

@@ -216,6 +216,11 @@ class GeometryFilesInPython(unittest.TestCase):
         missing = os.path.join(self.work, "missing.xml")
         self.assert_raises_line("geometry file '%s': no such file" % missing, rtk_geometry=missing)
         self.assert_raises_line("neither RTK's geometry XML, a DICOM RT Plan nor a file of projection matrices", rtplan=text)
+        # A file of the other kind is named as such (an XML file once got the RTK reader's complaint).
+        self.assert_raises_line("geometry file '%s': an XML file, not the DICOM RT plan asked for" % self.rtk,
+                                rtplan=self.rtk)
+        self.assert_raises_line("geometry file '%s': a DICOM file, not the RTK geometry XML asked for"
+                                % self.plan, rtk_geometry=self.plan)
         self.assert_raises_line("leave out the source-to-axis distance given", rtplan=self.plan, beam=1, sad=900)
         self.assert_raises_line("beam 1 of '%s': the source-axis and source-to-image distances must be "
                                 "positive and finite" % self.plan, rtplan=self.plan, beam="1", sid=-5)
