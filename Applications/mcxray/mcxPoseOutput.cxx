@@ -135,29 +135,92 @@ vtkImageData* PoseStack::GetImage() const
 void PoseStack::Add(int k, vtkImageData* image)
 {
   vtkImageData* stack = this->Image;
-  vtkDataArray* slice = image->GetPointData()->GetScalars();
-  const vtkIdType perSlice = slice->GetNumberOfTuples();
+  const vtkIdType perSlice = image->GetNumberOfPoints();
   if (k == 0)
   {
-    stack->SetOrigin(image->GetOrigin());
-    stack->SetSpacing(image->GetSpacing()[0], image->GetSpacing()[1], 1.0);
-    vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(slice->NewInstance());
-    values->SetName(slice->GetName());
-    values->SetNumberOfTuples(perSlice * this->Count);
-    stack->GetPointData()->SetScalars(values);
-    vtkNew<vtkDoubleArray> matrices;
-    matrices->SetName(vtkMCXTypes::ProjectionMatrixName());
-    matrices->SetNumberOfComponents(12);
-    matrices->SetNumberOfTuples(this->Count);
-    stack->GetFieldData()->AddArray(matrices);
+    this->AllocateLike(image);
   }
-  vtkDataArray* values = stack->GetPointData()->GetScalars();
-  for (vtkIdType p = 0; p < perSlice; ++p)
+  vtkPointData* slice = image->GetPointData();
+  for (int a = 0; a < slice->GetNumberOfArrays(); ++a)
   {
-    values->SetTuple1(k * perSlice + p, slice->GetTuple1(p));
+    vtkDataArray* from = slice->GetArray(a);
+    vtkDataArray* to = from ? stack->GetPointData()->GetArray(from->GetName()) : nullptr;
+    if (to && to->GetNumberOfComponents() == from->GetNumberOfComponents())
+    {
+      to->InsertTuples(k * perSlice, perSlice, 0, from);
+    }
   }
-  const PoseRecord pose = RecordOf(image);
-  stack->GetFieldData()->GetArray(vtkMCXTypes::ProjectionMatrixName())->SetTuple(k, pose.Matrix);
+  vtkFieldData* fields = image->GetFieldData();
+  for (int a = 0; a < fields->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* from = fields->GetArray(a);
+    vtkDataArray* to = from ? stack->GetFieldData()->GetArray(from->GetName()) : nullptr;
+    if (to && from->GetNumberOfTuples() == 1 &&
+      to->GetNumberOfComponents() == from->GetNumberOfComponents())
+    {
+      to->SetTuple(k, 0, from);
+    }
+  }
+}
+
+void PoseStack::AllocateLike(vtkImageData* image)
+{
+  vtkImageData* stack = this->Image;
+  const vtkIdType perSlice = image->GetNumberOfPoints();
+  vtkPointData* slice = image->GetPointData();
+  double bytes = 0.0;
+  for (int a = 0; a < slice->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* from = slice->GetArray(a);
+    bytes += from ? static_cast<double>(perSlice) * this->Count * from->GetNumberOfComponents() *
+        from->GetDataTypeSize()
+                  : 0.0;
+  }
+  const std::string problem = mcx::MemoryProblem(bytes,
+    "A stack of " + std::to_string(this->Count) + " poses' " +
+      std::to_string(slice->GetNumberOfArrays()) + " arrays");
+  if (!problem.empty())
+  {
+    Fail(problem + " (write numbered .png or .pfm files instead)");
+  }
+  stack->SetOrigin(image->GetOrigin());
+  stack->SetSpacing(image->GetSpacing()[0], image->GetSpacing()[1], 1.0);
+  // Every point array (LineIntegral beside a radiograph's Intensity, the
+  // channels), the image's scalars the stack's.
+  for (int a = 0; a < slice->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* from = slice->GetArray(a);
+    if (!from || !from->GetName())
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(from->NewInstance());
+    values->SetName(from->GetName());
+    values->SetNumberOfComponents(from->GetNumberOfComponents());
+    values->SetNumberOfTuples(perSlice * this->Count);
+    stack->GetPointData()->AddArray(values);
+    if (from == slice->GetScalars())
+    {
+      stack->GetPointData()->SetActiveScalars(from->GetName());
+    }
+  }
+  // Each one-tuple field (ProjectionMatrix, SampleCount, EstimatedRelativeError, ...) as a tuple
+  // per pose.
+  vtkFieldData* fields = image->GetFieldData();
+  for (int a = 0; a < fields->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* from = fields->GetArray(a);
+    if (!from || !from->GetName() || from->GetNumberOfTuples() != 1)
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(from->NewInstance());
+    values->SetName(from->GetName());
+    values->SetNumberOfComponents(from->GetNumberOfComponents());
+    values->SetNumberOfTuples(this->Count);
+    values->Fill(0.0);
+    stack->GetFieldData()->AddArray(values);
+  }
 }
 
 bool WritePoseGeometry(

@@ -32,9 +32,10 @@ struct PoseRecord
 PoseRecord RecordOf(vtkImageData* image);
 
 /// A stack of `count` poses' 2D images (the same size and spacing), filled
-/// slice by slice: slice k is pose k's image; its ProjectionMatrix field
-/// holds a tuple of 12 per pose. Fails, before any slice is kept, when the
-/// stack does not fit the memory budget.
+/// slice by slice: slice k of each point array is pose k's (the scalars
+/// the stack's), and each one-tuple field of an image (ProjectionMatrix,
+/// SampleCount, EstimatedRelativeError, ...) holds a tuple per pose. Fails,
+/// before any slice is kept, when the stack does not fit the memory budget.
 class PoseStack
 {
 public:
@@ -43,6 +44,7 @@ public:
   vtkImageData* GetImage() const;
 
 private:
+  void AllocateLike(vtkImageData* image); // the arrays of the first pose's image
   vtkSmartPointer<vtkImageData> Image;
   int Count;
 };

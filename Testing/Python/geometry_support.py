@@ -32,6 +32,19 @@ def read_stack(path):
     return values.reshape(dims[2], dims[1], dims[0])[:, ::-1, :], matrices
 
 
+def read_arrays(path):
+    """Every point array of a .vti (as read_stack's slices) and every field array, by name."""
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    dims = image.GetDimensions()
+    points, fields = image.GetPointData(), image.GetFieldData()
+    return ({points.GetArrayName(i): vtk_to_numpy(points.GetArray(i)).reshape(dims[2], dims[1], dims[0])[:, ::-1, :]
+             for i in range(points.GetNumberOfArrays())},
+            {fields.GetArrayName(i): vtk_to_numpy(fields.GetArray(i)) for i in range(fields.GetNumberOfArrays())})
+
+
 def normalized(matrix):
     matrix = numpy.asarray(matrix, float)
     return matrix / numpy.linalg.norm(matrix)

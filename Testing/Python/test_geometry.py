@@ -27,7 +27,7 @@ import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkMetaImageReader
 
-from geometry_support import normalized, read_stack, write_metaimage
+from geometry_support import normalized, read_arrays, read_stack, write_metaimage
 
 MCXRAY = sys.argv[1]
 DIMS = (41, 37, 33)  # x, y, z
@@ -208,6 +208,19 @@ class Geometry(unittest.TestCase):
             alone, _ = self.render("noisy%d" % k, *self.plastimatch_options("--gantry", str(5 + 40 * k)),
                                    "--photons", "1000", "--noise-seed", str(7 + k), method=method)
             self.assertTrue(numpy.array_equal(noisy[k], alone[0]), "noisy pose %d" % k)
+            # The stack holds every array and field of each pose's own image: the line integrals
+            # beside the intensities, the sample count and the estimated error (once only the
+            # scalars and the matrix).
+            stack_points, stack_fields = read_arrays(os.path.join(self.work, "noisy.vti"))
+            alone_points, alone_fields = read_arrays(os.path.join(self.work, "noisy%d.vti" % k))
+            self.assertEqual(sorted(alone_points), sorted(stack_points))
+            self.assertIn("LineIntegral", stack_points)
+            for name, values in alone_points.items():
+                self.assertTrue(numpy.array_equal(stack_points[name][k], values[0]), name)
+            self.assertEqual(sorted(alone_fields), sorted(stack_fields))
+            for name in ("SampleCount", "EstimatedRelativeError", "Integral", "ProjectionMatrix"):
+                self.assertEqual(2, len(stack_fields[name]), name)
+                self.assertTrue(numpy.array_equal(stack_fields[name][k], alone_fields[name][0]), name)
         # A MetaImage stack: the same slices (float64; its matrices are in
         # --output-geometry, MetaImage has no field data).
         mha = os.path.join(self.work, "stack.mha")
