@@ -357,7 +357,10 @@ const Option Options[] = {
     [](Settings& s, const Argument& a) { s.OutputGeometry = a.Value; } },
   { "--i0", Both, true,
     [](Settings& s, const Argument& a)
-    { s.Radiograph.IncidentIntensity = ParsePositive(a.Value, a.Name); } },
+    {
+      s.Radiograph.IncidentIntensity = ParsePositive(a.Value, a.Name);
+      s.Radiograph.IncidentIntensityGiven = true;
+    } },
   { "--photons", Both, true,
     [](Settings& s, const Argument& a)
     {
@@ -416,7 +419,11 @@ const Option Options[] = {
       s.Window.Bits = static_cast<int>(bits);
     } },
   { "--tolerance", Render, true,
-    [](Settings& s, const Argument& a) { s.Tolerance = ParseOpenUnitFraction(a.Value, a.Name); } },
+    [](Settings& s, const Argument& a)
+    {
+      s.Tolerance = ParseOpenUnitFraction(a.Value, a.Name);
+      s.ToleranceGiven = true;
+    } },
   { "--screenshot", View, true, [](Settings& s, const Argument& a) { s.Screenshot = a.Value; } },
 };
 

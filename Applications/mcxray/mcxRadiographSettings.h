@@ -69,6 +69,7 @@ struct RadiographSettings
   double Extrinsics[12] = { 0 };
   bool BeerLambert = false;
   double IncidentIntensity = 1.0;
+  bool IncidentIntensityGiven = false; // --i0: with --beer-lambert or --photons alone
   double Photons = 0.0;
   long long NoiseSeed = 0;
   bool NegativeLog = false;

@@ -83,6 +83,25 @@ void CheckCombinations(const Settings& settings)
   {
     Fail("--target-error and --quantization-levels apply to off-line Monte Carlo rendering only");
   }
+  // Options that would change nothing are refused, not dropped in silence.
+  if ((settings.TargetError > 0 || settings.QuantizationLevels > 0) && settings.SamplesGiven)
+  {
+    Fail("--target-error and --quantization-levels choose the sample count: leave out --samples");
+  }
+  if (settings.Method == "reference" && (settings.SamplesGiven || settings.DepositGiven))
+  {
+    Fail("reference integrates exactly, without samples: leave out --samples and --deposit");
+  }
+  if (settings.ToleranceGiven && settings.Method != "reference")
+  {
+    Fail("--tolerance is the reference method's: it goes with --method reference");
+  }
+  if (settings.Radiograph.IncidentIntensityGiven && !settings.Radiograph.BeerLambert &&
+    !(settings.Radiograph.Photons > 0) && settings.Spectrum.empty())
+  {
+    Fail("--i0 is the radiograph's unattenuated intensity: it goes with --beer-lambert, --photons "
+         "or --spectrum");
+  }
   if (settings.Samples > MaximumSamples)
   {
     Fail("--samples is at most 2^40 - 1 (1099511627775: about 3 hours of point deposits on 2 "

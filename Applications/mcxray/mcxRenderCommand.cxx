@@ -200,7 +200,7 @@ public:
     {
       Fail(error);
     }
-    this->WarnIfNotHounsfield();
+    this->WarnOfUnphysicalUnits();
     // One read and one index (and with --stored-points one cloud): every
     // pose from them, each image written (or kept in the stack) as it is
     // made. Without --stored-points each pose samples as it projects, as it
@@ -259,13 +259,22 @@ public:
   }
 
 private:
-  // mu and the materials take CT in HU: values with no air (none at or
-  // below -500) are read as HU all the same, as the formula says (a water
-  // phantom's image stays exact), and said to be.
-  void WarnIfNotHounsfield()
+  // A radiograph takes attenuation, and mu and the materials take CT in
+  // HU: a radiograph of raw values, and values with no air (none at or
+  // below -500), which are read as HU all the same as the formula says (a
+  // water phantom's image stays exact), are said to be.
+  void WarnOfUnphysicalUnits()
   {
-    const std::string note = NotHounsfieldNote(this->DataRange());
     const std::string& tf = this->Options.TF;
+    const RadiographSettings& physics = this->Options.Radiograph;
+    if (tf == "raw" && !this->Polychromatic.Active() &&
+      (physics.BeerLambert || physics.Photons > 0 || physics.NegativeLog))
+    {
+      this->Warnings.push_back("the radiograph takes line integrals of attenuation per mm (--tf "
+                               "mu): --tf raw weighs data values, so exp(-those) is near 0 in "
+                               "tissue, a silhouette");
+    }
+    const std::string note = NotHounsfieldNote(this->DataRange());
     if (note.empty())
     {
       return;

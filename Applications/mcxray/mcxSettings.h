@@ -44,6 +44,7 @@ struct Settings
   std::string Output = "mcxray.png";
   PngWindow Window;
   double Tolerance = 1e-3;
+  bool ToleranceGiven = false; // the reference method's alone
   bool Quiet = false;
   bool StoredPoints = false;
   double TargetError = 0.0;

@@ -385,6 +385,12 @@ TEST(CommandLine, BadInputGivesOneLineErrorAndNoOutput)
     "render --method every-voxel --target-error 0.02 --output ",
     "render --method view-ordered --output ",
     "frobnicate --output ",
+    // Options that would change nothing: refused, not dropped in silence.
+    "render --method reference --samples 1000 --output ",
+    "render --method reference --deposit point --output ",
+    "render --tolerance 0.01 --output ",
+    "render --i0 5 --tf mu --output ",
+    "render --target-error 0.05 --samples 1000 --output ",
   };
   for (const char* arguments : cases)
   {
@@ -583,12 +589,16 @@ TEST(CommandLine, PhotonsGivePoissonCounts)
   EXPECT_NEAR(1.0, sum / n, 5 * std::sqrt(variance) / n);
 }
 
-TEST(CommandLine, HounsfieldPhysicsOnValuesWithNoAirWarns)
+TEST(CommandLine, PhysicsOnValuesOfOtherUnitsWarns)
 {
   // The bundled CT is stored from 0 (no air at or below -500): --tf mu and
   // --spectrum read its values as HU all the same (a phantom without air
-  // stays exact) and say so, one line each after the image is written.
+  // stays exact) and say so, one line each after the image is written; a
+  // radiograph of the raw TF's data values (a silhouette) says so too.
   const std::pair<const char*, const char*> cases[] = {
+    { "render --beer-lambert --size 16x16 --samples 1023",
+      "mcxray: warning: the radiograph takes line integrals of attenuation per mm (--tf mu): --tf "
+      "raw weighs data values, so exp(-those) is near 0 in tissue, a silhouette\n" },
     { "render --tf mu --gantry 0 -r \"32 32\" --samples 1023",
       "mcxray: warning: --tf mu takes CT in HU, but the values 0 .. 3926 are not CT in HU (no "
       "air): read as HU all the same\n" },
