@@ -55,9 +55,9 @@ std::string GeometryFromPinhole(const PinholeCamera& camera, const int size[2],
 bool IsAffineMatrix(const double P[12]);
 
 /// The parallel geometry of an affine P (any nonzero scale) for a detector
-/// of size[0] columns and size[1] rows: MatrixFromGeometry gives P back (to
-/// rounding). P fixes the rays and each pixel's beam, not the detector's
-/// plane: the plane taken is perpendicular to the rays where P's pixels are
+/// of size[0] columns and size[1] rows: MatrixFromGeometry gives P back up
+/// to scale (divided by its last entry), to rounding. P fixes the rays and each pixel's beam, not
+/// the detector's plane: the plane taken is perpendicular to the rays where P's pixels are
 /// rectangles across them, else the one tilted just enough that they are
 /// (an oblique view's). Returns why not, or "": rows that are not
 /// independent (no direction for the rays).

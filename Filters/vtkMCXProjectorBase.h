@@ -74,7 +74,8 @@ public:
    * With a projection matrix: the distance from the source of the plane on
    * which the output's pixels are measured (its spacing and, with
    * PlaceOnDetectorPlane, where it lies); 0 (default) puts it through the
-   * centre of the volume's support. The values do not depend on it.
+   * centre of the volume's support. The values do not depend on it. An
+   * affine (parallel) matrix has no source: its pixels are its own.
    */
   vtkSetClampMacro(FocalPlaneDistance, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FocalPlaneDistance, double);

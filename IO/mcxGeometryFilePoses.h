@@ -67,7 +67,8 @@ std::string RTPlanPose(const std::string& path, const std::string& beam,
   const GeometryFileDetector& detector, GeometryFilePose& pose);
 
 /// The poses of a file of projection matrices, at most limit of them: each
-/// a pinhole camera, its size the JSON's or else the detector's. Returns ""
+/// a pinhole camera or an affine matrix (a parallel view), its size the
+/// JSON's or else the detector's. Returns ""
 /// or one line saying why not.
 std::string MatrixFilePoses(const std::string& path, std::size_t limit,
   const GeometryFileDetector& detector, std::vector<GeometryFilePose>& poses);

@@ -167,7 +167,6 @@ bool ParseHeader(const std::string& text, MetaHeader& header, std::string& error
     {
       key.pop_back();
     }
-
     if (key.size() > 254)
     {
       // MetaIO copies a key it does not know into a field's 255-byte name

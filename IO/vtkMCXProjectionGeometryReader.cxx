@@ -72,7 +72,8 @@ bool vtkMCXProjectionGeometryReader::Update()
   if (problem.empty() && this->ExpectedFileKind != NoFile &&
     ReaderKind(kind) != this->ExpectedFileKind)
   {
-    const char* given[] = { "an XML file", "a DICOM file", "a file of numbers" };
+    const char* given[] = { "an XML file", "a DICOM file",
+      "a file of projection matrices (JSON or text)" };
     const char* asked[] = { "", "RTK geometry XML", "DICOM RT plan",
       "file of projection matrices" };
     problem = std::string("geometry file '") + path + "': " + given[static_cast<int>(kind)] +

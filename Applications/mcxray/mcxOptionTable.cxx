@@ -123,10 +123,9 @@ void SetDetectorSize(Settings& settings, const Argument& argument)
   settings.Radiograph.DetectorSizeGiven = true;
 }
 
-// DEG, or START:STOP:COUNT: COUNT angles from START, STOP excluded (a full
-// turn 0:360:N repeats no angle), as plastimatch's -a COUNT -N STEP.
 // An angle in degrees: finite and within a million degrees (beyond, its
-// sine and cosine are rounding noise, and a sweep's steps could overflow).
+// sine and cosine are rounding noise, and an angle past 1e308 once
+// overflowed into the view-up check's error).
 double ParseAngle(const std::string& text, const std::string& option)
 {
   const double degrees = ParseNumber(text, option);
@@ -137,6 +136,8 @@ double ParseAngle(const std::string& text, const std::string& option)
   return degrees;
 }
 
+// DEG, or START:STOP:COUNT: COUNT angles from START, STOP excluded (a full
+// turn 0:360:N repeats no angle), as plastimatch's -a COUNT -N STEP.
 void SetGantry(Settings& settings, const Argument& argument)
 {
   settings.Radiograph.Geometry = true;

@@ -112,8 +112,9 @@ PoseRecord RecordOf(vtkImageData* image)
   return pose;
 }
 
-PoseStack::PoseStack(int count, const int size[2])
+PoseStack::PoseStack(int count, const int size[2], const std::string& path)
   : Count(count)
+  , EveryArray(Extension(path) == ".vti")
 {
   const double bytes = static_cast<double>(size[0]) * size[1] * count * sizeof(double);
   const std::string problem = mcx::MemoryProblem(bytes,
@@ -168,29 +169,36 @@ void PoseStack::AllocateLike(vtkImageData* image)
   vtkImageData* stack = this->Image;
   const vtkIdType perSlice = image->GetNumberOfPoints();
   vtkPointData* slice = image->GetPointData();
-  double bytes = 0.0;
-  for (int a = 0; a < slice->GetNumberOfArrays(); ++a)
+  // The scalars fit (the constructor's check, before any work); the other
+  // arrays are kept where they fit too.
+  bool everyArray = this->EveryArray;
+  if (everyArray)
   {
-    vtkDataArray* from = slice->GetArray(a);
-    bytes += from ? static_cast<double>(perSlice) * this->Count * from->GetNumberOfComponents() *
-        from->GetDataTypeSize()
-                  : 0.0;
-  }
-  const std::string problem = mcx::MemoryProblem(bytes,
-    "A stack of " + std::to_string(this->Count) + " poses' " +
-      std::to_string(slice->GetNumberOfArrays()) + " arrays");
-  if (!problem.empty())
-  {
-    Fail(problem + " (write numbered .png or .pfm files instead)");
+    double bytes = 0.0;
+    for (int a = 0; a < slice->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* from = slice->GetArray(a);
+      bytes += from ? static_cast<double>(perSlice) * this->Count * from->GetNumberOfComponents() *
+          from->GetDataTypeSize()
+                    : 0.0;
+    }
+    const std::string problem = mcx::MemoryProblem(bytes,
+      "A stack of " + std::to_string(this->Count) + " poses' " +
+        std::to_string(slice->GetNumberOfArrays()) + " arrays");
+    if (!problem.empty())
+    {
+      everyArray = false;
+      this->LeftOut = "the stack holds the scalars alone: " + problem;
+    }
   }
   stack->SetOrigin(image->GetOrigin());
   stack->SetSpacing(image->GetSpacing()[0], image->GetSpacing()[1], 1.0);
   // Every point array (LineIntegral beside a radiograph's Intensity, the
-  // channels), the image's scalars the stack's.
+  // channels), or the scalars alone; the image's scalars the stack's.
   for (int a = 0; a < slice->GetNumberOfArrays(); ++a)
   {
     vtkDataArray* from = slice->GetArray(a);
-    if (!from || !from->GetName())
+    if (!from || !from->GetName() || (!everyArray && from != slice->GetScalars()))
     {
       continue;
     }

@@ -31,22 +31,29 @@ struct PoseRecord
 };
 PoseRecord RecordOf(vtkImageData* image);
 
-/// A stack of `count` poses' 2D images (the same size and spacing), filled
-/// slice by slice: slice k of each point array is pose k's (the scalars
-/// the stack's), and each one-tuple field of an image (ProjectionMatrix,
-/// SampleCount, EstimatedRelativeError, ...) holds a tuple per pose. Fails,
-/// before any slice is kept, when the stack does not fit the memory budget.
+/// A stack of `count` poses' 2D images (the same size and spacing) for the
+/// file `path`, filled slice by slice: slice k of the scalars is pose k's,
+/// and in a .vti (MetaImage holds the scalars alone) of every other point
+/// array too (LineIntegral
+/// beside a radiograph's Intensity, the channels) while they fit the
+/// memory budget (else Warning() says they were left out); each one-tuple
+/// field of an image (ProjectionMatrix, SampleCount,
+/// EstimatedRelativeError, ...) holds a tuple per pose. Fails, before any
+/// work, when the scalars alone do not fit the budget.
 class PoseStack
 {
 public:
-  PoseStack(int count, const int size[2]);
+  PoseStack(int count, const int size[2], const std::string& path);
   void Add(int k, vtkImageData* image);
   vtkImageData* GetImage() const;
+  const std::string& Warning() const { return this->LeftOut; }
 
 private:
   void AllocateLike(vtkImageData* image); // the arrays of the first pose's image
   vtkSmartPointer<vtkImageData> Image;
   int Count;
+  bool EveryArray;
+  std::string LeftOut;
 };
 
 /// Writes the poses' geometry as JSON to path, all or nothing: per pose the

@@ -211,7 +211,7 @@ public:
     std::unique_ptr<PoseStack> stack;
     if (count > 1 && WritesStack(this->Options.Output) && IsFirstProcess())
     {
-      stack.reset(new PoseStack(count, poses[0].Size));
+      stack.reset(new PoseStack(count, poses[0].Size, this->Options.Output));
     }
     std::vector<PoseRecord> records;
     // Every pose's image (or their stack) and the geometry file, or none.
@@ -244,6 +244,10 @@ public:
     if (stack)
     {
       this->Write(stack->GetImage(), this->Options.Output);
+      if (!stack->Warning().empty())
+      {
+        this->Warnings.push_back(stack->Warning());
+      }
     }
     this->WriteGeometry(records);
     if (!CommitHeldOutputs(error))
@@ -267,14 +271,20 @@ private:
   {
     const std::string& tf = this->Options.TF;
     const RadiographSettings& physics = this->Options.Radiograph;
-    if (tf == "raw" && !this->Polychromatic.Active() &&
+    const double* range = this->DataRange();
+    // Values already in attenuation per mm (or per cm) span far less than
+    // 100: raw, value - minimum, is then their line integral.
+    if (tf == "raw" && !this->Polychromatic.Active() && range[1] - range[0] > 100.0 &&
       (physics.BeerLambert || physics.Photons > 0 || physics.NegativeLog))
     {
-      this->Warnings.push_back("the radiograph takes line integrals of attenuation per mm (--tf "
-                               "mu): --tf raw weighs data values, so exp(-those) is near 0 in "
-                               "tissue, a silhouette");
+      std::ostringstream text;
+      text << "the radiograph takes line integrals of attenuation per mm (--tf mu): --tf raw "
+              "weighs the values "
+           << range[0] << " .. " << range[1]
+           << " as they are, so exp(-those) is near 0 in tissue, a silhouette";
+      this->Warnings.push_back(text.str());
     }
-    const std::string note = NotHounsfieldNote(this->DataRange());
+    const std::string note = NoAirNote(this->DataRange());
     if (note.empty())
     {
       return;
@@ -282,12 +292,12 @@ private:
     if (this->Polychromatic.Active())
     {
       this->Warnings.push_back(
-        "--spectrum's materials take CT in HU, but " + note + " (no air): read as HU all the same");
+        "--spectrum's materials take CT in HU, but " + note + ": read as HU all the same");
     }
     else if (tf == "mu" || tf.rfind("mu=", 0) == 0)
     {
       this->Warnings.push_back(
-        "--tf " + tf + " takes CT in HU, but " + note + " (no air): read as HU all the same");
+        "--tf " + tf + " takes CT in HU, but " + note + ": read as HU all the same");
     }
   }
 

@@ -47,9 +47,9 @@ options:
                         choose the sample count by the paper's criterion: the
                         mean pixel deviation below one of L grey levels (the
                         deposit chosen as for --target-error)
-  --method M            hybrid (default), mc, qmc (low-discrepancy kernel offsets:
-                        with --deposit point; footprints need none, so it is
-                        hybrid there), every-voxel (each voxel of
+  --method M            hybrid (default), mc, qmc (low-discrepancy kernel
+                        offsets: with --deposit point; footprints need none, so
+                        it is hybrid there), every-voxel (each voxel of
                         non-zero weight once, weighted by the TF: no sampling
                         noise while each voxel's footprint reaches at most 16
                         pixels, else a warning; replaces --samples; with
@@ -109,7 +109,8 @@ options:
                         the view as a 3x4 matrix, row by row, with --detector:
                         world (LPS mm) to (u w, v w, w), u the column, v the row
                         from the top, 0 at the first pixel's centre (OpenCV's and
-                        plastimatch's layout; any scale)
+                        plastimatch's layout; any scale; affine, last row 0 0 0
+                        1, for a parallel view)
   --projection-matrices FILE
                         a pose per matrix of FILE: the JSON --output-geometry
                         writes (each pose's P and size), or text of 12 numbers

@@ -159,14 +159,15 @@ double AirValueOf(const double dataRange[2])
   return dataRange[0] <= -500.0 ? -1000.0 : dataRange[0];
 }
 
-std::string NotHounsfieldNote(const double dataRange[2])
+std::string NoAirNote(const double dataRange[2])
 {
   if (AirValueOf(dataRange) == -1000.0)
   {
     return std::string();
   }
   std::ostringstream note;
-  note << "the values " << dataRange[0] << " .. " << dataRange[1] << " are not CT in HU";
+  note << "the values " << dataRange[0] << " .. " << dataRange[1]
+       << " hold no air (none at or below -500)";
   return note.str();
 }
 

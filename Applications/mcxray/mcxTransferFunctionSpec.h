@@ -25,9 +25,10 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
 /// CT in HU (a lowest value at or below -500 HU), else the lowest value.
 double AirValueOf(const double dataRange[2]);
 
-/// "" for CT in HU (AirValueOf), else "the values LOW .. HIGH are not CT in
-/// HU": what a warning says before what is done about it.
-std::string NotHounsfieldNote(const double dataRange[2]);
+/// "" for values that reach air (AirValueOf), else "the values LOW .. HIGH
+/// hold no air (none at or below -500)": what a warning says before what is
+/// done about it (CT cropped inside the body, or not in HU at all).
+std::string NoAirNote(const double dataRange[2]);
 
 /// The attenuation of a radiograph of the tissue `weight` selects: mu =
 /// water (1 + HU / 1000) per world unit (0 at and below air), HU = value -

@@ -407,8 +407,7 @@ void XRayViewer::WarnIfNotHounsfield()
   }
   this->NotHounsfieldWarned = true;
   std::cerr << "mcxray: warning: the radiograph's mu takes CT in HU, but "
-            << NotHounsfieldNote(this->DataRange) << ": the lowest counts as air (-1000 HU)"
-            << std::endl;
+            << NoAirNote(this->DataRange) << ": the lowest counts as air (-1000 HU)" << std::endl;
 }
 
 std::string XRayViewer::OverlayText(bool withFrameTime) const

@@ -34,7 +34,7 @@ from .MonteCarloXRayFilters import (vtkMCXDensityIndex, vtkMCXProjector,
                                     vtkMCXRadiograph, vtkMCXRadiographGeometry, vtkMCXReferenceProjector,
                                     vtkMCXTypes)
 from .MonteCarloXRayIO import vtkMCXFirstErrorObserver, vtkMCXProjectionGeometryReader, vtkMCXVolumeReader
-from .presets import fill_preset
+from .presets import fill_preset, raw_radiograph_warning
 
 __all__ = ["drr", "Renderer", "DRRResult"]
 
@@ -140,11 +140,10 @@ def _numbers(value, name, shapes):
     return array
 
 
-def _within(array, name, above, at_most):
-    """``array`` where every value is above ``above`` and at most ``at_most`` (None: no bound)."""
-    if (above is not None and not np.all(array > above)) or (at_most is not None and not np.all(array <= at_most)):
-        raise ValueError("%s must be %s, got %s" % (name, "positive" if above == 0 and at_most is None
-                                                    else "at most %g in magnitude" % at_most, array.tolist()))
+def _positive(array, name):
+    """``array`` where every value is positive."""
+    if not np.all(array > 0):
+        raise ValueError("%s must be positive, got %s" % (name, array.tolist()))
     return array
 
 
@@ -414,14 +413,13 @@ class Renderer:
         messages = _Messages()
         geometry.AddObserver(vtkCommand.ErrorEvent, messages._on_error)
         if sad is not None:
-            geometry.SetSourceToAxisDistance(float(_within(_numbers(sad, "sad", [()]), "sad", 0, None)))
+            geometry.SetSourceToAxisDistance(float(_positive(_numbers(sad, "sad", [()]), "sad")))
         if sid is not None:
-            geometry.SetSourceToImageDistance(float(_within(_numbers(sid, "sid", [()]), "sid", 0, None)))
+            geometry.SetSourceToImageDistance(float(_positive(_numbers(sid, "sid", [()]), "sid")))
         if detector is not None:
             geometry.SetDetectorPixels(*_size(detector, "detector"))
         if pitch is not None:
-            geometry.SetPixelPitch(*np.broadcast_to(_within(_numbers(pitch, "pitch", [(), (2,)]), "pitch", 0, None),
-                                                    (2,)))
+            geometry.SetPixelPitch(*np.broadcast_to(_positive(_numbers(pitch, "pitch", [(), (2,)]), "pitch"), (2,)))
         if vup is not None:
             geometry.SetViewUp(*_numbers(vup, "vup", [(3,)]))
         if image_center is not None:
@@ -437,7 +435,8 @@ class Renderer:
             poses = [lambda n=n: geometry.SetDetectorNormal(*n) for n in normals]
         else:
             angles = _numbers(0.0 if gantry is None else gantry, "gantry", [(), (None,)]).reshape(-1)
-            _within(np.abs(angles), "gantry (degrees)", None, 1e6)  # beyond, sine and cosine are rounding noise
+            if not np.all(np.abs(angles) <= 1e6):  # beyond, sine and cosine are rounding noise, as the command's
+                raise ValueError("gantry must be degrees from -1e6 to 1e6, got %s" % angles.tolist())
             poses = [lambda a=a: geometry.SetGantryAngle(a) for a in angles]
         size = tuple(geometry.GetDetectorPixels())
         result = []
@@ -463,7 +462,7 @@ class Renderer:
             deposit: Optional[str] = None, kernel: str = "tent", method: str = "hybrid",
             samples: Optional[int] = None, target_error: Optional[float] = None, seed: int = 0,
             tolerance: Optional[float] = None,
-            beer_lambert: bool = False, photons: float = 0.0, i0: float = 1.0,
+            beer_lambert: bool = False, photons: float = 0.0, i0: Optional[float] = None,
             negative_log: bool = False, noise_seed: int = 0,
             progress: Optional[Callable[[float], Any]] = None) -> DRRResult:
         """Renders one DRR per pose from the kept index; returns a ``DRRResult``.
@@ -510,7 +509,9 @@ class Renderer:
 
         Physics (vtkMCXRadiograph, for a "mu" TF): beer_lambert (I0
         exp(-integral)), photons per unattenuated pixel (Poisson noise;
-        pose i uses noise seed noise_seed + i), i0, negative_log (-ln(I/I0)).
+        pose i uses noise seed noise_seed + i), i0 (default 1; with
+        beer_lambert or photons), negative_log (-ln(I/I0)). A radiograph
+        of the raw TF on values spanning more than 100 warns (a silhouette).
 
         progress: called with the fraction done (0 to 1) as the projector
         reports it (between batches of samples and at each pose's end).
@@ -530,6 +531,9 @@ class Renderer:
         self._configure(self.transfer_function(tf), deposit, kernel, method, samples, target_error, seed,
                         tolerance)
         physics = self._configure_physics(beer_lambert, photons, i0, negative_log, noise_seed)
+        levels = self.levels
+        if physics and isinstance(tf, str) and tf == "raw" and levels.size and levels[-1] - levels[0] > 100:
+            warnings.warn(raw_radiograph_warning(levels[0], levels[-1]), RuntimeWarning, stacklevel=2)
         self._set_threads()
         return self._render(poses, physics, noise_seed, progress)
 
@@ -549,8 +553,8 @@ class Renderer:
         if samples is not None and target_error is not None:
             raise ValueError("give samples= or target_error=, not both")
         if method == "reference":
-            if samples is not None or target_error is not None:
-                raise ValueError("samples= and target_error= are for the Monte Carlo methods; "
+            if samples is not None or target_error is not None or not choose:
+                raise ValueError("samples=, target_error= and deposit= are for the Monte Carlo methods; "
                                  "reference is exact to tolerance=")
             projector = self._reference
             tolerance = self._default_tolerance if tolerance is None else float(
@@ -591,7 +595,10 @@ class Renderer:
         if not 0 <= photons <= _MAXIMUM_PHOTONS:
             raise ValueError("photons must be 0 (no noise) to %g, got %g" % (_MAXIMUM_PHOTONS, photons))
         radiograph.SetPhotonsPerPixel(photons)
-        i0 = float(_numbers(i0, "i0", [()]))
+        if i0 is not None and not (beer_lambert or photons > 0):
+            raise ValueError("i0= is the radiograph's unattenuated intensity: it goes with beer_lambert=True or "
+                             "photons=, as the command's --i0")
+        i0 = 1.0 if i0 is None else float(_numbers(i0, "i0", [()]))
         if not i0 > 0:
             raise ValueError("i0 must be positive, got %g" % i0)
         radiograph.SetIncidentIntensity(i0)

@@ -16,6 +16,7 @@ sampling again. The volume is in HU; views are parallel, rays along
 from __future__ import annotations
 
 import os
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, List, Sequence
 
@@ -23,7 +24,8 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 
-from .drr import _Messages
+from .drr import _MAXIMUM_SAMPLES, _Messages, _integer
+from .presets import holds_air, no_air_warning
 from .MonteCarloXRayFilters import (vtkMCXDensityIndex, vtkMCXMaterialWeights,
                                     vtkMCXPolychromaticRadiograph, vtkMCXProjector)
 from .MonteCarloXRayIO import vtkMCXVolumeReader
@@ -96,6 +98,10 @@ def polychromatic_drr(volume, spectrum: str = "70kVp,2.5mmAl", *, materials: str
         volume = reader.GetOutput()
     if not isinstance(volume, vtkImageData) or volume.GetPointData().GetScalars() is None:
         raise ValueError("volume must be a file or a vtkImageData with point scalars (HU)")
+    samples = _integer(samples, "samples", 1, _MAXIMUM_SAMPLES)  # the command's limit
+    low, high = volume.GetPointData().GetScalars().GetRange()
+    if not holds_air(low):  # as the command's --spectrum
+        warnings.warn(no_air_warning("the materials take", low, high), RuntimeWarning, stacklevel=2)
     weights = vtkMCXMaterialWeights()
     messages.watch(weights)
     weights.SetMaterials(str(materials))
@@ -111,7 +117,7 @@ def polychromatic_drr(volume, spectrum: str = "70kVp,2.5mmAl", *, materials: str
     messages.watch(projector)
     projector.SetInputConnection(index.GetOutputPort())
     projector.SetTransferFunction(density)
-    projector.SetNumberOfSamples(int(samples))
+    projector.SetNumberOfSamples(samples)
     projector.SetSeed(int(seed))
     projector.SetNumberOfChannels(count)
     fractions = [vtkPiecewiseFunction() for _ in range(count)]

@@ -18,10 +18,23 @@ PRESET_POINTS = {
 PRESETS = "raw, bone, soft-tissue, mu or mu=MU_WATER"
 
 
-def is_hounsfield(low: float) -> bool:
-    """Whether values from ``low`` up look like CT in HU: some air, at or below -500 (the
-    command's NotHounsfieldNote)."""
+def holds_air(low: float) -> bool:
+    """Whether values from ``low`` up reach air, at or below -500 HU (the command's NoAirNote)."""
     return low <= -500.0
+
+
+def no_air_warning(what_takes: str, low: float, high: float) -> str:
+    """The command's warning for values that hold no air (none at or below -500), read as HU all the
+    same: ``what_takes`` is "tf 'mu' takes", "the materials take"."""
+    return "%s CT in HU, but the values %g .. %g hold no air (none at or below -500): read as HU all " \
+        "the same" % (what_takes, low, high)
+
+
+def raw_radiograph_warning(low: float, high: float) -> str:
+    """The command's warning for a radiograph of the raw TF on values that span more than 100 (not
+    attenuation per mm, whose raw TF would be its own line integral)."""
+    return "the radiograph takes line integrals of attenuation per mm (tf 'mu'): tf 'raw' weighs the values " \
+        "%g .. %g as they are, so exp(-those) is near 0 in tissue, a silhouette" % (low, high)
 
 
 def fill_preset(tf: str, levels: np.ndarray, result: vtkPiecewiseFunction, stacklevel: int) -> None:
@@ -47,8 +60,7 @@ def fill_preset(tf: str, levels: np.ndarray, result: vtkPiecewiseFunction, stack
         # Exact over the whole data range (and at least the usual CT range), as the command.
         attenuation.SetHounsfieldRange(min(-1024.0, low), max(3071.0, high))
         attenuation.FillTransferFunction(result)
-        if levels.size and not is_hounsfield(low):
-            warnings.warn("tf %r takes CT in HU, but the values %g .. %g are not CT in HU (no air): read "
-                          "as HU all the same" % (tf, low, high), RuntimeWarning, stacklevel=stacklevel + 1)
+        if levels.size and not holds_air(low):
+            warnings.warn(no_air_warning("tf %r takes" % tf, low, high), RuntimeWarning, stacklevel=stacklevel + 1)
     else:
         raise ValueError("unknown tf preset %r (expected %s, points or a callable)" % (tf, PRESETS))

@@ -598,13 +598,14 @@ TEST(CommandLine, PhysicsOnValuesOfOtherUnitsWarns)
   const std::pair<const char*, const char*> cases[] = {
     { "render --beer-lambert --size 16x16 --samples 1023",
       "mcxray: warning: the radiograph takes line integrals of attenuation per mm (--tf mu): --tf "
-      "raw weighs data values, so exp(-those) is near 0 in tissue, a silhouette\n" },
+      "raw weighs the values 0 .. 3926 as they are, so exp(-those) is near 0 in tissue, a "
+      "silhouette\n" },
     { "render --tf mu --gantry 0 -r \"32 32\" --samples 1023",
-      "mcxray: warning: --tf mu takes CT in HU, but the values 0 .. 3926 are not CT in HU (no "
-      "air): read as HU all the same\n" },
+      "mcxray: warning: --tf mu takes CT in HU, but the values 0 .. 3926 hold no air (none at or "
+      "below -500): read as HU all the same\n" },
     { "render --spectrum 70kVp,2.5mmAl --view +y --size 16x16 --samples 1023",
-      "mcxray: warning: --spectrum's materials take CT in HU, but the values 0 .. 3926 are not CT "
-      "in HU (no air): read as HU all the same\n" },
+      "mcxray: warning: --spectrum's materials take CT in HU, but the values 0 .. 3926 hold no air "
+      "(none at or below -500): read as HU all the same\n" },
   };
   for (const auto& c : cases)
   {
@@ -614,6 +615,23 @@ TEST(CommandLine, PhysicsOnValuesOfOtherUnitsWarns)
     EXPECT_EQ(c.second, r.Errors) << c.first;
     EXPECT_TRUE(vtksys::SystemTools::FileExists(output)) << c.first;
   }
+  // Values in attenuation per mm already (0 and 0.02): raw is their line
+  // integral, and the radiograph says nothing.
+  vtkNew<vtkImageData> mu;
+  mu->SetDimensions(8, 8, 8);
+  mu->AllocateScalars(VTK_DOUBLE, 1);
+  for (vtkIdType v = 0; v < mu->GetNumberOfPoints(); ++v)
+  {
+    mu->GetPointData()->GetScalars()->SetTuple1(v, v % 3 == 0 ? 0.02 : 0.0);
+  }
+  const std::string input = Temporary("cli_mu_per_mm.vti");
+  WriteVolume(mu, input);
+  const Result r = RunCLI("render " + input +
+    " --beer-lambert --size 16x16 --samples 1023 --quiet "
+    "--output " +
+    Temporary("cli_mu_per_mm_out.vti"));
+  EXPECT_EQ(0, r.Status) << r.Errors;
+  EXPECT_EQ("", r.Errors);
 }
 
 TEST(CommandLine, GantryTurnsTheSourceAboutZ)

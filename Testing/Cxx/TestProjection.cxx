@@ -118,6 +118,20 @@ double PixelArea(vtkImageData* image)
 {
   return image->GetSpacing()[0] * image->GetSpacing()[1];
 }
+
+// Updates the algorithm; the text of the warnings it gave ("" for none).
+std::string UpdateKeepingWarnings(vtkAlgorithm* algorithm)
+{
+  std::string warnings;
+  vtkNew<vtkCallbackCommand> onWarning;
+  onWarning->SetClientData(&warnings);
+  onWarning->SetCallback([](vtkObject*, unsigned long, void* target, void* text)
+    { *static_cast<std::string*>(target) += static_cast<const char*>(text); });
+  const unsigned long tag = algorithm->AddObserver(vtkCommand::WarningEvent, onWarning);
+  algorithm->Update();
+  algorithm->RemoveObserver(tag);
+  return warnings;
+}
 }
 
 TEST(Projection, ParallelViewsConvergeWithinTheMonteCarloBound)
@@ -306,13 +320,7 @@ TEST(Projection, EveryVoxelWarnsWhenItsImageHasRandomParts)
     projector->SetStrategy(vtkMCXTypes::EVERY_VOXEL);
     projector->SetDeposit(c.Deposit);
     projector->SetFootprintReach(c.Reach);
-    std::string warnings;
-    vtkNew<vtkCallbackCommand> onWarning;
-    onWarning->SetClientData(&warnings);
-    onWarning->SetCallback([](vtkObject*, unsigned long, void* target, void* text)
-      { *static_cast<std::string*>(target) += static_cast<const char*>(text); });
-    projector->AddObserver(vtkCommand::WarningEvent, onWarning);
-    projector->Update();
+    const std::string warnings = UpdateKeepingWarnings(projector);
     if (c.Expected)
     {
       EXPECT_NE(std::string::npos, warnings.find("Every voxel once, but not without noise: "))
@@ -808,13 +816,7 @@ TEST(Projection, ATargetThatTheLargestSampleCountMissesIsWarnedOf)
     projector->SetTargetRelativeError(c.Error);
     projector->SetTargetQuantizationLevels(c.Levels);
     projector->SetMaximumSampleExponent(c.Maximum);
-    std::string warnings;
-    vtkNew<vtkCallbackCommand> onWarning;
-    onWarning->SetClientData(&warnings);
-    onWarning->SetCallback([](vtkObject*, unsigned long, void* target, void* text)
-      { *static_cast<std::string*>(target) += static_cast<const char*>(text); });
-    projector->AddObserver(vtkCommand::WarningEvent, onWarning);
-    projector->Update();
+    const std::string warnings = UpdateKeepingWarnings(projector);
     const double samples = mcxtest::FieldValue(projector->GetOutput(), "SampleCount");
     if (c.Expected)
     {

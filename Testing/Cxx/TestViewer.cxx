@@ -601,7 +601,7 @@ TEST(Viewer, BeerLambertOnDataNotInHounsfieldUnitsWarnsOnce)
   const std::string warnings = testing::internal::GetCapturedStderr();
   EXPECT_EQ(1, std::count(warnings.begin(), warnings.end(), '\n')) << warnings;
   EXPECT_EQ(0u, warnings.find("mcxray: warning: ")) << warnings;
-  EXPECT_NE(std::string::npos, warnings.find("not CT in HU")) << warnings;
+  EXPECT_NE(std::string::npos, warnings.find("hold no air (none at or below -500)")) << warnings;
   EXPECT_NEAR(0.02, viewer.GetTransferFunction()->GetValue(1000), 1e-9) << "1000 above air: water";
 }
 

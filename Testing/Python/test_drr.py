@@ -281,12 +281,21 @@ class Inputs(unittest.TestCase):
         # warns that none is air (at or below -500), as the command does.
         renderer = mcxray.Renderer(np.zeros((6, 10, 20), np.int16))
         options = dict(gantry=30, detector=(16, 16), pitch=2.0, samples=2**12 - 1)
-        with self.assertWarnsRegex(RuntimeWarning, r"^tf 'mu' takes CT in HU, but the values 0 \.\. 0 are "
-                                   r"not CT in HU \(no air\): read as HU all the same$"):
+        with self.assertWarnsRegex(RuntimeWarning, r"^tf 'mu' takes CT in HU, but the values 0 \.\. 0 hold no "
+                                   r"air \(none at or below -500\): read as HU all the same$"):
             mu = renderer.drr("mu", **options).images
         water = renderer.drr([(0, MU_WATER), (1, MU_WATER)], **options).images
         np.testing.assert_allclose(mu, water, rtol=1e-12)
         self.assertGreater(mu.max(), 0)
+
+    def test_a_radiograph_of_raw_values_warns_as_the_command(self):
+        # The raw TF's line integrals of CT numbers make exp(-those) a silhouette: said so, once
+        # the values span more than 100 (attenuation per mm spans far less: no warning there).
+        ct = mcxray.Renderer(water_box())
+        with self.assertWarnsRegex(RuntimeWarning, r"tf 'raw' weighs the values -1000 \.\. 0 as they are"):
+            ct.drr(detector=(8, 8), samples=1023, beer_lambert=True)
+        mu = mcxray.Renderer(np.where(water_box() == 0, MU_WATER, 0.0))
+        self.assertEqual((1, 8, 8), mu.drr(detector=(8, 8), samples=1023, beer_lambert=True).images.shape)
 
     def test_progress_and_interruption(self):
         renderer = mcxray.Renderer(water_box())
@@ -390,7 +399,7 @@ class BadInput(unittest.TestCase):
             (ValueError, r"unknown deposit 'splat' \(expected footprint or point\)",
              lambda: r.drr(deposit="splat")),
             (ValueError, "unknown method 'view-ordered'", lambda: r.drr(method="view-ordered")),
-            (ValueError, "samples= and target_error= are for the Monte Carlo methods",
+            (ValueError, "samples=, target_error= and deposit= are for the Monte Carlo methods",
              lambda: r.drr(method="reference", samples=1023)),
             (ValueError, "tolerance= goes with method='reference'", lambda: r.drr(tolerance=0.01)),
             (ValueError, "give samples= or target_error=, not both",
@@ -399,15 +408,20 @@ class BadInput(unittest.TestCase):
             # Each names what was given (once the detector size, or the view-up vector).
             (ValueError, r"pitch must be positive, got -1\.0", lambda: r.drr(pitch=-1)),
             (ValueError, r"sid must be positive, got 0\.0", lambda: r.drr(sid=0)),
-            (ValueError, r"gantry \(degrees\) must be at most 1e\+06 in magnitude, got \[1e\+308\]",
-             lambda: r.drr(gantry=1e308)),
+            (ValueError, r"gantry must be degrees from -1e6 to 1e6, got \[0\.0, -2000000\.0\]",
+             lambda: r.drr(gantry=[0, -2e6])),
             # The command's limit, 2^40 - 1: 2^62 once started a render of centuries.
             (ValueError, "samples must be 1 to 1099511627775, got 4611686018427387904",
              lambda: r.drr(samples=2**62)),
             (ValueError, "target_error must be between 0 and 1", lambda: r.drr(target_error=2)),
             (TypeError, "seed must be an integer", lambda: r.drr(seed=1.5)),
             (ValueError, "photons must be 0", lambda: r.drr(photons=-1)),
-            (ValueError, "i0 must be positive", lambda: r.drr(i0=0)),
+            (ValueError, "i0 must be positive", lambda: r.drr(i0=0, beer_lambert=True)),
+            # Options that would change nothing, refused as the command refuses them.
+            (ValueError, "i0= is the radiograph's unattenuated intensity: it goes with beer_lambert=True or photons=",
+             lambda: r.drr(i0=2)),
+            (ValueError, "samples=, target_error= and deposit= are for the Monte Carlo methods",
+             lambda: r.drr(method="reference", deposit="point")),
             (TypeError, "beer_lambert must be True or False", lambda: r.drr(beer_lambert="yes")),
             (TypeError, "progress must be a callable", lambda: r.drr(detector=(8, 8), progress=1)),
             (ValueError, r"the volume array must be 3D, \(z, y, x\), got shape \(4, 4\)",

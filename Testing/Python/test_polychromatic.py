@@ -66,6 +66,17 @@ class PolychromaticDRR(unittest.TestCase):
                 mcxray.polychromatic_drr(box, materials=path, size=(8, 8), samples=1000)
         with self.assertRaisesRegex(ValueError, "vtkImageData"):
             mcxray.polychromatic_drr(np.zeros((4, 4, 4)))
+        # The command's limit, 2^40 - 1 (2^62 once started a render of centuries).
+        with self.assertRaisesRegex(ValueError, "samples must be 1 to 1099511627775, got 4611686018427387904"):
+            mcxray.polychromatic_drr(box, size=(8, 8), samples=2**62)
+
+    def test_values_with_no_air_warn_as_the_command(self):
+        # All soft tissue, no air: read as HU all the same, with the command's warning.
+        box = soft_tissue_box()
+        box.GetPointData().GetScalars().Fill(40)
+        with self.assertWarnsRegex(RuntimeWarning, r"^the materials take CT in HU, but the values 40 \.\. 40 "
+                                   r"hold no air \(none at or below -500\): read as HU all the same$"):
+            mcxray.polychromatic_drr(box, size=(8, 8), samples=1023)
 
 
 if __name__ == "__main__":
