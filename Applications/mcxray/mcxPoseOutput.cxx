@@ -112,6 +112,19 @@ PoseRecord RecordOf(vtkImageData* image)
   return pose;
 }
 
+namespace
+{
+// An array of from's type, name and components, of `tuples` tuples.
+vtkSmartPointer<vtkDataArray> EmptyLike(vtkDataArray* from, vtkIdType tuples)
+{
+  vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(from->NewInstance());
+  values->SetName(from->GetName());
+  values->SetNumberOfComponents(from->GetNumberOfComponents());
+  values->SetNumberOfTuples(tuples);
+  return values;
+}
+}
+
 PoseStack::PoseStack(int count, const int size[2], const std::string& path)
   : Count(count)
   , EveryArray(Extension(path) == ".vti")
@@ -202,10 +215,7 @@ void PoseStack::AllocateLike(vtkImageData* image)
     {
       continue;
     }
-    vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(from->NewInstance());
-    values->SetName(from->GetName());
-    values->SetNumberOfComponents(from->GetNumberOfComponents());
-    values->SetNumberOfTuples(perSlice * this->Count);
+    vtkSmartPointer<vtkDataArray> values = EmptyLike(from, perSlice * this->Count);
     stack->GetPointData()->AddArray(values);
     if (from == slice->GetScalars())
     {
@@ -222,10 +232,7 @@ void PoseStack::AllocateLike(vtkImageData* image)
     {
       continue;
     }
-    vtkSmartPointer<vtkDataArray> values = vtk::TakeSmartPointer(from->NewInstance());
-    values->SetName(from->GetName());
-    values->SetNumberOfComponents(from->GetNumberOfComponents());
-    values->SetNumberOfTuples(this->Count);
+    vtkSmartPointer<vtkDataArray> values = EmptyLike(from, this->Count);
     values->Fill(0.0);
     stack->GetFieldData()->AddArray(values);
   }

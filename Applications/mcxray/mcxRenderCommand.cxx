@@ -284,7 +284,7 @@ private:
            << " as they are, so exp(-those) is near 0 in tissue, a silhouette";
       this->Warnings.push_back(text.str());
     }
-    const std::string note = NoAirNote(this->DataRange());
+    const std::string note = NoAirNote(range);
     if (note.empty())
     {
       return;
@@ -294,7 +294,7 @@ private:
       this->Warnings.push_back(
         "--spectrum's materials take CT in HU, but " + note + ": read as HU all the same");
     }
-    else if (tf == "mu" || tf.rfind("mu=", 0) == 0)
+    else if (IsAttenuationSpec(tf))
     {
       this->Warnings.push_back(
         "--tf " + tf + " takes CT in HU, but " + note + ": read as HU all the same");

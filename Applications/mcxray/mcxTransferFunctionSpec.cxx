@@ -71,7 +71,7 @@ vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
     tf->AddPoint(300, 0);
     return tf;
   }
-  if (spec == "mu" || spec.rfind("mu=", 0) == 0)
+  if (IsAttenuationSpec(spec))
   {
     vtkNew<vtkMCXAttenuationFunction> mu;
     if (spec != "mu")
@@ -152,6 +152,11 @@ std::vector<double> ProductNodes(vtkPiecewiseFunction* weight, double air, const
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
 }
+}
+
+bool IsAttenuationSpec(const std::string& spec)
+{
+  return spec == "mu" || spec.rfind("mu=", 0) == 0;
 }
 
 double AirValueOf(const double dataRange[2])

@@ -21,6 +21,9 @@ const char* TransferFunctionPresetHelp();
 vtkSmartPointer<vtkPiecewiseFunction> MakeTransferFunction(
   const std::string& spec, const double dataRange[2], std::string& error);
 
+/// Whether spec is the attenuation preset, "mu" or "mu=MU_WATER".
+bool IsAttenuationSpec(const std::string& spec);
+
 /// The value that counts as air in a volume of values dataRange: -1000 for
 /// CT in HU (a lowest value at or below -500 HU), else the lowest value.
 double AirValueOf(const double dataRange[2]);

@@ -102,11 +102,6 @@ bool IsIntegerType(int type)
   return type != VTK_FLOAT && type != VTK_DOUBLE;
 }
 
-bool IsAttenuationSpec(const std::string& spec)
-{
-  return spec == "mu" || spec.rfind("mu=", 0) == 0;
-}
-
 std::string Thousands(long long n)
 {
   std::string digits = std::to_string(n);
