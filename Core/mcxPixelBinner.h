@@ -161,6 +161,9 @@ public:
   void LocatePoints(const double* x, const double* y, const double* z, std::size_t n, double* fx,
     double* fy, double* f, std::uint8_t* located, double* inverseDepth = nullptr) const;
 
+  /// The affine map and perspective constants that Locate computes with.
+  const Map& Mapping() const { return this->Lanes; }
+
   /// The instruction set LocatePoints runs on (Highway's name: AVX3, AVX2, SSE4, EMU128...).
   static const char* LanesInstructionSet();
 

@@ -22,8 +22,9 @@
 // points: 2.8 and 2.5 % error without, 1.7 and 2.0 % with; a level order
 // first, or the level folded into the Morton key, did no better).
 //
-// The sort is two passes over every voxel, like the index build, and one
-// over each run of a few cells, so it pays where one view takes many TF
+// The sort is two passes over every voxel, like the index build (the first
+// locates each voxel and keeps its cell and position for the second), and
+// one over each run of a few cells, so it pays where one view takes many TF
 // edits. The order depends on the index, the cells and the bins alone,
 // never on the thread count.
 #ifndef mcxViewOrder_h
@@ -36,6 +37,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace mcx
@@ -184,6 +186,10 @@ struct ViewOrder
   /// is sorted by): kept for the next Build, whose pages it then finds
   /// touched already (4 bytes a voxel).
   std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> Rest;
+  /// Build's scratch in the index's order, each voxel's cell and position
+  /// (SlotKeyBytes), kept like Rest: one array of each width.
+  std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> SlotKeys;
+  std::vector<std::uint64_t, HugePageAllocator<std::uint64_t>> WideSlotKeys;
 
   std::int64_t NumberOfBins() const
   {
@@ -206,6 +212,22 @@ struct ViewOrder
     this->Ids = std::move(old.Ids);
     this->LevelInBin = std::move(old.LevelInBin);
     this->Rest = std::move(old.Rest);
+    this->SlotKeys = std::move(old.SlotKeys);
+    this->WideSlotKeys = std::move(old.WideSlotKeys);
+  }
+
+  /// The bytes of this order's arrays (a recycled one's) that a Build of
+  /// `voxels` and `cells` writes again; it lets the others go.
+  double RecyclableBytes(std::int64_t voxels, std::int64_t cells) const
+  {
+    const std::size_t n = static_cast<std::size_t>(voxels);
+    auto reused = [n](const auto& array)
+    {
+      using Value = typename std::decay_t<decltype(array)>::value_type;
+      return array.size() == n ? static_cast<double>(sizeof(Value)) * static_cast<double>(n) : 0.0;
+    };
+    return reused(this->Ids) + reused(this->LevelInBin) + reused(this->Rest) +
+      (SlotKeyBytes(cells) == 4 ? reused(this->SlotKeys) : reused(this->WideSlotKeys));
   }
 
   /// Reorders the index's ids (sorted by level, levelOffsets with
@@ -215,15 +237,35 @@ struct ViewOrder
   /// its Position, then as the index lists them; the last cell is the one
   /// off the image. Stable counting sorts: by the (bin, cell) key's high
   /// digit (ViewOrderDigits) in chunks of a layout fixed by the voxel and
-  /// digit counts, then each digit's run by the low digit, then each cell
-  /// by position, on `executor`. After each of three passes it calls
-  /// progress(fraction), which returns false to stop: then it returns false
-  /// and leaves no order. Throws std::length_error where the digits do not
-  /// fit (ViewOrderDigits::Fit).
+  /// digit counts, then each digit's run by its low digit and position, on
+  /// `executor`. Each voxel is located once: the first pass keeps its cell
+  /// and position (SlotKeyBytes a voxel) for the second. After each of
+  /// three passes it calls progress(fraction), which returns false to stop:
+  /// then it returns false and leaves no order. Throws std::length_error
+  /// where the digits do not fit (ViewOrderDigits::Fit).
   template <typename Executor, typename CellFunction, typename Progress>
   bool Build(const Executor& executor, const IdType* sortedIds, const std::int64_t* levelOffsets,
     std::int64_t numberOfLevels, std::vector<std::int64_t> binFirstLevel, std::int64_t cells,
     const CellFunction& cellOf, const Progress& progress)
+  {
+    return SlotKeyBytes(cells) == sizeof(std::uint32_t)
+      ? this->BuildWithSlotKeys<std::uint32_t>(executor, sortedIds, levelOffsets, numberOfLevels,
+          std::move(binFirstLevel), cells, cellOf, progress)
+      : this->BuildWithSlotKeys<std::uint64_t>(executor, sortedIds, levelOffsets, numberOfLevels,
+          std::move(binFirstLevel), cells, cellOf, progress);
+  }
+
+  /// The bytes Build keeps per voxel between its passes for an order of
+  /// `cells` cells: a cell and its position in 32 bits where they fit.
+  static int SlotKeyBytes(std::int64_t cells) { return cells <= (std::int64_t(1) << 24) ? 4 : 8; }
+
+  /// Build with each voxel's cell and position kept as a Key (Build takes
+  /// the narrowest that holds them; both give the same order).
+  template <typename Key, typename Executor, typename CellFunction, typename Progress>
+  bool BuildWithSlotKeys(const Executor& executor, const IdType* sortedIds,
+    const std::int64_t* levelOffsets, std::int64_t numberOfLevels,
+    std::vector<std::int64_t> binFirstLevel, std::int64_t cells, const CellFunction& cellOf,
+    const Progress& progress)
   {
     this->BinFirstLevel = std::move(binFirstLevel);
     const std::int64_t bins = this->NumberOfBins();
@@ -235,13 +277,18 @@ struct ViewOrder
       throw std::length_error("a view order of more (bin, cell) keys than its digits hold");
     }
     std::vector<std::int64_t> binOfLevel(static_cast<std::size_t>(numberOfLevels));
+    std::vector<std::uint16_t> levelInBin(static_cast<std::size_t>(numberOfLevels));
     for (std::int64_t b = 0; b < bins; ++b)
     {
-      std::fill(binOfLevel.begin() + this->BinFirstLevel[static_cast<std::size_t>(b)],
-        binOfLevel.begin() + this->BinFirstLevel[static_cast<std::size_t>(b + 1)], b);
+      const std::int64_t l0 = this->BinFirstLevel[static_cast<std::size_t>(b)];
+      for (std::int64_t l = l0; l < this->BinFirstLevel[static_cast<std::size_t>(b + 1)]; ++l)
+      {
+        binOfLevel[static_cast<std::size_t>(l)] = b;
+        levelInBin[static_cast<std::size_t>(l)] = static_cast<std::uint16_t>(l - l0);
+      }
     }
     const CountingSortLayout layout = MakeCountingSortLayout(voxels, digits.HighDigits);
-    // Visits the slots of chunk c: visit(slot, level, bin, cell, position).
+    // Visits the slots of chunk c with their level: visit(slot, level).
     auto forEachSlot = [&](std::int64_t c, const auto& visit)
     {
       const std::int64_t begin = c * layout.ChunkSize;
@@ -254,12 +301,16 @@ struct ViewOrder
         {
           ++level;
         }
-        const ViewCell where = cellOf(sortedIds[slot]);
-        visit(slot, level, binOfLevel[static_cast<std::size_t>(level)], where.Cell, where.Position);
+        visit(slot, level);
       }
     };
 
-    // Each chunk's count of every high digit.
+    // Each voxel located once: its cell and position kept, and each
+    // chunk's count of every high digit.
+    auto& slotKeys = this->SlotKeysOf(Key());
+    Resize(slotKeys, voxels);
+    this->SlotKeysOf(OtherKey<Key>()) = {}; // a recycled order's of the other width
+    Key* keyOf = slotKeys.data();
     std::vector<std::int64_t> counters(
       static_cast<std::size_t>(layout.NumberOfChunks * digits.HighDigits), 0);
     executor.For(0, layout.NumberOfChunks, 1,
@@ -269,8 +320,12 @@ struct ViewOrder
         {
           std::int64_t* count = counters.data() + c * digits.HighDigits;
           forEachSlot(c,
-            [&](std::int64_t, std::int64_t, std::int64_t bin, std::int64_t cell, std::uint8_t)
-            { ++count[digits.High(bin, cell)]; });
+            [&](std::int64_t slot, std::int64_t level)
+            {
+              const ViewCell where = cellOf(sortedIds[slot]);
+              keyOf[slot] = static_cast<Key>(static_cast<Key>(where.Cell) << 8 | where.Position);
+              ++count[digits.High(binOfLevel[static_cast<std::size_t>(level)], where.Cell)];
+            });
         }
       });
     if (!progress(1.0 / 3.0))
@@ -306,15 +361,15 @@ struct ViewOrder
         {
           std::int64_t* cursor = counters.data() + c * digits.HighDigits;
           forEachSlot(c,
-            [&](std::int64_t slot, std::int64_t level, std::int64_t bin, std::int64_t cell,
-              std::uint8_t position)
+            [&](std::int64_t slot, std::int64_t level)
             {
-              const std::size_t to = static_cast<std::size_t>(cursor[digits.High(bin, cell)]++);
+              const Key key = keyOf[slot];
+              const std::int64_t cell = static_cast<std::int64_t>(key >> 8);
+              const std::size_t to = static_cast<std::size_t>(
+                cursor[digits.High(binOfLevel[static_cast<std::size_t>(level)], cell)]++);
               this->Ids[to] = sortedIds[slot];
-              this->LevelInBin[to] = static_cast<std::uint16_t>(level -
-                this->BinFirstLevel[static_cast<std::size_t>(
-                  binOfLevel[static_cast<std::size_t>(level)])]);
-              rest[to] = digits.Low(cell) << 8 | position;
+              this->LevelInBin[to] = levelInBin[static_cast<std::size_t>(level)];
+              rest[to] = digits.Low(cell) << 8 | static_cast<std::uint32_t>(key & 0xffu);
             });
         }
       });
@@ -325,8 +380,8 @@ struct ViewOrder
       return false;
     }
 
-    // Each run by its low digit, which also gives where each key starts,
-    // then each key by position.
+    // Each run by its low digit and position, which also gives where each
+    // key starts.
     std::vector<std::int64_t> keyStarts(static_cast<std::size_t>(keys + 1), voxels);
     typename Executor::template ThreadLocal<RunSorter> sorters;
     executor.For(0, digits.HighDigits, 1,
@@ -383,6 +438,11 @@ struct ViewOrder
   }
 
 private:
+  auto& SlotKeysOf(std::uint32_t) { return this->SlotKeys; }
+  auto& SlotKeysOf(std::uint64_t) { return this->WideSlotKeys; }
+  template <typename Key>
+  using OtherKey = typename std::conditional<sizeof(Key) == 4, std::uint64_t, std::uint32_t>::type;
+
   /// Makes `array` hold n entries, its contents left undefined: a
   /// recycled array of another size is let go rather than copied.
   template <typename Array>
@@ -396,10 +456,10 @@ private:
   }
 
   /// Sorts a high digit's run [begin, end) of `count` keys (its entries'
-  /// rest: the key's low digit, then the position in 8 bits) by key, then
-  /// each key by position, both stably, skipping what is in order already;
-  /// writes where each of its keys starts (keyStarts[0, count)). Reuses its
-  /// buffers from run to run.
+  /// rest: the key's low digit, then the position in 8 bits) by key and
+  /// position, stably, unless it is in order already; writes where each of
+  /// its keys starts (keyStarts[0, count)). Reuses its buffers from run to
+  /// run.
   class RunSorter
   {
   public:
@@ -410,83 +470,51 @@ private:
       const std::size_t keys = static_cast<std::size_t>(count);
       std::uint32_t* r = rest + begin;
       this->Starts.assign(keys + 1, 0);
+      std::size_t positions[257] = {};
       bool ordered = true;
       for (std::size_t i = 0; i < n; ++i)
       {
-        ordered = ordered && (i == 0 || (r[i - 1] >> 8) <= (r[i] >> 8));
+        ordered = ordered && (i == 0 || r[i - 1] <= r[i]);
         ++this->Starts[(r[i] >> 8) + 1];
+        ++positions[(r[i] & 0xffu) + 1];
       }
       for (std::size_t k = 0; k < keys; ++k)
       {
         this->Starts[k + 1] += this->Starts[k];
         keyStarts[k] = begin + static_cast<std::int64_t>(this->Starts[k]);
       }
-      if (!ordered)
-      {
-        this->Cursors.assign(this->Starts.begin(), this->Starts.end() - 1);
-        this->Permute(begin, n, r, ids, levels,
-          [this](std::uint32_t value) { return this->Cursors[value >> 8]++; });
-      }
-      for (std::size_t k = 0; k < keys; ++k)
-      {
-        this->SortByPosition(begin + static_cast<std::int64_t>(this->Starts[k]),
-          static_cast<std::size_t>(this->Starts[k + 1] - this->Starts[k]), rest, ids, levels);
-      }
-    }
-
-  private:
-    // One key's entries [begin, begin + n) by position.
-    void SortByPosition(
-      std::int64_t begin, std::size_t n, std::uint32_t* rest, IdType* ids, std::uint16_t* levels)
-    {
-      std::uint32_t* r = rest + begin;
-      auto position = [](std::uint32_t value) { return value & 0xffu; };
-      bool ordered = true;
-      for (std::size_t i = 1; i < n && ordered; ++i)
-      {
-        ordered = position(r[i - 1]) <= position(r[i]);
-      }
       if (ordered)
       {
-        return; // the off-image cell among them: its voxels all have position 0
+        return; // the off-image cell's run among them: its voxels all have position 0
       }
-      std::size_t starts[257] = {};
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        ++starts[position(r[i]) + 1];
-      }
+      // Least significant digit first, both stable: by position into the
+      // buffers, then by key back into place.
       for (int p = 0; p < 256; ++p)
       {
-        starts[p + 1] += starts[p];
+        positions[p + 1] += positions[p];
       }
-      this->Permute(begin, n, r, ids, levels,
-        [&starts, &position](std::uint32_t value) { return starts[position(value)]++; });
-    }
-
-    // Moves entry i of [begin, begin + n) to slot to(rest[i]), through the
-    // buffers.
-    template <typename Destination>
-    void Permute(std::int64_t begin, std::size_t n, std::uint32_t* r, IdType* ids,
-      std::uint16_t* levels, const Destination& to)
-    {
       this->Ids.resize(n);
       this->Levels.resize(n);
       this->Rests.resize(n);
       for (std::size_t i = 0; i < n; ++i)
       {
-        const std::size_t slot = to(r[i]);
-        const std::size_t from = static_cast<std::size_t>(begin) + i;
-        this->Ids[slot] = ids[from];
-        this->Levels[slot] = levels[from];
+        const std::size_t slot = positions[r[i] & 0xffu]++;
+        this->Ids[slot] = ids[static_cast<std::size_t>(begin) + i];
+        this->Levels[slot] = levels[static_cast<std::size_t>(begin) + i];
         this->Rests[slot] = r[i];
       }
-      std::copy(this->Ids.begin(), this->Ids.end(), ids + begin);
-      std::copy(this->Levels.begin(), this->Levels.end(), levels + begin);
-      std::copy(this->Rests.begin(), this->Rests.end(), r);
+      this->Starts.pop_back(); // now each key's write cursor
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const std::size_t slot = this->Starts[this->Rests[i] >> 8]++;
+        ids[static_cast<std::size_t>(begin) + slot] = this->Ids[i];
+        levels[static_cast<std::size_t>(begin) + slot] = this->Levels[i];
+        r[slot] = this->Rests[i];
+      }
     }
 
+  private:
     std::vector<std::size_t> Starts;
-    std::vector<std::size_t> Cursors;
     std::vector<IdType> Ids;
     std::vector<std::uint16_t> Levels;
     std::vector<std::uint32_t> Rests;

@@ -1,6 +1,7 @@
 #include "vtkMCXViewOrderedSamplingPrivate.h"
 
 #include "mcxControlImage.h"
+#include "mcxGridPixelPositions.h"
 #include "mcxPixelBinner.h"
 #include "mcxProjectionGeometry.h"
 #include "mcxRandom.h"
@@ -292,18 +293,10 @@ struct vtkMCXViewOrderedSampling::SortedView
   vtkTypeInt64 BinSeed = 0;
 
   // What the arrays recycled from the previous order (ViewOrder::Recycle,
-  // of one width) hold already for an order of `voxels`: those of the same
-  // size are written again, the others let go.
-  double RecycledBytes(std::int64_t voxels) const
+  // of one width) hold already for an order of `voxels` and `cells`.
+  double RecycledBytes(std::int64_t voxels, std::int64_t cells) const
   {
-    const std::size_t n = static_cast<std::size_t>(voxels);
-    auto reused = [n](const auto& array)
-    {
-      using Value = typename std::decay_t<decltype(array)>::value_type;
-      return array.size() == n ? static_cast<double>(sizeof(Value)) * static_cast<double>(n) : 0.0;
-    };
-    return reused(this->Narrow.Ids) + reused(this->Narrow.LevelInBin) + reused(this->Narrow.Rest) +
-      reused(this->Wide.Ids) + reused(this->Wide.LevelInBin) + reused(this->Wide.Rest);
+    return this->Narrow.RecyclableBytes(voxels, cells) + this->Wide.RecyclableBytes(voxels, cells);
   }
 
   std::int64_t BinsOf(bool wideIds) const
@@ -610,11 +603,13 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
     return nullptr;
   }
   const mcx::CountingSortLayout layout = mcx::MakeCountingSortLayout(voxels, digits.HighDigits);
-  // The order (id, level), each entry's low digit and position, the
-  // cursors and the keys' starts.
+  // The order (id, level), each entry's low digit and position, each
+  // voxel's cell and position, the cursors and the keys' starts.
   if (!mcx::CheckMemory(sampler,
-        static_cast<double>(voxels) * ((view.WideIds ? 8.0 : 4.0) + 2.0 + 4.0) -
-          sorted->RecycledBytes(voxels) +
+        static_cast<double>(voxels) *
+            ((view.WideIds ? 8.0 : 4.0) + 2.0 + 4.0 +
+              mcx::ViewOrder<std::uint32_t>::SlotKeyBytes(cells)) -
+          sorted->RecycledBytes(voxels, cells) +
           8.0 * static_cast<double>(layout.NumberOfChunks + 1) *
             static_cast<double>(digits.HighDigits) +
           8.0 * static_cast<double>(keys + 1),
@@ -626,6 +621,8 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   double origin[3], matrix[9];
   view.SourceToWorld(origin, matrix);
   const mcx::PixelBinner binner(geometry, origin, matrix);
+  const mcx::GridPixelPositions positions(
+    binner, view.Dimensions[0], view.Dimensions[1], view.Dimensions[2]);
   auto progress = [sampler](double fraction)
   {
     sampler->UpdateProgress((sampler->GetControlVariate() ? 0.3 : 0.5) * fraction);
@@ -638,13 +635,11 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
       static_cast<std::uint64_t>(view.Dimensions[1]));
     auto cellOf = [&](IdType id)
     {
-      std::uint64_t voxel[3];
-      decoder.Decode(id, voxel[0], voxel[1], voxel[2]);
-      const double p[3] = { static_cast<double>(voxel[0]), static_cast<double>(voxel[1]),
-        static_cast<double>(voxel[2]) };
+      std::uint64_t i, j, k;
+      decoder.Decode(id, i, j, k);
       double fx, fy;
       mcx::ViewCell where;
-      if (!binner.PixelPosition(p, fx, fy) || !(fx >= 0 && fx < geometry.Size[0]) ||
+      if (!positions.PixelPosition(i, j, k, fx, fy) || !(fx >= 0 && fx < geometry.Size[0]) ||
         !(fy >= 0 && fy < geometry.Size[1]))
       {
         where.Cell = pixels;

@@ -8,11 +8,13 @@
 // samples never stored), the stored cloud's sampling (vtkMCXPointSampler,
 // refilled in place) and the stored cloud's projection, each with point and
 // footprint deposits, the projections in a parallel and a perspective view
-// (oblique, 512^2), M = 2^22 - 1. Volumes: the bonsai CT (256^3) and, with
+// (oblique, 512^2), M = 2^22 - 1; and a new view's sort of every voxel
+// (ViewOrderSort, the view-ordered cloud's, 256^2). Volumes: the bonsai CT (256^3) and, with
 // --large, the CT chest upsampled (linear) past 400 M voxels (654 x 687 x
 // 894: a 2.5 GB peak and a few seconds to build on 2 cores).
 //
-// Names: Ceiling/<what>/threads:<n>, <path>/<volume>/<view>/<deposit>/threads:<n>.
+// Names: Ceiling/<what>/threads:<n>, <path>/<volume>/<view>/<deposit>/threads:<n>
+// (ViewOrderSort's deposit "none": its items are the voxels sorted).
 // Run through Testing/Benchmarks/kernel-rates, which reports medians per
 // core and the ratio to a baseline build.
 //
@@ -38,6 +40,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -427,8 +430,55 @@ void CloudProjection(benchmark::State& state, Volume* v, int view, int deposit, 
   state.SetLabel(Dimensions(v->Image));
 }
 
+// A new view's sort (vtkMCXPointSampler's VIEW_ORDERED, no control image,
+// 2^19 - 1 points, 256^2 pixels of the perspective view): each iteration
+// turns the ordering view 10 degrees one way or back, so every update sorts
+// every voxel again, into the previous order's arrays (a later view's cost);
+// first_view_s is the first view's, into fresh arrays.
+void ViewOrderSort(benchmark::State& state, Volume* v, int threads)
+{
+  auto sampler = vtkSmartPointer<vtkMCXPointSampler>::New();
+  sampler->SetInputConnection(v->Index->GetOutputPort());
+  sampler->SetTransferFunction(v->TF);
+  sampler->SetStrategyToViewOrdered();
+  sampler->SetSampleExponent(19);
+  sampler->ControlVariateOff();
+  vtkNew<vtkCamera> camera;
+  camera->DeepCopy(v->Views[1]);
+  const int size = 256;
+  double turn = 10.0;
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads },
+    [&]()
+    {
+      sampler->SetOrderingView(camera, size, size);
+      const auto start = std::chrono::steady_clock::now();
+      sampler->Update(); // the first view: fresh arrays
+      state.counters["first_view_s"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const CoresUsed cores;
+      for (auto _ : state)
+      {
+        camera->Azimuth(turn);
+        turn = -turn;
+        sampler->SetOrderingView(camera, size, size);
+        sampler->Update();
+      }
+      cores.Report(state);
+    });
+  state.SetItemsProcessed(state.iterations() * v->Image->GetNumberOfPoints());
+  state.SetLabel(Dimensions(v->Image));
+}
+
 void RegisterKernels(Volume* v)
 {
+  for (int threads = 1; threads <= 2; ++threads)
+  {
+    benchmark::RegisterBenchmark(
+      ("ViewOrderSort/" + v->Name + "/perspective/none/threads:" + std::to_string(threads)).c_str(),
+      ViewOrderSort, v, threads)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  }
   const char* views[2] = { "parallel", "perspective" };
   const char* deposits[2] = { "point", "footprint" };
   for (int d = 0; d < 2; ++d)

@@ -11,7 +11,9 @@
 #include "mcxEveryVoxelSource.h"
 #include "mcxExecutor.h"
 #include "mcxFixedPoint.h"
+#include "mcxGridPixelPositions.h"
 #include "mcxHugePageAllocator.h"
+#include "mcxPixelBinner.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
 #include "mcxSampleAccumulator.h"
@@ -482,6 +484,79 @@ TEST(ViewOrder, PositionInPixelIsTheMortonRankOfSixteenthPixelSquares)
   }
 }
 
+TEST(ViewOrder, GridPixelPositionsArePixelPositionBitForBit)
+{
+  // An oblique view of a 23 x 17 x 29 grid, turned and sheared, whose
+  // voxels fall in the image, off it and (perspective) behind the near
+  // plane: the tables' positions and refusals are PixelPosition's.
+  mcx::ProjectionGeometry g;
+  g.Size[0] = 31;
+  g.Size[1] = 19;
+  g.Spacing[0] = 0.7;
+  g.Spacing[1] = 0.45;
+  g.Origin[0] = -9.0;
+  g.Origin[1] = -4.0;
+  const double a = 0.4, b = -0.6;
+  const double u[3] = { std::cos(a), std::sin(a), 0 };
+  const double v[3] = { -std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b) };
+  for (int r = 0; r < 3; ++r)
+  {
+    g.U[r] = u[r];
+    g.V[r] = v[r];
+  }
+  g.W[0] = u[1] * v[2] - u[2] * v[1];
+  g.W[1] = u[2] * v[0] - u[0] * v[2];
+  g.W[2] = u[0] * v[1] - u[1] * v[0];
+  for (int r = 0; r < 3; ++r)
+  {
+    g.Eye[r] = 2.0 * g.W[r] + 0.3 * r;
+  }
+  g.FocalDistance = 4.0;
+  const double origin[3] = { -3.0, -2.5, -4.0 };
+  const double matrix[9] = { 0.31, 0.02, 0.0, -0.01, 0.27, 0.03, 0.015, 0.0, 0.33 };
+  const std::int64_t nx = 23, ny = 17, nz = 29;
+  for (const bool perspective : { false, true })
+  {
+    g.Perspective = perspective;
+    g.NearDistance = perspective ? 0.5 : 0.0;
+    g.Obliquity[0] = perspective ? 0.0 : 0.2;
+    const mcx::PixelBinner binner(g, origin, matrix);
+    const mcx::GridPixelPositions positions(binner, nx, ny, nz);
+    int inImage = 0, refused = 0;
+    for (std::int64_t k = 0; k < nz; ++k)
+    {
+      for (std::int64_t j = 0; j < ny; ++j)
+      {
+        for (std::int64_t i = 0; i < nx; ++i)
+        {
+          const double p[3] = { double(i), double(j), double(k) };
+          double ex = 0, ey = 0, fx = 0, fy = 0;
+          const bool expected = binner.PixelPosition(p, ex, ey);
+          ASSERT_EQ(expected,
+            positions.PixelPosition(std::uint64_t(i), std::uint64_t(j), std::uint64_t(k), fx, fy))
+            << i << " " << j << " " << k;
+          if (expected)
+          {
+            ASSERT_EQ(0, std::memcmp(&ex, &fx, sizeof(double))) << ex << " against " << fx;
+            ASSERT_EQ(0, std::memcmp(&ey, &fy, sizeof(double))) << ey << " against " << fy;
+            inImage += ex >= 0 && ex < g.Size[0] && ey >= 0 && ey < g.Size[1] ? 1 : 0;
+          }
+          else
+          {
+            ++refused;
+          }
+        }
+      }
+    }
+    // Both kinds of voxel were compared.
+    EXPECT_GT(inImage, 500) << perspective;
+    if (perspective)
+    {
+      EXPECT_GT(refused, 500);
+    }
+  }
+}
+
 TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
 {
   // Voxels of random levels in a random cell and position each: the order
@@ -523,6 +598,29 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
       EXPECT_EQ(serial.Ids, threaded.Ids) << n;
       EXPECT_EQ(serial.LevelInBin, threaded.LevelInBin) << n;
       EXPECT_EQ(serial.BinOffsets, threaded.BinOffsets) << n;
+      // Each voxel's cell and position kept in 64 bits (views of more than
+      // 2^24 cells) instead of 32: the same order, then 32 bits again into
+      // the recycled arrays.
+      ASSERT_EQ(4, mcx::ViewOrder<std::uint32_t>::SlotKeyBytes(cells));
+      mcx::ViewOrder<std::uint32_t> wide;
+      ASSERT_TRUE(wide.BuildWithSlotKeys<std::uint64_t>(
+        ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
+      EXPECT_EQ(serial.Ids, wide.Ids) << n;
+      EXPECT_EQ(serial.LevelInBin, wide.LevelInBin) << n;
+      EXPECT_EQ(serial.KeyStarts, wide.KeyStarts) << n;
+      EXPECT_EQ(static_cast<std::size_t>(offsets[levels]), wide.WideSlotKeys.size());
+      mcx::ViewOrder<std::uint32_t> narrowAgain;
+      narrowAgain.Recycle(std::move(wide));
+      ASSERT_TRUE(narrowAgain.Build(
+        ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
+      EXPECT_EQ(serial.Ids, narrowAgain.Ids) << n;
+      EXPECT_TRUE(narrowAgain.WideSlotKeys.empty()); // let go, not kept beside the narrow keys
+      // What a next Build writes again: ids, levels, digits and keys of
+      // the width its cells take (a view of more than 2^24 cells: wide).
+      const double voxels = static_cast<double>(offsets[levels]);
+      EXPECT_EQ(voxels * (4 + 2 + 4 + 4), narrowAgain.RecyclableBytes(offsets[levels], cells));
+      EXPECT_EQ(voxels * (4 + 2 + 4), narrowAgain.RecyclableBytes(offsets[levels], (1 << 24) + 1));
+      EXPECT_EQ(0.0, narrowAgain.RecyclableBytes(offsets[levels] + 1, cells));
       // Built into the arrays of an order of other cells (Recycle), or of
       // fewer voxels: the same order.
       for (const std::int64_t first : { n, n / 2 })
