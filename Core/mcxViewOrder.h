@@ -23,10 +23,10 @@
 // first, or the level folded into the Morton key, did no better).
 //
 // The sort is two passes over every voxel, like the index build (the first
-// locates each voxel and keeps its cell and position for the second), and
-// one over each run of a few cells, so it pays where one view takes many TF
-// edits. The order depends on the index, the cells and the bins alone,
-// never on the thread count.
+// locates each voxel and keeps its cell and position for the second), then
+// three over each run of a few cells (a count, and a stable scatter by
+// position, then by cell), so it pays where one view takes many TF edits. The order depends on the
+// index, the cells and the bins alone, never on the thread count.
 #ifndef mcxViewOrder_h
 #define mcxViewOrder_h
 
@@ -143,6 +143,10 @@ struct ViewOrderDigits
   }
   /// Whether the low digit and the position fit their 32 bits.
   bool Fit() const { return this->LowBits <= MaximumLowBits; }
+  /// The bytes ViewOrder::Build keeps per voxel between its passes, its
+  /// cell and position: 4 where a cell fits 24 bits (up to 2^24 cells, a
+  /// view of fewer than 2^24 pixels and the cell off it), else 8.
+  static int SlotKeyBytes(std::int64_t cells) { return cells <= (std::int64_t(1) << 24) ? 4 : 8; }
   std::int64_t High(std::int64_t bin, std::int64_t cell) const
   {
     return bin * this->DigitsPerBin +
@@ -187,7 +191,7 @@ struct ViewOrder
   /// touched already (4 bytes a voxel).
   std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> Rest;
   /// Build's scratch in the index's order, each voxel's cell and position
-  /// (SlotKeyBytes), kept like Rest: one array of each width.
+  /// (ViewOrderDigits::SlotKeyBytes), kept like Rest: one array of each width.
   std::vector<std::uint32_t, HugePageAllocator<std::uint32_t>> SlotKeys;
   std::vector<std::uint64_t, HugePageAllocator<std::uint64_t>> WideSlotKeys;
 
@@ -227,7 +231,8 @@ struct ViewOrder
       return array.size() == n ? static_cast<double>(sizeof(Value)) * static_cast<double>(n) : 0.0;
     };
     return reused(this->Ids) + reused(this->LevelInBin) + reused(this->Rest) +
-      (SlotKeyBytes(cells) == 4 ? reused(this->SlotKeys) : reused(this->WideSlotKeys));
+      (ViewOrderDigits::SlotKeyBytes(cells) == 4 ? reused(this->SlotKeys)
+                                                 : reused(this->WideSlotKeys));
   }
 
   /// Reorders the index's ids (sorted by level, levelOffsets with
@@ -239,7 +244,7 @@ struct ViewOrder
   /// digit (ViewOrderDigits) in chunks of a layout fixed by the voxel and
   /// digit counts, then each digit's run by its low digit and position, on
   /// `executor`. Each voxel is located once: the first pass keeps its cell
-  /// and position (SlotKeyBytes a voxel) for the second. After each of
+  /// and position (ViewOrderDigits::SlotKeyBytes a voxel) for the second. After each of
   /// three passes it calls progress(fraction), which returns false to stop:
   /// then it returns false and leaves no order. Throws std::length_error
   /// where the digits do not fit (ViewOrderDigits::Fit).
@@ -248,16 +253,12 @@ struct ViewOrder
     std::int64_t numberOfLevels, std::vector<std::int64_t> binFirstLevel, std::int64_t cells,
     const CellFunction& cellOf, const Progress& progress)
   {
-    return SlotKeyBytes(cells) == sizeof(std::uint32_t)
+    return ViewOrderDigits::SlotKeyBytes(cells) == sizeof(std::uint32_t)
       ? this->BuildWithSlotKeys<std::uint32_t>(executor, sortedIds, levelOffsets, numberOfLevels,
           std::move(binFirstLevel), cells, cellOf, progress)
       : this->BuildWithSlotKeys<std::uint64_t>(executor, sortedIds, levelOffsets, numberOfLevels,
           std::move(binFirstLevel), cells, cellOf, progress);
   }
-
-  /// The bytes Build keeps per voxel between its passes for an order of
-  /// `cells` cells: a cell and its position in 32 bits where they fit.
-  static int SlotKeyBytes(std::int64_t cells) { return cells <= (std::int64_t(1) << 24) ? 4 : 8; }
 
   /// Build with each voxel's cell and position kept as a Key (Build takes
   /// the narrowest that holds them; both give the same order).
@@ -307,9 +308,12 @@ struct ViewOrder
 
     // Each voxel located once: its cell and position kept, and each
     // chunk's count of every high digit.
+    // A recycled order's keys of the other width are let go first (an
+    // assignment of {} would keep their memory).
+    auto& otherKeys = this->SlotKeysOf(OtherKey<Key>());
+    otherKeys = std::decay_t<decltype(otherKeys)>();
     auto& slotKeys = this->SlotKeysOf(Key());
     Resize(slotKeys, voxels);
-    this->SlotKeysOf(OtherKey<Key>()) = {}; // a recycled order's of the other width
     Key* keyOf = slotKeys.data();
     std::vector<std::int64_t> counters(
       static_cast<std::size_t>(layout.NumberOfChunks * digits.HighDigits), 0);

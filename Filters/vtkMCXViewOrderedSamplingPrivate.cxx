@@ -607,8 +607,7 @@ vtkMCXViewOrderedSampling::SortedView* vtkMCXViewOrderedSampling::ViewOrderFor(
   // voxel's cell and position, the cursors and the keys' starts.
   if (!mcx::CheckMemory(sampler,
         static_cast<double>(voxels) *
-            ((view.WideIds ? 8.0 : 4.0) + 2.0 + 4.0 +
-              mcx::ViewOrder<std::uint32_t>::SlotKeyBytes(cells)) -
+            ((view.WideIds ? 8.0 : 4.0) + 2.0 + 4.0 + mcx::ViewOrderDigits::SlotKeyBytes(cells)) -
           sorted->RecycledBytes(voxels, cells) +
           8.0 * static_cast<double>(layout.NumberOfChunks + 1) *
             static_cast<double>(digits.HighDigits) +

@@ -13,6 +13,7 @@
 #include "mcxFixedPoint.h"
 #include "mcxGridPixelPositions.h"
 #include "mcxHugePageAllocator.h"
+#include "mcxObliqueTestGeometry.h"
 #include "mcxPixelBinner.h"
 #include "mcxProgressiveImage.h"
 #include "mcxRadiographEffects.h"
@@ -486,40 +487,15 @@ TEST(ViewOrder, PositionInPixelIsTheMortonRankOfSixteenthPixelSquares)
 
 TEST(ViewOrder, GridPixelPositionsArePixelPositionBitForBit)
 {
-  // An oblique view of a 23 x 17 x 29 grid, turned and sheared, whose
-  // voxels fall in the image, off it and (perspective) behind the near
-  // plane: the tables' positions and refusals are PixelPosition's.
-  mcx::ProjectionGeometry g;
-  g.Size[0] = 31;
-  g.Size[1] = 19;
-  g.Spacing[0] = 0.7;
-  g.Spacing[1] = 0.45;
-  g.Origin[0] = -9.0;
-  g.Origin[1] = -4.0;
-  const double a = 0.4, b = -0.6;
-  const double u[3] = { std::cos(a), std::sin(a), 0 };
-  const double v[3] = { -std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b) };
-  for (int r = 0; r < 3; ++r)
-  {
-    g.U[r] = u[r];
-    g.V[r] = v[r];
-  }
-  g.W[0] = u[1] * v[2] - u[2] * v[1];
-  g.W[1] = u[2] * v[0] - u[0] * v[2];
-  g.W[2] = u[0] * v[1] - u[1] * v[0];
-  for (int r = 0; r < 3; ++r)
-  {
-    g.Eye[r] = 2.0 * g.W[r] + 0.3 * r;
-  }
-  g.FocalDistance = 4.0;
-  const double origin[3] = { -3.0, -2.5, -4.0 };
-  const double matrix[9] = { 0.31, 0.02, 0.0, -0.01, 0.27, 0.03, 0.015, 0.0, 0.33 };
+  // A grid in an oblique view whose voxels fall in the image, off it and
+  // (perspective) behind the near plane: the tables' positions and
+  // refusals are PixelPosition's.
+  const double origin[3] = { -7.0, -4.0, -90.0 };
+  const double matrix[9] = { 0.6, 0.02, 0.0, -0.01, 0.5, 0.03, 0.015, 0.0, 4.0 };
   const std::int64_t nx = 23, ny = 17, nz = 29;
   for (const bool perspective : { false, true })
   {
-    g.Perspective = perspective;
-    g.NearDistance = perspective ? 0.5 : 0.0;
-    g.Obliquity[0] = perspective ? 0.0 : 0.2;
+    const mcx::ProjectionGeometry g = ObliqueTestGeometry(perspective);
     const mcx::PixelBinner binner(g, origin, matrix);
     const mcx::GridPixelPositions positions(binner, nx, ny, nz);
     int inImage = 0, refused = 0;
@@ -550,6 +526,11 @@ TEST(ViewOrder, GridPixelPositionsArePixelPositionBitForBit)
     }
     // Both kinds of voxel were compared.
     EXPECT_GT(inImage, 500) << perspective;
+    // Off the grid (an id past the volume): not located, nothing read.
+    double fx = 0, fy = 0;
+    EXPECT_FALSE(positions.PixelPosition(std::uint64_t(nx), 0, 0, fx, fy));
+    EXPECT_FALSE(positions.PixelPosition(0, std::uint64_t(ny), 0, fx, fy));
+    EXPECT_FALSE(positions.PixelPosition(0, 0, std::uint64_t(nz), fx, fy));
     if (perspective)
     {
       EXPECT_GT(refused, 500);
@@ -601,7 +582,7 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
       // Each voxel's cell and position kept in 64 bits (views of more than
       // 2^24 cells) instead of 32: the same order, then 32 bits again into
       // the recycled arrays.
-      ASSERT_EQ(4, mcx::ViewOrder<std::uint32_t>::SlotKeyBytes(cells));
+      ASSERT_EQ(4, mcx::ViewOrderDigits::SlotKeyBytes(cells));
       mcx::ViewOrder<std::uint32_t> wide;
       ASSERT_TRUE(wide.BuildWithSlotKeys<std::uint64_t>(
         ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
@@ -614,7 +595,8 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
       ASSERT_TRUE(narrowAgain.Build(
         ThreadExecutor(), sorted.data(), offsets.data(), levels, bins, cells, cellOf, keepGoing));
       EXPECT_EQ(serial.Ids, narrowAgain.Ids) << n;
-      EXPECT_TRUE(narrowAgain.WideSlotKeys.empty()); // let go, not kept beside the narrow keys
+      // Let go, not kept beside the narrow keys.
+      EXPECT_EQ(0u, narrowAgain.WideSlotKeys.capacity());
       // What a next Build writes again: ids, levels, digits and keys of
       // the width its cells take (a view of more than 2^24 cells: wide).
       const double voxels = static_cast<double>(offsets[levels]);
@@ -683,6 +665,41 @@ TEST(ViewOrder, EachVoxelOnceByBinCellPositionLevelAndId)
         EXPECT_TRUE(stopped.BinOffsets.empty());
       }
     }
+  }
+}
+
+TEST(ViewOrder, KeysAtTheWidthsBoundaryKeepTheHighestCells)
+{
+  // The most cells each key width holds: 2^24 (a view of 2^24 - 1 pixels)
+  // in 32 bits, 2^24 + 1 (a 4096 x 4096 view) in 64, whose last cell, 2^24,
+  // a key cut to 32 bits would sort as cell 0. Voxels in the top cells and
+  // in low ones, in an order of one bin.
+  for (const std::int64_t cells : { std::int64_t(1) << 24, (std::int64_t(1) << 24) + 1 })
+  {
+    ASSERT_EQ(cells == (std::int64_t(1) << 24) ? 4 : 8, mcx::ViewOrderDigits::SlotKeyBytes(cells));
+    const std::vector<std::int64_t> cellOfId = { cells - 1, cells - 2, 3, cells - 1, 0, 1,
+      cells - 3, 5 };
+    const std::vector<int> level(cellOfId.size(), 0);
+    std::vector<std::int64_t> offsets;
+    const std::vector<std::uint32_t> sorted = SortByLevel(level, 1, offsets);
+    auto cellOf = [&](std::uint32_t id)
+    {
+      mcx::ViewCell where;
+      where.Cell = cellOfId[id];
+      // Positions against the ids' order; none off the image (the last cell).
+      where.Position = static_cast<std::uint8_t>(where.Cell == cells - 1 ? 0 : 255 - id);
+      return where;
+    };
+    mcx::ViewOrder<std::uint32_t> order;
+    ASSERT_TRUE(order.Build(mcx::SerialExecutor(), sorted.data(), offsets.data(), 1, { 0, 1 },
+      cells, cellOf, [](double) { return true; }));
+    // By cell: ids 4, 5, 2, 7, 6, 1, then 0 and 3 off the image (the same
+    // position, so as the index lists them).
+    EXPECT_EQ((std::vector<std::uint32_t>{ 4, 5, 2, 7, 6, 1, 0, 3 }),
+      std::vector<std::uint32_t>(order.Ids.begin(), order.Ids.end()))
+      << cells << " cells";
+    EXPECT_EQ(6, order.KeyStarts[static_cast<std::size_t>(cells - 1)]);
+    EXPECT_EQ(5, order.KeyStarts[static_cast<std::size_t>(cells - 2)]);
   }
 }
 

@@ -704,5 +704,30 @@ TEST(Data, ACorruptIndexIsAnErrorNotACrash)
       EXPECT_NE(std::string::npos, messages.Errors.find("Cannot project"))
         << damage << " " << reference;
     }
+    if (damage == 1)
+    {
+      // The view order locates every id before it samples: the bad one
+      // falls off the image, and nothing is read past the volume (which a
+      // sanitizer build would abort on).
+      vtkNew<vtkPiecewiseFunction> flat;
+      flat->AddPoint(-1e9, 1.0);
+      flat->AddPoint(1e9, 1.0);
+      double b[6];
+      broken->GetBounds(b);
+      vtkNew<vtkCamera> camera;
+      camera->SetFocalPoint((b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2);
+      camera->SetPosition((b[0] + b[1]) / 2, b[2] - 10 * (b[3] - b[2] + 1), (b[4] + b[5]) / 2);
+      camera->SetViewUp(0, 0, 1);
+      vtkNew<vtkMCXPointSampler> sampler;
+      sampler->SetInputData(broken);
+      sampler->SetTransferFunction(flat);
+      sampler->SetStrategyToViewOrdered();
+      sampler->SetSampleExponent(10);
+      sampler->SetOrderingView(camera, 8, 8);
+      Messages messages(sampler);
+      sampler->Update();
+      EXPECT_TRUE(messages.Errors.empty()) << messages.Errors;
+      EXPECT_EQ(1023, sampler->GetOutput()->GetNumberOfPoints());
+    }
   }
 }

@@ -4,6 +4,7 @@
 // scalar PixelBinner::Locate and ThreadImage::DepositPoint.
 #include "mcxExecutor.h"
 #include "mcxFootprintBatch.h"
+#include "mcxObliqueTestGeometry.h"
 #include "mcxPixelBinner.h"
 #include "mcxSampleAccumulator.h"
 
@@ -22,41 +23,6 @@
 
 namespace
 {
-mcx::ProjectionGeometry Geometry(bool perspective)
-{
-  mcx::ProjectionGeometry g;
-  g.Perspective = perspective;
-  g.Size[0] = 37; // not a multiple of any vector width
-  g.Size[1] = 29;
-  g.Spacing[0] = 0.75;
-  g.Spacing[1] = 0.5;
-  g.Origin[0] = -13.0;
-  g.Origin[1] = -7.0;
-  // An oblique frame: U, V, W orthonormal, turned about two axes.
-  const double a = 0.3, b = -0.7;
-  const double u[3] = { std::cos(a), std::sin(a), 0 };
-  const double v[3] = { -std::sin(a) * std::cos(b), std::cos(a) * std::cos(b), std::sin(b) };
-  for (int r = 0; r < 3; ++r)
-  {
-    g.U[r] = u[r];
-    g.V[r] = v[r];
-  }
-  g.W[0] = u[1] * v[2] - u[2] * v[1];
-  g.W[1] = u[2] * v[0] - u[0] * v[2];
-  g.W[2] = u[0] * v[1] - u[1] * v[0];
-  for (int r = 0; r < 3; ++r)
-  {
-    g.Eye[r] = -60.0 * g.W[r] + 1.5 * r;
-  }
-  g.FocalDistance = 90.0;
-  g.NearDistance = perspective ? 6.0 : 0.0;
-  if (!perspective)
-  {
-    g.Obliquity[0] = 0.125;
-  }
-  return g;
-}
-
 // Points around the volume, and the awkward ones: behind the near plane,
 // on it, not finite, overflowing to infinity in the products, subnormal.
 std::vector<double> Points(std::size_t n)
@@ -122,7 +88,7 @@ TEST(SIMDLanes, LocatePointsIsLocateBitForBitOnEveryInstructionSet)
   const double matrix[9] = { 0.8, 0.1, 0, 0, 1.1, 0.05, 0.02, 0, 1.3 };
   for (bool perspective : { false, true })
   {
-    const mcx::PixelBinner binner(Geometry(perspective), origin, matrix);
+    const mcx::PixelBinner binner(ObliqueTestGeometry(perspective), origin, matrix);
     for (std::int64_t target : targets)
     {
       hwy::SetSupportedTargetsForTest(target);
@@ -182,7 +148,7 @@ TEST(SIMDLanes, DepositPointsAddsWhatDepositPointAdds)
   {
     for (bool weighted : { false, true })
     {
-      const mcx::ProjectionGeometry g = Geometry(perspective);
+      const mcx::ProjectionGeometry g = ObliqueTestGeometry(perspective);
       const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
       std::vector<double> limits(pixels);
       for (std::size_t p = 0; p < pixels; ++p)
@@ -272,7 +238,7 @@ TEST(SIMDLanes, AStoredCloudInBatchesAddsWhatOneAtATimeAdds)
   settings.Depths[1] = 110.0;
   for (const bool perspective : { true, false })
   {
-    const mcx::ProjectionGeometry g = Geometry(perspective);
+    const mcx::ProjectionGeometry g = ObliqueTestGeometry(perspective);
     const std::size_t pixels = static_cast<std::size_t>(g.Size[0]) * g.Size[1];
     // Each chunk ends in points well inside the image, so that a footprint
     // left in the pipeline at a chunk's end would be missed.
