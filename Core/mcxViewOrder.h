@@ -25,8 +25,9 @@
 // The sort is two passes over every voxel, like the index build (the first
 // locates each voxel and keeps its cell and position for the second), then
 // three over each run of a few cells (a count, and a stable scatter by
-// position, then by cell), so it pays where one view takes many TF edits. The order depends on the
-// index, the cells and the bins alone, never on the thread count.
+// position, then by cell), so it pays where one view takes many TF edits.
+// The order depends on the index, the cells and the bins alone, never on
+// the thread count.
 #ifndef mcxViewOrder_h
 #define mcxViewOrder_h
 
@@ -244,10 +245,10 @@ struct ViewOrder
   /// digit (ViewOrderDigits) in chunks of a layout fixed by the voxel and
   /// digit counts, then each digit's run by its low digit and position, on
   /// `executor`. Each voxel is located once: the first pass keeps its cell
-  /// and position (ViewOrderDigits::SlotKeyBytes a voxel) for the second. After each of
-  /// three passes it calls progress(fraction), which returns false to stop:
-  /// then it returns false and leaves no order. Throws std::length_error
-  /// where the digits do not fit (ViewOrderDigits::Fit).
+  /// and position (ViewOrderDigits::SlotKeyBytes a voxel) for the second.
+  /// After each of three passes it calls progress(fraction), which returns
+  /// false to stop: then it returns false and leaves no order. Throws
+  /// std::length_error where the digits do not fit (ViewOrderDigits::Fit).
   template <typename Executor, typename CellFunction, typename Progress>
   bool Build(const Executor& executor, const IdType* sortedIds, const std::int64_t* levelOffsets,
     std::int64_t numberOfLevels, std::vector<std::int64_t> binFirstLevel, std::int64_t cells,
@@ -307,9 +308,8 @@ struct ViewOrder
     };
 
     // Each voxel located once: its cell and position kept, and each
-    // chunk's count of every high digit.
-    // A recycled order's keys of the other width are let go first (an
-    // assignment of {} would keep their memory).
+    // chunk's count of every high digit. A recycled order's keys of the
+    // other width are let go first (an assignment of {} keeps the memory).
     auto& otherKeys = this->SlotKeysOf(OtherKey<Key>());
     otherKeys = std::decay_t<decltype(otherKeys)>();
     auto& slotKeys = this->SlotKeysOf(Key());
